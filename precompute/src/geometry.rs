@@ -1,0 +1,232 @@
+//! Points, vectors and planar convex polygons in metres.
+//!
+//! Everything geometric in the precompute is `f64`: form factors of adjacent patches lose
+//! several digits near a shared edge, so single precision is not enough here.
+
+use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub};
+
+/// A point or a vector in 3-D space, in metres when it is a position.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Vec3 {
+    /// x coordinate.
+    pub x: f64,
+    /// y coordinate.
+    pub y: f64,
+    /// z coordinate.
+    pub z: f64,
+}
+
+impl Vec3 {
+    /// The zero vector.
+    pub const ZERO: Vec3 = Vec3::new(0.0, 0.0, 0.0);
+
+    /// A vector from its three coordinates.
+    pub const fn new(x: f64, y: f64, z: f64) -> Self {
+        Vec3 { x, y, z }
+    }
+
+    /// Dot product.
+    pub fn dot(self, o: Vec3) -> f64 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// Cross product (right-handed).
+    pub fn cross(self, o: Vec3) -> Vec3 {
+        Vec3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+
+    /// Euclidean length.
+    pub fn length(self) -> f64 {
+        self.dot(self).sqrt()
+    }
+
+    /// This vector scaled to unit length; the zero vector stays zero.
+    pub fn normalized(self) -> Vec3 {
+        let l = self.length();
+        if l > 0.0 {
+            self / l
+        } else {
+            self
+        }
+    }
+
+    /// True when every coordinate is finite.
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+
+    /// Coordinates as an array.
+    pub fn to_array(self) -> [f64; 3] {
+        [self.x, self.y, self.z]
+    }
+
+    /// Coordinate by axis index (0 = x, 1 = y, 2 = z).
+    pub fn axis(self, axis: usize) -> f64 {
+        match axis {
+            0 => self.x,
+            1 => self.y,
+            _ => self.z,
+        }
+    }
+}
+
+impl Add for Vec3 {
+    type Output = Vec3;
+    fn add(self, o: Vec3) -> Vec3 {
+        Vec3::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl AddAssign for Vec3 {
+    fn add_assign(&mut self, o: Vec3) {
+        *self = *self + o;
+    }
+}
+
+impl Sub for Vec3 {
+    type Output = Vec3;
+    fn sub(self, o: Vec3) -> Vec3 {
+        Vec3::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl Mul<f64> for Vec3 {
+    type Output = Vec3;
+    fn mul(self, s: f64) -> Vec3 {
+        Vec3::new(self.x * s, self.y * s, self.z * s)
+    }
+}
+
+impl Div<f64> for Vec3 {
+    type Output = Vec3;
+    fn div(self, s: f64) -> Vec3 {
+        Vec3::new(self.x / s, self.y / s, self.z / s)
+    }
+}
+
+impl Neg for Vec3 {
+    type Output = Vec3;
+    fn neg(self) -> Vec3 {
+        Vec3::new(-self.x, -self.y, -self.z)
+    }
+}
+
+/// A planar convex polygon (a triangle or a quadrilateral after meshing).
+///
+/// Vertices run counter-clockwise seen from the side the polygon faces, so the normal follows
+/// the right-hand rule. One-sided: light leaves and arrives on the front only.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Polygon {
+    /// Corners in order, metres.
+    pub vertices: Vec<Vec3>,
+}
+
+impl Polygon {
+    /// A polygon from its corners (counter-clockwise seen from the front).
+    pub fn new(vertices: Vec<Vec3>) -> Self {
+        Polygon { vertices }
+    }
+
+    /// Twice the vector area (Newell's method): its direction is the normal, its length
+    /// twice the area. Exact for planar polygons, robust for nearly degenerate ones.
+    fn doubled_vector_area(&self) -> Vec3 {
+        let n = self.vertices.len();
+        let mut acc = Vec3::ZERO;
+        for i in 0..n {
+            let a = self.vertices[i];
+            let b = self.vertices[(i + 1) % n];
+            acc += a.cross(b);
+        }
+        acc
+    }
+
+    /// Unit normal (right-hand rule), or zero for a degenerate polygon.
+    pub fn normal(&self) -> Vec3 {
+        self.doubled_vector_area().normalized()
+    }
+
+    /// Area in m².
+    pub fn area(&self) -> f64 {
+        0.5 * self.doubled_vector_area().length()
+    }
+
+    /// Area-weighted centroid, metres.
+    pub fn centroid(&self) -> Vec3 {
+        let n = self.vertices.len();
+        let Some(&origin) = self.vertices.first() else {
+            return Vec3::ZERO;
+        };
+        let mut weighted = Vec3::ZERO;
+        let mut total = 0.0;
+        for i in 1..n.saturating_sub(1) {
+            let a = self.vertices[i] - origin;
+            let b = self.vertices[i + 1] - origin;
+            let w = 0.5 * a.cross(b).length();
+            weighted += (origin + self.vertices[i] + self.vertices[i + 1]) / 3.0 * w;
+            total += w;
+        }
+        if total > 0.0 {
+            weighted / total
+        } else {
+            origin
+        }
+    }
+}
+
+/// A meshed patch: the unit of the radiosity system.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Patch {
+    /// The patch outline (convex, 3 or 4 corners, counter-clockwise seen from the front).
+    pub polygon: Polygon,
+    /// Unit normal, pointing to the side that emits and receives light.
+    pub normal: Vec3,
+    /// Area, m².
+    pub area: f64,
+    /// Centroid, m.
+    pub centroid: Vec3,
+    /// Index of the named surface the patch was cut from.
+    pub surface: usize,
+}
+
+impl Patch {
+    /// A patch from its outline; normal, area and centroid follow from it.
+    pub fn new(polygon: Polygon, surface: usize) -> Self {
+        let normal = polygon.normal();
+        let area = polygon.area();
+        let centroid = polygon.centroid();
+        Patch { polygon, normal, area, centroid, surface }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unit_square_area_normal_centroid() {
+        let p = Polygon::new(vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        ]);
+        assert!((p.area() - 1.0).abs() < 1e-15);
+        assert!((p.normal() - Vec3::new(0.0, 0.0, 1.0)).length() < 1e-15);
+        assert!((p.centroid() - Vec3::new(0.5, 0.5, 0.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn triangle_centroid_is_vertex_mean() {
+        let p = Polygon::new(vec![
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(3.0, 0.0, 1.0),
+            Vec3::new(0.0, 3.0, 1.0),
+        ]);
+        assert!((p.area() - 4.5).abs() < 1e-12);
+        assert!((p.centroid() - Vec3::new(1.0, 1.0, 1.0)).length() < 1e-12);
+    }
+}

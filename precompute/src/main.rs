@@ -1,0 +1,2 @@
+//! The `eigenrad` command line.
+fn main() {}
