@@ -198,7 +198,13 @@ impl Patch {
         let normal = polygon.normal();
         let area = polygon.area();
         let centroid = polygon.centroid();
-        Patch { polygon, normal, area, centroid, surface }
+        Patch {
+            polygon,
+            normal,
+            area,
+            centroid,
+            surface,
+        }
     }
 }
 

@@ -1,2 +1,19 @@
 #![no_std]
-//! eigenrad runtime.
+#![doc = include_str!("../README.md")]
+
+#[cfg(any(test, feature = "alloc"))]
+extern crate alloc;
+
+mod basis;
+pub mod dali;
+mod error;
+mod eval;
+pub mod format;
+mod storage;
+#[cfg(any(test, feature = "alloc"))]
+pub mod writer;
+
+pub use basis::{Basis, PatchInfo, SensorInfo, MIN_REFLECTANCE};
+pub use error::{Error, Result};
+pub use eval::{Evaluator, MAX_EXITANCE, MAX_LEVEL};
+pub use format::{Formulation, Precision, Quantity};

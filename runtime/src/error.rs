@@ -1,0 +1,158 @@
+//! The runtime's one error type.
+
+use core::fmt;
+
+/// Result with the runtime's [`Error`].
+pub type Result<T> = core::result::Result<T, Error>;
+
+/// Everything that can go wrong when decoding or evaluating a basis.
+///
+/// Decoding errors (`Decode*`) come from [`Basis::from_bytes`](crate::Basis::from_bytes) and
+/// mean the byte string is not a valid basis; the others come from the
+/// [`Evaluator`](crate::Evaluator) and mean the request does not fit the basis or the
+/// evaluator's capacities. No byte string and no request makes the runtime panic.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error {
+    /// The byte string is shorter than the fixed header or than the payload it announces.
+    DecodeTruncated {
+        /// Bytes needed.
+        needed: usize,
+        /// Bytes present.
+        found: usize,
+    },
+    /// The first eight bytes are not `EIGENRAD`: this is not a basis.
+    DecodeBadMagic,
+    /// The basis was written in a format version this runtime does not read.
+    DecodeVersion {
+        /// Version in the header.
+        found: u16,
+        /// The version this runtime reads.
+        supported: u16,
+    },
+    /// The CRC-32 of the payload differs from the header's: the bytes were corrupted.
+    DecodeChecksum {
+        /// Checksum stored in the header.
+        expected: u32,
+        /// Checksum of the payload as found.
+        found: u32,
+    },
+    /// The payload is not a valid postcard encoding of the basis layout.
+    DecodePayload,
+    /// An enumerated header field holds a value outside its range.
+    DecodeField {
+        /// The field, as named in `docs/format.md`.
+        field: &'static str,
+        /// The value found.
+        value: u32,
+    },
+    /// A table's byte length does not match the dimensions in the header.
+    DimensionMismatch {
+        /// The table, as named in `docs/format.md`.
+        field: &'static str,
+        /// Byte length the dimensions require.
+        expected: usize,
+        /// Byte length found.
+        found: usize,
+    },
+    /// A stored number is NaN, infinite or outside the range the format allows.
+    DecodeValue {
+        /// The table, as named in `docs/format.md`.
+        field: &'static str,
+        /// Element index within that table.
+        index: usize,
+    },
+    /// The basis needs more room than the evaluator's compile-time capacities give.
+    Capacity {
+        /// Which capacity (`"patches"`, `"modes"`, `"channels"`, `"outputs"`, `"bands"`).
+        what: &'static str,
+        /// What the basis needs.
+        needed: usize,
+        /// What the evaluator type provides.
+        capacity: usize,
+    },
+    /// An index (patch, channel, sensor, zone) beyond the basis' count.
+    IndexOutOfRange {
+        /// Which kind of index.
+        what: &'static str,
+        /// The index given.
+        index: usize,
+        /// How many there are.
+        count: usize,
+    },
+    /// A caller's slice has the wrong length.
+    LengthMismatch {
+        /// Which argument.
+        what: &'static str,
+        /// Length required.
+        expected: usize,
+        /// Length given.
+        found: usize,
+    },
+    /// A level or exitance is negative, NaN, infinite, or so large that the result would
+    /// overflow `f32`; the evaluator's state is left unchanged.
+    InvalidInput {
+        /// Which argument.
+        what: &'static str,
+    },
+    /// Irradiance cannot be read back from the exitance of a patch with zero reflectance in
+    /// this band (it reflects nothing); use a sensor or a zone there.
+    BlackPatch {
+        /// The patch.
+        patch: usize,
+    },
+    /// DALI arc power level 255 is "MASK" (no change), not a light level.
+    DaliMask,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::DecodeTruncated { needed, found } => {
+                write!(f, "basis truncated: {needed} bytes needed, {found} present")
+            }
+            Error::DecodeBadMagic => f.write_str("not an eigenrad basis (bad magic bytes)"),
+            Error::DecodeVersion { found, supported } => write!(
+                f,
+                "basis format version {found} is not supported (this runtime reads version {supported})"
+            ),
+            Error::DecodeChecksum { expected, found } => write!(
+                f,
+                "basis checksum mismatch: header says {expected:#010x}, payload has {found:#010x}"
+            ),
+            Error::DecodePayload => f.write_str("basis payload is not a valid postcard encoding"),
+            Error::DecodeField { field, value } => {
+                write!(f, "basis field `{field}` has invalid value {value}")
+            }
+            Error::DimensionMismatch { field, expected, found } => write!(
+                f,
+                "basis table `{field}` is {found} bytes, its dimensions need {expected}"
+            ),
+            Error::DecodeValue { field, index } => write!(
+                f,
+                "basis table `{field}` element {index} is not finite or out of range"
+            ),
+            Error::Capacity { what, needed, capacity } => write!(
+                f,
+                "basis needs {needed} {what} but the evaluator has room for {capacity}"
+            ),
+            Error::IndexOutOfRange { what, index, count } => {
+                write!(f, "{what} index {index} out of range (there are {count})")
+            }
+            Error::LengthMismatch { what, expected, found } => {
+                write!(f, "`{what}` has length {found}, expected {expected}")
+            }
+            Error::InvalidInput { what } => write!(
+                f,
+                "`{what}` must be finite, non-negative and small enough not to overflow"
+            ),
+            Error::BlackPatch { patch } => write!(
+                f,
+                "patch {patch} has zero reflectance: its irradiance is not defined by its exitance"
+            ),
+            Error::DaliMask => f.write_str("DALI arc power level 255 (MASK) is not a light level"),
+        }
+    }
+}
+
+impl core::error::Error for Error {}

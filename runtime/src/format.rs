@@ -1,0 +1,384 @@
+//! The serialized basis, format version 1: the wire types a writer fills and the reader
+//! decodes in place. `docs/format.md` is the normative description; this module is its code.
+//!
+//! A basis is a 20-byte header followed by a postcard-encoded [`Payload`]:
+//!
+//! | offset | size | field | meaning |
+//! |---|---|---|---|
+//! | 0 | 8 | magic | `EIGENRAD` |
+//! | 8 | 2 | version | [`FORMAT_VERSION`], little-endian |
+//! | 10 | 2 | reserved | 0 |
+//! | 12 | 4 | payload length | bytes of payload, little-endian |
+//! | 16 | 4 | checksum | CRC-32 (ISO-HDLC) of the payload, little-endian |
+//!
+//! Bulk tables inside the payload are borrowed byte slices of little-endian numbers, so that a
+//! basis kept in flash is read where it lies: decoding copies nothing but a few slice headers.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+
+/// The eight bytes every basis starts with.
+pub const MAGIC: [u8; 8] = *b"EIGENRAD";
+/// The format version this runtime writes and reads.
+pub const FORMAT_VERSION: u16 = 1;
+/// Size of the fixed header in bytes.
+pub const HEADER_LEN: usize = 20;
+/// `patch_channel` value of a patch that belongs to no channel.
+pub const NO_CHANNEL: u16 = u16::MAX;
+
+/// How the interreflection operator is expanded (see `docs/format.md` and math.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Formulation {
+    /// Default. `M = M0 + first bounce + Σ c_k v_k (v_k · b∘M0)` with `c_k = μ_k/(1−μ_k)`;
+    /// the stored eigenvalues are `μ_k` (eigenvalues of `R F`).
+    Split = 0,
+    /// The seed paper's expansion, corrected: `M = Σ (1/λ_k) v_k (v_k · b∘M0)` over the
+    /// smallest eigenvalues `λ_k` of `S = A R⁻¹ (I − R F)`; kept for comparison.
+    Seed = 1,
+}
+
+/// How the large tables (mode vectors, first bounces, view rows) are stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Precision {
+    /// IEEE binary32, 4 bytes a value.
+    F32 = 0,
+    /// IEEE binary16 times a per-column scale, 2 bytes a value.
+    F16 = 1,
+    /// Signed 16-bit integer times a per-column scale, 2 bytes a value.
+    I16 = 2,
+}
+
+impl Precision {
+    /// Bytes per stored value.
+    pub const fn bytes(self) -> usize {
+        match self {
+            Precision::F32 => 4,
+            Precision::F16 | Precision::I16 => 2,
+        }
+    }
+}
+
+/// What the numbers measure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Quantity {
+    /// Radiometric: exitance and irradiance in W/m², luminance in W/(m²·sr).
+    Radiometric = 0,
+    /// Photometric, one photopic band: exitance (lm/m²) and illuminance in lux, luminance in
+    /// cd/m².
+    Photometric = 1,
+}
+
+/// A matrix stored row-major in the basis' [`Precision`], with one scale per column: the
+/// value at `(row, col)` is `stored(row, col) × scale[col]` (`scale` is empty for `F32`).
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, Default, PartialEq)]
+pub struct MatrixBytes<'a> {
+    /// One little-endian `f32` per column (empty for `F32` storage).
+    #[serde(borrow)]
+    pub scales: &'a [u8],
+    /// `rows × cols` values, row-major.
+    #[serde(borrow)]
+    pub data: &'a [u8],
+}
+
+/// The payload: dimensions, then tables of little-endian numbers.
+///
+/// `n` patches, `p` modes, `B` bands (1 or 3), `m` channels, `S` sensors, `Z` zones, and
+/// `O = S + Z` outputs (sensors first, then zones). Lengths are in values; see
+/// `docs/format.md` for the byte layout and the meaning of every table.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, Default, PartialEq)]
+pub struct Payload<'a> {
+    /// `B`: 1 (photopic) or 3 (RGB).
+    pub bands: u8,
+    /// [`Quantity`] as its discriminant.
+    pub quantity: u8,
+    /// [`Formulation`] as its discriminant.
+    pub formulation: u8,
+    /// [`Precision`] as its discriminant.
+    pub precision: u8,
+    /// `n`.
+    pub patch_count: u32,
+    /// `p`.
+    pub mode_count: u32,
+    /// Number of named surfaces.
+    pub surface_count: u32,
+    /// `m`.
+    pub channel_count: u32,
+    /// `S`.
+    pub sensor_count: u32,
+    /// `Z`.
+    pub zone_count: u32,
+    /// Postcard strings, one after the other: surfaces, channels, sensors, zones.
+    #[serde(borrow)]
+    pub names: &'a [u8],
+    /// `B × p` `f32`: per band, `μ_k` (split) or `λ_k` (seed).
+    #[serde(borrow)]
+    pub eigenvalues: &'a [u8],
+    /// `n` `f32`: patch area, m².
+    #[serde(borrow)]
+    pub patch_area: &'a [u8],
+    /// `n × 3` `f32`: patch centroid, m.
+    #[serde(borrow)]
+    pub patch_centroid: &'a [u8],
+    /// `n` `u16`: index of the surface the patch belongs to.
+    #[serde(borrow)]
+    pub patch_surface: &'a [u8],
+    /// `n` `u16`: channel driving the patch's emission, or [`NO_CHANNEL`].
+    #[serde(borrow)]
+    pub patch_channel: &'a [u8],
+    /// `n × B` `f32`: reflectance ρ, 0 or in `[1e-6, 1)`.
+    #[serde(borrow)]
+    pub patch_reflectance: &'a [u8],
+    /// `n × B` `f32`: exitance emitted at channel level 1 (W/m² or lux).
+    #[serde(borrow)]
+    pub patch_emission: &'a [u8],
+    /// `n × (B·p)` matrix: mode vectors, patch-major; column `b·p + k` is mode `k` of band `b`.
+    #[serde(borrow)]
+    pub modes: MatrixBytes<'a>,
+    /// Ascending `u32` patch indices whose reflectance is 0 in at least one band.
+    #[serde(borrow)]
+    pub black_patches: &'a [u8],
+    /// `black × B × p` `f32`: mode-space response to unit exitance of each black patch, with
+    /// the mode coefficient included (split `v_k·G e_j/(1−μ_k)`, seed `v_k·G e_j/λ_k`).
+    #[serde(borrow)]
+    pub black_projection: &'a [u8],
+    /// `m × B × p` `f32`: mode-space response to each channel at level 1, coefficient
+    /// included.
+    #[serde(borrow)]
+    pub channel_projection: &'a [u8],
+    /// `n × (m·B)` matrix: each channel's exact first bounce `R F e` at level 1 (split only;
+    /// zero columns for seed). Column `c·B + b`.
+    #[serde(borrow)]
+    pub channel_bounce: MatrixBytes<'a>,
+    /// `S × 7` `f32`: sensor position (m), unit normal, field-of-view half-angle (rad, π for
+    /// a full hemisphere).
+    #[serde(borrow)]
+    pub sensor_geometry: &'a [u8],
+    /// `Z` `f32`: zone area, m².
+    #[serde(borrow)]
+    pub zone_area: &'a [u8],
+    /// `O × B × p` `f32`: each output's irradiance per unit mode amplitude.
+    #[serde(borrow)]
+    pub output_modes: &'a [u8],
+    /// `O × B × m` `f32`: each output's irradiance from the part of each channel at level 1
+    /// that is not carried by the modes (emission and first bounce, exact).
+    #[serde(borrow)]
+    pub output_channels: &'a [u8],
+    /// `n × O` matrix: view factor from each output to each patch (a zone's is
+    /// area-averaged), for direct light from exitance set patch by patch.
+    #[serde(borrow)]
+    pub output_view: MatrixBytes<'a>,
+}
+
+/// CRC-32/ISO-HDLC (the zlib/PNG CRC): reflected polynomial `0xEDB88320`, initial value and
+/// final XOR `0xFFFF_FFFF`. A nibble table keeps it small for flash and fast enough to check
+/// a basis at boot.
+pub fn crc32(bytes: &[u8]) -> u32 {
+    // Evaluated at compile time: an index out of bounds here fails the build, not the device.
+    #[allow(clippy::indexing_slicing)]
+    const fn table() -> [u32; 16] {
+        let mut t = [0u32; 16];
+        let mut i = 0;
+        while i < 16 {
+            let mut c = i as u32;
+            let mut k = 0;
+            while k < 4 {
+                c = if c & 1 != 0 {
+                    (c >> 1) ^ 0xEDB8_8320
+                } else {
+                    c >> 1
+                };
+                k += 1;
+            }
+            t[i] = c;
+            i += 1;
+        }
+        t
+    }
+    const TABLE: [u32; 16] = table();
+    let mut crc = !0u32;
+    for &byte in bytes {
+        crc ^= u32::from(byte);
+        for _ in 0..2 {
+            // `crc & 0xF` is below 16, so the lookup cannot fail; `unwrap_or` keeps it total.
+            let t = TABLE.get((crc & 0xF) as usize).copied().unwrap_or(0);
+            crc = (crc >> 4) ^ t;
+        }
+    }
+    !crc
+}
+
+/// Bytes the encoding of `payload` takes, header included.
+pub fn encoded_len(payload: &Payload<'_>) -> Result<usize> {
+    let body = postcard::serialize_with_flavor(payload, postcard::ser_flavors::Size::default())
+        .map_err(|_| Error::DecodePayload)?;
+    Ok(HEADER_LEN + body)
+}
+
+/// Encodes `payload` with its header into `out`, returning the bytes written.
+///
+/// `out` must hold [`encoded_len`] bytes. Host tools allocate that; the runtime itself never
+/// encodes.
+pub fn encode<'o>(payload: &Payload<'_>, out: &'o mut [u8]) -> Result<&'o mut [u8]> {
+    let (header, body) = match out.split_at_mut_checked(HEADER_LEN) {
+        Some(parts) => parts,
+        None => {
+            return Err(Error::DecodeTruncated {
+                needed: HEADER_LEN,
+                found: out.len(),
+            })
+        }
+    };
+    let written = postcard::to_slice(payload, body).map_err(|_| Error::DecodePayload)?;
+    let len = written.len();
+    let crc = crc32(written);
+    let len32 = u32::try_from(len).map_err(|_| Error::DecodeField {
+        field: "payload length",
+        value: u32::MAX,
+    })?;
+    let mut h = [0u8; HEADER_LEN];
+    let parts: [&[u8]; 5] = [
+        &MAGIC,
+        &FORMAT_VERSION.to_le_bytes(),
+        &0u16.to_le_bytes(),
+        &len32.to_le_bytes(),
+        &crc.to_le_bytes(),
+    ];
+    let mut at = 0;
+    for part in parts {
+        for &b in part {
+            if let Some(slot) = h.get_mut(at) {
+                *slot = b;
+            }
+            at += 1;
+        }
+    }
+    header.copy_from_slice(&h);
+    let total = HEADER_LEN + len;
+    out.get_mut(..total).ok_or(Error::DecodeTruncated {
+        needed: total,
+        found: 0,
+    })
+}
+
+/// Checks the header and checksum of `bytes` and decodes the payload, borrowing from `bytes`.
+///
+/// Trailing bytes after the payload (e.g. erased flash padding) are ignored.
+pub fn decode(bytes: &[u8]) -> Result<Payload<'_>> {
+    let header = bytes.get(..HEADER_LEN).ok_or(Error::DecodeTruncated {
+        needed: HEADER_LEN,
+        found: bytes.len(),
+    })?;
+    if header.get(..8) != Some(&MAGIC[..]) {
+        return Err(Error::DecodeBadMagic);
+    }
+    let version = u16::from_le_bytes([byte(header, 8), byte(header, 9)]);
+    if version != FORMAT_VERSION {
+        return Err(Error::DecodeVersion {
+            found: version,
+            supported: FORMAT_VERSION,
+        });
+    }
+    let reserved = u16::from_le_bytes([byte(header, 10), byte(header, 11)]);
+    if reserved != 0 {
+        return Err(Error::DecodeField {
+            field: "reserved",
+            value: u32::from(reserved),
+        });
+    }
+    let len = u32::from_le_bytes([
+        byte(header, 12),
+        byte(header, 13),
+        byte(header, 14),
+        byte(header, 15),
+    ]);
+    let expected = u32::from_le_bytes([
+        byte(header, 16),
+        byte(header, 17),
+        byte(header, 18),
+        byte(header, 19),
+    ]);
+    let needed = HEADER_LEN.saturating_add(len as usize);
+    let body = bytes
+        .get(HEADER_LEN..needed)
+        .ok_or(Error::DecodeTruncated {
+            needed,
+            found: bytes.len(),
+        })?;
+    let found = crc32(body);
+    if found != expected {
+        return Err(Error::DecodeChecksum { expected, found });
+    }
+    let (payload, rest) =
+        postcard::take_from_bytes::<Payload<'_>>(body).map_err(|_| Error::DecodePayload)?;
+    if !rest.is_empty() {
+        return Err(Error::DimensionMismatch {
+            field: "payload length",
+            expected: body.len() - rest.len(),
+            found: body.len(),
+        });
+    }
+    Ok(payload)
+}
+
+fn byte(bytes: &[u8], at: usize) -> u8 {
+    bytes.get(at).copied().unwrap_or(0)
+}
+
+/// Converts an IEEE binary16 bit pattern to `f32` (exact: every f16 is an f32).
+pub fn f16_to_f32(bits: u16) -> f32 {
+    let sign = u32::from(bits >> 15) << 31;
+    let exp = u32::from((bits >> 10) & 0x1F);
+    let man = u32::from(bits & 0x3FF);
+    let out = match (exp, man) {
+        (0, 0) => sign,
+        (0, _) => {
+            // Subnormal: value = man × 2^-24, exactly representable in f32.
+            let v = man as f32 * (1.0 / 16_777_216.0);
+            return if sign != 0 { -v } else { v };
+        }
+        (0x1F, 0) => sign | 0x7F80_0000,
+        (0x1F, _) => sign | 0x7FC0_0000 | (man << 13),
+        _ => sign | ((exp + 112) << 23) | (man << 13),
+    };
+    f32::from_bits(out)
+}
+
+/// Converts `f32` to the nearest IEEE binary16 bit pattern (round to nearest even).
+/// Writers use it; values beyond the f16 range become infinity, which the reader rejects.
+pub fn f32_to_f16(value: f32) -> u16 {
+    let x = value.to_bits();
+    let sign = ((x >> 16) & 0x8000) as u16;
+    let exp = ((x >> 23) & 0xFF) as i32;
+    let man = x & 0x007F_FFFF;
+    if exp == 0xFF {
+        return sign | 0x7C00 | if man != 0 { 0x200 } else { 0 };
+    }
+    let e = exp - 127 + 15;
+    if e >= 0x1F {
+        return sign | 0x7C00;
+    }
+    if e <= 0 {
+        if e < -10 {
+            return sign;
+        }
+        let m = man | 0x0080_0000;
+        let shift = (14 - e) as u32;
+        let half = 1u32 << (shift - 1);
+        let rest = m & ((1u32 << shift) - 1);
+        let mut h = (m >> shift) as u16;
+        if rest > half || (rest == half && (h & 1) == 1) {
+            h += 1;
+        }
+        return sign | h;
+    }
+    let mut h = ((e as u32) << 10) as u16 | (man >> 13) as u16;
+    let rest = man & 0x1FFF;
+    if rest > 0x1000 || (rest == 0x1000 && (h & 1) == 1) {
+        h += 1; // may carry into the exponent, which is the correct rounding
+    }
+    sign | h
+}

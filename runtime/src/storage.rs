@@ -1,0 +1,121 @@
+//! Typed, bounds-checked views of the little-endian tables inside a basis.
+//!
+//! Every table's length is validated once when the basis is decoded, so the accessors here
+//! never fall outside their slice; they still return neutral values instead of panicking, so
+//! that no byte string can reset a controller.
+
+use crate::format::{f16_to_f32, Precision};
+
+/// Reads the `i`-th little-endian `f32` of `bytes`, or 0 past the end.
+#[inline]
+pub(crate) fn f32_at(bytes: &[u8], i: usize) -> f32 {
+    match bytes.get(i * 4..i * 4 + 4) {
+        Some(&[a, b, c, d]) => f32::from_le_bytes([a, b, c, d]),
+        _ => 0.0,
+    }
+}
+
+/// Reads the `i`-th little-endian `u16` of `bytes`, or `u16::MAX` past the end.
+#[inline]
+pub(crate) fn u16_at(bytes: &[u8], i: usize) -> u16 {
+    match bytes.get(i * 2..i * 2 + 2) {
+        Some(&[a, b]) => u16::from_le_bytes([a, b]),
+        _ => u16::MAX,
+    }
+}
+
+/// Reads the `i`-th little-endian `u32` of `bytes`, or `u32::MAX` past the end.
+#[inline]
+pub(crate) fn u32_at(bytes: &[u8], i: usize) -> u32 {
+    match bytes.get(i * 4..i * 4 + 4) {
+        Some(&[a, b, c, d]) => u32::from_le_bytes([a, b, c, d]),
+        _ => u32::MAX,
+    }
+}
+
+/// `f32` values of a little-endian table, in order.
+#[inline]
+pub(crate) fn f32s(bytes: &[u8]) -> impl Iterator<Item = f32> + '_ {
+    bytes.chunks_exact(4).map(|c| match *c {
+        [a, b, c, d] => f32::from_le_bytes([a, b, c, d]),
+        _ => 0.0,
+    })
+}
+
+/// `Σ_k table[k] · x[k]` over a little-endian `f32` table.
+#[inline]
+pub(crate) fn dot_f32(bytes: &[u8], x: &[f32]) -> f32 {
+    f32s(bytes).zip(x).map(|(a, &b)| a * b).sum()
+}
+
+/// `y[k] += alpha · table[k]` over a little-endian `f32` table.
+#[inline]
+pub(crate) fn axpy_f32(alpha: f32, bytes: &[u8], y: &mut [f32]) {
+    for (yk, a) in y.iter_mut().zip(f32s(bytes)) {
+        *yk += alpha * a;
+    }
+}
+
+/// A row-major matrix in the basis' storage precision with a scale per column.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Matrix<'a> {
+    pub precision: Precision,
+    pub cols: usize,
+    pub scales: &'a [u8],
+    pub data: &'a [u8],
+}
+
+impl<'a> Matrix<'a> {
+    /// Stored bytes of `len` values of row `row` from column `col`.
+    #[inline]
+    fn span(&self, row: usize, col: usize, len: usize) -> &'a [u8] {
+        let w = self.precision.bytes();
+        let start = (row * self.cols + col) * w;
+        self.data.get(start..start + len * w).unwrap_or(&[])
+    }
+
+    /// Scales of columns `col..col + len` (empty for `F32`).
+    #[inline]
+    fn scale_span(&self, col: usize, len: usize) -> &'a [u8] {
+        self.scales.get(col * 4..(col + len) * 4).unwrap_or(&[])
+    }
+
+    /// Calls `f(k, value(row, col + k))` for `k` in `0..len`.
+    #[inline]
+    pub fn for_each(&self, row: usize, col: usize, len: usize, mut f: impl FnMut(usize, f32)) {
+        let data = self.span(row, col, len);
+        match self.precision {
+            Precision::F32 => {
+                for (k, v) in f32s(data).enumerate() {
+                    f(k, v);
+                }
+            }
+            Precision::F16 => {
+                let scales = f32s(self.scale_span(col, len));
+                for (k, (c, s)) in data.chunks_exact(2).zip(scales).enumerate() {
+                    if let [a, b] = *c {
+                        f(k, f16_to_f32(u16::from_le_bytes([a, b])) * s);
+                    }
+                }
+            }
+            Precision::I16 => {
+                let scales = f32s(self.scale_span(col, len));
+                for (k, (c, s)) in data.chunks_exact(2).zip(scales).enumerate() {
+                    if let [a, b] = *c {
+                        f(k, f32::from(i16::from_le_bytes([a, b])) * s);
+                    }
+                }
+            }
+        }
+    }
+
+    /// `Σ_k value(row, col + k) · x[k]` for `k < x.len()`.
+    #[inline]
+    pub fn row_dot(&self, row: usize, col: usize, x: &[f32]) -> f32 {
+        let mut acc = 0.0;
+        self.for_each(row, col, x.len(), |k, v| {
+            acc += v * x.get(k).copied().unwrap_or(0.0)
+        });
+        acc
+    }
+}

@@ -1,0 +1,250 @@
+//! Writing a basis from owned tables (feature `alloc`; host tools and tests).
+//!
+//! The precompute fills a [`BasisTables`] in `f64` and calls [`BasisTables::to_bytes`]; the
+//! quantisation to the storage precision and the byte layout live here, next to the reader,
+//! so the two cannot drift apart.
+
+use alloc::string::String;
+use alloc::vec;
+use alloc::vec::Vec;
+
+use crate::error::{Error, Result};
+use crate::format::{
+    self, f32_to_f16, Formulation, MatrixBytes, Payload, Precision, Quantity, NO_CHANNEL,
+};
+
+/// Every table of a basis, owned, in `f64`, with the dimensions implied by the lengths.
+///
+/// Notation as in `docs/format.md`: `n` patches, `p` modes, `B` bands, `m` channels,
+/// `O` outputs (sensors, then zones). Matrices are row-major.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BasisTables {
+    /// W/m² or lux.
+    pub quantity: Option<Quantity>,
+    /// Expansion used.
+    pub formulation: Option<Formulation>,
+    /// Storage of the large tables.
+    pub precision: Option<Precision>,
+    /// `B`.
+    pub bands: usize,
+    /// `p`.
+    pub modes: usize,
+    /// Surface names.
+    pub surface_names: Vec<String>,
+    /// Channel names (`m`).
+    pub channel_names: Vec<String>,
+    /// Sensor names.
+    pub sensor_names: Vec<String>,
+    /// Zone names.
+    pub zone_names: Vec<String>,
+    /// `B × p`: `μ` (split) or `λ` (seed).
+    pub eigenvalues: Vec<f64>,
+    /// `n`, m².
+    pub patch_area: Vec<f64>,
+    /// `n`, m.
+    pub patch_centroid: Vec<[f64; 3]>,
+    /// `n` surface indices.
+    pub patch_surface: Vec<u16>,
+    /// `n` channel indices.
+    pub patch_channel: Vec<Option<u16>>,
+    /// `n × B`.
+    pub patch_reflectance: Vec<f64>,
+    /// `n × B`, exitance at level 1.
+    pub patch_emission: Vec<f64>,
+    /// `n × (B·p)`.
+    pub mode_vectors: Vec<f64>,
+    /// `black × B × p`, black patches in ascending order (those with ρ = 0 in some band).
+    pub black_projection: Vec<f64>,
+    /// `m × B × p`.
+    pub channel_projection: Vec<f64>,
+    /// `n × (m·B)` (split) or empty (seed).
+    pub channel_bounce: Vec<f64>,
+    /// Per sensor: position (m), unit normal, half-angle (rad).
+    pub sensor_geometry: Vec<[f64; 7]>,
+    /// Per zone, m².
+    pub zone_area: Vec<f64>,
+    /// `O × B × p`.
+    pub output_modes: Vec<f64>,
+    /// `O × B × m`.
+    pub output_channels: Vec<f64>,
+    /// `n × O`.
+    pub output_view: Vec<f64>,
+}
+
+fn f32_bytes(values: &[f64]) -> Vec<u8> {
+    values
+        .iter()
+        .flat_map(|&v| (v as f32).to_le_bytes())
+        .collect()
+}
+
+/// A row-major `rows × cols` matrix in `precision`: `(scales, data)`.
+fn quantise(values: &[f64], cols: usize, precision: Precision) -> (Vec<u8>, Vec<u8>) {
+    if precision == Precision::F32 || cols == 0 {
+        return (Vec::new(), f32_bytes(values));
+    }
+    let mut max = vec![0.0f64; cols];
+    for (i, &v) in values.iter().enumerate() {
+        if let Some(slot) = max.get_mut(i % cols) {
+            *slot = slot.max(v.abs());
+        }
+    }
+    // f16 keeps its largest value at 2^14, well inside its range (65504) yet far above its
+    // subnormals, so small entries of a column keep their 11-bit precision.
+    let top = match precision {
+        Precision::I16 => 32767.0,
+        _ => 16384.0,
+    };
+    let scales: Vec<f64> = max
+        .iter()
+        .map(|&m| if m > 0.0 { m / top } else { 0.0 })
+        .collect();
+    let mut data = Vec::with_capacity(values.len() * 2);
+    for (i, &v) in values.iter().enumerate() {
+        let s = scales.get(i % cols).copied().unwrap_or(0.0);
+        let x = if s > 0.0 {
+            v / f64::from(s as f32)
+        } else {
+            0.0
+        };
+        let bits = match precision {
+            Precision::I16 => (libm::round(x).clamp(-32767.0, 32767.0) as i16).to_le_bytes(),
+            _ => f32_to_f16(x as f32).to_le_bytes(),
+        };
+        data.extend_from_slice(&bits);
+    }
+    (f32_bytes(&scales), data)
+}
+
+impl BasisTables {
+    /// Encodes the tables as a basis (header, checksum, payload).
+    ///
+    /// Fails with [`Error::DimensionMismatch`] when a table's length disagrees with the
+    /// others, or [`Error::DecodeField`] when a setting is missing.
+    pub fn to_bytes(&self) -> Result<Vec<u8>> {
+        let quantity = self.quantity.ok_or(Error::DecodeField {
+            field: "quantity",
+            value: 0,
+        })?;
+        let formulation = self.formulation.ok_or(Error::DecodeField {
+            field: "formulation",
+            value: 0,
+        })?;
+        let precision = self.precision.ok_or(Error::DecodeField {
+            field: "precision",
+            value: 0,
+        })?;
+        let bands = self.bands;
+        let n = self.patch_area.len();
+        let m = self.channel_names.len();
+        let outputs = self.sensor_names.len() + self.zone_names.len();
+        let count = |v: usize| {
+            u32::try_from(v).map_err(|_| Error::DecodeField {
+                field: "dimensions",
+                value: u32::MAX,
+            })
+        };
+
+        let mut names = Vec::new();
+        for name in self
+            .surface_names
+            .iter()
+            .chain(&self.channel_names)
+            .chain(&self.sensor_names)
+            .chain(&self.zone_names)
+        {
+            let mut buf = vec![0u8; name.len() + 8];
+            let used = postcard::to_slice(name.as_str(), &mut buf)
+                .map_err(|_| Error::DecodePayload)?
+                .len();
+            names.extend_from_slice(buf.get(..used).unwrap_or(&[]));
+        }
+        let centroid: Vec<f64> = self.patch_centroid.iter().flatten().copied().collect();
+        let surface: Vec<u8> = self
+            .patch_surface
+            .iter()
+            .flat_map(|s| s.to_le_bytes())
+            .collect();
+        let channel: Vec<u8> = self
+            .patch_channel
+            .iter()
+            .flat_map(|c| c.unwrap_or(NO_CHANNEL).to_le_bytes())
+            .collect();
+        let black: Vec<u8> = (0..n)
+            .filter(|&i| {
+                (0..bands).any(|b| self.patch_reflectance.get(i * bands + b) == Some(&0.0))
+            })
+            .flat_map(|i| (i as u32).to_le_bytes())
+            .collect();
+        let geometry: Vec<f64> = self.sensor_geometry.iter().flatten().copied().collect();
+        let modes = quantise(&self.mode_vectors, bands * self.modes, precision);
+        let bounce_cols = if self.channel_bounce.is_empty() {
+            0
+        } else {
+            m * bands
+        };
+        let bounce = quantise(&self.channel_bounce, bounce_cols, precision);
+        let view = quantise(&self.output_view, outputs, precision);
+
+        let tables = [
+            f32_bytes(&self.eigenvalues),
+            f32_bytes(&self.patch_area),
+            f32_bytes(&centroid),
+            f32_bytes(&self.patch_reflectance),
+            f32_bytes(&self.patch_emission),
+            f32_bytes(&self.black_projection),
+            f32_bytes(&self.channel_projection),
+            f32_bytes(&geometry),
+            f32_bytes(&self.zone_area),
+            f32_bytes(&self.output_modes),
+            f32_bytes(&self.output_channels),
+        ];
+        let [eig, area, cen, refl, emis, bproj, cproj, geom, zarea, omodes, ochan] = &tables;
+        let payload = Payload {
+            bands: u8::try_from(bands).map_err(|_| Error::DecodeField {
+                field: "bands",
+                value: u32::MAX,
+            })?,
+            quantity: quantity as u8,
+            formulation: formulation as u8,
+            precision: precision as u8,
+            patch_count: count(n)?,
+            mode_count: count(self.modes)?,
+            surface_count: count(self.surface_names.len())?,
+            channel_count: count(m)?,
+            sensor_count: count(self.sensor_names.len())?,
+            zone_count: count(self.zone_names.len())?,
+            names: &names,
+            eigenvalues: eig,
+            patch_area: area,
+            patch_centroid: cen,
+            patch_surface: &surface,
+            patch_channel: &channel,
+            patch_reflectance: refl,
+            patch_emission: emis,
+            modes: MatrixBytes {
+                scales: &modes.0,
+                data: &modes.1,
+            },
+            black_patches: &black,
+            black_projection: bproj,
+            channel_projection: cproj,
+            channel_bounce: MatrixBytes {
+                scales: &bounce.0,
+                data: &bounce.1,
+            },
+            sensor_geometry: geom,
+            zone_area: zarea,
+            output_modes: omodes,
+            output_channels: ochan,
+            output_view: MatrixBytes {
+                scales: &view.0,
+                data: &view.1,
+            },
+        };
+        let mut out = vec![0u8; format::encoded_len(&payload)?];
+        let used = format::encode(&payload, &mut out)?.len();
+        out.truncate(used);
+        Ok(out)
+    }
+}

@@ -1,0 +1,145 @@
+//! Shared helpers: a small deterministic random generator and hand-built bases.
+#![allow(
+    dead_code,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
+
+use eigenrad_runtime::writer::BasisTables;
+use eigenrad_runtime::{Formulation, Precision, Quantity};
+
+/// xorshift64*: deterministic, dependency-free.
+pub struct Rng(pub u64);
+impl Rng {
+    pub fn next_f64(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next_f64()
+    }
+}
+
+/// The smallest meaningful basis: 2 patches, 1 mode, 1 band, 1 channel, 1 sensor, 1 zone.
+/// Numbers are chosen by hand (not physically derived): the golden-bytes test freezes the
+/// layout, not the physics.
+pub fn tiny() -> BasisTables {
+    BasisTables {
+        quantity: Some(Quantity::Photometric),
+        formulation: Some(Formulation::Split),
+        precision: Some(Precision::F32),
+        bands: 1,
+        modes: 1,
+        surface_names: vec!["floor".into(), "lamp".into()],
+        channel_names: vec!["main".into()],
+        sensor_names: vec!["desk".into()],
+        zone_names: vec!["plane".into()],
+        eigenvalues: vec![0.5],
+        patch_area: vec![2.0, 0.25],
+        patch_centroid: vec![[1.0, 1.0, 0.0], [1.0, 1.0, 2.5]],
+        patch_surface: vec![0, 1],
+        patch_channel: vec![None, Some(0)],
+        patch_reflectance: vec![0.5, 0.0],
+        patch_emission: vec![0.0, 1000.0],
+        mode_vectors: vec![0.5, 0.0],
+        black_projection: vec![25.0],
+        channel_projection: vec![25000.0],
+        channel_bounce: vec![50.0, 0.0],
+        sensor_geometry: vec![[1.0, 1.0, 0.8, 0.0, 0.0, 1.0, std::f64::consts::PI]],
+        zone_area: vec![2.0],
+        output_modes: vec![0.25, 0.5],
+        output_channels: vec![100.0, 40.0],
+        output_view: vec![0.0, 0.0, 0.1, 0.05],
+    }
+}
+
+/// A random basis with consistent dimensions and plausible magnitudes.
+pub fn random(
+    seed: u64,
+    formulation: Formulation,
+    precision: Precision,
+    bands: usize,
+) -> BasisTables {
+    let mut rng = Rng(seed | 1);
+    let (n, p, m, sensors, zones) = (23, 7, 3, 2, 2);
+    let outputs = sensors + zones;
+    let mut t = BasisTables {
+        quantity: Some(if bands == 1 {
+            Quantity::Photometric
+        } else {
+            Quantity::Radiometric
+        }),
+        formulation: Some(formulation),
+        precision: Some(precision),
+        bands,
+        modes: p,
+        surface_names: vec!["walls".into(), "lamps".into()],
+        channel_names: (0..m).map(|c| format!("ch{c}")).collect(),
+        sensor_names: (0..sensors).map(|s| format!("s{s}")).collect(),
+        zone_names: (0..zones).map(|z| format!("z{z}")).collect(),
+        ..Default::default()
+    };
+    for _ in 0..bands * p {
+        t.eigenvalues.push(match formulation {
+            Formulation::Split => rng.range(-0.3, 0.9),
+            Formulation::Seed => rng.range(0.5, 20.0),
+        });
+    }
+    for i in 0..n {
+        t.patch_area.push(rng.range(0.05, 1.5));
+        t.patch_centroid.push([
+            rng.range(0.0, 4.0),
+            rng.range(0.0, 4.0),
+            rng.range(0.0, 3.0),
+        ]);
+        let lamp = i % 7 == 3;
+        t.patch_surface.push(u16::from(lamp));
+        t.patch_channel.push(lamp.then_some((i % m) as u16));
+        for _ in 0..bands {
+            t.patch_reflectance.push(if lamp && i % 2 == 1 {
+                0.0
+            } else {
+                rng.range(0.05, 0.9)
+            });
+            t.patch_emission
+                .push(if lamp { rng.range(100.0, 3000.0) } else { 0.0 });
+        }
+    }
+    let black = (0..n)
+        .filter(|&i| (0..bands).any(|b| t.patch_reflectance[i * bands + b] == 0.0))
+        .count();
+    for i in 0..n {
+        for b in 0..bands {
+            for _ in 0..p {
+                let black = t.patch_reflectance[i * bands + b] == 0.0;
+                t.mode_vectors
+                    .push(if black { 0.0 } else { rng.range(-1.0, 1.0) });
+            }
+        }
+    }
+    t.black_projection = (0..black * bands * p)
+        .map(|_| rng.range(-0.5, 0.5))
+        .collect();
+    t.channel_projection = (0..m * bands * p)
+        .map(|_| rng.range(-50.0, 500.0))
+        .collect();
+    if formulation == Formulation::Split {
+        t.channel_bounce = (0..n * m * bands).map(|_| rng.range(0.0, 80.0)).collect();
+    }
+    t.sensor_geometry = (0..sensors)
+        .map(|_| [1.0, 2.0, 0.8, 0.0, 0.0, 1.0, 1.2])
+        .collect();
+    t.zone_area = (0..zones).map(|_| rng.range(1.0, 10.0)).collect();
+    t.output_modes = (0..outputs * bands * p)
+        .map(|_| rng.range(-0.5, 0.5))
+        .collect();
+    t.output_channels = (0..outputs * bands * m)
+        .map(|_| rng.range(0.0, 60.0))
+        .collect();
+    t.output_view = (0..n * outputs).map(|_| rng.range(0.0, 0.05)).collect();
+    t
+}

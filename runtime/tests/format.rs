@@ -1,0 +1,491 @@
+//! The basis format: golden bytes, round trip, and one test per decoder error.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
+
+mod common;
+
+use eigenrad_runtime::format::{crc32, f16_to_f32, f32_to_f16, FORMAT_VERSION, HEADER_LEN};
+use eigenrad_runtime::{Basis, Error, Formulation, Precision, Quantity};
+
+/// The tiny basis of `common::tiny`, encoded. Changing the layout changes these bytes: that
+/// is a format change and needs a new `FORMAT_VERSION`.
+const TINY_GOLDEN: &str = concat!(
+    "454947454e52414401000000d2000000d773be18010100000201020101011b05666c6f6f72046c61",
+    "6d70046d61696e046465736b05706c616e65040000003f08000000400000803e180000803f000080",
+    "3f000000000000803f0000803f00002040040000010004ffff0000080000003f0000000008000000",
+    "0000007a4400080000003f000000000401000000040000c841040050c34600080000484200000000",
+    "1c0000803f0000803fcdcc4c3f00000000000000000000803fdb0f49400400000040080000803e00",
+    "00003f080000c8420000204200100000000000000000cdcccc3dcdcc4c3d",
+);
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// Recomputes the header checksum after a payload edit, so that a test reaches the check
+/// it is about rather than stopping at the checksum.
+fn reseal(bytes: &mut [u8]) {
+    let crc = crc32(&bytes[HEADER_LEN..]);
+    bytes[16..20].copy_from_slice(&crc.to_le_bytes());
+}
+
+#[test]
+fn crc32_check_value() {
+    // The catalogued check value of CRC-32/ISO-HDLC for the ASCII string "123456789".
+    assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
+}
+
+#[test]
+fn golden_bytes_of_the_tiny_basis() {
+    let bytes = common::tiny().to_bytes().unwrap();
+    assert_eq!(&bytes[..8], b"EIGENRAD");
+    assert_eq!(u16::from_le_bytes([bytes[8], bytes[9]]), FORMAT_VERSION);
+    assert_eq!(
+        u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize,
+        bytes.len() - HEADER_LEN
+    );
+    assert_eq!(hex(&bytes), TINY_GOLDEN, "format layout changed");
+}
+
+#[test]
+fn round_trip_of_the_tiny_basis() {
+    let bytes = common::tiny().to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    assert_eq!(basis.bands(), 1);
+    assert_eq!(basis.quantity(), Quantity::Photometric);
+    assert_eq!(basis.formulation(), Formulation::Split);
+    assert_eq!(basis.precision(), Precision::F32);
+    assert_eq!(
+        (
+            basis.patch_count(),
+            basis.mode_count(),
+            basis.channel_count()
+        ),
+        (2, 1, 1)
+    );
+    assert_eq!(
+        (
+            basis.sensor_count(),
+            basis.zone_count(),
+            basis.surface_count()
+        ),
+        (1, 1, 2)
+    );
+    assert_eq!(basis.byte_len(), bytes.len());
+    assert_eq!(basis.surface_name(1).unwrap(), "lamp");
+    assert_eq!(basis.channel_name(0).unwrap(), "main");
+    assert_eq!(basis.sensor_name(0).unwrap(), "desk");
+    assert_eq!(basis.zone_name(0).unwrap(), "plane");
+    assert_eq!(basis.find_channel("main"), Some(0));
+    assert_eq!(basis.find_channel("desk"), None);
+    assert_eq!(basis.find_sensor("desk"), Some(0));
+    assert_eq!(basis.find_zone("plane"), Some(0));
+    assert_eq!(basis.eigenvalue(0, 0).unwrap(), 0.5);
+    let lamp = basis.patch(1).unwrap();
+    assert_eq!(lamp.area, 0.25);
+    assert_eq!(lamp.centroid, [1.0, 1.0, 2.5]);
+    assert_eq!(lamp.channel, Some(0));
+    assert_eq!(lamp.surface, 1);
+    assert_eq!(lamp.reflectance[0], 0.0);
+    assert_eq!(lamp.emission[0], 1000.0);
+    assert_eq!(basis.patch(0).unwrap().channel, None);
+    let s = basis.sensor(0).unwrap();
+    assert_eq!(s.position, [1.0, 1.0, 0.8]);
+    assert_eq!(basis.zone_area(0).unwrap(), 2.0);
+    assert!(matches!(
+        basis.patch(2),
+        Err(Error::IndexOutOfRange {
+            what: "patch",
+            index: 2,
+            count: 2
+        })
+    ));
+    assert!(matches!(
+        basis.channel_name(1),
+        Err(Error::IndexOutOfRange { .. })
+    ));
+}
+
+#[test]
+fn every_precision_and_formulation_round_trips() {
+    for formulation in [Formulation::Split, Formulation::Seed] {
+        for precision in [Precision::F32, Precision::F16, Precision::I16] {
+            for bands in [1, 3] {
+                let bytes = common::random(7, formulation, precision, bands)
+                    .to_bytes()
+                    .unwrap();
+                let basis = Basis::from_bytes(&bytes).unwrap();
+                assert_eq!(
+                    (basis.formulation(), basis.precision(), basis.bands()),
+                    (formulation, precision, bands)
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn trailing_padding_is_ignored() {
+    let mut bytes = common::tiny().to_bytes().unwrap();
+    bytes.extend_from_slice(&[0xFF; 64]); // erased flash after the basis
+    assert!(Basis::from_bytes(&bytes).is_ok());
+}
+
+#[test]
+fn truncated_input() {
+    let bytes = common::tiny().to_bytes().unwrap();
+    assert_eq!(
+        Basis::from_bytes(&bytes[..10]).unwrap_err(),
+        Error::DecodeTruncated {
+            needed: 20,
+            found: 10
+        }
+    );
+    let cut = &bytes[..bytes.len() - 1];
+    assert!(
+        matches!(Basis::from_bytes(cut), Err(Error::DecodeTruncated { found, .. }) if found == cut.len())
+    );
+    assert!(matches!(
+        Basis::from_bytes(&[]),
+        Err(Error::DecodeTruncated { .. })
+    ));
+}
+
+#[test]
+fn bad_magic() {
+    let mut bytes = common::tiny().to_bytes().unwrap();
+    bytes[0] = b'X';
+    assert_eq!(
+        Basis::from_bytes(&bytes).unwrap_err(),
+        Error::DecodeBadMagic
+    );
+}
+
+#[test]
+fn newer_version() {
+    let mut bytes = common::tiny().to_bytes().unwrap();
+    bytes[8..10].copy_from_slice(&2u16.to_le_bytes());
+    assert_eq!(
+        Basis::from_bytes(&bytes).unwrap_err(),
+        Error::DecodeVersion {
+            found: 2,
+            supported: 1
+        }
+    );
+}
+
+#[test]
+fn reserved_header_bits() {
+    let mut bytes = common::tiny().to_bytes().unwrap();
+    bytes[10] = 1;
+    assert!(matches!(
+        Basis::from_bytes(&bytes),
+        Err(Error::DecodeField {
+            field: "reserved",
+            value: 1
+        })
+    ));
+}
+
+#[test]
+fn corrupted_payload_fails_the_checksum() {
+    let mut bytes = common::tiny().to_bytes().unwrap();
+    let last = bytes.len() - 1;
+    bytes[last] ^= 0x40;
+    assert!(matches!(
+        Basis::from_bytes(&bytes),
+        Err(Error::DecodeChecksum { .. })
+    ));
+}
+
+#[test]
+fn garbage_payload_with_a_valid_checksum() {
+    let mut bytes = common::tiny().to_bytes().unwrap();
+    for b in &mut bytes[HEADER_LEN..] {
+        *b = 0xFF;
+    }
+    reseal(&mut bytes);
+    assert_eq!(Basis::from_bytes(&bytes).unwrap_err(), Error::DecodePayload);
+}
+
+/// Encodes `tables` after `edit`, then decodes.
+fn decode_edited(
+    edit: impl FnOnce(&mut eigenrad_runtime::writer::BasisTables),
+) -> Result<(), Error> {
+    let mut t = common::tiny();
+    edit(&mut t);
+    let bytes = t.to_bytes().unwrap();
+    Basis::from_bytes(&bytes).map(|_| ())
+}
+
+#[test]
+fn invalid_band_count() {
+    // Bands are the payload's first byte.
+    let mut bytes = common::tiny().to_bytes().unwrap();
+    bytes[HEADER_LEN] = 2;
+    reseal(&mut bytes);
+    assert_eq!(
+        Basis::from_bytes(&bytes).unwrap_err(),
+        Error::DecodeField {
+            field: "bands",
+            value: 2
+        }
+    );
+}
+
+#[test]
+fn invalid_enumerations() {
+    for (offset, field) in [(1, "quantity"), (2, "formulation"), (3, "precision")] {
+        let mut bytes = common::tiny().to_bytes().unwrap();
+        bytes[HEADER_LEN + offset] = 9;
+        reseal(&mut bytes);
+        assert_eq!(
+            Basis::from_bytes(&bytes).unwrap_err(),
+            Error::DecodeField { field, value: 9 }
+        );
+    }
+}
+
+#[test]
+fn photometric_needs_one_band() {
+    let r = decode_edited(|t| {
+        *t = common::random(3, Formulation::Split, Precision::F32, 3);
+        t.quantity = Some(Quantity::Photometric);
+    });
+    assert!(matches!(
+        r,
+        Err(Error::DecodeField {
+            field: "quantity",
+            ..
+        })
+    ));
+}
+
+#[test]
+fn table_length_mismatches() {
+    let cases: Vec<(
+        &str,
+        Box<dyn Fn(&mut eigenrad_runtime::writer::BasisTables)>,
+    )> = vec![
+        ("eigenvalues", Box::new(|t| t.eigenvalues.push(0.1))),
+        (
+            "patch_centroid",
+            Box::new(|t| t.patch_centroid.pop().map(|_| ()).unwrap_or(())),
+        ),
+        ("patch_surface", Box::new(|t| t.patch_surface.push(0))),
+        ("patch_channel", Box::new(|t| t.patch_channel.push(None))),
+        (
+            "patch_reflectance",
+            Box::new(|t| t.patch_reflectance.push(0.5)),
+        ),
+        ("patch_emission", Box::new(|t| t.patch_emission.push(0.0))),
+        ("modes.data", Box::new(|t| t.mode_vectors.push(0.0))),
+        (
+            "black_projection",
+            Box::new(|t| t.black_projection.push(0.0)),
+        ),
+        (
+            "channel_projection",
+            Box::new(|t| t.channel_projection.push(0.0)),
+        ),
+        (
+            "channel_bounce.data",
+            Box::new(|t| t.channel_bounce.push(0.0)),
+        ),
+        (
+            "sensor_geometry",
+            Box::new(|t| t.sensor_geometry.push([0.0; 7])),
+        ),
+        ("zone_area", Box::new(|t| t.zone_area.push(1.0))),
+        ("output_modes", Box::new(|t| t.output_modes.push(0.0))),
+        ("output_channels", Box::new(|t| t.output_channels.push(0.0))),
+        ("output_view.data", Box::new(|t| t.output_view.push(0.0))),
+    ];
+    for (field, edit) in cases {
+        let r = decode_edited(|t| edit(t));
+        assert!(
+            matches!(r, Err(Error::DimensionMismatch { field: f, .. }) if f == field),
+            "{field}: got {r:?}"
+        );
+    }
+}
+
+#[test]
+fn names_must_match_the_counts() {
+    // One surface name too many: the writer counts surfaces from the names, so rewrite the
+    // count byte (the payload's seventh byte, varint `surface_count`) back to 2.
+    let mut t = common::tiny();
+    t.surface_names.push("extra".into());
+    let mut bytes = t.to_bytes().unwrap();
+    assert_eq!(bytes[HEADER_LEN + 6], 3);
+    bytes[HEADER_LEN + 6] = 2;
+    reseal(&mut bytes);
+    assert!(matches!(
+        Basis::from_bytes(&bytes),
+        Err(Error::DimensionMismatch { field: "names", .. })
+    ));
+}
+
+#[test]
+fn values_out_of_range() {
+    type Edit = Box<dyn Fn(&mut eigenrad_runtime::writer::BasisTables)>;
+    let cases: Vec<(&str, Edit)> = vec![
+        ("eigenvalues", Box::new(|t| t.eigenvalues[0] = 1.0)),
+        ("eigenvalues", Box::new(|t| t.eigenvalues[0] = f64::NAN)),
+        ("patch_area", Box::new(|t| t.patch_area[0] = 0.0)),
+        ("patch_area", Box::new(|t| t.patch_area[0] = f64::INFINITY)),
+        (
+            "patch_centroid",
+            Box::new(|t| t.patch_centroid[0][2] = f64::NAN),
+        ),
+        (
+            "patch_reflectance",
+            Box::new(|t| t.patch_reflectance[0] = 1.0),
+        ),
+        (
+            "patch_reflectance",
+            Box::new(|t| t.patch_reflectance[0] = -0.1),
+        ),
+        (
+            "patch_reflectance",
+            Box::new(|t| t.patch_reflectance[0] = 1e-9),
+        ),
+        ("patch_emission", Box::new(|t| t.patch_emission[1] = -1.0)),
+        ("patch_emission", Box::new(|t| t.patch_emission[0] = 5.0)), // emits but in no channel
+        ("patch_surface", Box::new(|t| t.patch_surface[0] = 7)),
+        ("patch_channel", Box::new(|t| t.patch_channel[0] = Some(3))),
+        ("modes.data", Box::new(|t| t.mode_vectors[0] = f64::NAN)),
+        (
+            "black_projection",
+            Box::new(|t| t.black_projection[0] = f64::INFINITY),
+        ),
+        (
+            "channel_projection",
+            Box::new(|t| t.channel_projection[0] = 1e30),
+        ),
+        (
+            "channel_bounce.data",
+            Box::new(|t| t.channel_bounce[0] = f64::NAN),
+        ),
+        (
+            "sensor_geometry",
+            Box::new(|t| t.sensor_geometry[0][0] = f64::NAN),
+        ),
+        ("zone_area", Box::new(|t| t.zone_area[0] = -2.0)),
+        ("output_modes", Box::new(|t| t.output_modes[0] = f64::NAN)),
+        (
+            "output_channels",
+            Box::new(|t| t.output_channels[1] = f64::INFINITY),
+        ),
+        (
+            "output_view.data",
+            Box::new(|t| t.output_view[3] = f64::NAN),
+        ),
+    ];
+    for (field, edit) in cases {
+        let r = decode_edited(|t| edit(t));
+        assert!(
+            matches!(r, Err(Error::DecodeValue { field: f, .. }) if f == field),
+            "{field}: got {r:?}"
+        );
+    }
+}
+
+#[test]
+fn seed_eigenvalues_must_be_positive() {
+    let r = decode_edited(|t| {
+        t.formulation = Some(Formulation::Seed);
+        t.channel_bounce.clear();
+        t.eigenvalues[0] = -1.0;
+    });
+    assert!(matches!(
+        r,
+        Err(Error::DecodeValue {
+            field: "eigenvalues",
+            index: 0
+        })
+    ));
+}
+
+#[test]
+fn black_patch_list_must_match_reflectance() {
+    // Patch 0 made black too: the writer lists it, but its projection rows are missing.
+    let r = decode_edited(|t| t.patch_reflectance[0] = 0.0);
+    assert!(matches!(
+        r,
+        Err(Error::DimensionMismatch {
+            field: "black_projection",
+            ..
+        })
+    ));
+    // The lamp made reflecting: it is no longer listed, and the projection row is extra.
+    let r = decode_edited(|t| t.patch_reflectance[1] = 0.5);
+    assert!(matches!(
+        r,
+        Err(Error::DimensionMismatch {
+            field: "black_projection",
+            ..
+        })
+    ));
+}
+
+#[test]
+fn quantised_scales_must_be_valid() {
+    let mut t = common::random(5, Formulation::Split, Precision::I16, 1);
+    t.mode_vectors[0] = 1e30; // the column's scale overflows f32 and the reader rejects it
+    let bytes = t.to_bytes().unwrap();
+    assert!(matches!(
+        Basis::from_bytes(&bytes),
+        Err(Error::DecodeValue {
+            field: "modes.scales",
+            ..
+        })
+    ));
+}
+
+#[test]
+fn f16_conversion_is_exact_where_it_can_be() {
+    for v in [
+        0.0f32,
+        1.0,
+        -2.5,
+        0.333_251_95,
+        65504.0,
+        6.103_515_6e-5,
+        5.960_464_5e-8,
+        -1025.0,
+    ] {
+        assert_eq!(f16_to_f32(f32_to_f16(v)), v, "{v}");
+    }
+    // Round to nearest: relative error at most 2^-11 in the normal range.
+    let mut x = 1.0e-4f32;
+    while x < 6.0e4 {
+        let r = f16_to_f32(f32_to_f16(x));
+        assert!(((r - x) / x).abs() <= 1.0 / 2048.0, "{x} -> {r}");
+        x *= 1.37;
+    }
+    assert!(f16_to_f32(f32_to_f16(1.0e6)).is_infinite());
+    assert!(f16_to_f32(f32_to_f16(f32::NAN)).is_nan());
+}
+
+#[test]
+fn no_byte_string_panics() {
+    // Every prefix and every single-byte corruption of a valid basis decodes to Ok or Err.
+    let bytes = common::random(11, Formulation::Split, Precision::F16, 3)
+        .to_bytes()
+        .unwrap();
+    for len in 0..bytes.len() {
+        let _ = Basis::from_bytes(&bytes[..len]);
+    }
+    for i in 0..bytes.len() {
+        let mut b = bytes.clone();
+        b[i] ^= 0xA5;
+        let _ = Basis::from_bytes(&b);
+        reseal(&mut b);
+        let _ = Basis::from_bytes(&b);
+    }
+}
