@@ -1,0 +1,440 @@
+//! The evaluator against a plain f64 evaluation of the same basis, incremental updates
+//! against full recomputation, capacities, DALI.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic,
+    clippy::needless_range_loop
+)]
+
+mod common;
+
+use common::Rng;
+use eigenrad_runtime::writer::BasisTables;
+use eigenrad_runtime::{dali, Basis, Error, Evaluator, Formulation, Precision};
+
+/// Relative tolerance of the f32 evaluator against f64 arithmetic on the same stored
+/// numbers (f32 storage): accumulated rounding of sums of ~10 terms, with margin.
+const F32_RTOL: f64 = 1e-5;
+/// Against the unquantised f64 tables: f16 keeps 11 significant bits (2^-11 ≈ 4.9e-4),
+/// i16 with a per-column scale 15 bits of the column maximum; sums of a few dozen terms.
+const F16_RTOL: f64 = 3e-3;
+const I16_RTOL: f64 = 3e-4;
+
+/// f64 rounded through f32, as the writer stores it.
+fn r(v: f64) -> f64 {
+    f64::from(v as f32)
+}
+
+/// Independent f64 evaluation of `docs/format.md`'s formulas from the tables.
+struct Reference<'t> {
+    t: &'t BasisTables,
+    levels: Vec<f64>,
+    extra: Vec<Vec<f64>>, // per patch, per band
+}
+
+impl Reference<'_> {
+    fn n(&self) -> usize {
+        self.t.patch_area.len()
+    }
+    fn split(&self) -> bool {
+        self.t.formulation == Some(Formulation::Split)
+    }
+    fn rho(&self, i: usize, b: usize) -> f64 {
+        r(self.t.patch_reflectance[i * self.t.bands + b])
+    }
+    fn v(&self, i: usize, b: usize, k: usize) -> f64 {
+        r(self.t.mode_vectors[i * self.t.bands * self.t.modes + b * self.t.modes + k])
+    }
+    fn black_rank(&self, i: usize) -> usize {
+        let bands = self.t.bands;
+        (0..i)
+            .filter(|&j| (0..bands).any(|b| self.rho(j, b) == 0.0))
+            .count()
+    }
+    fn identity(&self, i: usize, b: usize) -> bool {
+        self.split() || self.rho(i, b) == 0.0
+    }
+    fn amplitude(&self, b: usize, k: usize) -> f64 {
+        let (bands, p) = (self.t.bands, self.t.modes);
+        let mut a = 0.0;
+        for (c, l) in self.levels.iter().enumerate() {
+            a += l * r(self.t.channel_projection[(c * bands + b) * p + k]);
+        }
+        let e = r(self.t.eigenvalues[b * p + k]);
+        let coef = if self.split() { e / (1.0 - e) } else { 1.0 / e };
+        for i in 0..self.n() {
+            let x = self.extra[i][b];
+            if x == 0.0 {
+                continue;
+            }
+            if self.rho(i, b) == 0.0 {
+                a += x * r(self.t.black_projection[(self.black_rank(i) * bands + b) * p + k]);
+            } else {
+                a += x * r(self.t.patch_area[i]) / self.rho(i, b) * self.v(i, b, k) * coef;
+            }
+        }
+        a
+    }
+    fn emitted(&self, i: usize, b: usize) -> f64 {
+        let ch = self.t.patch_channel[i].map_or(0.0, |c| self.levels[usize::from(c)]);
+        self.extra[i][b] + ch * r(self.t.patch_emission[i * self.t.bands + b])
+    }
+    fn exitance(&self, i: usize, b: usize) -> f64 {
+        let (bands, p, m) = (self.t.bands, self.t.modes, self.levels.len());
+        let mut v = if self.identity(i, b) {
+            self.emitted(i, b)
+        } else {
+            0.0
+        };
+        if self.split() {
+            for c in 0..m {
+                v += self.levels[c] * r(self.t.channel_bounce[i * m * bands + c * bands + b]);
+            }
+        }
+        for k in 0..p {
+            v += self.v(i, b, k) * self.amplitude(b, k);
+        }
+        v
+    }
+    fn output(&self, o: usize, b: usize) -> f64 {
+        let (bands, p, m) = (self.t.bands, self.t.modes, self.levels.len());
+        let outputs = self.t.sensor_names.len() + self.t.zone_names.len();
+        let mut v = 0.0;
+        for k in 0..p {
+            v += r(self.t.output_modes[(o * bands + b) * p + k]) * self.amplitude(b, k);
+        }
+        for c in 0..m {
+            v += self.levels[c] * r(self.t.output_channels[(o * bands + b) * m + c]);
+        }
+        for i in 0..self.n() {
+            if self.identity(i, b) {
+                v += r(self.t.output_view[i * outputs + o]) * self.extra[i][b];
+            }
+        }
+        v
+    }
+}
+
+type Eval3<'a> = Evaluator<'a, 3, 64, 16, 8, 8>;
+type Eval1<'a> = Evaluator<'a, 1, 64, 16, 8, 8>;
+
+/// Compares every read of `eval` with the reference, norm-wise per kind of output.
+fn compare<const B: usize>(
+    eval: &Evaluator<'_, B, 64, 16, 8, 8>,
+    reference: &Reference<'_>,
+    rtol: f64,
+    what: &str,
+) {
+    let n = reference.n();
+    let mut worst = 0.0f64;
+    let mut all = vec![[0.0f32; B]; n];
+    eval.exitance_all(&mut all).unwrap();
+    let scale = (0..n)
+        .flat_map(|i| (0..B).map(move |b| (i, b)))
+        .map(|(i, b)| reference.exitance(i, b).abs())
+        .fold(0.0, f64::max);
+    for (i, row) in all.iter().enumerate() {
+        let one = eval.exitance(i).unwrap();
+        for b in 0..B {
+            let want = reference.exitance(i, b);
+            assert_eq!(one[b], row[b]);
+            worst = worst.max((f64::from(one[b]) - want).abs());
+            if reference.rho(i, b) > 0.0 {
+                let e = eval.irradiance(i).unwrap()[b];
+                let want_e = (want - reference.emitted(i, b)) / reference.rho(i, b);
+                let err = (f64::from(e) - want_e).abs();
+                assert!(
+                    err <= rtol * scale / reference.rho(i, b),
+                    "{what}: irradiance {i}: {e} vs {want_e}, scale {scale}"
+                );
+            } else {
+                assert_eq!(
+                    eval.irradiance(i).unwrap_err(),
+                    Error::BlackPatch { patch: i }
+                );
+            }
+        }
+    }
+    assert!(
+        worst <= rtol * scale,
+        "{what}: exitance error {worst:e} of scale {scale:e}"
+    );
+    let sensors = reference.t.sensor_names.len();
+    let mut worst = 0.0f64;
+    let mut scale = 0.0f64;
+    for o in 0..sensors + reference.t.zone_names.len() {
+        let got = if o < sensors {
+            eval.sensor_irradiance(o)
+        } else {
+            eval.zone_irradiance(o - sensors)
+        }
+        .unwrap();
+        for b in 0..B {
+            let want = reference.output(o, b);
+            worst = worst.max((f64::from(got[b]) - want).abs());
+            scale = scale.max(want.abs());
+        }
+    }
+    assert!(
+        worst <= rtol * scale,
+        "{what}: output error {worst:e} of scale {scale:e}"
+    );
+}
+
+fn exercise<const B: usize>(formulation: Formulation, precision: Precision, rtol: f64) {
+    for seed in 1..4u64 {
+        let t = common::random(seed * 977, formulation, precision, B);
+        // For quantised storage the reference uses the unquantised tables, so rtol covers
+        // the quantisation too.
+        let bytes = t.to_bytes().unwrap();
+        let basis = Basis::from_bytes(&bytes).unwrap();
+        let mut eval = Evaluator::<B, 64, 16, 8, 8>::new(basis).unwrap();
+        let mut rng = Rng(seed);
+        let n = t.patch_area.len();
+        let m = t.channel_names.len();
+        let levels: Vec<f64> = (0..m).map(|_| rng.range(0.0, 1.0)).collect();
+        let levels32: Vec<f32> = levels.iter().map(|&l| l as f32).collect();
+        eval.set_channel_levels(&levels32).unwrap();
+        let mut reference = Reference {
+            t: &t,
+            levels: levels32.iter().map(|&l| f64::from(l)).collect(),
+            extra: vec![vec![0.0; B]; n],
+        };
+        let what = format!("{formulation:?}/{precision:?}/{B} bands/seed {seed}");
+        compare(&eval, &reference, rtol, &format!("{what}: levels"));
+
+        // General case: arbitrary exitance on reflecting and black patches.
+        for i in [0, 3, 5, 10, 17] {
+            let x: [f32; B] = core::array::from_fn(|_| rng.range(0.0, 500.0) as f32);
+            eval.set_patch_exitance(i, x).unwrap();
+            reference.extra[i] = x.iter().map(|&v| f64::from(v)).collect();
+        }
+        compare(&eval, &reference, rtol, &format!("{what}: patch exitance"));
+
+        // One channel changed incrementally.
+        eval.set_channel_level(1, 0.25).unwrap();
+        reference.levels[1] = 0.25;
+        compare(&eval, &reference, rtol, &format!("{what}: one channel"));
+    }
+}
+
+#[test]
+fn f32_evaluation_equals_f64_on_the_same_basis() {
+    for f in [Formulation::Split, Formulation::Seed] {
+        exercise::<1>(f, Precision::F32, F32_RTOL);
+        exercise::<3>(f, Precision::F32, F32_RTOL);
+    }
+}
+
+#[test]
+fn quantised_storage_stays_within_its_tolerance() {
+    for f in [Formulation::Split, Formulation::Seed] {
+        exercise::<1>(f, Precision::F16, F16_RTOL);
+        exercise::<3>(f, Precision::F16, F16_RTOL);
+        exercise::<1>(f, Precision::I16, I16_RTOL);
+        exercise::<3>(f, Precision::I16, I16_RTOL);
+    }
+}
+
+#[test]
+fn incremental_updates_equal_full_recomputation() {
+    let t = common::random(42, Formulation::Split, Precision::F32, 3);
+    let bytes = t.to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    // 200 single-channel updates and a few per-patch changes, applied incrementally...
+    let mut inc = Eval3::new(basis).unwrap();
+    let mut rng = Rng(9);
+    let mut levels = [0.0f32; 3];
+    let mut patch = vec![[0.0f32; 3]; 23];
+    for step in 0..200 {
+        let c = step % 3;
+        levels[c] = rng.range(0.0, 1.0) as f32;
+        inc.set_channel_level(c, levels[c]).unwrap();
+        if step % 17 == 0 {
+            patch[step % 23] = [rng.range(0.0, 100.0) as f32; 3];
+            inc.set_patch_exitance(step % 23, patch[step % 23]).unwrap();
+        }
+    }
+    // ...and the final state set once, from scratch.
+    let mut full = Eval3::new(basis).unwrap();
+    for (i, x) in patch.iter().enumerate() {
+        full.set_patch_exitance(i, *x).unwrap();
+    }
+    full.set_channel_levels(&levels).unwrap();
+    let mut scale = 0.0f32;
+    let mut worst = 0.0f32;
+    for i in 0..23 {
+        let (a, b) = (inc.exitance(i).unwrap(), full.exitance(i).unwrap());
+        for k in 0..3 {
+            worst = worst.max((a[k] - b[k]).abs());
+            scale = scale.max(b[k].abs());
+        }
+    }
+    for s in 0..2 {
+        let (a, b) = (
+            inc.sensor_irradiance(s).unwrap(),
+            full.sensor_irradiance(s).unwrap(),
+        );
+        for k in 0..3 {
+            worst = worst.max((a[k] - b[k]).abs());
+        }
+    }
+    // 200 incremental f32 updates: drift of a few ulps per update at most.
+    assert!(worst <= 1e-5 * scale, "drift {worst} of scale {scale}");
+}
+
+#[test]
+fn clearing_patch_exitance_restores_the_channel_state() {
+    let t = common::random(4, Formulation::Split, Precision::F32, 1);
+    let bytes = t.to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let mut e = Eval1::new(basis).unwrap();
+    e.set_channel_levels(&[0.3, 0.6, 0.9]).unwrap();
+    let before: Vec<f32> = (0..23).map(|i| e.exitance(i).unwrap()[0]).collect();
+    e.set_patch_exitance(2, [700.0]).unwrap();
+    e.set_patch_exitance(3, [300.0]).unwrap();
+    assert_ne!(e.exitance(2).unwrap()[0], before[2]);
+    e.clear_patch_exitance();
+    for (i, b) in before.iter().enumerate() {
+        assert!((e.exitance(i).unwrap()[0] - b).abs() <= 1e-4 * b.abs().max(1.0));
+    }
+}
+
+#[test]
+fn capacities_are_checked_with_both_sizes() {
+    let t = common::random(1, Formulation::Split, Precision::F32, 1);
+    let bytes = t.to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    assert_eq!(
+        Evaluator::<1, 22, 16, 8, 8>::new(basis).unwrap_err(),
+        Error::Capacity {
+            what: "patches",
+            needed: 23,
+            capacity: 22
+        }
+    );
+    assert_eq!(
+        Evaluator::<1, 64, 6, 8, 8>::new(basis).unwrap_err(),
+        Error::Capacity {
+            what: "modes",
+            needed: 7,
+            capacity: 6
+        }
+    );
+    assert_eq!(
+        Evaluator::<1, 64, 16, 2, 8>::new(basis).unwrap_err(),
+        Error::Capacity {
+            what: "channels",
+            needed: 3,
+            capacity: 2
+        }
+    );
+    assert_eq!(
+        Evaluator::<1, 64, 16, 8, 3>::new(basis).unwrap_err(),
+        Error::Capacity {
+            what: "outputs",
+            needed: 4,
+            capacity: 3
+        }
+    );
+    assert_eq!(
+        Evaluator::<3, 64, 16, 8, 8>::new(basis).unwrap_err(),
+        Error::Capacity {
+            what: "bands",
+            needed: 1,
+            capacity: 3
+        }
+    );
+    assert!(Evaluator::<1, 23, 7, 3, 4>::new(basis).is_ok());
+}
+
+#[test]
+fn bad_requests_are_errors_and_leave_the_state_alone() {
+    let t = common::random(2, Formulation::Split, Precision::F32, 1);
+    let bytes = t.to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let mut e = Eval1::new(basis).unwrap();
+    e.set_channel_levels(&[0.5, 0.5, 0.5]).unwrap();
+    let before = e.exitance(0).unwrap();
+    for bad in [f32::NAN, -0.1, f32::INFINITY, 1e4] {
+        assert_eq!(
+            e.set_channel_level(0, bad).unwrap_err(),
+            Error::InvalidInput { what: "level" }
+        );
+        assert_eq!(
+            e.set_patch_exitance(0, [bad * 1e6]).unwrap_err(),
+            Error::InvalidInput { what: "exitance" }
+        );
+    }
+    assert!(matches!(
+        e.set_channel_levels(&[0.5]),
+        Err(Error::LengthMismatch { .. })
+    ));
+    assert!(matches!(
+        e.set_channel_level(3, 0.5),
+        Err(Error::IndexOutOfRange {
+            what: "channel",
+            ..
+        })
+    ));
+    assert!(matches!(
+        e.set_patch_exitance(23, [1.0]),
+        Err(Error::IndexOutOfRange { what: "patch", .. })
+    ));
+    assert!(matches!(
+        e.sensor_irradiance(2),
+        Err(Error::IndexOutOfRange { what: "sensor", .. })
+    ));
+    assert!(matches!(
+        e.zone_irradiance(2),
+        Err(Error::IndexOutOfRange { what: "zone", .. })
+    ));
+    assert!(matches!(
+        e.exitance_all(&mut [[0.0]; 3]),
+        Err(Error::LengthMismatch { .. })
+    ));
+    assert_eq!(
+        e.set_channel_arc_power(0, 255).unwrap_err(),
+        Error::DaliMask
+    );
+    assert_eq!(e.exitance(0).unwrap(), before);
+}
+
+#[test]
+fn dali_curve() {
+    // IEC 62386-102: X(n) = 10^((n−1)/(253/3) − 1) %.
+    assert_eq!(dali::arc_power_to_level(0).unwrap(), 0.0);
+    assert!((dali::arc_power_to_level(1).unwrap() - 0.001).abs() < 1e-9);
+    assert!((dali::arc_power_to_level(254).unwrap() - 1.0).abs() < 1e-6);
+    for n in 1..=254u8 {
+        let want = 10f64.powf((f64::from(n) - 1.0) / (253.0 / 3.0) - 1.0) / 100.0;
+        let got = f64::from(dali::arc_power_to_level(n).unwrap());
+        assert!(
+            (got - want).abs() <= 1e-6 * want,
+            "arc {n}: {got} vs {want}"
+        );
+    }
+    for n in 1..254u8 {
+        assert!(dali::arc_power_to_level(n + 1).unwrap() > dali::arc_power_to_level(n).unwrap());
+    }
+    assert_eq!(dali::arc_power_to_level(255), Err(Error::DaliMask));
+}
+
+#[test]
+fn ram_does_not_depend_on_the_basis() {
+    // The evaluator's size is fixed by its capacities; the basis stays in the byte slice.
+    let size = core::mem::size_of::<Eval3<'_>>();
+    assert!(
+        (Eval3::RAM_BYTES..=Eval3::RAM_BYTES + 512).contains(&size),
+        "{size} vs {}",
+        Eval3::RAM_BYTES
+    );
+    for seed in [1, 2] {
+        let small = common::random(seed, Formulation::Split, Precision::F32, 3);
+        let bytes = small.to_bytes().unwrap();
+        let e = Eval3::new(Basis::from_bytes(&bytes).unwrap()).unwrap();
+        assert_eq!(core::mem::size_of_val(&e), size);
+    }
+}
