@@ -212,6 +212,8 @@ fn garbage_payload_with_a_valid_checksum() {
     assert_eq!(Basis::from_bytes(&bytes).unwrap_err(), Error::DecodePayload);
 }
 
+type Edit = Box<dyn Fn(&mut eigenrad_runtime::writer::BasisTables)>;
+
 /// Encodes `tables` after `edit`, then decodes.
 fn decode_edited(
     edit: impl FnOnce(&mut eigenrad_runtime::writer::BasisTables),
@@ -267,10 +269,7 @@ fn photometric_needs_one_band() {
 
 #[test]
 fn table_length_mismatches() {
-    let cases: Vec<(
-        &str,
-        Box<dyn Fn(&mut eigenrad_runtime::writer::BasisTables)>,
-    )> = vec![
+    let cases: Vec<(&str, Edit)> = vec![
         ("eigenvalues", Box::new(|t| t.eigenvalues.push(0.1))),
         (
             "patch_centroid",
@@ -332,7 +331,6 @@ fn names_must_match_the_counts() {
 
 #[test]
 fn values_out_of_range() {
-    type Edit = Box<dyn Fn(&mut eigenrad_runtime::writer::BasisTables)>;
     let cases: Vec<(&str, Edit)> = vec![
         ("eigenvalues", Box::new(|t| t.eigenvalues[0] = 1.0)),
         ("eigenvalues", Box::new(|t| t.eigenvalues[0] = f64::NAN)),
