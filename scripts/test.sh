@@ -22,3 +22,14 @@ cargo build -p eigenrad-runtime --release --target thumbv6m-none-eabi
 
 step "tests"
 cargo test --workspace
+
+step "fuzz smoke run (runtime decoder and evaluator)"
+if rustup toolchain list | grep -q nightly; then
+  command -v cargo-fuzz >/dev/null 2>&1 || cargo install cargo-fuzz --locked
+  corpus=$(mktemp -d)
+  cp runtime/fuzz/corpus/decode_eval/* "$corpus"/
+  (cd runtime/fuzz && cargo +nightly fuzz run decode_eval "$corpus" -- -max_total_time=30 -max_len=8192)
+  rm -rf "$corpus"
+else
+  echo "SKIPPED: no nightly toolchain, cargo-fuzz needs one (the proptest properties still ran)"
+fi

@@ -1,0 +1,51 @@
+//! Any byte string: decode it, and if it decodes, drive every evaluator entry point with
+//! inputs taken from the tail of the data. Nothing may panic; every Ok reading is finite.
+#![no_main]
+
+use eigenrad_runtime::{Basis, Evaluator};
+use libfuzzer_sys::fuzz_target;
+
+fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
+    let Ok(mut e) = Evaluator::<B, 256, 32, 8, 8>::new(basis) else { return };
+    let knob = |i: usize| knobs.get(i % knobs.len().max(1)).copied().unwrap_or(128);
+    let m = basis.channel_count();
+    let levels: Vec<f32> = (0..m).map(|c| f32::from(knob(c)) / 64.0).collect();
+    let _ = e.set_channel_levels(&levels);
+    for c in 0..m {
+        let _ = e.set_channel_arc_power(c, knob(c + 3));
+        let _ = e.set_channel_level(c, f32::from(knob(c + 5)) * 4.0);
+    }
+    for i in 0..basis.patch_count().min(64) {
+        let _ = e.set_patch_exitance(i, [f32::from(knob(i + 7)) * 1.0e6; B]);
+    }
+    let check = |r: eigenrad_runtime::Result<[f32; B]>| {
+        if let Ok(v) = r {
+            assert!(v.iter().all(|x| x.is_finite()));
+        }
+    };
+    for i in 0..basis.patch_count() {
+        check(e.exitance(i));
+        check(e.irradiance(i));
+    }
+    for s in 0..basis.sensor_count() {
+        check(e.sensor_irradiance(s));
+    }
+    for z in 0..basis.zone_count() {
+        check(e.zone_irradiance(z));
+    }
+    e.clear_patch_exitance();
+    let _ = basis.find_channel("main");
+    for i in 0..basis.channel_count() {
+        let _ = basis.channel_name(i);
+    }
+}
+
+fuzz_target!(|data: &[u8]| {
+    if let Ok(basis) = Basis::from_bytes(data) {
+        let knobs = data.get(basis.byte_len()..).unwrap_or(&[]);
+        match basis.bands() {
+            1 => run::<1>(basis, knobs),
+            _ => run::<3>(basis, knobs),
+        }
+    }
+});
