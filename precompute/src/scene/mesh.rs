@@ -191,7 +191,7 @@ mod tests {
         let whole = Polygon::new(vec![a, b, c]);
         let mut out = Vec::new();
         mesh_face(&[a, b, c], 0.3, &mut out);
-        let m = 7; // ceil(sqrt(5) / 0.3)
+        let m = 8; // ceil(sqrt(5) / 0.3)
         assert_eq!(out.len(), m * m);
         let total: f64 = out.iter().map(Polygon::area).sum();
         assert!((total - whole.area()).abs() < 1e-12);
