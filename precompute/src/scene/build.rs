@@ -102,7 +102,7 @@ impl Ctx<'_> {
     }
 
     /// One value per band from an RGB triple (photopic: luminance-weighted sum).
-    pub fn from_rgb(&self, rgb: [f64; 3]) -> Vec<f64> {
+    pub fn bands_of_rgb(&self, rgb: [f64; 3]) -> Vec<f64> {
         if self.bands == 1 {
             vec![rgb.iter().zip(LUMINANCE).map(|(c, w)| c * w).sum()]
         } else {
@@ -169,7 +169,11 @@ fn unique<'n>(
     let mut seen = HashSet::new();
     for (name, at) in names {
         if !seen.insert(name) {
-            return Err(SceneError::Duplicate { at, kind, name: name.into() });
+            return Err(SceneError::Duplicate {
+                at,
+                kind,
+                name: name.into(),
+            });
         }
     }
     Ok(())
@@ -178,10 +182,14 @@ fn unique<'n>(
 /// Surfaces matching a reference: an exact name, or a prefix followed by `*`.
 fn matching(names: &[Surface], pattern: &str) -> Vec<usize> {
     match pattern.strip_suffix('*') {
-        Some(prefix) => {
-            (0..names.len()).filter(|&i| names[i].name.starts_with(prefix)).collect()
-        }
-        None => names.iter().position(|s| s.name == pattern).into_iter().collect(),
+        Some(prefix) => (0..names.len())
+            .filter(|&i| names[i].name.starts_with(prefix))
+            .collect(),
+        None => names
+            .iter()
+            .position(|s| s.name == pattern)
+            .into_iter()
+            .collect(),
     }
 }
 
@@ -218,7 +226,12 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         BandsDef::Photopic => Bands::Photopic,
         BandsDef::Rgb => Bands::Rgb,
     };
-    let ctx = Ctx { origin, text, bands: bands.count(), unit: file.scene.unit.get_ref().metres() };
+    let ctx = Ctx {
+        origin,
+        text,
+        bands: bands.count(),
+        unit: file.scene.unit.get_ref().metres(),
+    };
     let max_edge = ctx.length(&file.scene.max_edge, "scene.max_edge")?;
     let planarity = match &file.scene.planarity_tolerance {
         Some(p) if !(p.get_ref().is_finite() && *p.get_ref() >= 0.0) => {
@@ -246,7 +259,13 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
             }
             None => vec![0.0; ctx.bands],
         };
-        materials.insert(name.clone(), MaterialInfo { reflectance, emission });
+        materials.insert(
+            name.clone(),
+            MaterialInfo {
+                reflectance,
+                emission,
+            },
+        );
     }
 
     // Geometry, in file order by kind.
@@ -254,8 +273,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     let mut rooms: Vec<(String, Vec3, Vec3)> = Vec::new();
     for r in &file.room {
         raw.extend(primitives::room(&ctx, r)?);
-        let (lo, hi) =
-            primitives::box_corners(&ctx, "room", &r.get_ref().min, &r.get_ref().max)?;
+        let (lo, hi) = primitives::box_corners(&ctx, "room", &r.get_ref().min, &r.get_ref().max)?;
         rooms.push((r.get_ref().name.clone(), lo, hi));
     }
     for b in &file.block {
@@ -271,7 +289,10 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
             materials.entry(name).or_insert(info);
         }
     }
-    unique("surface", raw.iter().map(|s| (s.name.as_str(), s.at.clone())))?;
+    unique(
+        "surface",
+        raw.iter().map(|s| (s.name.as_str(), s.at.clone())),
+    )?;
 
     // Per-surface settings.
     let mut flip = vec![false; raw.len()];
@@ -333,7 +354,11 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
                 face: f + 1,
                 message: p.to_string(),
             };
-            let pieces = if split[index] { triangulate(&face) } else { vec![face] };
+            let pieces = if split[index] {
+                triangulate(&face)
+            } else {
+                vec![face]
+            };
             for piece in pieces {
                 check_face(&piece, planarity).map_err(bad)?;
                 mesh_face(&piece, edge, &mut polygons);
@@ -351,10 +376,20 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         });
         material_emission.push(material.emission.clone());
     }
-    let area_of = |i: usize| -> f64 { patches[surfaces[i].patch_range.clone()].iter().map(|p| p.area).sum() };
+    let area_of = |i: usize| -> f64 {
+        patches[surfaces[i].patch_range.clone()]
+            .iter()
+            .map(|p| p.area)
+            .sum()
+    };
 
     // Channels.
-    unique("channel", file.channel.iter().map(|c| (c.get_ref().name.as_str(), ctx.at(c))))?;
+    unique(
+        "channel",
+        file.channel
+            .iter()
+            .map(|c| (c.get_ref().name.as_str(), ctx.at(c))),
+    )?;
     let mut channel_of_surface: Vec<Option<usize>> = vec![None; surfaces.len()];
     let mut surface_emission = vec![vec![0.0; ctx.bands]; surfaces.len()];
     let mut channels = Vec::with_capacity(file.channel.len());
@@ -367,8 +402,9 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         };
         if let Some(mats) = &c.materials {
             for m in mats.get_ref() {
-                let found: Vec<usize> =
-                    (0..surfaces.len()).filter(|&i| &surfaces[i].material == m).collect();
+                let found: Vec<usize> = (0..surfaces.len())
+                    .filter(|&i| &surfaces[i].material == m)
+                    .collect();
                 if found.is_empty() {
                     return Err(SceneError::Unknown {
                         at: ctx.at(mats),
@@ -424,11 +460,19 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
                 });
             }
             channel_of_surface[i] = Some(k);
-            surface_emission[i] = exitance.clone().unwrap_or_else(|| material_emission[i].clone());
+            surface_emission[i] = exitance
+                .clone()
+                .unwrap_or_else(|| material_emission[i].clone());
         }
         let area: f64 = members.iter().map(|&i| area_of(i)).sum();
         let mean: Vec<f64> = (0..ctx.bands)
-            .map(|b| members.iter().map(|&i| surface_emission[i][b] * area_of(i)).sum::<f64>() / area)
+            .map(|b| {
+                members
+                    .iter()
+                    .map(|&i| surface_emission[i][b] * area_of(i))
+                    .sum::<f64>()
+                    / area
+            })
             .collect();
         if mean.iter().all(|&x| x == 0.0) {
             return Err(SceneError::EmptyChannel {
@@ -439,7 +483,11 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
                     .into(),
             });
         }
-        channels.push(Channel { name: c.name.clone(), surfaces: members, exitance: mean });
+        channels.push(Channel {
+            name: c.name.clone(),
+            surfaces: members,
+            exitance: mean,
+        });
     }
     for (i, s) in surfaces.iter().enumerate() {
         if channel_of_surface[i].is_none() && material_emission[i].iter().any(|&x| x > 0.0) {
@@ -461,7 +509,12 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     }
 
     // Sensors.
-    unique("sensor", file.sensor.iter().map(|s| (s.get_ref().name.as_str(), ctx.at(s))))?;
+    unique(
+        "sensor",
+        file.sensor
+            .iter()
+            .map(|s| (s.get_ref().name.as_str(), ctx.at(s))),
+    )?;
     let mut sensors = Vec::with_capacity(file.sensor.len());
     for def in &file.sensor {
         let s = def.get_ref();
@@ -487,11 +540,21 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
             Some(a) => Some(a.get_ref().to_radians()),
             None => None,
         };
-        sensors.push(Sensor { name: s.name.clone(), position, normal: normal.normalized(), half_angle });
+        sensors.push(Sensor {
+            name: s.name.clone(),
+            position,
+            normal: normal.normalized(),
+            half_angle,
+        });
     }
 
     // Zones.
-    unique("zone", file.zone.iter().map(|z| (z.get_ref().name.as_str(), ctx.at(z))))?;
+    unique(
+        "zone",
+        file.zone
+            .iter()
+            .map(|z| (z.get_ref().name.as_str(), ctx.at(z))),
+    )?;
     let mut zones = Vec::with_capacity(file.zone.len());
     for def in &file.zone {
         let z = def.get_ref();
@@ -499,7 +562,12 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         let kind = match (&z.surfaces, &z.work_plane) {
             (Some(refs), None) => {
                 let members = resolve_surfaces(&ctx, &surfaces, refs, &format!("{what}.surfaces"))?;
-                ZoneKind::Surfaces(members.iter().flat_map(|&i| surfaces[i].patch_range.clone()).collect())
+                ZoneKind::Surfaces(
+                    members
+                        .iter()
+                        .flat_map(|&i| surfaces[i].patch_range.clone())
+                        .collect(),
+                )
             }
             (None, Some(wp)) => work_plane(&ctx, &what, wp, &rooms, &surfaces, max_edge)?,
             _ => {
@@ -510,7 +578,10 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
                 })
             }
         };
-        zones.push(Zone { name: z.name.clone(), kind });
+        zones.push(Zone {
+            name: z.name.clone(),
+            kind,
+        });
     }
 
     Ok(Scene {
@@ -528,7 +599,9 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
 }
 
 fn channels_name(file: &SceneFile, k: usize) -> &str {
-    file.channel.get(k).map_or("?", |c| c.get_ref().name.as_str())
+    file.channel
+        .get(k)
+        .map_or("?", |c| c.get_ref().name.as_str())
 }
 
 /// Receivers of a work plane: upward quads over the room's footprint less the margin.
@@ -543,14 +616,15 @@ fn work_plane(
     let wp = def.get_ref();
     let field = format!("{what}.work_plane.room");
     let room = match &wp.room {
-        Some(name) => rooms.iter().find(|r| &r.0 == name.get_ref()).ok_or_else(|| {
-            SceneError::Unknown {
+        Some(name) => rooms
+            .iter()
+            .find(|r| &r.0 == name.get_ref())
+            .ok_or_else(|| SceneError::Unknown {
                 at: ctx.at(name),
                 field: field.clone(),
                 kind: "room",
                 name: name.get_ref().clone(),
-            }
-        })?,
+            })?,
         None if rooms.len() == 1 => &rooms[0],
         None => {
             return Err(SceneError::Invalid {
@@ -582,17 +656,27 @@ fn work_plane(
     };
     if 2.0 * margin >= (hi.x - lo.x).min(hi.y - lo.y) {
         return Err(SceneError::OutOfRange {
-            at: wp.margin.as_ref().map_or_else(|| ctx.at(def), |m| ctx.at(m)),
+            at: wp
+                .margin
+                .as_ref()
+                .map_or_else(|| ctx.at(def), |m| ctx.at(m)),
             field: format!("{what}.work_plane.margin"),
             message: format!("leaves nothing of room `{name}`"),
         });
     }
     let edge = ctx.optional_length(wp.max_edge.as_ref(), &format!("{what}.work_plane.max_edge"))?;
-    let floor = surfaces.iter().position(|s| s.name == format!("{name}.floor")).unwrap_or(0);
+    let floor = surfaces
+        .iter()
+        .position(|s| s.name == format!("{name}.floor"))
+        .unwrap_or(0);
     let z = lo.z + height;
     let (x0, y0, x1, y1) = (lo.x + margin, lo.y + margin, hi.x - margin, hi.y - margin);
-    let corners =
-        [Vec3::new(x0, y0, z), Vec3::new(x1, y0, z), Vec3::new(x1, y1, z), Vec3::new(x0, y1, z)];
+    let corners = [
+        Vec3::new(x0, y0, z),
+        Vec3::new(x1, y0, z),
+        Vec3::new(x1, y1, z),
+        Vec3::new(x0, y1, z),
+    ];
     let mut polygons: Vec<Polygon> = Vec::new();
     mesh_face(&corners, edge.unwrap_or(default_edge), &mut polygons);
     Ok(ZoneKind::WorkPlane {

@@ -16,13 +16,23 @@ impl Location {
     /// A location from a file and a byte offset into its text.
     pub(crate) fn at_offset(file: &std::path::Path, text: &str, offset: usize) -> Self {
         let end = offset.min(text.len());
-        let line = text.as_bytes()[..end].iter().filter(|&&b| b == b'\n').count() + 1;
-        Location { file: file.to_path_buf(), line: Some(line) }
+        let line = text.as_bytes()[..end]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        Location {
+            file: file.to_path_buf(),
+            line: Some(line),
+        }
     }
 
     /// A location naming only a file.
     pub(crate) fn file(file: &std::path::Path) -> Self {
-        Location { file: file.to_path_buf(), line: None }
+        Location {
+            file: file.to_path_buf(),
+            line: None,
+        }
     }
 }
 

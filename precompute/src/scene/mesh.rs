@@ -25,9 +25,14 @@ pub(crate) enum FaceProblem {
 impl std::fmt::Display for FaceProblem {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            FaceProblem::TooFewCorners(n) => write!(f, "a face needs at least 3 corners, found {n}"),
+            FaceProblem::TooFewCorners(n) => {
+                write!(f, "a face needs at least 3 corners, found {n}")
+            }
             FaceProblem::NotFinite => write!(f, "a coordinate is not a finite number"),
-            FaceProblem::Degenerate { area, shortest_edge } => write!(
+            FaceProblem::Degenerate {
+                area,
+                shortest_edge,
+            } => write!(
                 f,
                 "degenerate face (area {area:.3e} m², shortest edge {shortest_edge:.3e} m)"
             ),
@@ -57,15 +62,25 @@ pub(crate) fn check_face(corners: &[Vec3], planarity: f64) -> Result<(), FacePro
     }
     let edges: Vec<Vec3> = (0..n).map(|i| corners[(i + 1) % n] - corners[i]).collect();
     let longest = edges.iter().map(|e| e.length()).fold(0.0, f64::max);
-    let shortest = edges.iter().map(|e| e.length()).fold(f64::INFINITY, f64::min);
+    let shortest = edges
+        .iter()
+        .map(|e| e.length())
+        .fold(f64::INFINITY, f64::min);
     let polygon = Polygon::new(corners.to_vec());
     let area = polygon.area();
-    if longest == 0.0 || shortest <= DEGENERATE * longest || area <= DEGENERATE * longest * longest {
-        return Err(FaceProblem::Degenerate { area, shortest_edge: shortest });
+    if longest == 0.0 || shortest <= DEGENERATE * longest || area <= DEGENERATE * longest * longest
+    {
+        return Err(FaceProblem::Degenerate {
+            area,
+            shortest_edge: shortest,
+        });
     }
     let normal = polygon.normal();
     let centre = corners.iter().fold(Vec3::ZERO, |a, &c| a + c) / n as f64;
-    let distance = corners.iter().map(|&c| (c - centre).dot(normal).abs()).fold(0.0, f64::max);
+    let distance = corners
+        .iter()
+        .map(|&c| (c - centre).dot(normal).abs())
+        .fold(0.0, f64::max);
     let diagonal = (0..n)
         .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
         .map(|(i, j)| (corners[j] - corners[i]).length())
@@ -150,12 +165,21 @@ fn mesh_quad(a: Vec3, b: Vec3, c: Vec3, d: Vec3, max_edge: f64, out: &mut Vec<Po
 fn mesh_triangle(a: Vec3, b: Vec3, c: Vec3, max_edge: f64, out: &mut Vec<Polygon>) {
     let longest = (b - a).length().max((c - b).length()).max((a - c).length());
     let m = parts(longest, max_edge);
-    let point = |i: usize, j: usize| a + (b - a) * (i as f64 / m as f64) + (c - a) * (j as f64 / m as f64);
+    let point =
+        |i: usize, j: usize| a + (b - a) * (i as f64 / m as f64) + (c - a) * (j as f64 / m as f64);
     for j in 0..m {
         for i in 0..m - j {
-            out.push(Polygon::new(vec![point(i, j), point(i + 1, j), point(i, j + 1)]));
+            out.push(Polygon::new(vec![
+                point(i, j),
+                point(i + 1, j),
+                point(i, j + 1),
+            ]));
             if i + j + 1 < m {
-                out.push(Polygon::new(vec![point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)]));
+                out.push(Polygon::new(vec![
+                    point(i + 1, j),
+                    point(i + 1, j + 1),
+                    point(i, j + 1),
+                ]));
             }
         }
     }
@@ -187,7 +211,11 @@ mod tests {
 
     #[test]
     fn scene_mesh_triangle_keeps_area_winding_and_edge_bound() {
-        let (a, b, c) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0));
+        let (a, b, c) = (
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.0),
+        );
         let whole = Polygon::new(vec![a, b, c]);
         let mut out = Vec::new();
         mesh_face(&[a, b, c], 0.3, &mut out);
@@ -208,10 +236,16 @@ mod tests {
     fn scene_mesh_checks_reject_bad_faces() {
         let mut bent = unit_square();
         bent[2].z = 0.1;
-        assert!(matches!(check_face(&bent, 1e-3), Err(FaceProblem::NonPlanar { .. })));
+        assert!(matches!(
+            check_face(&bent, 1e-3),
+            Err(FaceProblem::NonPlanar { .. })
+        ));
         let mut flat = unit_square();
         flat[2] = flat[1];
-        assert!(matches!(check_face(&flat, 1e-3), Err(FaceProblem::Degenerate { .. })));
+        assert!(matches!(
+            check_face(&flat, 1e-3),
+            Err(FaceProblem::Degenerate { .. })
+        ));
         let mut dart = unit_square();
         dart[2] = Vec3::new(0.2, 0.2, 0.0);
         assert_eq!(check_face(&dart, 1e-3), Err(FaceProblem::NonConvex));

@@ -28,12 +28,21 @@ pub(crate) struct ObjContent {
 pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, SceneError> {
     let o = def.get_ref();
     let at = ctx.at(&o.file);
-    let path = ctx.origin.parent().unwrap_or(Path::new("")).join(o.file.get_ref());
+    let path = ctx
+        .origin
+        .parent()
+        .unwrap_or(Path::new(""))
+        .join(o.file.get_ref());
     let text = std::fs::read_to_string(&path).map_err(|source| match source.kind() {
-        std::io::ErrorKind::NotFound => {
-            SceneError::MissingFile { at: at.clone(), field: "obj.file".into(), path: path.clone() }
-        }
-        _ => SceneError::Read { path: path.clone(), source },
+        std::io::ErrorKind::NotFound => SceneError::MissingFile {
+            at: at.clone(),
+            field: "obj.file".into(),
+            path: path.clone(),
+        },
+        _ => SceneError::Read {
+            path: path.clone(),
+            source,
+        },
     })?;
     // tobj reports a missing MTL without its name: look for it first, so the error can say.
     for mtl in mtl_paths(&path, &text) {
@@ -45,7 +54,11 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
             });
         }
     }
-    let options = tobj::LoadOptions { ignore_points: true, ignore_lines: true, ..Default::default() };
+    let options = tobj::LoadOptions {
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
     let obj_error = |what: &str, e: tobj::LoadError| SceneError::Obj {
         at: at.clone(),
         field: o.file.get_ref().clone(),
@@ -60,13 +73,21 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         let field = format!("MTL material `{}`", m.name);
         let kd = m.diffuse.unwrap_or([0.0; 3]);
         let ke = m.emissive.unwrap_or([0.0; 3]);
-        let reflectance = ctx.check_reflectance(ctx.from_rgb(kd), &mtl_at, &format!("{field} Kd"))?;
-        let emission = ctx.check_exitance(ctx.from_rgb(ke), &mtl_at, &format!("{field} Ke"))?;
-        infos.push((m.name.clone(), MaterialInfo { reflectance, emission }));
+        let reflectance =
+            ctx.check_reflectance(ctx.bands_of_rgb(kd), &mtl_at, &format!("{field} Kd"))?;
+        let emission = ctx.check_exitance(ctx.bands_of_rgb(ke), &mtl_at, &format!("{field} Ke"))?;
+        infos.push((
+            m.name.clone(),
+            MaterialInfo {
+                reflectance,
+                emission,
+            },
+        ));
     }
 
     let transform = Transform::new(ctx, o)?;
-    let material_name = |id: Option<usize>| id.and_then(|i| materials.get(i)).map(|m| m.name.clone());
+    let material_name =
+        |id: Option<usize>| id.and_then(|i| materials.get(i)).map(|m| m.name.clone());
     // (key, material) per model; a group holding several materials gets one surface per
     // material, named `<group>.<material>`.
     let keys: Vec<(String, Option<String>)> = models
@@ -128,8 +149,10 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
                 .collect();
             start += arity;
             if o.drop_duplicate_faces {
-                let mut key: Vec<[u64; 3]> =
-                    corners.iter().map(|c| [c.x.to_bits(), c.y.to_bits(), c.z.to_bits()]).collect();
+                let mut key: Vec<[u64; 3]> = corners
+                    .iter()
+                    .map(|c| [c.x.to_bits(), c.y.to_bits(), c.z.to_bits()])
+                    .collect();
                 key.sort_unstable();
                 if !seen[index].insert(key) {
                     continue;
@@ -138,7 +161,10 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
             surfaces[index].faces.push(corners);
         }
     }
-    Ok(ObjContent { surfaces, materials: infos })
+    Ok(ObjContent {
+        surfaces,
+        materials: infos,
+    })
 }
 
 /// The MTL files an OBJ file names, resolved against its folder.
@@ -178,7 +204,12 @@ impl Transform {
             Some(t) => ctx.point(t, "obj.translate")?,
             None => Vec3::ZERO,
         };
-        Ok(Transform { up: o.up, scale, translate, unit: ctx.unit })
+        Ok(Transform {
+            up: o.up,
+            scale,
+            translate,
+            unit: ctx.unit,
+        })
     }
 
     fn apply(&self, p: Vec3) -> Vec3 {

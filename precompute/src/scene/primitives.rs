@@ -14,12 +14,36 @@ fn box_faces(lo: Vec3, hi: Vec3) -> [(&'static str, &'static str, [Vec3; 4]); 6]
     let (x0, y0, z0, x1, y1, z1) = (lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     let p = Vec3::new;
     [
-        ("floor", "bottom", [p(x0, y0, z0), p(x1, y0, z0), p(x1, y1, z0), p(x0, y1, z0)]),
-        ("ceiling", "top", [p(x0, y0, z1), p(x0, y1, z1), p(x1, y1, z1), p(x1, y0, z1)]),
-        ("wall_xmin", "side_xmin", [p(x0, y0, z0), p(x0, y1, z0), p(x0, y1, z1), p(x0, y0, z1)]),
-        ("wall_xmax", "side_xmax", [p(x1, y0, z0), p(x1, y0, z1), p(x1, y1, z1), p(x1, y1, z0)]),
-        ("wall_ymin", "side_ymin", [p(x0, y0, z0), p(x0, y0, z1), p(x1, y0, z1), p(x1, y0, z0)]),
-        ("wall_ymax", "side_ymax", [p(x0, y1, z0), p(x1, y1, z0), p(x1, y1, z1), p(x0, y1, z1)]),
+        (
+            "floor",
+            "bottom",
+            [p(x0, y0, z0), p(x1, y0, z0), p(x1, y1, z0), p(x0, y1, z0)],
+        ),
+        (
+            "ceiling",
+            "top",
+            [p(x0, y0, z1), p(x0, y1, z1), p(x1, y1, z1), p(x1, y0, z1)],
+        ),
+        (
+            "wall_xmin",
+            "side_xmin",
+            [p(x0, y0, z0), p(x0, y1, z0), p(x0, y1, z1), p(x0, y0, z1)],
+        ),
+        (
+            "wall_xmax",
+            "side_xmax",
+            [p(x1, y0, z0), p(x1, y0, z1), p(x1, y1, z1), p(x1, y1, z0)],
+        ),
+        (
+            "wall_ymin",
+            "side_ymin",
+            [p(x0, y0, z0), p(x0, y0, z1), p(x1, y0, z1), p(x1, y0, z0)],
+        ),
+        (
+            "wall_ymax",
+            "side_ymax",
+            [p(x0, y1, z0), p(x1, y1, z0), p(x1, y1, z1), p(x0, y1, z1)],
+        ),
     ]
 }
 

@@ -6,11 +6,18 @@ use std::path::{Path, PathBuf};
 use super::*;
 
 fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples").join(name).join("scene.toml")
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../examples")
+        .join(name)
+        .join("scene.toml")
 }
 
 fn surface<'s>(scene: &'s Scene, name: &str) -> &'s Surface {
-    scene.surfaces.iter().find(|s| s.name == name).unwrap_or_else(|| panic!("no surface {name}"))
+    scene
+        .surfaces
+        .iter()
+        .find(|s| s.name == name)
+        .unwrap_or_else(|| panic!("no surface {name}"))
 }
 
 fn patches<'s>(scene: &'s Scene, name: &str) -> &'s [Patch] {
@@ -36,20 +43,36 @@ fn scene_office_example() {
     let desk = 1.6 * 0.8 + 2.0 * (1.6 * 0.75 + 0.8 * 0.75);
     let expected = room + 2.0 * desk + 4.0 * 0.36 + 2.0 * 1.4;
     let total: f64 = scene.patches.iter().map(|p| p.area).sum();
-    assert!(((total - expected) / expected).abs() < 1e-9, "area {total} vs {expected}");
+    assert!(
+        ((total - expected) / expected).abs() < 1e-9,
+        "area {total} vs {expected}"
+    );
     assert!((area(&scene, "room.floor") - 24.0).abs() < 1e-12);
 
     // Room faces look into the room, desk faces out of the desk, luminaires down.
     let centre = Vec3::new(3.0, 2.0, 1.4);
-    for face in ["floor", "ceiling", "wall_xmin", "wall_xmax", "wall_ymin", "wall_ymax"] {
+    for face in [
+        "floor",
+        "ceiling",
+        "wall_xmin",
+        "wall_xmax",
+        "wall_ymin",
+        "wall_ymax",
+    ] {
         for p in patches(&scene, &format!("room.{face}")) {
-            assert!(p.normal.dot(centre - p.centroid) > 0.0, "room.{face} faces out");
+            assert!(
+                p.normal.dot(centre - p.centroid) > 0.0,
+                "room.{face} faces out"
+            );
         }
     }
     let desk_centre = Vec3::new(2.0, 2.0, 0.375);
     for face in ["top", "side_xmin", "side_xmax", "side_ymin", "side_ymax"] {
         for p in patches(&scene, &format!("desk1.{face}")) {
-            assert!(p.normal.dot(p.centroid - desk_centre) > 0.0, "desk1.{face} faces in");
+            assert!(
+                p.normal.dot(p.centroid - desk_centre) > 0.0,
+                "desk1.{face} faces in"
+            );
         }
     }
     assert!(scene.surfaces.iter().all(|s| s.name != "desk1.bottom"));
@@ -87,7 +110,9 @@ fn scene_office_example() {
     // Sensors and zones.
     assert_eq!(scene.sensors[0].position, Vec3::new(2.0, 2.0, 0.75));
     assert_eq!(scene.sensors[0].half_angle, None);
-    let half = scene.sensors[1].half_angle.expect("ceiling sensor has a field of view");
+    let half = scene.sensors[1]
+        .half_angle
+        .expect("ceiling sensor has a field of view");
     assert!((half - std::f64::consts::FRAC_PI_3).abs() < 1e-15);
     let ZoneKind::WorkPlane { height, receivers } = &scene.zones[0].kind else {
         panic!("first zone is the work plane")
@@ -100,7 +125,9 @@ fn scene_office_example() {
         assert!((p.normal - Vec3::new(0.0, 0.0, 1.0)).length() < 1e-12);
         assert!((p.centroid.z - 0.8).abs() < 1e-12);
     }
-    let ZoneKind::Surfaces(desks) = &scene.zones[1].kind else { panic!("second zone: desks") };
+    let ZoneKind::Surfaces(desks) = &scene.zones[1].kind else {
+        panic!("second zone: desks")
+    };
     let top: f64 = desks.iter().map(|&i| scene.patches[i].area).sum();
     assert!((top - 2.0 * 1.28).abs() < 1e-12);
 }
@@ -114,11 +141,23 @@ fn scene_cornell_box_example() {
     names.sort_unstable();
     assert_eq!(
         names,
-        ["backWall", "ceiling", "floor", "leftWall", "light", "rightWall", "shortBox", "tallBox"]
+        [
+            "backWall",
+            "ceiling",
+            "floor",
+            "leftWall",
+            "light",
+            "rightWall",
+            "shortBox",
+            "tallBox"
+        ]
     );
     // Duplicated "bottom" faces dropped: the top and four sides of the short box remain
     // (sides are 0.6 high; the top's area is half the cross product of its diagonals).
-    let short_top = 0.5 * Vec3::new(-0.40, 0.0, -0.75).cross(Vec3::new(-0.75, 0.0, 0.40)).length();
+    let short_top = 0.5
+        * Vec3::new(-0.40, 0.0, -0.75)
+            .cross(Vec3::new(-0.75, 0.0, 0.40))
+            .length();
     let short_sides: f64 = [(0.18, 0.57), (0.58, 0.18), (0.17, 0.58), (0.57, 0.17)]
         .iter()
         .map(|(a, b): &(f64, f64)| a.hypot(*b) * 0.6)
@@ -128,12 +167,25 @@ fn scene_cornell_box_example() {
     // The box is about 2 m across, z up after `up = "y"`: walls, floor, ceiling and light
     // face into the box; the blocks' faces face out of them.
     let centre = Vec3::new(0.0, 0.0, 1.0);
-    for name in ["floor", "ceiling", "backWall", "leftWall", "rightWall", "light"] {
+    for name in [
+        "floor",
+        "ceiling",
+        "backWall",
+        "leftWall",
+        "rightWall",
+        "light",
+    ] {
         for p in patches(&scene, name) {
-            assert!(p.normal.dot(centre - p.centroid) > 0.0, "{name} faces out of the box");
+            assert!(
+                p.normal.dot(centre - p.centroid) > 0.0,
+                "{name} faces out of the box"
+            );
         }
     }
-    for (name, c) in [("shortBox", Vec3::new(0.33, -0.37, 0.3)), ("tallBox", Vec3::new(-0.33, 0.29, 0.6))] {
+    for (name, c) in [
+        ("shortBox", Vec3::new(0.33, -0.37, 0.3)),
+        ("tallBox", Vec3::new(-0.33, 0.29, 0.6)),
+    ] {
         for p in patches(&scene, name) {
             assert!(p.normal.dot(p.centroid - c) > 0.0, "{name} faces inwards");
         }
@@ -145,14 +197,23 @@ fn scene_cornell_box_example() {
     // Channel `light` from Ke (17, 12, 4).
     assert_eq!(scene.channels.len(), 1);
     assert_eq!(scene.channels[0].name, "light");
-    assert_eq!(scene.channels[0].surfaces, vec![scene.surfaces.iter().position(|s| s.name == "light").unwrap_or(usize::MAX)]);
+    assert_eq!(
+        scene.channels[0].surfaces,
+        vec![scene
+            .surfaces
+            .iter()
+            .position(|s| s.name == "light")
+            .unwrap_or(usize::MAX)]
+    );
     for (e, want) in scene.channels[0].exitance.iter().zip([17.0, 12.0, 4.0]) {
         assert!((e - want).abs() < 1e-12);
     }
     let light = surface(&scene, "light");
     assert!((light.reflectance[0] - 0.78).abs() < 1e-12);
     assert_eq!(scene.sensors[0].normal, Vec3::new(0.0, 0.0, 1.0));
-    assert!(matches!(&scene.zones[0].kind, ZoneKind::Surfaces(p) if p.len() == patches(&scene, "floor").len()));
+    assert!(
+        matches!(&scene.zones[0].kind, ZoneKind::Surfaces(p) if p.len() == patches(&scene, "floor").len())
+    );
 }
 
 #[test]
@@ -196,7 +257,10 @@ fn error_in(text: &str) -> String {
 /// The 1-based line, in `BASE` followed by `extra`, of the first line of `extra` holding
 /// `needle`.
 fn line_of(extra: &str, needle: &str) -> usize {
-    let found = extra.lines().position(|l| l.contains(needle)).map_or(0, |i| i + 1);
+    let found = extra
+        .lines()
+        .position(|l| l.contains(needle))
+        .map_or(0, |i| i + 1);
     BASE.lines().count() + found
 }
 
@@ -215,23 +279,39 @@ fn scene_base_is_valid() {
 
 #[test]
 fn scene_error_unknown_field_names_line() {
-    let extra = "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 1]\nhalf_angel = 30\n";
+    let extra =
+        "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 1]\nhalf_angel = 30\n";
     let m = error(extra);
-    assert_names(&m, &[&format!(":{}:", line_of(extra, "half_angel")), "half_angel"]);
+    assert_names(
+        &m,
+        &[&format!(":{}:", line_of(extra, "half_angel")), "half_angel"],
+    );
 }
 
 #[test]
 fn scene_error_reflectance_out_of_range() {
-    let m = error_in(&BASE.replace("white = { reflectance = 0.5 }", "white = { reflectance = 1.0 }"));
+    let m = error_in(&BASE.replace(
+        "white = { reflectance = 0.5 }",
+        "white = { reflectance = 1.0 }",
+    ));
     assert_names(&m, &["materials.white.reflectance", ":8:"]);
-    let m = error_in(&BASE.replace("white = { reflectance = 0.5 }", "white = { reflectance = -0.1 }"));
+    let m = error_in(&BASE.replace(
+        "white = { reflectance = 0.5 }",
+        "white = { reflectance = -0.1 }",
+    ));
     assert_names(&m, &["materials.white.reflectance"]);
 }
 
 #[test]
 fn scene_error_band_count() {
     let m = error_in(&BASE.replace("reflectance = 0.5", "reflectance = [0.5, 0.5, 0.5]"));
-    assert_names(&m, &["materials.white.reflectance", "expected 1 value(s), found 3"]);
+    assert_names(
+        &m,
+        &[
+            "materials.white.reflectance",
+            "expected 1 value(s), found 3",
+        ],
+    );
 }
 
 #[test]
@@ -240,7 +320,13 @@ fn scene_error_negative_or_nonfinite_exitance() {
     assert_names(&m, &["materials.lamp.emission", ":9:"]);
     let extra = "\n[[channel]]\nname = \"c\"\nsurfaces = [\"a\"]\nexitance = nan\n";
     let m = error(extra);
-    assert_names(&m, &["channel `c`.exitance", &format!(":{}:", line_of(extra, "nan"))]);
+    assert_names(
+        &m,
+        &[
+            "channel `c`.exitance",
+            &format!(":{}:", line_of(extra, "nan")),
+        ],
+    );
     let extra = "\n[[channel]]\nname = \"c\"\nsurfaces = [\"a\"]\nflux = -3\n";
     assert_names(&error(extra), &["channel `c`.flux"]);
 }
@@ -249,14 +335,24 @@ fn scene_error_negative_or_nonfinite_exitance() {
 fn scene_error_nonfinite_coordinates() {
     let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"white\"\ncorners = [[0, 0, 0], [inf, 0, 0], [1, 1, 0], [0, 1, 0]]\n";
     let m = error(extra);
-    assert_names(&m, &["quad `b`.corners", &format!(":{}:", line_of(extra, "inf"))]);
+    assert_names(
+        &m,
+        &["quad `b`.corners", &format!(":{}:", line_of(extra, "inf"))],
+    );
 }
 
 #[test]
 fn scene_error_degenerate_face() {
     let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"white\"\ncorners = [[0, 0, 0], [1, 0, 0], [1, 0, 0], [0, 1, 0]]\n";
     let m = error(extra);
-    assert_names(&m, &["surface `b`", "degenerate", &format!(":{}:", line_of(extra, "corners"))]);
+    assert_names(
+        &m,
+        &[
+            "surface `b`",
+            "degenerate",
+            &format!(":{}:", line_of(extra, "corners")),
+        ],
+    );
     let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"white\"\ncorners = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]]\n";
     assert_names(&error(extra), &["surface `b`", "degenerate"]);
 }
@@ -265,9 +361,19 @@ fn scene_error_degenerate_face() {
 fn scene_error_nonplanar_quad() {
     let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"white\"\ncorners = [[0, 0, 0], [1, 0, 0], [1, 1, 0.1], [0, 1, 0]]\n";
     let m = error(extra);
-    assert_names(&m, &["surface `b`", "non-planar", &format!(":{}:", line_of(extra, "corners"))]);
+    assert_names(
+        &m,
+        &[
+            "surface `b`",
+            "non-planar",
+            &format!(":{}:", line_of(extra, "corners")),
+        ],
+    );
     // Within a looser tolerance, or triangulated, it is accepted.
-    let loose = format!("{BASE}{extra}").replace("max_edge = 0.5", "max_edge = 0.5\nplanarity_tolerance = 0.1");
+    let loose = format!("{BASE}{extra}").replace(
+        "max_edge = 0.5",
+        "max_edge = 0.5\nplanarity_tolerance = 0.1",
+    );
     assert!(parse(&loose, Path::new(FILE)).is_ok());
     let split = format!("{BASE}{extra}\n[surfaces.b]\ntriangulate = true\n");
     assert!(parse(&split, Path::new(FILE)).is_ok());
@@ -276,23 +382,45 @@ fn scene_error_nonplanar_quad() {
 #[test]
 fn scene_error_duplicate_names() {
     let extra = "\n[[quad]]\nname = \"a\"\nmaterial = \"white\"\ncorners = [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]\n";
-    assert_names(&error(extra), &["duplicate surface name `a`", &format!(":{}:", line_of(extra, "corners"))]);
+    assert_names(
+        &error(extra),
+        &[
+            "duplicate surface name `a`",
+            &format!(":{}:", line_of(extra, "corners")),
+        ],
+    );
     let lamp = "\n[[quad]]\nname = \"l\"\nmaterial = \"lamp\"\ncorners = [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]]\n";
     let extra = format!("{lamp}\n[[channel]]\nname = \"c\"\nsurfaces = [\"l\"]\n\n[[channel]]\nname = \"c\"\nsurfaces = [\"l\"]\n");
     assert_names(&error(&extra), &["duplicate channel name `c`"]);
     let sensor = "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 1]\n";
-    assert_names(&error(&format!("{sensor}{sensor}")), &["duplicate sensor name `s`"]);
+    assert_names(
+        &error(&format!("{sensor}{sensor}")),
+        &["duplicate sensor name `s`"],
+    );
     let zone = "\n[[zone]]\nname = \"z\"\nsurfaces = [\"a\"]\n";
-    assert_names(&error(&format!("{zone}{zone}")), &["duplicate zone name `z`"]);
+    assert_names(
+        &error(&format!("{zone}{zone}")),
+        &["duplicate zone name `z`"],
+    );
     // A duplicate key in TOML itself: the parser names the line.
     let extra = "\n[materials.white]\nreflectance = 0.3\n";
-    assert_names(&error(extra), &["duplicate key", &format!(":{}:", line_of(extra, "white"))]);
+    assert_names(
+        &error(extra),
+        &["duplicate key", &format!(":{}:", line_of(extra, "white"))],
+    );
 }
 
 #[test]
 fn scene_error_channel_without_emitter() {
     let extra = "\n[[channel]]\nname = \"c\"\nsurfaces = [\"a\"]\n";
-    assert_names(&error(extra), &["channel `c`", "none of its surfaces emits", &format!(":{}:", line_of(extra, "[[channel]]"))]);
+    assert_names(
+        &error(extra),
+        &[
+            "channel `c`",
+            "none of its surfaces emits",
+            &format!(":{}:", line_of(extra, "[[channel]]")),
+        ],
+    );
     let extra = "\n[[channel]]\nname = \"c\"\n";
     assert_names(&error(extra), &["channel `c`", "names no surface"]);
 }
@@ -300,19 +428,45 @@ fn scene_error_channel_without_emitter() {
 #[test]
 fn scene_error_emitter_outside_channels() {
     let extra = "\n[[quad]]\nname = \"l\"\nmaterial = \"lamp\"\ncorners = [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]]\n";
-    assert_names(&error(extra), &["surface `l`", "no channel drives it", &format!(":{}:", line_of(extra, "\"lamp\""))]);
+    assert_names(
+        &error(extra),
+        &[
+            "surface `l`",
+            "no channel drives it",
+            &format!(":{}:", line_of(extra, "\"lamp\"")),
+        ],
+    );
 }
 
 #[test]
 fn scene_error_unknown_references() {
     let extra = "\n[[channel]]\nname = \"c\"\nsurfaces = [\"nope\"]\nexitance = 10\n";
-    assert_names(&error(extra), &["channel `c`.surfaces", "unknown surface `nope`", &format!(":{}:", line_of(extra, "nope"))]);
+    assert_names(
+        &error(extra),
+        &[
+            "channel `c`.surfaces",
+            "unknown surface `nope`",
+            &format!(":{}:", line_of(extra, "nope")),
+        ],
+    );
     let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"whit\"\ncorners = [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]\n";
-    assert_names(&error(extra), &["unknown material `whit`", &format!(":{}:", line_of(extra, "whit"))]);
+    assert_names(
+        &error(extra),
+        &[
+            "unknown material `whit`",
+            &format!(":{}:", line_of(extra, "whit")),
+        ],
+    );
     let extra = "\n[surfaces.nope]\nflip = true\n";
     assert_names(&error(extra), &["unknown surface `nope`"]);
     let extra = "\n[[zone]]\nname = \"z\"\nwork_plane = { room = \"hall\", height = 0.8 }\n";
-    assert_names(&error(extra), &["unknown room `hall`", &format!(":{}:", line_of(extra, "hall"))]);
+    assert_names(
+        &error(extra),
+        &[
+            "unknown room `hall`",
+            &format!(":{}:", line_of(extra, "hall")),
+        ],
+    );
     let extra = "\n[[channel]]\nname = \"c\"\nmaterials = [\"neon\"]\n";
     assert_names(&error(extra), &["channel `c`.materials", "`neon`"]);
 }
@@ -320,8 +474,15 @@ fn scene_error_unknown_references() {
 #[test]
 fn scene_error_sensor_zero_normal() {
     let extra = "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 0]\n";
-    assert_names(&error(extra), &["sensor `s`.normal", &format!(":{}:", line_of(extra, "normal"))]);
-    let extra = "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 1]\nhalf_angle = 120\n";
+    assert_names(
+        &error(extra),
+        &[
+            "sensor `s`.normal",
+            &format!(":{}:", line_of(extra, "normal")),
+        ],
+    );
+    let extra =
+        "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 1]\nhalf_angle = 120\n";
     assert_names(&error(extra), &["sensor `s`.half_angle"]);
 }
 
@@ -347,8 +508,11 @@ fn scene_error_missing_obj_names_path() {
 #[test]
 fn scene_error_missing_mtl_names_path() {
     let dir = scratch("missing-mtl");
-    std::fs::write(dir.join("model.obj"), "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\ng t\nusemtl x\nf 1 2 3\n")
-        .expect("write obj");
+    std::fs::write(
+        dir.join("model.obj"),
+        "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\ng t\nusemtl x\nf 1 2 3\n",
+    )
+    .expect("write obj");
     let m = match parse(OBJ_SCENE, &dir.join("test-scene.toml")) {
         Ok(_) => panic!("missing MTL accepted"),
         Err(e) => e.to_string(),
@@ -364,30 +528,43 @@ fn scene_obj_units_transform_and_photopic_reduction() {
         "mtllib m.mtl\nv 0 0 0\nv 100 0 0\nv 100 100 0\nv 0 100 0\ng sheet\nusemtl grey\nf 1 2 3 4\n",
     )
     .expect("write obj");
-    std::fs::write(dir.join("m.mtl"), "newmtl grey\nKd 0.2 0.4 0.6\nKe 0 0 0\n").expect("write mtl");
+    std::fs::write(dir.join("m.mtl"), "newmtl grey\nKd 0.2 0.4 0.6\nKe 0 0 0\n")
+        .expect("write mtl");
     let text = format!("{OBJ_SCENE}translate = [0, 0, 250]\n").replace("\"rgb\"", "\"photopic\"");
     let scene = parse(&text, &dir.join("test-scene.toml")).expect("OBJ scene loads");
     assert_eq!(scene.surfaces[0].name, "sheet");
     assert_eq!(scene.patches.len(), 4); // 1 m square at 0.5 m edges
     let total: f64 = scene.patches.iter().map(|p| p.area).sum();
     assert!((total - 1.0).abs() < 1e-12);
-    assert!(scene.patches.iter().all(|p| (p.centroid.z - 2.5).abs() < 1e-12));
+    assert!(scene
+        .patches
+        .iter()
+        .all(|p| (p.centroid.z - 2.5).abs() < 1e-12));
     let y = 0.2126 * 0.2 + 0.7152 * 0.4 + 0.0722 * 0.6;
     assert!((scene.reflectance[0][0] - y).abs() < 1e-15);
 
     // A bad face in the OBJ names the OBJ file and the surface.
-    std::fs::write(dir.join("model.obj"), "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 2 0 0\ng line\nusemtl grey\nf 1 2 3\n")
-        .expect("write obj");
+    std::fs::write(
+        dir.join("model.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 2 0 0\ng line\nusemtl grey\nf 1 2 3\n",
+    )
+    .expect("write obj");
     let m = match parse(&text, &dir.join("test-scene.toml")) {
         Ok(_) => panic!("degenerate OBJ face accepted"),
         Err(e) => e.to_string(),
     };
-    assert!(m.contains("model.obj") && m.contains("surface `line`") && m.contains("face 1"), "{m}");
+    assert!(
+        m.contains("model.obj") && m.contains("surface `line`") && m.contains("face 1"),
+        "{m}"
+    );
 }
 
 #[test]
 fn scene_flip_reverses_normals() {
     let text = format!("{BASE}\n[surfaces.a]\nflip = true\n");
     let scene = parse(&text, Path::new(FILE)).expect("valid");
-    assert!(scene.patches.iter().all(|p| (p.normal - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-15));
+    assert!(scene
+        .patches
+        .iter()
+        .all(|p| (p.normal - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-15));
 }
