@@ -33,6 +33,7 @@ fn scene_office_example() {
     let scene = load(&example("office")).expect("office scene loads");
     assert_eq!(scene.bands, Bands::Photopic);
     let n = scene.patches.len();
+    eprintln!("office: {n} patches");
     assert!((800..=1500).contains(&n), "office has {n} patches");
     assert_eq!(scene.reflectance.len(), n);
     assert_eq!(scene.emission.len(), n);
@@ -137,6 +138,7 @@ fn scene_cornell_box_example() {
     let scene = load(&example("cornell-box")).expect("Cornell box loads");
     assert_eq!(scene.bands, Bands::Rgb);
     assert!(!scene.patches.is_empty());
+    eprintln!("Cornell box: {} patches", scene.patches.len());
     let mut names: Vec<&str> = scene.surfaces.iter().map(|s| s.name.as_str()).collect();
     names.sort_unstable();
     assert_eq!(
@@ -567,4 +569,25 @@ fn scene_flip_reverses_normals() {
         .patches
         .iter()
         .all(|p| (p.normal - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-15));
+}
+
+#[test]
+fn scene_docs_example_loads() {
+    let docs = include_str!("../../../docs/scene.md");
+    let start = docs.find("```toml\n").map_or(0, |i| i + 8);
+    let end = docs[start..].find("```").map_or(docs.len(), |i| start + i);
+    let example = &docs[start..end];
+    // The OBJ part names a file that is not in the repository: it must be reported as missing,
+    // and the rest must load.
+    let m = match parse(example, Path::new("docs/scene.toml")) {
+        Ok(_) => panic!("chair.obj does not exist"),
+        Err(e) => e.to_string(),
+    };
+    assert!(m.contains("chair.obj") && m.contains("not found"), "{m}");
+    let obj = example.find("[[obj]]").unwrap_or(0);
+    let channel = example.find("[[channel]]").unwrap_or(0);
+    let without_obj = format!("{}{}", &example[..obj], &example[channel..]);
+    let scene = parse(&without_obj, Path::new("docs/scene.toml")).expect("docs example loads");
+    assert_eq!(scene.channels.len(), 2);
+    assert_eq!(scene.zones.len(), 2);
 }
