@@ -327,7 +327,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         let Some(material) = materials.get(&s.material) else {
             return Err(SceneError::Unknown {
                 at: s.material_at.clone(),
-                field: format!("material of surface `{}`", s.name),
+                field: format!("surface `{}`.material", s.name),
                 kind: "material",
                 name: s.material.clone(),
             });

@@ -80,7 +80,7 @@ pub enum SceneError {
         message: String,
     },
     /// A file named by the scene (OBJ or its MTL) does not exist.
-    #[error("{at}: field `{field}`: file not found: {path}", path = path.display())]
+    #[error("{at}: {field}: file not found: {path}", path = path.display())]
     MissingFile {
         /// The scene entry that names the file.
         at: Location,
@@ -90,7 +90,7 @@ pub enum SceneError {
         path: PathBuf,
     },
     /// A value is outside its allowed range (reflectance, exitance, flux, angle, size...).
-    #[error("{at}: field `{field}`: {message}")]
+    #[error("{at}: {field}: {message}")]
     OutOfRange {
         /// Where the value was written.
         at: Location,
@@ -100,7 +100,7 @@ pub enum SceneError {
         message: String,
     },
     /// A list has the wrong length (e.g. per-band values for the wrong number of bands).
-    #[error("{at}: field `{field}`: expected {expected} value(s), found {found}")]
+    #[error("{at}: {field}: expected {expected} value(s), found {found}")]
     BandCount {
         /// Where the list was written.
         at: Location,
@@ -122,7 +122,7 @@ pub enum SceneError {
         name: String,
     },
     /// A reference to a surface, material or room that does not exist.
-    #[error("{at}: field `{field}`: unknown {kind} `{name}`")]
+    #[error("{at}: {field}: unknown {kind} `{name}`")]
     Unknown {
         /// Where the reference was written.
         at: Location,
@@ -166,7 +166,7 @@ pub enum SceneError {
         message: String,
     },
     /// A zone or sensor is not well defined (e.g. zero-length normal, no surfaces).
-    #[error("{at}: field `{field}`: {message}")]
+    #[error("{at}: {field}: {message}")]
     Invalid {
         /// Where it was defined.
         at: Location,

@@ -86,11 +86,43 @@ impl UnitDef {
 }
 
 /// One number for every band, or one per band.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(untagged)]
+#[derive(Clone, Debug)]
 pub(crate) enum PerBand {
     One(f64),
     Many(Vec<f64>),
+}
+
+impl<'de> Deserialize<'de> for PerBand {
+    // By hand rather than `untagged`, so that a wrong value says what was expected.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = PerBand;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a number, or a list of numbers with one per band")
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<PerBand, E> {
+                Ok(PerBand::One(v))
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<PerBand, E> {
+                Ok(PerBand::One(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<PerBand, E> {
+                Ok(PerBand::One(v as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<PerBand, A::Error> {
+                let mut values = Vec::new();
+                while let Some(v) = seq.next_element::<f64>()? {
+                    values.push(v);
+                }
+                Ok(PerBand::Many(values))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 /// `[materials.<name>]`.

@@ -591,3 +591,13 @@ fn scene_docs_example_loads() {
     assert_eq!(scene.channels.len(), 2);
     assert_eq!(scene.zones.len(), 2);
 }
+
+#[test]
+fn scene_error_wrong_type_or_variant_names_line() {
+    let m = error_in(&BASE.replace("reflectance = 0.5", "reflectance = \"high\""));
+    assert_names(&m, &[":8:", "expected a number, or a list of numbers"]);
+    let m = error_in(&BASE.replace("unit = \"m\"", "unit = \"yd\""));
+    assert_names(&m, &[":4:", "unknown variant `yd`"]);
+    let m = error("\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\n");
+    assert_names(&m, &["missing field `normal`"]);
+}
