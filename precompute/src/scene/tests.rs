@@ -601,3 +601,33 @@ fn scene_error_wrong_type_or_variant_names_line() {
     let m = error("\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\n");
     assert_names(&m, &["missing field `normal`"]);
 }
+
+#[test]
+fn scene_error_surface_in_two_channels() {
+    let lamp = "\n[[quad]]\nname = \"l\"\nmaterial = \"lamp\"\ncorners = [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]]\n";
+    let extra = format!(
+        "{lamp}\n[[channel]]\nname = \"c1\"\nsurfaces = [\"l\"]\n\n[[channel]]\nname = \"c2\"\nmaterials = [\"lamp\"]\n"
+    );
+    assert_names(
+        &error(&extra),
+        &[
+            "surface `l`",
+            "`c1`",
+            "`c2`",
+            &format!(":{}:", line_of(&extra, "c2") - 1),
+        ],
+    );
+}
+
+#[test]
+fn scene_error_missing_scene_file_names_path() {
+    let path = scratch("missing-scene").join("nothing-here.toml");
+    let m = match load(&path) {
+        Ok(_) => panic!("missing scene accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        m.contains("nothing-here.toml") && m.contains("cannot read"),
+        "{m}"
+    );
+}
