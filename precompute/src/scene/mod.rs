@@ -6,10 +6,13 @@
 //! band (rgb scenes).
 
 mod build;
+mod channels;
+mod context;
 mod error;
 mod file;
 mod mesh;
 mod obj;
+mod observers;
 mod primitives;
 #[cfg(test)]
 mod tests;

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use toml::Spanned;
 
-use super::build::{Ctx, MaterialInfo, RawSurface};
+use super::context::{Ctx, MaterialInfo, RawSurface};
 use super::error::{Location, SceneError};
 use super::file::{NameBy, ObjDef, UpAxis};
 use crate::geometry::Vec3;

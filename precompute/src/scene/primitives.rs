@@ -3,7 +3,7 @@
 
 use toml::Spanned;
 
-use super::build::{Ctx, RawSurface};
+use super::context::{Ctx, RawSurface};
 use super::error::SceneError;
 use super::file::{BlockDef, QuadDef, RoomDef};
 use crate::geometry::Vec3;
