@@ -45,7 +45,8 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         },
     })?;
     // tobj reports a missing MTL without its name: look for it first, so the error can say.
-    for mtl in mtl_paths(&path, &text) {
+    let mtls = mtl_paths(&path, &text);
+    for mtl in mtls.iter().cloned() {
         if !mtl.is_file() {
             return Err(SceneError::MissingFile {
                 at: at.clone(),
@@ -67,15 +68,23 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
     let (models, materials) = tobj::load_obj(&path, &options).map_err(|e| obj_error("OBJ", e))?;
     let materials = materials.map_err(|e| obj_error("MTL", e))?;
 
-    let mtl_at = Location::file(&path);
+    // Materials are located in their MTL file when there is one; tobj does not say which
+    // file a material came from when there are several.
+    let obj_at = Location::file(&path);
+    let mtl_at = match mtls.as_slice() {
+        [one] => Location::file(one),
+        _ => obj_at.clone(),
+    };
     let mut infos = Vec::with_capacity(materials.len());
     for m in &materials {
         let field = format!("MTL material `{}`", m.name);
         let kd = m.diffuse.unwrap_or([0.0; 3]);
         let ke = m.emissive.unwrap_or([0.0; 3]);
-        let reflectance =
-            ctx.check_reflectance(ctx.bands_of_rgb(kd), &mtl_at, &format!("{field} Kd"))?;
-        let emission = ctx.check_exitance(ctx.bands_of_rgb(ke), &mtl_at, &format!("{field} Ke"))?;
+        // Checked as written (RGB), before a photopic scene reduces them to one band.
+        let kd = ctx.check_reflectance(kd.to_vec(), &mtl_at, &format!("{field} Kd"))?;
+        let ke = ctx.check_exitance(ke.to_vec(), &mtl_at, &format!("{field} Ke"))?;
+        let reflectance = ctx.bands_of_rgb([kd[0], kd[1], kd[2]]);
+        let emission = ctx.bands_of_rgb([ke[0], ke[1], ke[2]]);
         infos.push((
             m.name.clone(),
             MaterialInfo {
@@ -122,7 +131,7 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
                     material_at: at.clone(),
                     faces: Vec::new(),
                     max_edge,
-                    at: mtl_at.clone(),
+                    at: obj_at.clone(),
                 });
                 seen.push(HashSet::new());
                 surfaces.len() - 1

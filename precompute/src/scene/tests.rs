@@ -545,6 +545,15 @@ fn scene_obj_units_transform_and_photopic_reduction() {
     let y = 0.2126 * 0.2 + 0.7152 * 0.4 + 0.0722 * 0.6;
     assert!((scene.reflectance[0][0] - y).abs() < 1e-15);
 
+    // A bad Kd names the MTL file and the material.
+    std::fs::write(dir.join("m.mtl"), "newmtl grey\nKd 1.2 0.4 0.6\n").expect("write mtl");
+    let m = match parse(&text, &dir.join("test-scene.toml")) {
+        Ok(_) => panic!("Kd above 1 accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(m.contains("m.mtl") && m.contains("`grey` Kd"), "{m}");
+    std::fs::write(dir.join("m.mtl"), "newmtl grey\nKd 0.2 0.4 0.6\n").expect("write mtl");
+
     // A bad face in the OBJ names the OBJ file and the surface.
     std::fs::write(
         dir.join("model.obj"),
