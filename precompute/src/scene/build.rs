@@ -1,0 +1,204 @@
+//! From the parsed file to a validated, meshed [`Scene`]: units, materials, surfaces, meshing,
+//! channels, sensors and zones.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use super::context::{unique, Ctx, MaterialInfo, RawSurface};
+use super::error::SceneError;
+use super::file::{BandsDef, SceneFile};
+use super::mesh::{check_face, mesh_face, triangulate};
+use super::{channels, obj, observers, primitives};
+use super::{Bands, Scene, Surface};
+use crate::geometry::{Patch, Vec3};
+
+/// Default planarity tolerance: a corner may sit 0.1 % of the face's diagonal off its plane.
+const PLANARITY: f64 = 1e-3;
+
+/// Builds the scene from the parsed file.
+pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene, SceneError> {
+    let bands = match file.scene.bands {
+        BandsDef::Photopic => Bands::Photopic,
+        BandsDef::Rgb => Bands::Rgb,
+    };
+    let ctx = Ctx {
+        origin,
+        text,
+        bands: bands.count(),
+        unit: file.scene.unit.get_ref().metres(),
+    };
+    let max_edge = ctx.length(&file.scene.max_edge, "scene.max_edge")?;
+    let planarity = match &file.scene.planarity_tolerance {
+        Some(p) if !(p.get_ref().is_finite() && *p.get_ref() >= 0.0) => {
+            return Err(SceneError::OutOfRange {
+                at: ctx.at(p),
+                field: "scene.planarity_tolerance".into(),
+                message: format!("must be finite and non-negative, found {}", p.get_ref()),
+            })
+        }
+        Some(p) => *p.get_ref(),
+        None => PLANARITY,
+    };
+
+    // Materials: the scene's own first; an MTL material of the same name does not replace it.
+    let mut materials: BTreeMap<String, MaterialInfo> = BTreeMap::new();
+    for (name, def) in &file.materials {
+        let m = def.get_ref();
+        let field = format!("materials.{name}.reflectance");
+        let reflectance = ctx.per_band(&m.reflectance, &field)?;
+        let reflectance = ctx.check_reflectance(reflectance, &ctx.at(&m.reflectance), &field)?;
+        let emission = match &m.emission {
+            Some(e) => {
+                let field = format!("materials.{name}.emission");
+                ctx.check_exitance(ctx.per_band(e, &field)?, &ctx.at(e), &field)?
+            }
+            None => vec![0.0; ctx.bands],
+        };
+        materials.insert(
+            name.clone(),
+            MaterialInfo {
+                reflectance,
+                emission,
+            },
+        );
+    }
+
+    // Geometry, in file order by kind.
+    let mut raw: Vec<RawSurface> = Vec::new();
+    let mut rooms: Vec<(String, Vec3, Vec3)> = Vec::new();
+    for r in &file.room {
+        raw.extend(primitives::room(&ctx, r)?);
+        let (lo, hi) = primitives::box_corners(&ctx, "room", &r.get_ref().min, &r.get_ref().max)?;
+        rooms.push((r.get_ref().name.clone(), lo, hi));
+    }
+    for b in &file.block {
+        raw.extend(primitives::block(&ctx, b)?);
+    }
+    for q in &file.quad {
+        raw.push(primitives::quad(&ctx, q)?);
+    }
+    for o in &file.obj {
+        let content = obj::load(&ctx, o)?;
+        raw.extend(content.surfaces);
+        for (name, info) in content.materials {
+            materials.entry(name).or_insert(info);
+        }
+    }
+    unique(
+        "surface",
+        raw.iter().map(|s| (s.name.as_str(), s.at.clone())),
+    )?;
+
+    // Per-surface settings.
+    let mut flip = vec![false; raw.len()];
+    let mut split = vec![false; raw.len()];
+    for (name, o) in &file.surfaces {
+        let Some(i) = raw.iter().position(|s| &s.name == name) else {
+            return Err(SceneError::Unknown {
+                at: ctx.at(o),
+                field: format!("surfaces.{name}"),
+                kind: "surface",
+                name: name.clone(),
+            });
+        };
+        let o = o.get_ref();
+        if let Some(m) = &o.material {
+            raw[i].material = m.get_ref().clone();
+            raw[i].material_at = ctx.at(m);
+        }
+        if let Some(e) = &o.max_edge {
+            raw[i].max_edge = Some(ctx.length(e, &format!("surfaces.{name}.max_edge"))?);
+        }
+        flip[i] = o.flip;
+        split[i] = o.triangulate;
+    }
+
+    // Materials resolved, faces checked and meshed.
+    let mut surfaces = Vec::with_capacity(raw.len());
+    let mut patches = Vec::new();
+    let mut reflectance = Vec::new();
+    let mut material_emission = Vec::with_capacity(raw.len());
+    for (index, s) in raw.iter().enumerate() {
+        let Some(material) = materials.get(&s.material) else {
+            return Err(SceneError::Unknown {
+                at: s.material_at.clone(),
+                field: format!("surface `{}`.material", s.name),
+                kind: "material",
+                name: s.material.clone(),
+            });
+        };
+        if s.faces.is_empty() {
+            return Err(SceneError::BadFace {
+                at: s.at.clone(),
+                surface: s.name.clone(),
+                face: 0,
+                message: "surface has no faces".into(),
+            });
+        }
+        let start = patches.len();
+        let edge = s.max_edge.unwrap_or(max_edge);
+        let mut polygons = Vec::new();
+        for (f, face) in s.faces.iter().enumerate() {
+            let mut face = face.clone();
+            if flip[index] {
+                face.reverse();
+            }
+            let bad = |p: super::mesh::FaceProblem| SceneError::BadFace {
+                at: s.at.clone(),
+                surface: s.name.clone(),
+                face: f + 1,
+                message: p.to_string(),
+            };
+            let pieces = if split[index] {
+                triangulate(&face)
+            } else {
+                vec![face]
+            };
+            for piece in pieces {
+                check_face(&piece, planarity).map_err(bad)?;
+                mesh_face(&piece, edge, &mut polygons);
+            }
+        }
+        for polygon in polygons {
+            patches.push(Patch::new(polygon, index));
+            reflectance.push(material.reflectance.clone());
+        }
+        surfaces.push(Surface {
+            name: s.name.clone(),
+            material: s.material.clone(),
+            reflectance: material.reflectance.clone(),
+            patch_range: start..patches.len(),
+        });
+        material_emission.push(material.emission.clone());
+    }
+    let emitters = channels::resolve(
+        &ctx,
+        &file.channel,
+        &surfaces,
+        &patches,
+        &raw,
+        &material_emission,
+    )?;
+    let mut emission = Vec::with_capacity(patches.len());
+    let mut channel_of_patch = Vec::with_capacity(patches.len());
+    for p in &patches {
+        emission.push(emitters.surface_emission[p.surface].clone());
+        channel_of_patch.push(emitters.channel_of_surface[p.surface]);
+    }
+
+    let sensors = observers::sensors(&ctx, &file.sensor)?;
+    let zones = observers::zones(&ctx, &file.zone, &rooms, &surfaces, max_edge)?;
+
+    Ok(Scene {
+        name: file.scene.name,
+        bands,
+        surfaces,
+        patches,
+        reflectance,
+        emission,
+        channel_of_patch,
+        channels: emitters.channels,
+        sensors,
+        zones,
+    })
+}

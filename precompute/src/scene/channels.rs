@@ -1,0 +1,157 @@
+//! Channels: which surfaces each drives and how much they emit at level 1.
+
+use toml::Spanned;
+
+use super::context::{resolve_surfaces, unique, Ctx, RawSurface};
+use super::error::SceneError;
+use super::file::ChannelDef;
+use super::{Channel, Surface};
+use crate::geometry::Patch;
+
+/// The channels, and per surface the channel driving it and its exitance at level 1.
+pub(crate) struct Emitters {
+    pub channels: Vec<Channel>,
+    pub channel_of_surface: Vec<Option<usize>>,
+    /// Per surface and band, lux or W/m².
+    pub surface_emission: Vec<Vec<f64>>,
+}
+
+/// Resolves the channels. `material_emission` is each surface's material emission; `raw`
+/// locates each surface's material for messages.
+pub(crate) fn resolve(
+    ctx: &Ctx,
+    defs: &[Spanned<ChannelDef>],
+    surfaces: &[Surface],
+    patches: &[Patch],
+    raw: &[RawSurface],
+    material_emission: &[Vec<f64>],
+) -> Result<Emitters, SceneError> {
+    let area_of = |i: usize| -> f64 {
+        patches[surfaces[i].patch_range.clone()]
+            .iter()
+            .map(|p| p.area)
+            .sum()
+    };
+
+    unique(
+        "channel",
+        defs.iter().map(|c| (c.get_ref().name.as_str(), ctx.at(c))),
+    )?;
+    let mut channel_of_surface: Vec<Option<usize>> = vec![None; surfaces.len()];
+    let mut surface_emission = vec![vec![0.0; ctx.bands]; surfaces.len()];
+    let mut channels = Vec::with_capacity(defs.len());
+    for (k, def) in defs.iter().enumerate() {
+        let c = def.get_ref();
+        let what = format!("channel `{}`", c.name);
+        let mut members = match &c.surfaces {
+            Some(refs) => resolve_surfaces(ctx, surfaces, refs, &format!("{what}.surfaces"))?,
+            None => Vec::new(),
+        };
+        if let Some(mats) = &c.materials {
+            for m in mats.get_ref() {
+                let found: Vec<usize> = (0..surfaces.len())
+                    .filter(|&i| &surfaces[i].material == m)
+                    .collect();
+                if found.is_empty() {
+                    return Err(SceneError::Unknown {
+                        at: ctx.at(mats),
+                        field: format!("{what}.materials"),
+                        kind: "material (on any surface)",
+                        name: m.clone(),
+                    });
+                }
+                for i in found {
+                    if !members.contains(&i) {
+                        members.push(i);
+                    }
+                }
+            }
+        }
+        if members.is_empty() {
+            return Err(SceneError::EmptyChannel {
+                at: ctx.at(def),
+                channel: c.name.clone(),
+                message: "names no surface: give `surfaces` or `materials`".into(),
+            });
+        }
+        let exitance = match (&c.exitance, &c.flux) {
+            (Some(e), Some(_)) => {
+                return Err(SceneError::Invalid {
+                    at: ctx.at(e),
+                    field: format!("{what}.exitance"),
+                    message: "give `exitance` or `flux`, not both".into(),
+                })
+            }
+            (Some(e), None) => {
+                let field = format!("{what}.exitance");
+                Some(ctx.check_exitance(ctx.per_band(e, &field)?, &ctx.at(e), &field)?)
+            }
+            (None, Some(f)) => {
+                let field = format!("{what}.flux");
+                let flux = ctx.check_exitance(ctx.per_band(f, &field)?, &ctx.at(f), &field)?;
+                let area: f64 = members.iter().map(|&i| area_of(i)).sum();
+                Some(flux.iter().map(|f| f / area).collect())
+            }
+            (None, None) => None,
+        };
+        for &i in &members {
+            if let Some(previous) = channel_of_surface[i] {
+                return Err(SceneError::Emitter {
+                    at: ctx.at(def),
+                    surface: surfaces[i].name.clone(),
+                    message: format!(
+                        "is in channel `{}` and in channel `{}`; a surface can be in one only",
+                        defs.get(previous)
+                            .map_or("?", |d| d.get_ref().name.as_str()),
+                        c.name
+                    ),
+                });
+            }
+            channel_of_surface[i] = Some(k);
+            surface_emission[i] = exitance
+                .clone()
+                .unwrap_or_else(|| material_emission[i].clone());
+        }
+        let area: f64 = members.iter().map(|&i| area_of(i)).sum();
+        let mean: Vec<f64> = (0..ctx.bands)
+            .map(|b| {
+                members
+                    .iter()
+                    .map(|&i| surface_emission[i][b] * area_of(i))
+                    .sum::<f64>()
+                    / area
+            })
+            .collect();
+        if mean.iter().all(|&x| x == 0.0) {
+            return Err(SceneError::EmptyChannel {
+                at: ctx.at(def),
+                channel: c.name.clone(),
+                message: "none of its surfaces emits: give `exitance` or `flux`, or use an \
+                          emitting material"
+                    .into(),
+            });
+        }
+        channels.push(Channel {
+            name: c.name.clone(),
+            surfaces: members,
+            exitance: mean,
+        });
+    }
+    for (i, s) in surfaces.iter().enumerate() {
+        if channel_of_surface[i].is_none() && material_emission[i].iter().any(|&x| x > 0.0) {
+            return Err(SceneError::Emitter {
+                at: raw[i].material_at.clone(),
+                surface: s.name.clone(),
+                message: format!(
+                    "its material `{}` emits but no channel drives it; add it to a [[channel]]",
+                    s.material
+                ),
+            });
+        }
+    }
+    Ok(Emitters {
+        channels,
+        channel_of_surface,
+        surface_emission,
+    })
+}

@@ -1,0 +1,301 @@
+//! The TOML schema of a scene file, as written (lengths in the file's unit, angles in degrees).
+//!
+//! Every table denies unknown fields, so a typo is an error naming the line. Values that are
+//! checked after parsing carry their span, so range errors name the line too.
+//! `docs/scene.md` documents the schema for users.
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+/// The whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SceneFile {
+    pub scene: Header,
+    #[serde(default)]
+    pub materials: BTreeMap<String, Spanned<MaterialDef>>,
+    #[serde(default)]
+    pub surfaces: BTreeMap<String, Spanned<SurfaceOverride>>,
+    #[serde(default)]
+    pub room: Vec<Spanned<RoomDef>>,
+    #[serde(default)]
+    pub block: Vec<Spanned<BlockDef>>,
+    #[serde(default)]
+    pub quad: Vec<Spanned<QuadDef>>,
+    #[serde(default)]
+    pub obj: Vec<Spanned<ObjDef>>,
+    #[serde(default)]
+    pub channel: Vec<Spanned<ChannelDef>>,
+    #[serde(default)]
+    pub sensor: Vec<Spanned<SensorDef>>,
+    #[serde(default)]
+    pub zone: Vec<Spanned<ZoneDef>>,
+}
+
+/// `[scene]`: name, bands, unit and meshing defaults.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Header {
+    pub name: String,
+    pub bands: BandsDef,
+    pub unit: Spanned<UnitDef>,
+    /// Longest patch edge, in `unit`.
+    pub max_edge: Spanned<f64>,
+    /// Largest distance of a polygon's corner from its mean plane, as a fraction of the
+    /// polygon's longest diagonal.
+    #[serde(default)]
+    pub planarity_tolerance: Option<Spanned<f64>>,
+}
+
+/// `scene.bands`.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum BandsDef {
+    Photopic,
+    Rgb,
+}
+
+/// `scene.unit`: the length unit of every coordinate and length in the file.
+#[derive(Clone, Copy, Debug, Deserialize)]
+pub(crate) enum UnitDef {
+    #[serde(rename = "m")]
+    Metre,
+    #[serde(rename = "cm")]
+    Centimetre,
+    #[serde(rename = "mm")]
+    Millimetre,
+    #[serde(rename = "ft")]
+    Foot,
+    #[serde(rename = "in")]
+    Inch,
+}
+
+impl UnitDef {
+    /// Metres per unit (the foot and inch are the international ones).
+    pub fn metres(self) -> f64 {
+        match self {
+            UnitDef::Metre => 1.0,
+            UnitDef::Centimetre => 0.01,
+            UnitDef::Millimetre => 0.001,
+            UnitDef::Foot => 0.3048,
+            UnitDef::Inch => 0.0254,
+        }
+    }
+}
+
+/// One number for every band, or one per band.
+#[derive(Clone, Debug)]
+pub(crate) enum PerBand {
+    One(f64),
+    Many(Vec<f64>),
+}
+
+impl<'de> Deserialize<'de> for PerBand {
+    // By hand rather than `untagged`, so that a wrong value says what was expected.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = PerBand;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("a number, or a list of numbers with one per band")
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<PerBand, E> {
+                Ok(PerBand::One(v))
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<PerBand, E> {
+                Ok(PerBand::One(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<PerBand, E> {
+                Ok(PerBand::One(v as f64))
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<PerBand, A::Error> {
+                let mut values = Vec::new();
+                while let Some(v) = seq.next_element::<f64>()? {
+                    values.push(v);
+                }
+                Ok(PerBand::Many(values))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
+}
+
+/// `[materials.<name>]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct MaterialDef {
+    /// Diffuse reflectance in [0, 1).
+    pub reflectance: Spanned<PerBand>,
+    /// Exitance at level 1 (lux or W/m² per band).
+    #[serde(default)]
+    pub emission: Option<Spanned<PerBand>>,
+}
+
+/// `[surfaces.<name>]`: per-surface settings that apply whatever made the surface.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SurfaceOverride {
+    #[serde(default)]
+    pub material: Option<Spanned<String>>,
+    #[serde(default)]
+    pub max_edge: Option<Spanned<f64>>,
+    /// Reverse the winding of every face (the file has them facing the wrong way).
+    #[serde(default)]
+    pub flip: bool,
+    /// Cut every face into triangles before meshing (for slightly non-planar quads).
+    #[serde(default)]
+    pub triangulate: bool,
+}
+
+/// `[[quad]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct QuadDef {
+    pub name: String,
+    pub material: Spanned<String>,
+    /// Counter-clockwise seen from the front.
+    pub corners: Spanned<[[f64; 3]; 4]>,
+    #[serde(default)]
+    pub max_edge: Option<Spanned<f64>>,
+}
+
+/// `[[room]]`: axis-aligned box seen from inside.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RoomDef {
+    pub name: String,
+    pub min: Spanned<[f64; 3]>,
+    pub max: Spanned<[f64; 3]>,
+    pub material: Spanned<String>,
+    #[serde(default)]
+    pub floor: Option<Spanned<String>>,
+    #[serde(default)]
+    pub ceiling: Option<Spanned<String>>,
+    #[serde(default)]
+    pub walls: Option<Spanned<String>>,
+    #[serde(default)]
+    pub max_edge: Option<Spanned<f64>>,
+}
+
+/// `[[block]]`: axis-aligned box seen from outside.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct BlockDef {
+    pub name: String,
+    pub min: Spanned<[f64; 3]>,
+    pub max: Spanned<[f64; 3]>,
+    pub material: Spanned<String>,
+    /// Whether to make the bottom face (leave it out when the block stands on the floor).
+    #[serde(default = "yes")]
+    pub bottom: bool,
+    #[serde(default)]
+    pub max_edge: Option<Spanned<f64>>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// `[[obj]]`: geometry and materials from an OBJ/MTL pair.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ObjDef {
+    /// Relative to the scene file.
+    pub file: Spanned<String>,
+    #[serde(default)]
+    pub name_by: NameBy,
+    #[serde(default)]
+    pub prefix: Option<String>,
+    #[serde(default)]
+    pub up: UpAxis,
+    #[serde(default)]
+    pub scale: Option<Spanned<f64>>,
+    /// In the scene's unit, applied after `up` and `scale`.
+    #[serde(default)]
+    pub translate: Option<Spanned<[f64; 3]>>,
+    #[serde(default)]
+    pub max_edge: Option<Spanned<f64>>,
+    /// Drop a face whose corners are those of an earlier face of the same surface.
+    #[serde(default)]
+    pub drop_duplicate_faces: bool,
+}
+
+/// `obj.name_by`: what names the surfaces of an OBJ file.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum NameBy {
+    #[default]
+    Group,
+    Material,
+}
+
+/// `obj.up`: which axis of the OBJ file points up.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum UpAxis {
+    Y,
+    #[default]
+    Z,
+}
+
+/// `[[channel]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ChannelDef {
+    pub name: String,
+    #[serde(default)]
+    pub surfaces: Option<Spanned<Vec<String>>>,
+    #[serde(default)]
+    pub materials: Option<Spanned<Vec<String>>>,
+    /// Exitance at level 1, lux or W/m² per band.
+    #[serde(default)]
+    pub exitance: Option<Spanned<PerBand>>,
+    /// Flux at level 1, lm or W per band, spread uniformly over the channel's area.
+    #[serde(default)]
+    pub flux: Option<Spanned<PerBand>>,
+}
+
+/// `[[sensor]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SensorDef {
+    pub name: String,
+    pub position: Spanned<[f64; 3]>,
+    pub normal: Spanned<[f64; 3]>,
+    /// Degrees.
+    #[serde(default)]
+    pub half_angle: Option<Spanned<f64>>,
+}
+
+/// `[[zone]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ZoneDef {
+    pub name: String,
+    #[serde(default)]
+    pub surfaces: Option<Spanned<Vec<String>>>,
+    #[serde(default)]
+    pub work_plane: Option<Spanned<WorkPlaneDef>>,
+}
+
+/// `zone.work_plane`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct WorkPlaneDef {
+    /// The room whose footprint it covers; may be left out when there is one room.
+    #[serde(default)]
+    pub room: Option<Spanned<String>>,
+    /// Above the room's floor, in the scene's unit.
+    pub height: Spanned<f64>,
+    /// Distance kept from the walls, in the scene's unit.
+    #[serde(default)]
+    pub margin: Option<Spanned<f64>>,
+    /// Longest receiver edge, in the scene's unit (default: `scene.max_edge`).
+    #[serde(default)]
+    pub max_edge: Option<Spanned<f64>>,
+}

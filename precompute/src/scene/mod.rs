@@ -1,0 +1,167 @@
+//! Scene input: a TOML scene file (with OBJ/MTL geometry and built-in primitives) read into
+//! meshed patches with reflectance, emission, channels, sensors and zones.
+//!
+//! The file format is documented in `docs/scene.md`. Everything here is in SI units: lengths
+//! in metres, areas in m², angles in radians; exitance in lux (photopic scenes) or W/m² per
+//! band (rgb scenes).
+
+mod build;
+mod channels;
+mod context;
+mod error;
+mod file;
+mod mesh;
+mod obj;
+mod observers;
+mod primitives;
+#[cfg(test)]
+mod tests;
+
+use std::ops::Range;
+use std::path::Path;
+
+use crate::geometry::{Patch, Vec3};
+
+pub use error::{Location, SceneError};
+
+/// The spectral bands a scene is computed in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bands {
+    /// One band weighted by the photopic luminosity function: exitance and irradiance in lux
+    /// (lm/m²), flux in lumens.
+    Photopic,
+    /// Three radiometric bands (red, green, blue): exitance and irradiance in W/m² per band,
+    /// flux in W per band.
+    Rgb,
+}
+
+impl Bands {
+    /// Number of bands: 1 or 3.
+    pub fn count(self) -> usize {
+        match self {
+            Bands::Photopic => 1,
+            Bands::Rgb => 3,
+        }
+    }
+
+    /// Unit of exitance and irradiance: `"lux"` or `"W/m²"`.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Bands::Photopic => "lux",
+            Bands::Rgb => "W/m²",
+        }
+    }
+}
+
+/// A named surface: a room face, a block face, a quad or an OBJ group, cut into patches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Surface {
+    /// Unique name (`room.floor`, `desk1.top`, an OBJ group or material name...).
+    pub name: String,
+    /// Name of its material.
+    pub material: String,
+    /// Diffuse reflectance per band, each in [0, 1).
+    pub reflectance: Vec<f64>,
+    /// Its patches in [`Scene::patches`].
+    pub patch_range: Range<usize>,
+}
+
+/// A group of emitting surfaces dimmed together (a luminaire circuit, a window).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Channel {
+    /// Unique name.
+    pub name: String,
+    /// Indices into [`Scene::surfaces`] of the surfaces it drives.
+    pub surfaces: Vec<usize>,
+    /// Area-weighted mean exitance of its surfaces at level 1, per band (lux or W/m²).
+    /// Times the channel's area this is its flux (lm or W).
+    pub exitance: Vec<f64>,
+}
+
+/// A point sensor (e.g. a ceiling photocell or a desk illuminance meter).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sensor {
+    /// Unique name.
+    pub name: String,
+    /// Position, metres.
+    pub position: Vec3,
+    /// Unit normal of the sensing face.
+    pub normal: Vec3,
+    /// Field-of-view half-angle around the normal, radians; `None` is the full hemisphere.
+    pub half_angle: Option<f64>,
+}
+
+/// A region whose area-averaged irradiance is reported.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Zone {
+    /// Unique name.
+    pub name: String,
+    /// What the zone is made of.
+    pub kind: ZoneKind,
+}
+
+/// What a zone averages over.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ZoneKind {
+    /// Patches of the scene (indices into [`Scene::patches`]).
+    Surfaces(Vec<usize>),
+    /// A horizontal work plane: upward-facing receivers that do not block light.
+    WorkPlane {
+        /// Height above the room's floor, metres.
+        height: f64,
+        /// Receiving patches covering the room's footprint (less the margin) at that height.
+        /// Their `surface` is the index of the room's floor surface they lie above.
+        receivers: Vec<Patch>,
+    },
+}
+
+/// A loaded, validated and meshed scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The scene's name (`scene.name`).
+    pub name: String,
+    /// Spectral bands; every per-band vector has `bands.count()` entries.
+    pub bands: Bands,
+    /// Named surfaces, in file order (rooms, blocks, quads, then OBJ files).
+    pub surfaces: Vec<Surface>,
+    /// Patches; `patch.surface` indexes [`Scene::surfaces`].
+    pub patches: Vec<Patch>,
+    /// Reflectance per patch and band, each in [0, 1).
+    pub reflectance: Vec<Vec<f64>>,
+    /// Exitance emitted per patch and band at level 1 of its channel (lux or W/m²); zero for
+    /// patches that do not emit.
+    pub emission: Vec<Vec<f64>>,
+    /// The channel driving each patch's emission. Every emitting patch is in exactly one
+    /// channel (an emitting surface outside every channel is an error).
+    pub channel_of_patch: Vec<Option<usize>>,
+    /// Channels, in file order.
+    pub channels: Vec<Channel>,
+    /// Sensors, in file order.
+    pub sensors: Vec<Sensor>,
+    /// Zones, in file order.
+    pub zones: Vec<Zone>,
+}
+
+/// Reads, validates and meshes the scene file at `path`.
+///
+/// OBJ files it names are found relative to its folder.
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse(&text, path)
+}
+
+/// Validates and meshes a scene from its text; `origin` is the file it came from, used to find
+/// OBJ files (relative to its folder) and to name the file in errors.
+pub fn parse(text: &str, origin: &Path) -> Result<Scene, SceneError> {
+    let file: file::SceneFile = toml::from_str(text).map_err(|e| SceneError::Syntax {
+        at: match e.span() {
+            Some(span) => Location::at_offset(origin, text, span.start),
+            None => Location::file(origin),
+        },
+        message: e.message().trim().to_string(),
+    })?;
+    build::build(file, text, origin)
+}

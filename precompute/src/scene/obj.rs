@@ -1,0 +1,232 @@
+//! Geometry and materials from an OBJ/MTL pair (via `tobj`).
+//!
+//! MTL `Kd` is the reflectance and `Ke` the exitance at level 1; photopic scenes reduce RGB to
+//! one band with the luminance weights of ITU-R BT.709 (0.2126, 0.7152, 0.0722).
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+use toml::Spanned;
+
+use super::context::{Ctx, MaterialInfo, RawSurface};
+use super::error::{Location, SceneError};
+use super::file::{NameBy, ObjDef, UpAxis};
+use crate::geometry::Vec3;
+
+/// Luminance weights of linear RGB (ITU-R BT.709 primaries), used to make photopic values.
+pub(crate) const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
+
+/// What one OBJ file contributes.
+pub(crate) struct ObjContent {
+    /// Its surfaces, in the order they first appear in the file.
+    pub surfaces: Vec<RawSurface>,
+    /// Its MTL materials (name, values), in MTL order.
+    pub materials: Vec<(String, MaterialInfo)>,
+}
+
+/// Reads the OBJ file of one `[[obj]]` entry and its MTL files.
+pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, SceneError> {
+    let o = def.get_ref();
+    let at = ctx.at(&o.file);
+    let path = ctx
+        .origin
+        .parent()
+        .unwrap_or(Path::new(""))
+        .join(o.file.get_ref());
+    let text = std::fs::read_to_string(&path).map_err(|source| match source.kind() {
+        std::io::ErrorKind::NotFound => SceneError::MissingFile {
+            at: at.clone(),
+            field: "obj.file".into(),
+            path: path.clone(),
+        },
+        _ => SceneError::Read {
+            path: path.clone(),
+            source,
+        },
+    })?;
+    // tobj reports a missing MTL without its name: look for it first, so the error can say.
+    let mtls = mtl_paths(&path, &text);
+    for mtl in mtls.iter().cloned() {
+        if !mtl.is_file() {
+            return Err(SceneError::MissingFile {
+                at: at.clone(),
+                field: format!("obj.file (mtllib of {})", path.display()),
+                path: mtl,
+            });
+        }
+    }
+    let options = tobj::LoadOptions {
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let obj_error = |what: &str, e: tobj::LoadError| SceneError::Obj {
+        at: at.clone(),
+        field: o.file.get_ref().clone(),
+        message: format!("{what}: {e}"),
+    };
+    let (models, materials) = tobj::load_obj(&path, &options).map_err(|e| obj_error("OBJ", e))?;
+    let materials = materials.map_err(|e| obj_error("MTL", e))?;
+
+    // Materials are located in their MTL file when there is one; tobj does not say which
+    // file a material came from when there are several.
+    let obj_at = Location::file(&path);
+    let mtl_at = match mtls.as_slice() {
+        [one] => Location::file(one),
+        _ => obj_at.clone(),
+    };
+    let mut infos = Vec::with_capacity(materials.len());
+    for m in &materials {
+        let field = format!("MTL material `{}`", m.name);
+        let kd = m.diffuse.unwrap_or([0.0; 3]);
+        let ke = m.emissive.unwrap_or([0.0; 3]);
+        // Checked as written (RGB), before a photopic scene reduces them to one band.
+        let kd = ctx.check_reflectance(kd.to_vec(), &mtl_at, &format!("{field} Kd"))?;
+        let ke = ctx.check_exitance(ke.to_vec(), &mtl_at, &format!("{field} Ke"))?;
+        let reflectance = ctx.bands_of_rgb([kd[0], kd[1], kd[2]]);
+        let emission = ctx.bands_of_rgb([ke[0], ke[1], ke[2]]);
+        infos.push((
+            m.name.clone(),
+            MaterialInfo {
+                reflectance,
+                emission,
+            },
+        ));
+    }
+
+    let transform = Transform::new(ctx, o)?;
+    let material_name =
+        |id: Option<usize>| id.and_then(|i| materials.get(i)).map(|m| m.name.clone());
+    // (key, material) per model; a group holding several materials gets one surface per
+    // material, named `<group>.<material>`.
+    let keys: Vec<(String, Option<String>)> = models
+        .iter()
+        .map(|m| {
+            let mat = material_name(m.mesh.material_id);
+            let key = match (o.name_by, &mat) {
+                (NameBy::Material, Some(mat)) => mat.clone(),
+                _ => m.name.clone(),
+            };
+            (key, mat)
+        })
+        .collect();
+    let max_edge = ctx.optional_length(o.max_edge.as_ref(), "obj.max_edge")?;
+    let mut surfaces: Vec<RawSurface> = Vec::new();
+    let mut seen: Vec<HashSet<Vec<[u64; 3]>>> = Vec::new();
+    for (model, (key, mat)) in models.iter().zip(&keys) {
+        let mixed = keys.iter().any(|(k, m)| k == key && m != mat);
+        let mut name = match (mixed, mat) {
+            (true, Some(mat)) => format!("{key}.{mat}"),
+            _ => key.clone(),
+        };
+        if let Some(prefix) = &o.prefix {
+            name = format!("{prefix}.{name}");
+        }
+        let index = match surfaces.iter().position(|s| s.name == name) {
+            Some(i) => i,
+            None => {
+                surfaces.push(RawSurface {
+                    name,
+                    material: mat.clone().unwrap_or_default(),
+                    material_at: at.clone(),
+                    faces: Vec::new(),
+                    max_edge,
+                    at: obj_at.clone(),
+                });
+                seen.push(HashSet::new());
+                surfaces.len() - 1
+            }
+        };
+        let mesh = &model.mesh;
+        let mut start = 0usize;
+        let arities: Vec<usize> = if mesh.face_arities.is_empty() {
+            vec![3; mesh.indices.len() / 3]
+        } else {
+            mesh.face_arities.iter().map(|&a| a as usize).collect()
+        };
+        for arity in arities {
+            let corners: Vec<Vec3> = mesh
+                .indices
+                .get(start..start + arity)
+                .unwrap_or(&[])
+                .iter()
+                .map(|&i| {
+                    let i = i as usize * 3;
+                    let c = mesh.positions.get(i..i + 3).unwrap_or(&[f64::NAN; 3]);
+                    transform.apply(Vec3::new(c[0], c[1], c[2]))
+                })
+                .collect();
+            start += arity;
+            if o.drop_duplicate_faces {
+                let mut key: Vec<[u64; 3]> = corners
+                    .iter()
+                    .map(|c| [c.x.to_bits(), c.y.to_bits(), c.z.to_bits()])
+                    .collect();
+                key.sort_unstable();
+                if !seen[index].insert(key) {
+                    continue;
+                }
+            }
+            surfaces[index].faces.push(corners);
+        }
+    }
+    Ok(ObjContent {
+        surfaces,
+        materials: infos,
+    })
+}
+
+/// The MTL files an OBJ file names, resolved against its folder.
+fn mtl_paths(obj: &Path, text: &str) -> Vec<PathBuf> {
+    let dir = obj.parent().unwrap_or(Path::new(""));
+    text.lines()
+        .filter_map(|l| l.trim_start().strip_prefix("mtllib "))
+        .map(|name| dir.join(name.trim()))
+        .collect()
+}
+
+/// OBJ coordinates to metres: turn the file's up axis to z, scale, translate, convert units.
+struct Transform {
+    up: UpAxis,
+    scale: f64,
+    translate: Vec3,
+    unit: f64,
+}
+
+impl Transform {
+    fn new(ctx: &Ctx, o: &ObjDef) -> Result<Self, SceneError> {
+        let scale = match &o.scale {
+            Some(s) => {
+                let v = *s.get_ref();
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(SceneError::OutOfRange {
+                        at: ctx.at(s),
+                        field: "obj.scale".into(),
+                        message: format!("must be a positive finite number, found {v}"),
+                    });
+                }
+                v
+            }
+            None => 1.0,
+        };
+        let translate = match &o.translate {
+            Some(t) => ctx.point(t, "obj.translate")?,
+            None => Vec3::ZERO,
+        };
+        Ok(Transform {
+            up: o.up,
+            scale,
+            translate,
+            unit: ctx.unit,
+        })
+    }
+
+    fn apply(&self, p: Vec3) -> Vec3 {
+        // y up to z up: a proper rotation of +90° about x, so windings are kept.
+        let p = match self.up {
+            UpAxis::Y => Vec3::new(p.x, -p.z, p.y),
+            UpAxis::Z => p,
+        };
+        p * (self.scale * self.unit) + self.translate
+    }
+}

@@ -1,0 +1,178 @@
+//! Sensors and zones: where the results are read.
+
+use toml::Spanned;
+
+use super::context::{resolve_surfaces, unique, Ctx};
+use super::error::SceneError;
+use super::file::{SensorDef, WorkPlaneDef, ZoneDef};
+use super::mesh::mesh_face;
+use super::{Sensor, Surface, Zone, ZoneKind};
+use crate::geometry::{Patch, Polygon, Vec3};
+
+/// Reads and checks the sensors.
+pub(crate) fn sensors(ctx: &Ctx, defs: &[Spanned<SensorDef>]) -> Result<Vec<Sensor>, SceneError> {
+    unique(
+        "sensor",
+        defs.iter().map(|s| (s.get_ref().name.as_str(), ctx.at(s))),
+    )?;
+    let mut sensors = Vec::with_capacity(defs.len());
+    for def in defs {
+        let s = def.get_ref();
+        let what = format!("sensor `{}`", s.name);
+        let position = ctx.point(&s.position, &format!("{what}.position"))?;
+        let n = s.normal.get_ref();
+        let normal = Vec3::new(n[0], n[1], n[2]);
+        if !(normal.is_finite() && normal.length() > 0.0) {
+            return Err(SceneError::Invalid {
+                at: ctx.at(&s.normal),
+                field: format!("{what}.normal"),
+                message: format!("must be a finite, non-zero vector, found {n:?}"),
+            });
+        }
+        let half_angle = match &s.half_angle {
+            Some(a) if !(*a.get_ref() > 0.0 && *a.get_ref() <= 90.0) => {
+                return Err(SceneError::OutOfRange {
+                    at: ctx.at(a),
+                    field: format!("{what}.half_angle"),
+                    message: format!("must be in (0, 90] degrees, found {}", a.get_ref()),
+                })
+            }
+            Some(a) => Some(a.get_ref().to_radians()),
+            None => None,
+        };
+        sensors.push(Sensor {
+            name: s.name.clone(),
+            position,
+            normal: normal.normalized(),
+            half_angle,
+        });
+    }
+
+    Ok(sensors)
+}
+
+/// Reads and checks the zones; `rooms` are (name, min, max) in metres, `max_edge` (m) the
+/// scene's default.
+pub(crate) fn zones(
+    ctx: &Ctx,
+    defs: &[Spanned<ZoneDef>],
+    rooms: &[(String, Vec3, Vec3)],
+    surfaces: &[Surface],
+    max_edge: f64,
+) -> Result<Vec<Zone>, SceneError> {
+    unique(
+        "zone",
+        defs.iter().map(|z| (z.get_ref().name.as_str(), ctx.at(z))),
+    )?;
+    let mut zones = Vec::with_capacity(defs.len());
+    for def in defs {
+        let z = def.get_ref();
+        let what = format!("zone `{}`", z.name);
+        let kind = match (&z.surfaces, &z.work_plane) {
+            (Some(refs), None) => {
+                let members = resolve_surfaces(ctx, surfaces, refs, &format!("{what}.surfaces"))?;
+                ZoneKind::Surfaces(
+                    members
+                        .iter()
+                        .flat_map(|&i| surfaces[i].patch_range.clone())
+                        .collect(),
+                )
+            }
+            (None, Some(wp)) => work_plane(ctx, &what, wp, rooms, surfaces, max_edge)?,
+            _ => {
+                return Err(SceneError::Invalid {
+                    at: ctx.at(def),
+                    field: what,
+                    message: "give exactly one of `surfaces` and `work_plane`".into(),
+                })
+            }
+        };
+        zones.push(Zone {
+            name: z.name.clone(),
+            kind,
+        });
+    }
+
+    Ok(zones)
+}
+
+/// Receivers of a work plane: upward quads over the room's footprint less the margin.
+fn work_plane(
+    ctx: &Ctx,
+    what: &str,
+    def: &Spanned<WorkPlaneDef>,
+    rooms: &[(String, Vec3, Vec3)],
+    surfaces: &[Surface],
+    default_edge: f64,
+) -> Result<ZoneKind, SceneError> {
+    let wp = def.get_ref();
+    let field = format!("{what}.work_plane.room");
+    let room = match &wp.room {
+        Some(name) => rooms
+            .iter()
+            .find(|r| &r.0 == name.get_ref())
+            .ok_or_else(|| SceneError::Unknown {
+                at: ctx.at(name),
+                field: field.clone(),
+                kind: "room",
+                name: name.get_ref().clone(),
+            })?,
+        None if rooms.len() == 1 => &rooms[0],
+        None => {
+            return Err(SceneError::Invalid {
+                at: ctx.at(def),
+                field,
+                message: format!("name the room (the scene has {} rooms)", rooms.len()),
+            })
+        }
+    };
+    let (name, lo, hi) = room;
+    let height = ctx.length(&wp.height, &format!("{what}.work_plane.height"))?;
+    if height >= hi.z - lo.z {
+        return Err(SceneError::OutOfRange {
+            at: ctx.at(&wp.height),
+            field: format!("{what}.work_plane.height"),
+            message: format!("must be below the ceiling of room `{name}`"),
+        });
+    }
+    let margin = match &wp.margin {
+        Some(m) if !(m.get_ref().is_finite() && *m.get_ref() >= 0.0) => {
+            return Err(SceneError::OutOfRange {
+                at: ctx.at(m),
+                field: format!("{what}.work_plane.margin"),
+                message: format!("must be finite and non-negative, found {}", m.get_ref()),
+            })
+        }
+        Some(m) => *m.get_ref() * ctx.unit,
+        None => 0.0,
+    };
+    if 2.0 * margin >= (hi.x - lo.x).min(hi.y - lo.y) {
+        return Err(SceneError::OutOfRange {
+            at: wp
+                .margin
+                .as_ref()
+                .map_or_else(|| ctx.at(def), |m| ctx.at(m)),
+            field: format!("{what}.work_plane.margin"),
+            message: format!("leaves nothing of room `{name}`"),
+        });
+    }
+    let edge = ctx.optional_length(wp.max_edge.as_ref(), &format!("{what}.work_plane.max_edge"))?;
+    let floor = surfaces
+        .iter()
+        .position(|s| s.name == format!("{name}.floor"))
+        .unwrap_or(0);
+    let z = lo.z + height;
+    let (x0, y0, x1, y1) = (lo.x + margin, lo.y + margin, hi.x - margin, hi.y - margin);
+    let corners = [
+        Vec3::new(x0, y0, z),
+        Vec3::new(x1, y0, z),
+        Vec3::new(x1, y1, z),
+        Vec3::new(x0, y1, z),
+    ];
+    let mut polygons: Vec<Polygon> = Vec::new();
+    mesh_face(&corners, edge.unwrap_or(default_edge), &mut polygons);
+    Ok(ZoneKind::WorkPlane {
+        height,
+        receivers: polygons.into_iter().map(|p| Patch::new(p, floor)).collect(),
+    })
+}
