@@ -11,9 +11,9 @@
 //!   `x` ([`kernel`]);
 //! - the outer integral is a Gauss–Legendre rule on patch i whose order falls with the distance
 //!   between the patches ([`FormFactorOptions::quadrature_tolerance`]);
-//! - `V_ij(x)` is the visible fraction of j seen from `x`, estimated with rays to j's own
-//!   Gauss points weighted by the point-to-point kernel, refined where the rays disagree (a
-//!   blocker silhouette). Rays are only cast when a blocker can cut the pair at all
+//! - `V_ij(x)` is the visible fraction of j seen from `x`, estimated with rays to j's corners
+//!   and centre weighted by the point-to-point kernel, refined where the rays disagree (a
+//!   blocker silhouette) ([`visibility`]). Rays are only cast when a blocker can cut the pair at all
 //!   ([`Occluders`]).
 //!
 //! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `math.md`).
@@ -23,6 +23,7 @@ mod kernel;
 mod quadrature;
 #[cfg(test)]
 mod tests;
+mod visibility;
 
 pub use bvh::Occluders;
 
@@ -52,12 +53,18 @@ pub struct FormFactorOptions {
     /// source patch's radius and `d` the gap to the target (metres), capped by `gauss_order`.
     /// Default 1e-6.
     pub quadrature_tolerance: f64,
-    /// Gauss points per side on the target used as ray ends for the visible fraction.
-    /// Default 2 (4 rays per quadrature point).
-    pub visibility_order: usize,
-    /// Points per side on the target when the first rays disagree (partial occlusion near a
-    /// silhouette). Default 6 (36 rays).
-    pub visibility_refine_order: usize,
+    /// How often a cell of the target may be split in four where the rays to its corners and
+    /// centre disagree (a blocker's silhouette crosses it). Default 4: silhouettes are resolved
+    /// to 1/16 of the target's side; a target entirely in view or in shadow costs 5 rays.
+    pub visibility_depth: u32,
+    /// Cells of a target whose unoccluded form factor from the point exceeds this share are
+    /// split even when all their rays agree (dimensionless). Default 1e-3.
+    pub visibility_cell_share: f64,
+    /// Outer-quadrature order on the emitting patch for every pair that a blocker may cut
+    /// (except touching pairs). All such pairs of a row share the rule: their summed kernel ×
+    /// visibility is smooth over the source even where each term jumps at a shadow edge, so the
+    /// row still sums to 1. Default 5.
+    pub occluded_order: usize,
 }
 
 impl Default for FormFactorOptions {
@@ -67,8 +74,9 @@ impl Default for FormFactorOptions {
             progress: false,
             touching_order: 6,
             quadrature_tolerance: 1e-6,
-            visibility_order: 2,
-            visibility_refine_order: 6,
+            visibility_depth: 4,
+            visibility_cell_share: 1e-3,
+            occluded_order: 5,
         }
     }
 }
@@ -132,18 +140,24 @@ impl<'a> Prepared<'a> {
     }
 }
 
+/// Gauss–Legendre rules of orders 1 to `max` on [0, 1].
+fn gauss_rules(max: usize) -> Vec<Vec<(f64, f64)>> {
+    (1..=max.max(1)).map(quadrature::gauss_legendre).collect()
+}
+
 /// The largest order any rule on a set of patches needs.
 fn max_order(opts: &FormFactorOptions) -> usize {
     opts.gauss_order
         .max(opts.touching_order)
-        .max(opts.visibility_order)
-        .max(opts.visibility_refine_order)
+        .max(opts.occluded_order)
         .max(1)
 }
 
 /// Everything needed to evaluate form factors towards the scene patches.
 struct Context<'a> {
     targets: &'a Prepared<'a>,
+    /// Gauss–Legendre rules on [0, 1] of orders 1, 2, … (index = order − 1).
+    gauss: Vec<Vec<(f64, f64)>>,
     occluders: &'a Occluders,
     opts: &'a FormFactorOptions,
 }
@@ -208,14 +222,18 @@ impl Context<'_> {
         if !any_in_front(tv, src.normal, s0, tol) || !any_in_front(sv, tgt.normal, t0, tol) {
             return 0.0;
         }
-        let order = self.source_order(src, sources.bounds[i], j);
         let occluded = self
             .occluders
             .may_block(sv, src.normal, tv, tgt.normal, ignore);
+        let mut order = self.source_order(src, sources.bounds[i], j);
+        if occluded && order <= self.opts.gauss_order {
+            // One rule for every pair a blocker may cut (touching pairs keep their own).
+            order = self.opts.occluded_order;
+        }
         let mut sum = 0.0;
-        for s in sources.samples.rule(i, order) {
+        let mut add = |point: Vec3, weight: f64| {
             let viewer = Viewer {
-                point: s.point,
+                point,
                 normal: src.normal,
                 cone: None,
             };
@@ -226,10 +244,28 @@ impl Context<'_> {
                 } else {
                     1.0
                 };
-                sum += s.weight * k * v;
+                sum += weight * k * v;
+            }
+        };
+        if any_in_front(sv, -tgt.normal, t0, tol) && src.area > 0.0 {
+            // The target's plane cuts the source: only the part in front sees the target, and
+            // the integrand has a kink on the cut, so integrate over that part alone.
+            let front = kernel::SmallPolygon::<{ kernel::PATCH_CLIPPED }>::from_slice(sv)
+                .clip(t0, tgt.normal);
+            let gl = self.gauss_rule(order);
+            quadrature::for_each_on_polygon(front.corners(), gl, |p, w| add(p, w / src.area));
+        } else {
+            for s in sources.samples.rule(i, order) {
+                add(s.point, s.weight);
             }
         }
         sum
+    }
+
+    /// The Gauss–Legendre rule of `order` on [0, 1] (clamped to the orders prepared).
+    fn gauss_rule(&self, order: usize) -> &[(f64, f64)] {
+        let k = order.clamp(1, self.gauss.len().max(1)) - 1;
+        self.gauss.get(k).map_or(&[], Vec::as_slice)
     }
 
     /// Unoccluded differential form factor from the viewer to target `j` (exact).
@@ -247,54 +283,32 @@ impl Context<'_> {
         }
     }
 
-    /// Fraction of target `j`'s contribution seen from the viewer that is not blocked: rays to
-    /// j's Gauss points, weighted by the point-to-point kernel; refined with more rays when the
-    /// first ones disagree.
+    /// Fraction of target `j`'s contribution seen from the viewer that is not blocked, by rays
+    /// refined at silhouettes ([`visibility`]).
     fn visible_fraction(&self, v: Viewer, j: usize, ignore: &[usize]) -> f64 {
-        let (fraction, mixed) = self.sampled_visibility(v, j, ignore, self.opts.visibility_order);
-        if mixed && self.opts.visibility_refine_order > self.opts.visibility_order {
-            self.sampled_visibility(v, j, ignore, self.opts.visibility_refine_order)
-                .0
-        } else {
-            fraction
-        }
-    }
-
-    /// Kernel-weighted visible fraction from rays to the order-`order` Gauss points of target
-    /// `j`, and whether the rays disagreed.
-    fn sampled_visibility(
-        &self,
-        v: Viewer,
-        j: usize,
-        ignore: &[usize],
-        order: usize,
-    ) -> (f64, bool) {
         let tgt = &self.targets.patches[j];
-        let (mut seen, mut total) = (0.0, 0.0);
-        let (mut any_seen, mut any_blocked) = (false, false);
-        for s in self.targets.samples.rule(j, order) {
-            let d = s.point - v.point;
-            let (cx, cy) = (v.normal.dot(d), -tgt.normal.dot(d));
-            if cx <= 0.0 || cy <= 0.0 || v.cone.is_some_and(|c| !c.contains(v.normal, d)) {
-                continue;
+        let fraction = visibility::Param::of(tgt).and_then(|target| {
+            visibility::Query {
+                occluders: self.occluders,
+                point: v.point,
+                normal: v.normal,
+                cone: v.cone,
+                target,
+                target_normal: tgt.normal,
+                ignore,
+                depth: self.opts.visibility_depth,
+                max_cell_share: self.opts.visibility_cell_share,
             }
-            let r2 = d.dot(d);
-            let w = s.weight * cx * cy / (r2 * r2);
-            total += w;
-            if self.occluders.visible(v.point, s.point, ignore) {
-                seen += w;
-                any_seen = true;
+            .visible_fraction()
+        });
+        // Other polygons, or only a grazing sliver in view: one ray to the centroid.
+        fraction.unwrap_or_else(|| {
+            if self.occluders.visible(v.point, tgt.centroid, ignore) {
+                1.0
             } else {
-                any_blocked = true;
+                0.0
             }
-        }
-        if total > 0.0 {
-            (seen / total, any_seen && any_blocked)
-        } else {
-            // Only a sliver of j is in view and no sample in it: one ray to its centroid.
-            let visible = self.occluders.visible(v.point, tgt.centroid, ignore);
-            (if visible { 1.0 } else { 0.0 }, false)
-        }
+        })
     }
 }
 
@@ -354,6 +368,7 @@ pub fn patch_form_factors_with(
     let prepared = Prepared::new(patches, max_order(opts));
     let ctx = Context {
         targets: &prepared,
+        gauss: gauss_rules(max_order(opts)),
         occluders,
         opts,
     };
@@ -430,6 +445,7 @@ pub fn point_form_factors(
     let targets = Prepared::new(patches, max_order(&opts));
     let ctx = Context {
         targets: &targets,
+        gauss: gauss_rules(max_order(&opts)),
         occluders,
         opts: &opts,
     };
@@ -472,6 +488,7 @@ pub fn receiver_form_factors(
     let sources = Prepared::new(receivers, opts.gauss_order);
     let ctx = Context {
         targets: &targets,
+        gauss: gauss_rules(max_order(opts)),
         occluders,
         opts,
     };

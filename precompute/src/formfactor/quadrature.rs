@@ -78,6 +78,31 @@ fn triangle_rule(a: Vec3, b: Vec3, c: Vec3, gl: &[(f64, f64)], out: &mut Vec<Sam
     }
 }
 
+/// Calls `f(point, weight)` for the collapsed rule (Gauss–Legendre nodes `gl`) on each triangle
+/// of the fan of a convex polygon; weights are areas in m² (they sum to the polygon's area).
+/// Used on the part of a source patch in front of a target whose plane cuts it.
+pub(crate) fn for_each_on_polygon(
+    corners: &[Vec3],
+    gl: &[(f64, f64)],
+    mut f: impl FnMut(Vec3, f64),
+) {
+    let Some(&a) = corners.first() else {
+        return;
+    };
+    for k in 1..corners.len().saturating_sub(1) {
+        let (b, c) = (corners[k], corners[k + 1]);
+        let twice_area = (b - a).cross(c - b).length();
+        for &(u, wu) in gl {
+            for &(v, wv) in gl {
+                f(
+                    a + (b - a) * u + (c - b) * (u * v),
+                    wu * wv * u * twice_area,
+                );
+            }
+        }
+    }
+}
+
 /// Appends the rule of order `m` (points per side) on `patch`, weights normalised to sum to 1.
 /// Quadrilaterals are mapped bilinearly; other polygons are cut into a fan of triangles.
 fn patch_rule(patch: &Patch, gl: &[(f64, f64)], out: &mut Vec<Sample>) {

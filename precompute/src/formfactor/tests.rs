@@ -206,3 +206,182 @@ fn cube_2x2_matches_reference() {
 fn cube_3x3_matches_reference() {
     check_cube(3);
 }
+
+/// The 4 × 3 × 2.7 m test room, patches about `size` metres wide.
+fn room(size: f64) -> Vec<Patch> {
+    meshed_box(v(0.0, 0.0, 0.0), v(4.0, 3.0, 2.7), size, true, 0)
+}
+
+/// A box-shaped blocker floating in the test room (a table-sized obstacle), facing outwards.
+fn blocker(size: f64) -> Vec<Patch> {
+    meshed_box(v(1.5, 1.0, 0.5), v(2.5, 2.0, 1.2), size, false, 6)
+}
+
+fn worst_row_deviation(sums: &[f64]) -> f64 {
+    sums.iter().map(|s| (s - 1.0).abs()).fold(0.0, f64::max)
+}
+
+#[test]
+fn closed_room_rows_sum_to_one_with_and_without_blocker() {
+    // Reference: a closed scene's rows sum to 1 (math.md). Tolerance 1e-3 per row, with a
+    // blocker inside (occlusion) and without.
+    let empty = room(0.4);
+    let mut furnished = empty.clone();
+    furnished.extend(blocker(0.35));
+    assert!(empty.len() >= 400);
+    let opts = FormFactorOptions::default();
+    let ff_empty = patch_form_factors(&empty, &opts);
+    let ff_full = patch_form_factors(&furnished, &opts);
+    let (dev_empty, dev_full) = (
+        worst_row_deviation(&ff_empty.row_sums),
+        worst_row_deviation(&ff_full.row_sums),
+    );
+    println!(
+        "room {} patches: worst row-sum deviation {dev_empty:.2e}, reciprocity {:.2e}",
+        empty.len(),
+        ff_empty.reciprocity_mismatch
+    );
+    println!(
+        "room + blocker {} patches: worst row-sum deviation {dev_full:.2e}, reciprocity {:.2e}",
+        furnished.len(),
+        ff_full.reciprocity_mismatch
+    );
+    assert!(dev_empty < 1e-3);
+    assert!(dev_full < 1e-3);
+}
+
+#[test]
+fn blocker_between_opposed_squares() {
+    // Reference: geometry. A blocker covering the whole shaft gives F = 0 exactly; one covering
+    // half of it gives at most the unobstructed Howell C-11 value (and clearly less).
+    let floor = unit_square_facing(0.0, true);
+    let ceiling = unit_square_facing(1.0, false);
+    let big = grid(
+        v(-1.0, -1.0, 0.5),
+        v(3.0, 0.0, 0.0),
+        v(0.0, 3.0, 0.0),
+        1,
+        1,
+        2,
+    )
+    .remove(0);
+    let half = grid(
+        v(-1.0, -1.0, 0.5),
+        v(1.5, 0.0, 0.0),
+        v(0.0, 3.0, 0.0),
+        1,
+        1,
+        2,
+    )
+    .remove(0);
+    let opts = FormFactorOptions::default();
+    let blocked = patch_form_factors(&[floor.clone(), ceiling.clone(), big], &opts);
+    println!("fully blocked: F = {:.3e}", blocked.matrix[(0, 1)]);
+    assert_eq!(blocked.matrix[(0, 1)], 0.0);
+    assert_eq!(blocked.matrix[(1, 0)], 0.0);
+    let partial = patch_form_factors(&[floor, ceiling, half], &opts);
+    let f = partial.matrix[(0, 1)];
+    println!("half blocked: F = {f:.6} (unobstructed 0.199825)");
+    assert!(f <= 0.199825 && f < 0.15 && f > 0.0);
+}
+
+/// Howell B-3: element to a parallel rectangle a × b at height c, one corner above the element.
+fn howell_b3(a: f64, b: f64, c: f64) -> f64 {
+    let (x, y) = (a / c, b / c);
+    let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+    (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * PI)
+}
+
+#[test]
+fn point_under_rectangle_corner_matches_howell_b3() {
+    // Reference: Howell B-3 closed form. Tolerance 1e-6 absolute.
+    let (a, b, c) = (1.3, 0.7, 0.9);
+    let rect = grid(v(0.0, 0.0, c), v(0.0, b, 0.0), v(a, 0.0, 0.0), 1, 1, 0);
+    let occ = Occluders::new(&rect);
+    let f = point_form_factors(v(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), None, &rect, &occ);
+    let exact = howell_b3(a, b, c);
+    println!(
+        "B-3: F = {:.9}, exact {exact:.9}, error {:.1e}",
+        f[0],
+        (f[0] - exact).abs()
+    );
+    assert!((f[0] - exact).abs() < 1e-6);
+}
+
+#[test]
+fn points_in_closed_room_see_everything() {
+    // Reference: a point inside a closed room sees a full hemisphere, Σ_j F_sj = 1.
+    // Tolerance 1e-6 unoccluded; 1e-3 with the blocker (sampled visibility).
+    let empty = room(0.5);
+    let mut furnished = empty.clone();
+    furnished.extend(blocker(0.35));
+    let sensors = [
+        (v(2.0, 1.5, 0.8), v(0.0, 0.0, 1.0)),
+        (v(0.3, 2.9, 2.5), v(0.3, -0.5, -0.2)),
+        (v(3.99, 1.0, 1.0), v(-1.0, 0.0, 0.0)),
+        (v(1.0, 0.5, 0.3), v(1.0, 1.0, 0.4)),
+    ];
+    let occ_empty = Occluders::new(&empty);
+    let occ_full = Occluders::new(&furnished);
+    for (p, n) in sensors {
+        let s: f64 = point_form_factors(p, n, None, &empty, &occ_empty)
+            .iter()
+            .sum();
+        println!("point {p:?}: Σ F = {s:.9} (empty room)");
+        assert!((s - 1.0).abs() < 1e-6);
+        if p.z > 1.2 || p.z < 0.5 || p.x < 1.5 || p.x > 2.5 {
+            let s: f64 = point_form_factors(p, n, None, &furnished, &occ_full)
+                .iter()
+                .sum();
+            println!("point {p:?}: Σ F = {s:.9} (with blocker)");
+            assert!((s - 1.0).abs() < 1e-3);
+        }
+    }
+}
+
+#[test]
+fn point_field_of_view_sees_sin_squared_of_ceiling() {
+    // Reference: a cone of half-angle α looking up at a ceiling that fills it sees
+    // F = sin² α (element to coaxial disk, Howell B-13). Tolerance 1e-5 relative.
+    let empty = room(0.5);
+    let occ = Occluders::new(&empty);
+    let alpha = 40.0_f64.to_radians();
+    let f = point_form_factors(
+        v(2.0, 1.5, 1.5),
+        v(0.0, 0.0, 1.0),
+        Some(alpha),
+        &empty,
+        &occ,
+    );
+    let s: f64 = f.iter().sum();
+    let exact = alpha.sin().powi(2);
+    println!("cone 40°: Σ F = {s:.8}, exact {exact:.8}");
+    assert!(rel(s, exact) < 1e-5);
+}
+
+#[test]
+fn work_plane_in_closed_room_sees_everything() {
+    // Reference: a one-sided receiver inside a closed room sees a full hemisphere, rows sum
+    // to 1. Tolerance 1e-3 (with the blocker above part of the plane's view: the plane is at
+    // 0.3 m, under the floating blocker).
+    let mut scene = room(0.4);
+    scene.extend(blocker(0.35));
+    let occ = Occluders::new(&scene);
+    let plane = grid(
+        v(0.5, 0.5, 0.3),
+        v(3.0, 0.0, 0.0),
+        v(0.0, 2.0, 0.0),
+        6,
+        4,
+        0,
+    );
+    let f = receiver_form_factors(&plane, &scene, &occ, &FormFactorOptions::default());
+    let worst = (0..plane.len())
+        .map(|r| ((0..scene.len()).map(|j| f[(r, j)]).sum::<f64>() - 1.0).abs())
+        .fold(0.0, f64::max);
+    println!(
+        "work plane: {} receivers, worst row-sum deviation {worst:.2e}",
+        plane.len()
+    );
+    assert!(worst < 1e-3);
+}
