@@ -139,7 +139,8 @@ impl Cone {
     /// The field of view around the unit `normal` with `half_angle` in radians; `None` when the
     /// cone covers the whole front hemisphere (half-angle ≥ π/2) so that no clipping is needed.
     pub(crate) fn new(normal: Vec3, half_angle: f64) -> Option<Cone> {
-        if !(half_angle < std::f64::consts::FRAC_PI_2) {
+        // NaN as well as wide angles: no cone.
+        if half_angle.partial_cmp(&std::f64::consts::FRAC_PI_2) != Some(std::cmp::Ordering::Less) {
             return None;
         }
         let half_angle = half_angle.max(0.0);

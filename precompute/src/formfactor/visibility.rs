@@ -23,9 +23,9 @@ pub(crate) enum Param {
 impl Param {
     /// The parametrisation of a 3- or 4-cornered patch; `None` for other polygons.
     pub(crate) fn of(p: &Patch) -> Option<Param> {
-        match p.polygon.vertices.as_slice() {
-            &[a, b, c] => Some(Param::Tri([a, b, c])),
-            &[a, b, c, d] => Some(Param::Quad([a, b, c, d])),
+        match *p.polygon.vertices.as_slice() {
+            [a, b, c] => Some(Param::Tri([a, b, c])),
+            [a, b, c, d] => Some(Param::Quad([a, b, c, d])),
             _ => None,
         }
     }
