@@ -1,0 +1,434 @@
+//! Occlusion: a bounding-volume hierarchy over the patches that can block anything.
+//!
+//! A patch can only cut a segment between two scene points if the segment crosses its plane,
+//! so a patch with the whole scene on or in front of its plane (every wall of a convex room)
+//! never occludes and is left out of the tree. An empty room therefore costs no ray at all.
+
+use crate::geometry::{Patch, Vec3};
+
+/// Axis-aligned bounding box, metres.
+#[derive(Clone, Copy, Debug)]
+struct Aabb {
+    min: Vec3,
+    max: Vec3,
+}
+
+impl Aabb {
+    const EMPTY: Aabb = Aabb {
+        min: Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+        max: Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+    };
+
+    fn of(points: &[Vec3]) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for &p in points {
+            b.grow(p);
+        }
+        b
+    }
+
+    fn grow(&mut self, p: Vec3) {
+        self.min = Vec3::new(
+            self.min.x.min(p.x),
+            self.min.y.min(p.y),
+            self.min.z.min(p.z),
+        );
+        self.max = Vec3::new(
+            self.max.x.max(p.x),
+            self.max.y.max(p.y),
+            self.max.z.max(p.z),
+        );
+    }
+
+    fn union(self, o: Aabb) -> Aabb {
+        let mut b = self;
+        b.grow(o.min);
+        b.grow(o.max);
+        b
+    }
+
+    fn expanded(self, by: f64) -> Aabb {
+        let d = Vec3::new(by, by, by);
+        Aabb {
+            min: self.min - d,
+            max: self.max + d,
+        }
+    }
+
+    fn overlaps(&self, o: &Aabb) -> bool {
+        self.min.x <= o.max.x
+            && o.min.x <= self.max.x
+            && self.min.y <= o.max.y
+            && o.min.y <= self.max.y
+            && self.min.z <= o.max.z
+            && o.min.z <= self.max.z
+    }
+
+    fn center(&self) -> Vec3 {
+        (self.min + self.max) * 0.5
+    }
+
+    /// Largest signed distance of a corner above the plane `normal · p = offset`.
+    fn max_height(&self, normal: Vec3, offset: f64) -> f64 {
+        let pick = |n: f64, lo: f64, hi: f64| if n >= 0.0 { hi } else { lo };
+        let p = Vec3::new(
+            pick(normal.x, self.min.x, self.max.x),
+            pick(normal.y, self.min.y, self.max.y),
+            pick(normal.z, self.min.z, self.max.z),
+        );
+        normal.dot(p) - offset
+    }
+
+    /// Does the segment `from + t d`, `t ∈ [t0, t1]`, meet the box? (slab test)
+    fn hit_by(&self, from: Vec3, inv_d: Vec3, mut t0: f64, mut t1: f64) -> bool {
+        for axis in 0..3 {
+            let o = from.axis(axis);
+            let inv = inv_d.axis(axis);
+            let mut ta = (self.min.axis(axis) - o) * inv;
+            let mut tb = (self.max.axis(axis) - o) * inv;
+            if ta.is_nan() || tb.is_nan() {
+                // Zero direction along this axis with the origin on a slab face.
+                continue;
+            }
+            if ta > tb {
+                std::mem::swap(&mut ta, &mut tb);
+            }
+            t0 = t0.max(ta);
+            t1 = t1.min(tb);
+            if t0 > t1 {
+                return false;
+            }
+        }
+        true
+    }
+}
+
+/// A convex occluding polygon (at most 4 corners; larger patches are cut into triangles).
+#[derive(Clone, Copy, Debug)]
+struct Blocker {
+    /// Index of the patch it comes from, in the slice given to [`Occluders::new`].
+    patch: usize,
+    corners: [Vec3; 4],
+    /// In-plane inward normals of the edges (`normal × edge`).
+    edge_normals: [Vec3; 4],
+    len: usize,
+    normal: Vec3,
+    /// Plane offset `normal · corner`, metres.
+    offset: f64,
+    bounds: Aabb,
+}
+
+impl Blocker {
+    fn new(patch: usize, normal: Vec3, corners: &[Vec3]) -> Blocker {
+        let len = corners.len().min(4);
+        let mut c = [Vec3::ZERO; 4];
+        c[..len].copy_from_slice(&corners[..len]);
+        let mut e = [Vec3::ZERO; 4];
+        for k in 0..len {
+            e[k] = normal.cross(c[(k + 1) % len] - c[k]);
+        }
+        Blocker {
+            patch,
+            corners: c,
+            edge_normals: e,
+            len,
+            normal,
+            offset: normal.dot(c[0]),
+            bounds: Aabb::of(&c[..len]),
+        }
+    }
+
+    /// Parameter `t` where the segment `from + t d` meets the polygon, if within `(t0, t1)`.
+    fn hit(&self, from: Vec3, d: Vec3, t0: f64, t1: f64) -> bool {
+        let denom = self.normal.dot(d);
+        if denom == 0.0 {
+            return false;
+        }
+        let t = (self.offset - self.normal.dot(from)) / denom;
+        if !(t > t0 && t < t1) {
+            return false;
+        }
+        let p = from + d * t;
+        // Inside or on the boundary: rays through a shared edge must not leak.
+        (0..self.len).all(|k| (p - self.corners[k]).dot(self.edge_normals[k]) >= -1e-12)
+    }
+}
+
+/// A node of the hierarchy: either two children or a run of blockers.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: Aabb,
+    /// Leaf: first blocker; inner node: index of the left child (the right one follows it).
+    first: usize,
+    /// Leaf: number of blockers; inner node: 0.
+    count: usize,
+    /// Inner node: index of the right child.
+    right: usize,
+}
+
+/// Most blockers in a leaf.
+const LEAF_SIZE: usize = 4;
+/// Depth of the traversal stack; the median split keeps the tree depth near log2(n).
+const STACK: usize = 96;
+
+/// Acceleration structure over the occluding patches of a scene (all scene patches are
+/// candidates; only those that can cut a segment between two scene points are kept), reusable
+/// for patch, point and receiver form factors.
+#[derive(Clone, Debug)]
+pub struct Occluders {
+    blockers: Vec<Blocker>,
+    nodes: Vec<Node>,
+    /// Geometric tolerance, metres (1e-9 of the scene's bounding-box diagonal).
+    tolerance: f64,
+}
+
+impl Occluders {
+    /// Builds the hierarchy over the patches of a scene. Patch indices in `ignore` lists refer
+    /// to positions in `patches`.
+    pub fn new(patches: &[Patch]) -> Self {
+        let all: Vec<Vec3> = patches
+            .iter()
+            .flat_map(|p| p.polygon.vertices.iter().copied())
+            .collect();
+        let scene = Aabb::of(&all);
+        let diagonal = if all.is_empty() {
+            0.0
+        } else {
+            (scene.max - scene.min).length()
+        };
+        let tolerance = 1e-9 * diagonal.max(1e-300);
+        let mut blockers = Vec::new();
+        for (index, patch) in patches.iter().enumerate() {
+            let v = &patch.polygon.vertices;
+            if v.len() < 3 || !can_occlude(patch, &scene, &all, tolerance) {
+                continue;
+            }
+            if v.len() <= 4 {
+                blockers.push(Blocker::new(index, patch.normal, v));
+            } else {
+                for k in 1..v.len() - 1 {
+                    blockers.push(Blocker::new(index, patch.normal, &[v[0], v[k], v[k + 1]]));
+                }
+            }
+        }
+        let mut occluders = Occluders {
+            blockers,
+            nodes: Vec::new(),
+            tolerance,
+        };
+        if !occluders.blockers.is_empty() {
+            let n = occluders.blockers.len();
+            occluders.build(0, n);
+        }
+        occluders
+    }
+
+    /// Number of occluding polygons kept (0 for a convex room without furniture).
+    pub fn len(&self) -> usize {
+        self.blockers.len()
+    }
+
+    /// True when nothing in the scene can occlude anything.
+    pub fn is_empty(&self) -> bool {
+        self.blockers.is_empty()
+    }
+
+    /// Builds the subtree over `blockers[start..end]` and returns its node index.
+    fn build(&mut self, start: usize, end: usize) -> usize {
+        let bounds = self.blockers[start..end]
+            .iter()
+            .fold(Aabb::EMPTY, |b, o| b.union(o.bounds));
+        let index = self.nodes.len();
+        self.nodes.push(Node {
+            bounds,
+            first: start,
+            count: end - start,
+            right: 0,
+        });
+        if end - start <= LEAF_SIZE {
+            return index;
+        }
+        // Median split along the longest axis of the centres.
+        let centres = self.blockers[start..end]
+            .iter()
+            .fold(Aabb::EMPTY, |mut b, o| {
+                b.grow(o.bounds.center());
+                b
+            });
+        let extent = centres.max - centres.min;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        let mid = start + (end - start) / 2;
+        self.blockers[start..end].select_nth_unstable_by(mid - start, |a, b| {
+            a.bounds
+                .center()
+                .axis(axis)
+                .total_cmp(&b.bounds.center().axis(axis))
+        });
+        let left = self.build(start, mid);
+        let right = self.build(mid, end);
+        self.nodes[index] = Node {
+            bounds,
+            first: left,
+            count: 0,
+            right,
+        };
+        index
+    }
+
+    /// True when the open segment from `from` to `to` (metres) meets no occluder, apart from the
+    /// patches listed in `ignore` (typically the source and target patch). The ends are trimmed
+    /// by a relative 1e-7 so that points on patches do not hit their neighbours.
+    pub fn visible(&self, from: Vec3, to: Vec3, ignore: &[usize]) -> bool {
+        if self.blockers.is_empty() {
+            return true;
+        }
+        let d = to - from;
+        let inv_d = Vec3::new(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
+        let (t0, t1) = (1e-7, 1.0 - 1e-7);
+        let mut stack = [0usize; STACK];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = self.nodes[stack[top]];
+            if !node.bounds.hit_by(from, inv_d, t0, t1) {
+                continue;
+            }
+            if node.count > 0 {
+                let run = &self.blockers[node.first..node.first + node.count];
+                if run
+                    .iter()
+                    .any(|b| !ignore.contains(&b.patch) && b.hit(from, d, t0, t1))
+                {
+                    return false;
+                }
+            } else if top + 2 <= STACK {
+                stack[top] = node.first;
+                stack[top + 1] = node.right;
+                top += 2;
+            }
+        }
+        true
+    }
+
+    /// Conservative test: can any occluder (other than those in `ignore`) cut a segment from a
+    /// point of polygon `a` to a point of polygon `b`? Each polygon is given by its corners and
+    /// the unit normal of the side that emits or receives (a point sensor is a one-corner
+    /// polygon). False means every such segment is unobstructed, so no ray is needed.
+    pub(crate) fn may_block(
+        &self,
+        a: &[Vec3],
+        a_normal: Vec3,
+        b: &[Vec3],
+        b_normal: Vec3,
+        ignore: &[usize],
+    ) -> bool {
+        if self.blockers.is_empty() || a.is_empty() || b.is_empty() {
+            return false;
+        }
+        let tol = self.tolerance;
+        let shaft = Aabb::of(a).union(Aabb::of(b)).expanded(tol);
+        // Segments leave `a` forwards and arrive at `b` from the front: an occluder entirely
+        // behind either plane cannot meet them.
+        let a_off = a_normal.dot(a[0]);
+        let b_off = b_normal.dot(b[0]);
+        let mut stack = [0usize; STACK];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = self.nodes[stack[top]];
+            if !node.bounds.overlaps(&shaft)
+                || node.bounds.max_height(a_normal, a_off) <= tol
+                || node.bounds.max_height(b_normal, b_off) <= tol
+            {
+                continue;
+            }
+            if node.count > 0 {
+                let run = &self.blockers[node.first..node.first + node.count];
+                if run.iter().any(|k| {
+                    !ignore.contains(&k.patch)
+                        && k.bounds.overlaps(&shaft)
+                        && straddles(k, a, b, tol)
+                        && in_front(&k.corners[..k.len], a_normal, a_off, tol)
+                        && in_front(&k.corners[..k.len], b_normal, b_off, tol)
+                }) {
+                    return true;
+                }
+            } else if top + 2 <= STACK {
+                stack[top] = node.first;
+                stack[top + 1] = node.right;
+                top += 2;
+            }
+        }
+        false
+    }
+}
+
+/// Some corner strictly in front of the plane `normal · p = offset`.
+fn in_front(corners: &[Vec3], normal: Vec3, offset: f64, tol: f64) -> bool {
+    corners.iter().any(|&c| normal.dot(c) - offset > tol)
+}
+
+/// Corners of `a` and `b` on both sides of the blocker's plane (else no segment crosses it).
+fn straddles(k: &Blocker, a: &[Vec3], b: &[Vec3], tol: f64) -> bool {
+    let (mut above, mut below) = (false, false);
+    for &p in a.iter().chain(b) {
+        let h = k.normal.dot(p) - k.offset;
+        above |= h > tol;
+        below |= h < -tol;
+    }
+    above && below
+}
+
+/// Is some scene corner strictly behind the patch's plane? Only then can the patch cut a segment
+/// between two scene points. The scene box's corners answer most cases without the full scan.
+fn can_occlude(patch: &Patch, scene: &Aabb, all: &[Vec3], tol: f64) -> bool {
+    let n = patch.normal;
+    let Some(&origin) = patch.polygon.vertices.first() else {
+        return false;
+    };
+    let offset = n.dot(origin);
+    // Lowest corner of the scene box relative to the plane.
+    let lowest = -scene.max_height(-n, -offset);
+    if lowest >= -tol {
+        return false;
+    }
+    all.iter().any(|&p| n.dot(p) - offset < -tol)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Polygon;
+
+    fn square(z: f64, up: bool) -> Patch {
+        let mut v = vec![
+            Vec3::new(0.0, 0.0, z),
+            Vec3::new(1.0, 0.0, z),
+            Vec3::new(1.0, 1.0, z),
+            Vec3::new(0.0, 1.0, z),
+        ];
+        if !up {
+            v.reverse();
+        }
+        Patch::new(Polygon::new(v), 0)
+    }
+
+    #[test]
+    fn segment_through_blocker_is_occluded() {
+        let patches = [square(0.0, true), square(0.5, true), square(1.0, false)];
+        let occ = Occluders::new(&patches);
+        // Only the middle square has scene points behind it.
+        assert_eq!(occ.len(), 1);
+        let from = Vec3::new(0.5, 0.5, 0.0);
+        let to = Vec3::new(0.5, 0.5, 1.0);
+        assert!(!occ.visible(from, to, &[]));
+        assert!(occ.visible(from, to, &[1]));
+        assert!(occ.visible(from, Vec3::new(2.5, 0.5, 1.0), &[]));
+    }
+}

@@ -1,0 +1,406 @@
+//! Form factors against closed forms (Howell's catalogue) and the shared reference data.
+
+use super::*;
+use crate::geometry::Polygon;
+use std::f64::consts::PI;
+
+fn v(x: f64, y: f64, z: f64) -> Vec3 {
+    Vec3::new(x, y, z)
+}
+
+/// Quads tiling the parallelogram `origin + s e1 + t e2`, `n1 × n2` of them, facing `e1 × e2`.
+fn grid(origin: Vec3, e1: Vec3, e2: Vec3, n1: usize, n2: usize, surface: usize) -> Vec<Patch> {
+    let (d1, d2) = (e1 / n1 as f64, e2 / n2 as f64);
+    let mut out = Vec::with_capacity(n1 * n2);
+    for a in 0..n1 {
+        for b in 0..n2 {
+            let p = origin + d1 * a as f64 + d2 * b as f64;
+            out.push(Patch::new(
+                Polygon::new(vec![p, p + d1, p + d1 + d2, p + d2]),
+                surface,
+            ));
+        }
+    }
+    out
+}
+
+/// The six faces of the box `lo..hi` cut into patches about `size` metres wide, facing inwards
+/// (a room) or outwards (a blocker).
+fn meshed_box(lo: Vec3, hi: Vec3, size: f64, inward: bool, surface: usize) -> Vec<Patch> {
+    let d = hi - lo;
+    let cuts = |len: f64| ((len / size).round() as usize).max(1);
+    let (ex, ey, ez) = (v(d.x, 0.0, 0.0), v(0.0, d.y, 0.0), v(0.0, 0.0, d.z));
+    let (nx, ny, nz) = (cuts(d.x), cuts(d.y), cuts(d.z));
+    // (origin, e1, e2, n1, n2) with e1 × e2 pointing into the box.
+    let faces = [
+        (lo, ex, ey, nx, ny),
+        (lo + ez, ey, ex, ny, nx),
+        (lo, ey, ez, ny, nz),
+        (lo + ex, ez, ey, nz, ny),
+        (lo, ez, ex, nz, nx),
+        (lo + ey, ex, ez, nx, nz),
+    ];
+    let mut out = Vec::new();
+    for (k, &(o, e1, e2, n1, n2)) in faces.iter().enumerate() {
+        if inward {
+            out.extend(grid(o, e1, e2, n1, n2, surface + k));
+        } else {
+            out.extend(grid(o, e2, e1, n2, n1, surface + k));
+        }
+    }
+    out
+}
+
+fn unit_square_facing(z: f64, up: bool) -> Patch {
+    if up {
+        grid(v(0.0, 0.0, z), v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0), 1, 1, 0).remove(0)
+    } else {
+        grid(v(0.0, 0.0, z), v(0.0, 1.0, 0.0), v(1.0, 0.0, 0.0), 1, 1, 0).remove(0)
+    }
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+#[test]
+fn opposed_unit_squares_match_howell_c11() {
+    // Reference: Howell C-11, two opposed unit squares one unit apart, F = 0.199825.
+    // Tolerance 0.05% relative.
+    let patches = [
+        unit_square_facing(0.0, true),
+        unit_square_facing(1.0, false),
+    ];
+    let ff = patch_form_factors(&patches, &FormFactorOptions::default());
+    let f = ff.matrix[(0, 1)];
+    println!("C-11: F = {f:.7}, rel. error {:.2e}", rel(f, 0.199825));
+    assert!(rel(f, 0.199825) < 5e-4);
+    assert!(rel(ff.matrix[(1, 0)], 0.199825) < 5e-4);
+}
+
+#[test]
+fn perpendicular_unit_squares_sharing_an_edge_match_howell_c14() {
+    // Reference: Howell C-14, two unit squares at 90° with a common edge, F = 0.200044.
+    // Tolerance 0.05% relative.
+    let floor = unit_square_facing(0.0, true);
+    // Wall x = 0, facing +x.
+    let wall = grid(
+        v(0.0, 0.0, 0.0),
+        v(0.0, 1.0, 0.0),
+        v(0.0, 0.0, 1.0),
+        1,
+        1,
+        1,
+    )
+    .remove(0);
+    let ff = patch_form_factors(&[floor, wall], &FormFactorOptions::default());
+    for f in [ff.matrix[(0, 1)], ff.matrix[(1, 0)]] {
+        println!("C-14: F = {f:.7}, rel. error {:.2e}", rel(f, 0.200044));
+        assert!(rel(f, 0.200044) < 5e-4);
+    }
+}
+
+fn reference_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/reference")
+}
+
+/// Patches from a reference `_patches.csv` (id, surface, then four corners x, y, z).
+fn load_patches(name: &str) -> Vec<Patch> {
+    let path = reference_dir().join(name);
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    let mut surfaces: Vec<String> = Vec::new();
+    let mut out = Vec::new();
+    for (line_no, line) in text.lines().enumerate().skip(1) {
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        assert_eq!(
+            fields.len(),
+            14,
+            "{}:{}: expected 14 fields",
+            path.display(),
+            line_no + 1
+        );
+        let surface = match surfaces.iter().position(|s| s == fields[1]) {
+            Some(k) => k,
+            None => {
+                surfaces.push(fields[1].to_string());
+                surfaces.len() - 1
+            }
+        };
+        let num = |k: usize| -> f64 {
+            fields[k].parse().unwrap_or_else(|e| {
+                panic!(
+                    "{}:{}: bad number {:?}: {e}",
+                    path.display(),
+                    line_no + 1,
+                    fields[k]
+                )
+            })
+        };
+        let corners = (0..4)
+            .map(|c| v(num(2 + 3 * c), num(3 + 3 * c), num(4 + 3 * c)))
+            .collect();
+        out.push(Patch::new(Polygon::new(corners), surface));
+    }
+    out
+}
+
+/// A dense matrix from a reference CSV of numbers.
+fn load_matrix(name: &str) -> Vec<Vec<f64>> {
+    let path = reference_dir().join(name);
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    text.lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            l.split(',')
+                .map(|x| {
+                    x.trim()
+                        .parse()
+                        .unwrap_or_else(|e| panic!("{}: {x:?}: {e}", path.display()))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn check_cube(k: usize) {
+    // Reference: data/reference/cube{k}x{k}_formfactors.csv (pyviewfactor, exact contour
+    // integral). Tolerance: |diff| ≤ 1e-4 · max(F_ref, 1e-3) per entry; raw reciprocity
+    // mismatch below 1e-5.
+    let patches = load_patches(&format!("cube{k}x{k}_patches.csv"));
+    let reference = load_matrix(&format!("cube{k}x{k}_formfactors.csv"));
+    let n = patches.len();
+    assert_eq!(reference.len(), n);
+    let ff = patch_form_factors(&patches, &FormFactorOptions::default());
+    let mut worst = (0.0_f64, 0, 0);
+    for (i, row) in reference.iter().enumerate() {
+        assert_eq!(row.len(), n);
+        for (j, &f_ref) in row.iter().enumerate() {
+            let err = (ff.matrix[(i, j)] - f_ref).abs() / f_ref.max(1e-3);
+            if err > worst.0 {
+                worst = (err, i, j);
+            }
+        }
+    }
+    let worst_row = ff
+        .row_sums
+        .iter()
+        .map(|s| (s - 1.0).abs())
+        .fold(0.0, f64::max);
+    println!(
+        "cube {k}x{k}: worst rel. error {:.2e} at ({}, {}), reciprocity mismatch {:.2e}, \
+         worst row-sum deviation {worst_row:.2e}",
+        worst.0, worst.1, worst.2, ff.reciprocity_mismatch
+    );
+    assert!(worst.0 <= 1e-4);
+    assert!(ff.reciprocity_mismatch < 1e-5);
+}
+
+#[test]
+fn cube_2x2_matches_reference() {
+    check_cube(2);
+}
+
+#[test]
+fn cube_3x3_matches_reference() {
+    check_cube(3);
+}
+
+/// The 4 × 3 × 2.7 m test room, patches about `size` metres wide.
+fn room(size: f64) -> Vec<Patch> {
+    meshed_box(v(0.0, 0.0, 0.0), v(4.0, 3.0, 2.7), size, true, 0)
+}
+
+/// A box-shaped blocker floating in the test room (a table-sized obstacle), facing outwards.
+fn blocker(size: f64) -> Vec<Patch> {
+    meshed_box(v(1.5, 1.0, 0.5), v(2.5, 2.0, 1.2), size, false, 6)
+}
+
+fn worst_row_deviation(sums: &[f64]) -> f64 {
+    sums.iter().map(|s| (s - 1.0).abs()).fold(0.0, f64::max)
+}
+
+#[test]
+fn closed_room_rows_sum_to_one_with_and_without_blocker() {
+    // Reference: a closed scene's rows sum to 1 (math.md). Tolerance 1e-3 per row, with a
+    // blocker inside (occlusion) and without.
+    let empty = room(0.4);
+    let mut furnished = empty.clone();
+    furnished.extend(blocker(0.35));
+    assert!(empty.len() >= 400);
+    let opts = FormFactorOptions::default();
+    let ff_empty = patch_form_factors(&empty, &opts);
+    let ff_full = patch_form_factors(&furnished, &opts);
+    let (dev_empty, dev_full) = (
+        worst_row_deviation(&ff_empty.row_sums),
+        worst_row_deviation(&ff_full.row_sums),
+    );
+    println!(
+        "room {} patches: worst row-sum deviation {dev_empty:.2e}, reciprocity {:.2e}",
+        empty.len(),
+        ff_empty.reciprocity_mismatch
+    );
+    println!(
+        "room + blocker {} patches: worst row-sum deviation {dev_full:.2e}, reciprocity {:.2e}",
+        furnished.len(),
+        ff_full.reciprocity_mismatch
+    );
+    assert!(dev_empty < 1e-3);
+    assert!(dev_full < 1e-3);
+}
+
+#[test]
+fn blocker_between_opposed_squares() {
+    // Reference: geometry. A blocker covering the whole shaft gives F = 0 exactly; one covering
+    // half of it gives at most the unobstructed Howell C-11 value (and clearly less).
+    let floor = unit_square_facing(0.0, true);
+    let ceiling = unit_square_facing(1.0, false);
+    let big = grid(
+        v(-1.0, -1.0, 0.5),
+        v(3.0, 0.0, 0.0),
+        v(0.0, 3.0, 0.0),
+        1,
+        1,
+        2,
+    )
+    .remove(0);
+    let half = grid(
+        v(-1.0, -1.0, 0.5),
+        v(1.5, 0.0, 0.0),
+        v(0.0, 3.0, 0.0),
+        1,
+        1,
+        2,
+    )
+    .remove(0);
+    let opts = FormFactorOptions::default();
+    let blocked = patch_form_factors(&[floor.clone(), ceiling.clone(), big], &opts);
+    println!("fully blocked: F = {:.3e}", blocked.matrix[(0, 1)]);
+    assert_eq!(blocked.matrix[(0, 1)], 0.0);
+    assert_eq!(blocked.matrix[(1, 0)], 0.0);
+    let partial = patch_form_factors(&[floor, ceiling, half], &opts);
+    let f = partial.matrix[(0, 1)];
+    println!("half blocked: F = {f:.6} (unobstructed 0.199825)");
+    assert!(f > 0.0 && f < 0.15);
+}
+
+/// Howell B-3: element to a parallel rectangle a × b at height c, one corner above the element.
+fn howell_b3(a: f64, b: f64, c: f64) -> f64 {
+    let (x, y) = (a / c, b / c);
+    let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+    (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * PI)
+}
+
+#[test]
+fn point_under_rectangle_corner_matches_howell_b3() {
+    // Reference: Howell B-3 closed form. Tolerance 1e-6 absolute.
+    let (a, b, c) = (1.3, 0.7, 0.9);
+    let rect = grid(v(0.0, 0.0, c), v(0.0, b, 0.0), v(a, 0.0, 0.0), 1, 1, 0);
+    let occ = Occluders::new(&rect);
+    let f = point_form_factors(v(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), None, &rect, &occ);
+    let exact = howell_b3(a, b, c);
+    println!(
+        "B-3: F = {:.9}, exact {exact:.9}, error {:.1e}",
+        f[0],
+        (f[0] - exact).abs()
+    );
+    assert!((f[0] - exact).abs() < 1e-6);
+}
+
+#[test]
+fn points_in_closed_room_see_everything() {
+    // Reference: a point inside a closed room sees a full hemisphere, Σ_j F_sj = 1.
+    // Tolerance 1e-6 unoccluded; 1e-3 with the blocker (sampled visibility).
+    let empty = room(0.5);
+    let mut furnished = empty.clone();
+    furnished.extend(blocker(0.35));
+    let sensors = [
+        (v(2.0, 1.5, 0.8), v(0.0, 0.0, 1.0)),
+        (v(0.3, 2.9, 2.5), v(0.3, -0.5, -0.2)),
+        (v(3.99, 1.0, 1.0), v(-1.0, 0.0, 0.0)),
+        (v(1.0, 0.5, 0.3), v(1.0, 1.0, 0.4)),
+    ];
+    let occ_empty = Occluders::new(&empty);
+    let occ_full = Occluders::new(&furnished);
+    for (p, n) in sensors {
+        let s: f64 = point_form_factors(p, n, None, &empty, &occ_empty)
+            .iter()
+            .sum();
+        println!("point {p:?}: Σ F = {s:.9} (empty room)");
+        assert!((s - 1.0).abs() < 1e-6);
+        if p.z > 1.2 || p.z < 0.5 || p.x < 1.5 || p.x > 2.5 {
+            let s: f64 = point_form_factors(p, n, None, &furnished, &occ_full)
+                .iter()
+                .sum();
+            println!("point {p:?}: Σ F = {s:.9} (with blocker)");
+            assert!((s - 1.0).abs() < 1e-3);
+        }
+    }
+}
+
+#[test]
+fn point_field_of_view_sees_sin_squared_of_ceiling() {
+    // Reference: a cone of half-angle α looking up at a ceiling that fills it sees
+    // F = sin² α (element to coaxial disk, Howell B-13). Tolerance 1e-5 relative.
+    let empty = room(0.5);
+    let occ = Occluders::new(&empty);
+    let alpha = 40.0_f64.to_radians();
+    let f = point_form_factors(
+        v(2.0, 1.5, 1.5),
+        v(0.0, 0.0, 1.0),
+        Some(alpha),
+        &empty,
+        &occ,
+    );
+    let s: f64 = f.iter().sum();
+    let exact = alpha.sin().powi(2);
+    println!("cone 40°: Σ F = {s:.8}, exact {exact:.8}");
+    assert!(rel(s, exact) < 1e-5);
+}
+
+#[test]
+fn work_plane_in_closed_room_sees_everything() {
+    // Reference: a one-sided receiver inside a closed room sees a full hemisphere, rows sum
+    // to 1. Tolerance 1e-3 (with the blocker above part of the plane's view: the plane is at
+    // 0.3 m, under the floating blocker).
+    let mut scene = room(0.4);
+    scene.extend(blocker(0.35));
+    let occ = Occluders::new(&scene);
+    let plane = grid(
+        v(0.5, 0.5, 0.3),
+        v(3.0, 0.0, 0.0),
+        v(0.0, 2.0, 0.0),
+        6,
+        4,
+        0,
+    );
+    let f = receiver_form_factors(&plane, &scene, &occ, &FormFactorOptions::default());
+    let worst = (0..plane.len())
+        .map(|r| ((0..scene.len()).map(|j| f[(r, j)]).sum::<f64>() - 1.0).abs())
+        .fold(0.0, f64::max);
+    println!(
+        "work plane: {} receivers, worst row-sum deviation {worst:.2e}",
+        plane.len()
+    );
+    assert!(worst < 1e-3);
+}
+
+#[test]
+#[ignore = "timing: cargo test -p eigenrad-precompute formfactor_timing -- --ignored --nocapture"]
+fn formfactor_timing_room_with_blocker() {
+    // Not a correctness test: wall-clock time of patch_form_factors at n ≈ 1000 and 2000.
+    for (size, bsize) in [(0.25, 0.2), (0.175, 0.15)] {
+        let mut scene = room(size);
+        scene.extend(blocker(bsize));
+        let t = std::time::Instant::now();
+        let ff = patch_form_factors(&scene, &FormFactorOptions::default());
+        println!(
+            "n = {}: {:.1} s, worst row-sum deviation {:.2e}, reciprocity mismatch {:.2e}",
+            scene.len(),
+            t.elapsed().as_secs_f64(),
+            worst_row_deviation(&ff.row_sums),
+            ff.reciprocity_mismatch
+        );
+    }
+}
