@@ -50,7 +50,11 @@ fn golden_bytes_of_the_tiny_basis() {
     );
     assert_eq!(hex(&bytes), TINY_GOLDEN, "format layout changed");
     // The same bytes are committed as a file, used by the README example.
-    let file = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/tiny.basis")).unwrap();
+    let file = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/tiny.basis"
+    ))
+    .unwrap();
     assert_eq!(file, bytes);
 }
 
