@@ -16,6 +16,10 @@ cargo fmt --all -- --check
 step "lints (warnings are errors)"
 cargo clippy --workspace --all-targets -- -D warnings
 
+step "firmware example: formatting and lints (its own workspace)"
+(cd examples/firmware && cargo fmt -- --check &&
+    CARGO_TARGET_DIR=../../target/firmware cargo clippy --release -- -D warnings)
+
 step "runtime for the microcontroller targets"
 cargo build -p eigenrad-runtime --release --target thumbv7em-none-eabihf
 cargo build -p eigenrad-runtime --release --target thumbv6m-none-eabi
