@@ -4,7 +4,7 @@ use crate::basis::{check_index, Basis};
 use crate::dali;
 use crate::error::{Error, Result};
 use crate::format::{Formulation, NO_CHANNEL};
-use crate::storage::{axpy_f32, dot_f32, f32_at, u16_at};
+use crate::storage::{axpy_f32, dot_f32, f32_at, f32s, u16_at};
 
 /// Largest channel level accepted (relative; 1 is the level the basis was built for).
 pub const MAX_LEVEL: f32 = 1.0e3;
@@ -135,31 +135,45 @@ impl<
     pub fn set_channel_levels(&mut self, levels: &[f32]) -> Result<()> {
         let m = self.basis.channels;
         if levels.len() != m {
-            return Err(Error::LengthMismatch {
-                what: "levels",
-                expected: m,
-                found: levels.len(),
-            });
+            return Err(Error::LengthMismatch { what: "levels", expected: m, found: levels.len() });
         }
         for &l in levels {
             Self::check_level(l)?;
         }
+        self.recompute_amplitude(levels);
+        if self.amplitude_is_finite() {
+            for (slot, &l) in self.levels.iter_mut().zip(levels) {
+                *slot = l;
+            }
+            Ok(())
+        } else {
+            // Back to the previous, valid levels.
+            let old = self.levels;
+            self.recompute_amplitude(old.get(..m).unwrap_or(&[]));
+            Err(Error::InvalidInput { what: "levels" })
+        }
+    }
+
+    /// `amplitude = patch_amplitude + Σ_c levels[c] · projection[c]`, over the first p modes.
+    fn recompute_amplitude(&mut self, levels: &[f32]) {
         let p = self.p();
-        let mut next = self.patch_amplitude;
-        for (b, amp) in next.iter_mut().enumerate() {
+        for b in 0..BANDS {
+            let (Some(amp), Some(base)) = (self.amplitude.get_mut(b), self.patch_amplitude.get(b)) else {
+                continue;
+            };
             let amp = amp.get_mut(..p).unwrap_or(&mut []);
+            amp.copy_from_slice(base.get(..p).unwrap_or(&[]));
             for (c, &l) in levels.iter().enumerate() {
-                axpy_f32(l, self.channel_projection(c, b), amp);
+                let start = (c * self.basis.bands + b) * p * 4;
+                let proj = self.basis.channel_projection.get(start..start + p * 4).unwrap_or(&[]);
+                axpy_f32(l, proj, amp);
             }
         }
-        if next.iter().flatten().any(|v| !v.is_finite()) {
-            return Err(Error::InvalidInput { what: "levels" });
-        }
-        self.amplitude = next;
-        for (slot, &l) in self.levels.iter_mut().zip(levels) {
-            *slot = l;
-        }
-        Ok(())
+    }
+
+    fn amplitude_is_finite(&self) -> bool {
+        let p = self.p();
+        self.amplitude.iter().all(|a| a.get(..p).unwrap_or(&[]).iter().all(|v| v.is_finite()))
     }
 
     /// Changes one channel's level (relative, 1 = as built), updating the mode amplitudes
@@ -170,18 +184,18 @@ impl<
         let old = self.levels.get(channel).copied().unwrap_or(0.0);
         let delta = level - old;
         let p = self.p();
-        let mut next = self.amplitude;
-        for (b, amp) in next.iter_mut().enumerate() {
-            axpy_f32(
-                delta,
-                self.channel_projection(channel, b),
-                amp.get_mut(..p).unwrap_or(&mut []),
-            );
+        for b in 0..BANDS {
+            let proj = self.channel_projection(channel, b);
+            if let Some(amp) = self.amplitude.get_mut(b) {
+                axpy_f32(delta, proj, amp.get_mut(..p).unwrap_or(&mut []));
+            }
         }
-        if next.iter().flatten().any(|v| !v.is_finite()) {
+        if !self.amplitude_is_finite() {
+            let m = self.basis.channels;
+            let levels = self.levels;
+            self.recompute_amplitude(levels.get(..m).unwrap_or(&[]));
             return Err(Error::InvalidInput { what: "level" });
         }
-        self.amplitude = next;
         if let Some(slot) = self.levels.get_mut(channel) {
             *slot = level;
         }
@@ -200,24 +214,12 @@ impl<
         Ok(self.levels.get(channel).copied().unwrap_or(0.0))
     }
 
-    /// Whether exitance of `patch` in `band` is carried exactly (not through the modes): all
-    /// patches in the split formulation, black patches only in the seed formulation.
     fn identity(&self, patch: usize, band: usize) -> bool {
-        self.basis.formulation == Formulation::Split || self.reflectance(patch, band) == 0.0
+        identity(&self.basis, patch, band)
     }
 
     fn reflectance(&self, patch: usize, band: usize) -> f32 {
         f32_at(self.basis.reflectance, patch * self.basis.bands + band)
-    }
-
-    /// Mode coefficient for exitance emitted by a reflecting patch: `μ/(1−μ)` (split) or
-    /// `1/λ` (seed).
-    fn coefficient(&self, band: usize, k: usize) -> f32 {
-        let e = f32_at(self.basis.eigenvalues, band * self.p() + k);
-        match self.basis.formulation {
-            Formulation::Split => e / (1.0 - e),
-            Formulation::Seed => 1.0 / e,
-        }
     }
 
     /// Sets the exitance a patch emits on top of its channel (the general case of an
@@ -229,87 +231,50 @@ impl<
     /// truncation (exact when `p = n`).
     pub fn set_patch_exitance(&mut self, patch: usize, exitance: [f32; BANDS]) -> Result<()> {
         check_index("patch", patch, self.basis.patches)?;
-        if exitance
-            .iter()
-            .any(|e| !e.is_finite() || !(0.0..=MAX_EXITANCE).contains(e))
-        {
+        if exitance.iter().any(|e| !e.is_finite() || !(0.0..=MAX_EXITANCE).contains(e)) {
             return Err(Error::InvalidInput { what: "exitance" });
         }
-        let old = self
-            .patch_exitance
-            .get(patch)
-            .copied()
-            .unwrap_or([0.0; BANDS]);
-        let p = self.p();
-        let bands = self.basis.bands;
-        let area = f32_at(self.basis.area, patch);
-        let black = self.basis.black_index(patch);
-        let mut amplitude = self.amplitude;
-        let mut patch_amplitude = self.patch_amplitude;
-        let mut direct = self.patch_direct;
-        for b in 0..BANDS {
-            let delta =
-                exitance.get(b).copied().unwrap_or(0.0) - old.get(b).copied().unwrap_or(0.0);
-            if delta == 0.0 {
-                continue;
-            }
-            let rho = self.reflectance(patch, b);
-            let mut step = [0.0f32; MODES];
-            let step = step.get_mut(..p).unwrap_or(&mut []);
-            match black {
-                Some(j) if rho == 0.0 => {
-                    let start = (j * bands + b) * p * 4;
-                    let row = self
-                        .basis
-                        .black_projection
-                        .get(start..start + p * 4)
-                        .unwrap_or(&[]);
-                    axpy_f32(delta, row, step);
+        let old = self.patch_exitance.get(patch).copied().unwrap_or([0.0; BANDS]);
+        let outputs = self.outputs();
+        // Two passes: check that every updated value stays finite, then apply, so that a
+        // rejected request leaves the state exactly as it was.
+        for apply in [false, true] {
+            for b in 0..BANDS {
+                let delta = exitance.get(b).copied().unwrap_or(0.0) - old.get(b).copied().unwrap_or(0.0);
+                if delta == 0.0 {
+                    continue;
                 }
-                _ => {
-                    // b_i = A_i / ρ_i is finite: ρ is 0 or at least MIN_REFLECTANCE.
-                    let weight = delta * area / rho;
-                    self.basis.mode_vectors.for_each(patch, b * p, p, |k, v| {
-                        if let Some(s) = step.get_mut(k) {
-                            *s = weight * v * self.coefficient(b, k);
+                let mut ok = true;
+                let (amp, patch_amp) = (self.amplitude.get_mut(b), self.patch_amplitude.get_mut(b));
+                let (Some(amp), Some(patch_amp)) = (amp, patch_amp) else { continue };
+                let basis = &self.basis;
+                patch_response(basis, patch, b, delta, |k, step| {
+                    if let (Some(a), Some(pa)) = (amp.get_mut(k), patch_amp.get_mut(k)) {
+                        if apply {
+                            *a += step;
+                            *pa += step;
+                        } else {
+                            ok &= (*a + step).is_finite() && (*pa + step).is_finite();
+                        }
+                    }
+                });
+                if identity(basis, patch, b) {
+                    let direct = &mut self.patch_direct;
+                    basis.output_view.for_each(patch, 0, outputs.min(OUTPUTS), |o, f| {
+                        if let Some(slot) = direct.get_mut(o).and_then(|r| r.get_mut(b)) {
+                            if apply {
+                                *slot += f * delta;
+                            } else {
+                                ok &= (*slot + f * delta).is_finite();
+                            }
                         }
                     });
                 }
-            }
-            for (arr, s) in [&mut amplitude, &mut patch_amplitude]
-                .into_iter()
-                .zip([&*step, &*step])
-            {
-                if let Some(row) = arr.get_mut(b) {
-                    for (a, &d) in row.iter_mut().zip(s) {
-                        *a += d;
-                    }
+                if !ok {
+                    return Err(Error::InvalidInput { what: "exitance" });
                 }
             }
-            if self.identity(patch, b) {
-                self.basis.output_view.for_each(
-                    patch,
-                    0,
-                    direct.len().min(self.outputs()),
-                    |o, f| {
-                        if let Some(slot) = direct.get_mut(o).and_then(|r| r.get_mut(b)) {
-                            *slot += f * delta;
-                        }
-                    },
-                );
-            }
         }
-        let all = amplitude
-            .iter()
-            .flatten()
-            .chain(patch_amplitude.iter().flatten())
-            .chain(direct.iter().flatten());
-        if all.clone().any(|v| !v.is_finite()) {
-            return Err(Error::InvalidInput { what: "exitance" });
-        }
-        self.amplitude = amplitude;
-        self.patch_amplitude = patch_amplitude;
-        self.patch_direct = direct;
         if let Some(slot) = self.patch_exitance.get_mut(patch) {
             *slot = exitance;
         }
@@ -479,4 +444,40 @@ impl<
         check_index("zone", zone, self.basis.zones)?;
         self.output(self.basis.sensors + zone)
     }
+}
+
+/// Whether exitance of `patch` in `band` is carried exactly (not through the modes): all
+/// patches in the split formulation, black patches only in the seed formulation.
+fn identity(basis: &Basis<'_>, patch: usize, band: usize) -> bool {
+    basis.formulation == Formulation::Split || f32_at(basis.reflectance, patch * basis.bands + band) == 0.0
+}
+
+/// Calls `f(k, response)` with the mode-space response to `delta` more exitance on `patch`
+/// in `band`, coefficient included: `α_k (A/ρ) v_k` for a reflecting patch, the stored row for
+/// a black one. `α_k = μ_k/(1−μ_k)` (split) or `1/λ_k` (seed).
+fn patch_response(basis: &Basis<'_>, patch: usize, band: usize, delta: f32, mut f: impl FnMut(usize, f32)) {
+    let p = basis.modes;
+    let rho = f32_at(basis.reflectance, patch * basis.bands + band);
+    let eigenvalues = basis.eigenvalues.get(band * p * 4..(band + 1) * p * 4).unwrap_or(&[]);
+    if rho == 0.0 {
+        if let Some(j) = basis.black_index(patch) {
+            let start = (j * basis.bands + band) * p * 4;
+            let row = basis.black_projection.get(start..start + p * 4).unwrap_or(&[]);
+            for (k, x) in f32s(row).enumerate() {
+                f(k, delta * x);
+            }
+        }
+        return;
+    }
+    // b_i = A_i / ρ_i is finite: ρ is 0 or at least MIN_REFLECTANCE.
+    let weight = delta * f32_at(basis.area, patch) / rho;
+    let mut mu = f32s(eigenvalues);
+    basis.mode_vectors.for_each(patch, band * p, p, |k, v| {
+        let e = mu.next().unwrap_or(0.0);
+        let coefficient = match basis.formulation {
+            Formulation::Split => e / (1.0 - e),
+            Formulation::Seed => 1.0 / e,
+        };
+        f(k, weight * v * coefficient);
+    });
 }

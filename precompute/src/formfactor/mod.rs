@@ -89,6 +89,10 @@ impl Default for FormFactorOptions {
 /// 412-patch test room keeps its row sums within 1e-5 with it.
 const ORDER_SCALE: f64 = 0.5;
 
+/// Share of the smaller patch's output below which a pair's reciprocity mismatch is measured
+/// against that share instead of the pair's own exchange.
+const RECIPROCITY_FLOOR: f64 = 1e-3;
+
 /// Result for a set of patches that are both the emitters, receivers and occluders.
 #[derive(Clone, Debug)]
 pub struct FormFactors {
@@ -96,8 +100,10 @@ pub struct FormFactors {
     /// (G = A F symmetrised by averaging G and Gᵀ). Dimensionless.
     pub matrix: Mat<f64>,
     /// Worst reciprocity mismatch of the raw matrix before symmetrising:
-    /// max over pairs of `|A_i F_ij − A_j F_ji| / max(A_i F_ij, A_j F_ji)`, over pairs where that
-    /// max exceeds 1e-12 of the larger patch area. Dimensionless.
+    /// max over pairs of `|A_i F_ij − A_j F_ji| / max(A_i F_ij, A_j F_ji, 10⁻³ min(A_i, A_j))`.
+    /// The floor keeps pairs that exchange almost nothing (a sliver seen past a blocker) from
+    /// dominating: their mismatch counts relative to 0.1 % of the smaller patch's output.
+    /// Dimensionless.
     pub reciprocity_mismatch: f64,
     /// Row sums of the symmetrised matrix (1 for every patch of a closed scene).
     pub row_sums: Vec<f64>,
@@ -411,8 +417,8 @@ fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> f64 {
             let (ai, aj) = (areas[i], areas[j]);
             let gij = ai * m[(j, i)];
             let gji = aj * m[(i, j)];
-            let big = gij.max(gji);
-            if big > 1e-12 * ai.max(aj) {
+            let big = gij.max(gji).max(RECIPROCITY_FLOOR * ai.min(aj));
+            if big > 0.0 {
                 worst = worst.max((gij - gji).abs() / big);
             }
             let g = 0.5 * (gij + gji);
