@@ -402,15 +402,10 @@ fn split_partial(
     }
     let op = ScaledOp::new(g, r, s);
     let settings = krylov_settings();
-    // Step cap: Lanczos needs a few steps per wanted extreme eigenvalue; the basis costs
-    // n_r × steps memory (10 000 × 1 000 × 8 B = 80 MB).
-    let steps = (12 * p).max(400).min(nr);
-    let pairs = lanczos(&op, p, split_key, steps, settings, par()).map_err(|residual| {
-        EigenError::NoConvergence {
-            wanted: p,
-            residual,
-            tolerance: settings.accept,
-        }
+    let pairs = lanczos(&op, p, split_key, settings, par()).map_err(|residual| EigenError::NoConvergence {
+        wanted: p,
+        residual,
+        tolerance: settings.accept,
     })?;
     let max_residual = pairs.residuals.iter().copied().fold(0.0, f64::max);
     let order: Vec<usize> = (0..p).collect();

@@ -149,28 +149,35 @@ pub(crate) struct KrylovSettings {
     pub accept: f64,
 }
 
-/// Lanczos with full reorthogonalisation (two classical Gram–Schmidt passes per step) and
-/// Rayleigh–Ritz on the tridiagonal `T`; no restarts, at most `max_steps` operator
-/// applications. On an invariant subspace (`β ≈ 0`, e.g. the rank-one sphere) it continues
-/// with a fresh start vector orthogonal to the basis, so the multiplicity of repeated
-/// eigenvalues is found too.
+/// Thick-restart Lanczos with full reorthogonalisation (two classical Gram–Schmidt passes per
+/// step), i.e. a symmetric Krylov–Schur method whose every loop is bounded here.
+///
+/// The projected matrix `T = Vᵀ H V` is kept explicitly (lower triangle, from the
+/// Gram–Schmidt coefficients), so a restart is just: keep the `k_keep` best Ritz vectors
+/// `Y = V S`, `T ← diag(θ)` plus the arrow row `β s_{m,i}`, continue from the last Lanczos
+/// vector (Wu & Simon 2000; Stewart's Krylov–Schur). The relation `H V = V T + β q eₘᵀ` holds
+/// throughout, so `|β s_{m,i}|` is the residual of Ritz pair `i`.
+///
+/// On an invariant subspace (`β ≈ 0`, e.g. the rank-one sphere) the iteration continues with a
+/// fresh start vector orthogonal to the basis, so repeated eigenvalues are found too.
 ///
 /// Returns the `k` Ritz pairs with the largest `key(θ)` (e.g. `|θ/(1−θ)|`), ordered by
-/// decreasing key, or `Err(max explicit residual)`. Lanczos converges the extreme eigenvalues
-/// first, and both `|μ|` and `|μ/(1−μ)|` are largest at the ends of the spectrum.
+/// decreasing key, or `Err(max explicit residual)` after `max_restarts` restarts. Lanczos
+/// converges the ends of the spectrum first, where both `|μ|` and `|μ/(1−μ)|` are largest.
 pub(crate) fn lanczos(
     op: &ScaledOp<'_>,
     k: usize,
     key: fn(f64) -> f64,
-    max_steps: usize,
     settings: KrylovSettings,
     par: Par,
 ) -> Result<Eigenpairs, f64> {
     let n = op.dim();
-    let m_cap = max_steps.min(n).max(k.min(n));
+    let k = k.min(n);
+    // Basis size and how many Ritz vectors survive a restart.
+    let m_cap = (3 * k).max(k + 60).min(n);
+    let k_keep = (k + (m_cap - k) / 3).min(m_cap.saturating_sub(1)).max(k.min(m_cap.saturating_sub(1)));
     let mut basis = Mat::<f64>::zeros(n, m_cap + 1);
-    let mut alpha = Vec::with_capacity(m_cap);
-    let mut beta: Vec<f64> = Vec::with_capacity(m_cap);
+    let mut t = Mat::<f64>::zeros(m_cap + 1, m_cap + 1);
     let mut seed = 1u64;
     let q0 = start_vector(n, seed);
     let nrm = q0.norm_l2();
@@ -179,134 +186,100 @@ pub(crate) fn lanczos(
     }
     let mut w = Mat::<f64>::zeros(n, 1);
     let mut h = Mat::<f64>::zeros(m_cap + 1, 1);
-    let check_every = 25usize;
-    let mut best: Option<(Vec<f64>, Mat<f64>, Vec<f64>)> = None;
-    let mut m = 0;
-    while m < m_cap {
-        let j = m;
-        op.apply_to(w.as_mut(), basis.as_ref().get(.., j..j + 1), par);
-        let mut a_j = 0.0;
-        for pass in 0..2 {
-            let v = basis.as_ref().get(.., 0..j + 1);
-            let mut hj = h.as_mut().get_mut(0..j + 1, ..);
-            matmul(
-                hj.rb_mut(),
-                Accum::Replace,
-                v.transpose(),
-                w.as_ref(),
-                1.0,
-                par,
-            );
-            matmul(w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
-            a_j += hj[(j, 0)];
-            let _ = pass;
-        }
-        alpha.push(a_j);
-        m += 1;
-        let mut b = w.as_ref().col(0).norm_l2();
-        let scale = alpha
-            .iter()
-            .chain(beta.iter())
-            .fold(0.0f64, |acc, x| acc.max(x.abs()));
-        if b <= 1e-12 * scale.max(f64::MIN_POSITIVE) {
-            // Invariant subspace: restart from a fresh vector orthogonal to the basis.
-            b = 0.0;
-            seed += 1;
-            let fresh = start_vector(n, seed);
-            for i in 0..n {
-                w[(i, 0)] = fresh[i];
-            }
+    let mut hsum = vec![0.0; m_cap + 1];
+    let mut best = f64::INFINITY;
+    let mut m = 0; // current basis size (columns 0..m hold the basis, column m the next vector)
+    let mut restarts = 0;
+    loop {
+        // Expand to m_cap (or until the space is exhausted).
+        let mut exhausted = false;
+        while m < m_cap {
+            let j = m;
+            op.apply_to(w.as_mut(), basis.as_ref().get(.., j..j + 1), par);
+            hsum[..=j].iter_mut().for_each(|x| *x = 0.0);
             for _ in 0..2 {
-                let v = basis.as_ref().get(.., 0..m);
-                let mut hj = h.as_mut().get_mut(0..m, ..);
-                matmul(
-                    hj.rb_mut(),
-                    Accum::Replace,
-                    v.transpose(),
-                    w.as_ref(),
-                    1.0,
-                    par,
-                );
+                let v = basis.as_ref().get(.., 0..j + 1);
+                let mut hj = h.as_mut().get_mut(0..j + 1, ..);
+                matmul(hj.rb_mut(), Accum::Replace, v.transpose(), w.as_ref(), 1.0, par);
                 matmul(w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
+                for i in 0..=j {
+                    hsum[i] += hj[(i, 0)];
+                }
             }
-        }
-        let wn = w.as_ref().col(0).norm_l2();
-        beta.push(b);
-        let exhausted = m == n || wn <= 1e-10 * (n as f64).sqrt();
-        if !exhausted {
+            for i in 0..=j {
+                t[(j, i)] = hsum[i];
+            }
+            m += 1;
+            let mut b = w.as_ref().col(0).norm_l2();
+            if b <= 1e-12 {
+                // Invariant subspace (‖H‖ < 1): continue from a fresh orthogonal vector.
+                b = 0.0;
+                seed += 1;
+                let fresh = start_vector(n, seed);
+                for i in 0..n {
+                    w[(i, 0)] = fresh[i];
+                }
+                for _ in 0..2 {
+                    let v = basis.as_ref().get(.., 0..m);
+                    let mut hj = h.as_mut().get_mut(0..m, ..);
+                    matmul(hj.rb_mut(), Accum::Replace, v.transpose(), w.as_ref(), 1.0, par);
+                    matmul(w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
+                }
+            }
+            t[(m, m - 1)] = b;
+            let wn = w.as_ref().col(0).norm_l2();
+            if m == n || wn <= 1e-10 {
+                exhausted = true;
+                break;
+            }
             for i in 0..n {
                 basis[(i, m)] = w[(i, 0)] / wn;
             }
         }
-        if (m >= k && (m % check_every == 0 || m == m_cap)) || exhausted {
-            let (vals, s) = ritz(&alpha, &beta)?;
-            // Ritz residual estimate |β_m s_{m,i}| on the k Ritz values of largest key.
-            let mut order: Vec<usize> = (0..vals.len()).collect();
-            order.sort_by(|&a, &b| key(vals[b]).total_cmp(&key(vals[a])));
-            let sel: Vec<usize> = order.into_iter().take(k).collect();
-            let last = beta[m - 1];
-            let est = sel
-                .iter()
-                .map(|&i| (last * s[(m - 1, i)]).abs())
-                .fold(0.0, f64::max);
-            if est <= settings.tol || exhausted || m == m_cap {
-                let mut y = Mat::<f64>::zeros(m, sel.len());
-                for (c, &i) in sel.iter().enumerate() {
-                    for r in 0..m {
-                        y[(r, c)] = s[(r, i)];
-                    }
-                }
-                let mut u = Mat::<f64>::zeros(n, sel.len());
-                matmul(
-                    u.as_mut(),
-                    Accum::Replace,
-                    basis.as_ref().get(.., 0..m),
-                    y.as_ref(),
-                    1.0,
-                    par,
-                );
-                let values: Vec<f64> = sel.iter().map(|&i| vals[i]).collect();
-                let res = residuals(op, &values, u.as_ref(), par);
-                let max = res.iter().copied().fold(0.0, f64::max);
-                if max <= settings.accept {
-                    return Ok(Eigenpairs {
-                        values,
-                        vectors: u,
-                        residuals: res,
-                    });
-                }
-                best = Some((values, u, res));
-                if exhausted || m == m_cap {
-                    break;
-                }
+        // Rayleigh–Ritz on T (m × m).
+        let tm = Mat::<f64>::from_fn(m, m, |i, j| if i >= j { t[(i, j)] } else { t[(j, i)] });
+        let evd = tm.self_adjoint_eigen(Side::Lower).map_err(|_| f64::INFINITY)?;
+        let vals: Vec<f64> = (0..m).map(|i| evd.S().column_vector()[i]).collect();
+        let s = evd.U();
+        let mut order: Vec<usize> = (0..m).collect();
+        order.sort_by(|&a, &b| key(vals[b]).total_cmp(&key(vals[a])));
+        let beta = if exhausted { 0.0 } else { t[(m, m - 1)] };
+        let est = order.iter().take(k).map(|&i| (beta * s[(m - 1, i)]).abs()).fold(0.0, f64::max);
+        let done = est <= settings.tol || exhausted || restarts >= MAX_RESTARTS;
+        if done {
+            let sel: Vec<usize> = order.iter().copied().take(k).collect();
+            let y = Mat::<f64>::from_fn(m, sel.len(), |r, c| s[(r, sel[c])]);
+            let mut u = Mat::<f64>::zeros(n, sel.len());
+            matmul(u.as_mut(), Accum::Replace, basis.as_ref().get(.., 0..m), y.as_ref(), 1.0, par);
+            let values: Vec<f64> = sel.iter().map(|&i| vals[i]).collect();
+            let res = residuals(op, &values, u.as_ref(), par);
+            let max = res.iter().copied().fold(0.0, f64::max);
+            if max <= settings.accept {
+                return Ok(Eigenpairs { values, vectors: u, residuals: res });
+            }
+            best = best.min(max);
+            if exhausted || restarts >= MAX_RESTARTS {
+                return Err(best);
             }
         }
-        if exhausted {
-            break;
+        // Thick restart: keep the k_keep best Ritz vectors and the next Lanczos vector.
+        restarts += 1;
+        let keep: Vec<usize> = order.iter().copied().take(k_keep).collect();
+        let y = Mat::<f64>::from_fn(m, keep.len(), |r, c| s[(r, keep[c])]);
+        let mut u = Mat::<f64>::zeros(n, keep.len());
+        matmul(u.as_mut(), Accum::Replace, basis.as_ref().get(.., 0..m), y.as_ref(), 1.0, par);
+        let next = basis.as_ref().col(m).to_owned();
+        basis.as_mut().get_mut(.., 0..keep.len()).copy_from(&u);
+        basis.as_mut().col_mut(keep.len()).copy_from(&next);
+        t.fill(0.0);
+        for (c, &i) in keep.iter().enumerate() {
+            t[(c, c)] = vals[i];
+            t[(keep.len(), c)] = beta * s[(m - 1, i)];
         }
+        m = keep.len();
     }
-    Err(best
-        .map(|(_, _, r)| r.iter().copied().fold(0.0, f64::max))
-        .unwrap_or(f64::INFINITY))
 }
 
-/// Eigen-decomposition of the symmetric tridiagonal `T` (`alpha` diagonal, `beta` off-diagonal).
-fn ritz(alpha: &[f64], beta: &[f64]) -> Result<(Vec<f64>, Mat<f64>), f64> {
-    let m = alpha.len();
-    let t = Mat::<f64>::from_fn(m, m, |i, j| {
-        if i == j {
-            alpha[i]
-        } else if i == j + 1 {
-            beta[j]
-        } else if j == i + 1 {
-            beta[i]
-        } else {
-            0.0
-        }
-    });
-    let evd = t
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|_| f64::INFINITY)?;
-    let vals: Vec<f64> = (0..m).map(|i| evd.S().column_vector()[i]).collect();
-    Ok((vals, evd.U().to_owned()))
-}
+/// Restarts of [`lanczos`] before it gives up (each costs at most `m_cap − k_keep` operator
+/// applications).
+const MAX_RESTARTS: usize = 200;
