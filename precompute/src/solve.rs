@@ -92,8 +92,16 @@ mod tests {
             }
         });
         let rows: Vec<f64> = (0..n).map(|i| (0..n).map(|j| k[(i, j)]).sum()).collect();
-        let area: Vec<f64> = rows.iter().enumerate().map(|(i, r)| r * (1.05 + 0.1 * ((i % 3) as f64))).collect();
-        let g = Mat::from_fn(n, n, |i, j| if i == j { area[i] - rows[i] } else { k[(i, j)] });
+        let area: Vec<f64> = rows
+            .iter()
+            .enumerate()
+            .map(|(i, r)| r * (1.05 + 0.1 * ((i % 3) as f64)))
+            .collect();
+        let g = Mat::from_fn(
+            n,
+            n,
+            |i, j| if i == j { area[i] - rows[i] } else { k[(i, j)] },
+        );
         (g, area)
     }
 
@@ -119,7 +127,15 @@ mod tests {
     fn solve_many_and_residual() {
         let n = 30;
         let (g, area) = closed_room(n);
-        let rho: Vec<f64> = (0..n).map(|i| if i % 7 == 0 { 0.0 } else { 0.1 + 0.8 * ((i * 37 % 11) as f64) / 11.0 }).collect();
+        let rho: Vec<f64> = (0..n)
+            .map(|i| {
+                if i % 7 == 0 {
+                    0.0
+                } else {
+                    0.1 + 0.8 * ((i * 37 % 11) as f64) / 11.0
+                }
+            })
+            .collect();
         let s = ExactSolver::new(g.as_ref(), &area, &rho).expect("lu");
         let m0 = Mat::<f64>::from_fn(n, 3, |i, c| ((i * (c + 3) + c) % 7) as f64);
         let mm = s.solve_many(m0.as_ref());

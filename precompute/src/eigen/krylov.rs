@@ -175,7 +175,9 @@ pub(crate) fn lanczos(
     let k = k.min(n);
     // Basis size and how many Ritz vectors survive a restart.
     let m_cap = (3 * k).max(k + 60).min(n);
-    let k_keep = (k + (m_cap - k) / 3).min(m_cap.saturating_sub(1)).max(k.min(m_cap.saturating_sub(1)));
+    let k_keep = (k + (m_cap - k) / 3)
+        .min(m_cap.saturating_sub(1))
+        .max(k.min(m_cap.saturating_sub(1)));
     let mut basis = Mat::<f64>::zeros(n, m_cap + 1);
     let mut t = Mat::<f64>::zeros(m_cap + 1, m_cap + 1);
     let mut seed = 1u64;
@@ -200,7 +202,14 @@ pub(crate) fn lanczos(
             for _ in 0..2 {
                 let v = basis.as_ref().get(.., 0..j + 1);
                 let mut hj = h.as_mut().get_mut(0..j + 1, ..);
-                matmul(hj.rb_mut(), Accum::Replace, v.transpose(), w.as_ref(), 1.0, par);
+                matmul(
+                    hj.rb_mut(),
+                    Accum::Replace,
+                    v.transpose(),
+                    w.as_ref(),
+                    1.0,
+                    par,
+                );
                 matmul(w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
                 for i in 0..=j {
                     hsum[i] += hj[(i, 0)];
@@ -222,7 +231,14 @@ pub(crate) fn lanczos(
                 for _ in 0..2 {
                     let v = basis.as_ref().get(.., 0..m);
                     let mut hj = h.as_mut().get_mut(0..m, ..);
-                    matmul(hj.rb_mut(), Accum::Replace, v.transpose(), w.as_ref(), 1.0, par);
+                    matmul(
+                        hj.rb_mut(),
+                        Accum::Replace,
+                        v.transpose(),
+                        w.as_ref(),
+                        1.0,
+                        par,
+                    );
                     matmul(w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
                 }
             }
@@ -238,24 +254,41 @@ pub(crate) fn lanczos(
         }
         // Rayleigh–Ritz on T (m × m).
         let tm = Mat::<f64>::from_fn(m, m, |i, j| if i >= j { t[(i, j)] } else { t[(j, i)] });
-        let evd = tm.self_adjoint_eigen(Side::Lower).map_err(|_| f64::INFINITY)?;
+        let evd = tm
+            .self_adjoint_eigen(Side::Lower)
+            .map_err(|_| f64::INFINITY)?;
         let vals: Vec<f64> = (0..m).map(|i| evd.S().column_vector()[i]).collect();
         let s = evd.U();
         let mut order: Vec<usize> = (0..m).collect();
         order.sort_by(|&a, &b| key(vals[b]).total_cmp(&key(vals[a])));
         let beta = if exhausted { 0.0 } else { t[(m, m - 1)] };
-        let est = order.iter().take(k).map(|&i| (beta * s[(m - 1, i)]).abs()).fold(0.0, f64::max);
+        let est = order
+            .iter()
+            .take(k)
+            .map(|&i| (beta * s[(m - 1, i)]).abs())
+            .fold(0.0, f64::max);
         let done = est <= settings.tol || exhausted || restarts >= MAX_RESTARTS;
         if done {
             let sel: Vec<usize> = order.iter().copied().take(k).collect();
             let y = Mat::<f64>::from_fn(m, sel.len(), |r, c| s[(r, sel[c])]);
             let mut u = Mat::<f64>::zeros(n, sel.len());
-            matmul(u.as_mut(), Accum::Replace, basis.as_ref().get(.., 0..m), y.as_ref(), 1.0, par);
+            matmul(
+                u.as_mut(),
+                Accum::Replace,
+                basis.as_ref().get(.., 0..m),
+                y.as_ref(),
+                1.0,
+                par,
+            );
             let values: Vec<f64> = sel.iter().map(|&i| vals[i]).collect();
             let res = residuals(op, &values, u.as_ref(), par);
             let max = res.iter().copied().fold(0.0, f64::max);
             if max <= settings.accept {
-                return Ok(Eigenpairs { values, vectors: u, residuals: res });
+                return Ok(Eigenpairs {
+                    values,
+                    vectors: u,
+                    residuals: res,
+                });
             }
             best = best.min(max);
             if exhausted || restarts >= MAX_RESTARTS {
@@ -267,7 +300,14 @@ pub(crate) fn lanczos(
         let keep: Vec<usize> = order.iter().copied().take(k_keep).collect();
         let y = Mat::<f64>::from_fn(m, keep.len(), |r, c| s[(r, keep[c])]);
         let mut u = Mat::<f64>::zeros(n, keep.len());
-        matmul(u.as_mut(), Accum::Replace, basis.as_ref().get(.., 0..m), y.as_ref(), 1.0, par);
+        matmul(
+            u.as_mut(),
+            Accum::Replace,
+            basis.as_ref().get(.., 0..m),
+            y.as_ref(),
+            1.0,
+            par,
+        );
         let next = basis.as_ref().col(m).to_owned();
         basis.as_mut().get_mut(.., 0..keep.len()).copy_from(&u);
         basis.as_mut().col_mut(keep.len()).copy_from(&next);

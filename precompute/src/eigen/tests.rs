@@ -432,7 +432,7 @@ fn eigen_rejects_bad_input() {
     assert_eq!(m.exitance(s.g.as_ref(), &s.area, &black, &m0), m0);
 }
 
-/// Partial (Krylov–Schur under the watchdog) agrees with dense on a moderate smooth room:
+/// Partial (thick-restart Lanczos) agrees with dense on a moderate smooth room:
 /// eigenvalues within 1e-8, eigenvectors up to sign within 1e-6 (B-norm-1 vectors, entries
 /// O(0.1)).
 #[test]
@@ -497,7 +497,7 @@ fn eigen_partial_agrees_with_dense() {
 
 /// Random symmetric matrix with eigenvalues in (−1, 1): `G = X` uniform entries scaled to a
 /// semicircle of radius 1.8, areas 1, ρ = 0.5, so `H = G / 2`. The clustered spectrum edge is
-/// what makes faer's Krylov–Schur run long (faer-rs issue 262); the watchdog must end it and
+/// what made faer's Krylov–Schur hang (faer-rs issue 262); our bounded Lanczos must end and
 /// the result must still have small residuals.
 fn random_symmetric(n: usize, seed: u64) -> Mat<f64> {
     let mut rng = Rng::new(seed);
@@ -546,7 +546,15 @@ pub(crate) fn partial_terminates(n: usize, p: usize) {
     }
     if n <= 1500 {
         // The kept modes are the top-|c| ones: compare with the dense solve (1e-8).
-        let d = modes(g.as_ref(), &area, &rho, Formulation::Split, p, Solver::Dense).expect("dense");
+        let d = modes(
+            g.as_ref(),
+            &area,
+            &rho,
+            Formulation::Split,
+            p,
+            Solver::Dense,
+        )
+        .expect("dense");
         let err = max_abs_diff(&d.values, &m.values);
         assert!(err < 1e-8, "partial vs dense eigenvalues differ by {err:e}");
     }
@@ -582,10 +590,12 @@ fn eigen_faer_krylov_schur_issue_262() {
         let r: Vec<usize> = (0..n).collect();
         let s = vec![0.5f64.sqrt(); n];
         let op = krylov::ScaledOp::new(g.as_ref(), &r, &s);
-        let mut params = PartialEigenParams::default();
-        params.min_dim = 48;
-        params.max_dim = 96;
-        params.max_restarts = 50;
+        let params = PartialEigenParams {
+            min_dim: 48,
+            max_dim: 96,
+            max_restarts: 50,
+            ..Default::default()
+        };
         let par = faer::Par::Seq;
         let mut mem = MemBuffer::new(partial_self_adjoint_eigen_scratch(&op, k, par, params));
         let mut vecs = Mat::<f64>::zeros(n, k);
@@ -608,5 +618,66 @@ fn eigen_faer_krylov_schur_issue_262() {
             println!("faer Krylov–Schur returned with {c} converged pairs (no hang this time)")
         }
         Err(_) => println!("faer Krylov–Schur still running after 30 s (issue 262)"),
+    }
+}
+
+/// Timings for the report (run in release: `cargo test --release -p eigenrad-precompute
+/// eigen_timing -- --ignored --nocapture`).
+#[test]
+#[ignore = "timing, run in release"]
+fn eigen_timing() {
+    for n in [1000, 2000] {
+        let s = smooth_room(n, 0.8, 51);
+        let t = Instant::now();
+        let m = modes(
+            s.g.as_ref(),
+            &s.area,
+            &s.rho,
+            Formulation::Split,
+            64,
+            Solver::Dense,
+        )
+        .expect("dense");
+        println!(
+            "dense   n = {n}, p = 64: {:?} (residual {:e})",
+            t.elapsed(),
+            m.max_residual
+        );
+    }
+    for n in [2000, 5000] {
+        let s = smooth_room(n, 0.8, 52);
+        let t = Instant::now();
+        let m = modes(
+            s.g.as_ref(),
+            &s.area,
+            &s.rho,
+            Formulation::Split,
+            64,
+            Solver::Partial,
+        )
+        .expect("partial");
+        println!(
+            "partial n = {n}, p = 64: {:?} via {:?} (residual {:e})",
+            t.elapsed(),
+            m.method,
+            m.max_residual
+        );
+        let g = random_symmetric(n, 53);
+        let t = Instant::now();
+        let m = modes(
+            g.as_ref(),
+            &vec![1.0; n],
+            &vec![0.5; n],
+            Formulation::Split,
+            64,
+            Solver::Partial,
+        )
+        .expect("partial");
+        println!(
+            "partial random symmetric n = {n}, p = 64: {:?} via {:?} (residual {:e})",
+            t.elapsed(),
+            m.method,
+            m.max_residual
+        );
     }
 }
