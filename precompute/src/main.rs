@@ -1,2 +1,231 @@
-//! The `eigenrad` command line.
-fn main() {}
+//! The `eigenrad` command: a thin layer over `eigenrad_precompute` that parses arguments and
+//! prints. Every number printed carries its unit.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Parser, Subcommand, ValueEnum};
+use eigenrad_precompute::build::{self, BuildOptions, ModeSelection};
+use eigenrad_precompute::eigen::{Formulation, Solver};
+use eigenrad_precompute::{atomic, cli, Error};
+use eigenrad_runtime::Precision;
+
+/// Real-time radiosity for lighting controllers: precompute a room's eigenbasis, evaluate it
+/// like the firmware does, and check it against the exact solution.
+#[derive(Parser)]
+#[command(name = "eigenrad", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum FormulationArg {
+    /// Exact emission and first bounce, interreflections from the modes (default).
+    Split,
+    /// The seed paper's expansion (corrected), for comparison.
+    Seed,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum PrecisionArg {
+    /// 4 bytes per value.
+    F32,
+    /// IEEE half precision with a per-column scale, 2 bytes per value.
+    F16,
+    /// 16-bit integers with a per-column scale, 2 bytes per value.
+    I16,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum SolverArg {
+    /// Dense for small scenes, partial (Krylov–Schur) for large ones.
+    Auto,
+    /// Full self-adjoint eigendecomposition.
+    Dense,
+    /// Partial eigensolver for the strongest modes only.
+    Partial,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Build a basis from a scene and report patches, modes, size, form-factor health,
+    /// accuracy per channel and time per stage.
+    Build {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Output basis file; written atomically (a failed build leaves it untouched).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Number of modes per band.
+        #[arg(long, conflicts_with = "tolerance")]
+        modes: Option<usize>,
+        /// Smallest mode count whose relative error against the exact solve stays under
+        /// this, for every channel and random emitter patterns [default: 0.01].
+        #[arg(long)]
+        tolerance: Option<f64>,
+        /// Expansion to store.
+        #[arg(long, value_enum, default_value = "split")]
+        formulation: FormulationArg,
+        /// Storage precision of mode vectors, first bounces and view rows.
+        #[arg(long, value_enum, default_value = "f32")]
+        precision: PrecisionArg,
+        /// Eigensolver.
+        #[arg(long, value_enum, default_value = "auto")]
+        solver: SolverArg,
+        /// Print the report as one JSON document on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Exact dense solve of a scene (LU), for reference.
+    Solve {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Channel level, relative (1 = as in the scene); repeatable. Channels default to 1.
+        #[arg(long = "level", value_name = "NAME=VALUE")]
+        levels: Vec<String>,
+        /// Also print every patch.
+        #[arg(long)]
+        patches: bool,
+        /// Print one JSON document on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Evaluate a basis through the runtime crate: exactly what firmware computes.
+    Eval {
+        /// Basis file.
+        basis: PathBuf,
+        /// Channel level, relative (1 = as built); repeatable. Channels default to 1.
+        #[arg(long = "level", value_name = "NAME=VALUE")]
+        levels: Vec<String>,
+        /// Also print every patch.
+        #[arg(long)]
+        patches: bool,
+        /// Print one JSON document on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Surface-to-surface form factors, area-weighted over each surface's patches.
+    FormFactors {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Print `[{from, to, value}]` as JSON on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Describe a basis: dimensions, names, sizes.
+    Inspect {
+        /// Basis file.
+        basis: PathBuf,
+        /// Print one JSON document on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn read(path: &Path) -> anyhow::Result<Vec<u8>> {
+    std::fs::read(path).map_err(|source| {
+        Error::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+        .into()
+    })
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Build {
+            scene,
+            output,
+            modes,
+            tolerance,
+            formulation,
+            precision,
+            solver,
+            json,
+        } => {
+            let opts = BuildOptions {
+                modes: match (modes, tolerance) {
+                    (Some(p), _) => ModeSelection::Count(p),
+                    (None, Some(t)) => ModeSelection::Tolerance(t),
+                    (None, None) => ModeSelection::Tolerance(0.01),
+                },
+                formulation: match formulation {
+                    FormulationArg::Split => Formulation::Split,
+                    FormulationArg::Seed => Formulation::Seed,
+                },
+                precision: match precision {
+                    PrecisionArg::F32 => Precision::F32,
+                    PrecisionArg::F16 => Precision::F16,
+                    PrecisionArg::I16 => Precision::I16,
+                },
+                solver: match solver {
+                    SolverArg::Auto => Solver::Auto,
+                    SolverArg::Dense => Solver::Dense,
+                    SolverArg::Partial => Solver::Partial,
+                },
+                ..BuildOptions::default()
+            };
+            let (bytes, report) = build::build(&scene, &opts)?;
+            atomic::write(&output, &bytes)?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&report)?);
+            } else {
+                print!("{}", cli::format_build_report(&report, &output));
+            }
+        }
+        Command::Solve {
+            scene,
+            levels,
+            patches,
+            json,
+        } => {
+            let readout = cli::solve(&scene, &levels, patches)?;
+            cli::print_readout(&readout, json)?;
+        }
+        Command::Eval {
+            basis,
+            levels,
+            patches,
+            json,
+        } => {
+            let bytes = read(&basis)?;
+            let readout = cli::eval(&basis, &bytes, &levels, patches)
+                .with_context(|| format!("evaluating {}", basis.display()))?;
+            cli::print_readout(&readout, json)?;
+        }
+        Command::FormFactors { scene, json } => {
+            let table = cli::surface_form_factors(&scene)?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&table)?);
+            } else {
+                for row in &table {
+                    println!("{:>24} -> {:<24} {:.6}", row.from, row.to, row.value);
+                }
+            }
+        }
+        Command::Inspect { basis, json } => {
+            let bytes = read(&basis)?;
+            let info = cli::inspect(&basis, &bytes)?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&info)?);
+            } else {
+                print!("{}", cli::format_inspect(&info));
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,149 @@
+//! How close a truncated expansion is to the exact dense solve, as a function of the mode
+//! count p: the figures behind `--tolerance`, the build report and `eigenrad verify`.
+
+use serde::Serialize;
+
+use crate::model::Model;
+use crate::scene::Scene;
+use crate::solve::ExactSolver;
+
+/// An emitter state to test: channel levels and per-patch exitance per band.
+#[derive(Clone, Debug)]
+pub struct Case {
+    /// What it is (`channel NAME`, `random pattern K`).
+    pub name: String,
+    /// Relative level of every channel.
+    pub levels: Vec<f64>,
+    /// Per band, per patch exitance set directly (W/m² or lux).
+    pub extra: Vec<Vec<f64>>,
+}
+
+/// Relative errors of one case at each tested p.
+#[derive(Clone, Debug, Serialize)]
+pub struct Curve {
+    /// The case's name.
+    pub case: String,
+    /// Mode counts tested.
+    pub modes: Vec<usize>,
+    /// Area-weighted RMS error of per-patch exitance over its RMS, worst band.
+    pub patch_error: Vec<f64>,
+    /// Worst |error| over sensors and zones divided by the largest reading, worst band.
+    pub output_error: Vec<f64>,
+}
+
+/// Deterministic xorshift64* generator: reports must not change from run to run.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Every channel alone at level 1, then `random` emitter patterns: a random fifth of the
+/// patches each emitting a random exitance up to the scene's brightest channel exitance
+/// (or 1 when there is none), same in every band.
+pub fn standard_cases(scene: &Scene, random: usize) -> Vec<Case> {
+    let n = scene.patches.len();
+    let bands = scene.bands.count();
+    let m = scene.channels.len();
+    let mut cases: Vec<Case> = (0..m)
+        .map(|c| {
+            let mut levels = vec![0.0; m];
+            levels[c] = 1.0;
+            Case {
+                name: format!("channel {}", scene.channels[c].name),
+                levels,
+                extra: vec![vec![0.0; n]; bands],
+            }
+        })
+        .collect();
+    let peak = scene
+        .emission
+        .iter()
+        .flatten()
+        .copied()
+        .fold(0.0f64, f64::max);
+    let peak = if peak > 0.0 { peak } else { 1.0 };
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    for k in 0..random {
+        let pattern: Vec<f64> = (0..n)
+            .map(|_| {
+                if rng.next() < 0.2 {
+                    peak * rng.next()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        cases.push(Case {
+            name: format!("random pattern {}", k + 1),
+            levels: vec![0.0; m],
+            extra: vec![pattern; bands],
+        });
+    }
+    cases
+}
+
+fn weighted_norm(area: &[f64], x: &[f64]) -> f64 {
+    area.iter()
+        .zip(x)
+        .map(|(a, v)| a * v * v)
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Error curves of `case` for every p in `modes` (ascending), against the exact solve.
+pub fn curve(model: &Model, solvers: &[ExactSolver], case: &Case, modes: &[usize]) -> Curve {
+    let mut patch_error = vec![0.0f64; modes.len()];
+    let mut output_error = vec![0.0f64; modes.len()];
+    for (b, solver) in solvers.iter().enumerate() {
+        let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
+        let exact_out = model.outputs(&exact);
+        let norm = weighted_norm(&model.area, &exact).max(f64::MIN_POSITIVE);
+        let out_scale = exact_out
+            .iter()
+            .fold(0.0f64, |a, v| a.max(v.abs()))
+            .max(f64::MIN_POSITIVE);
+        let (mut m, amplitude) = model.expansion(b, &case.levels, &case.extra[b]);
+        let v = &model.bands[b].modes.vectors;
+        let mut done = 0;
+        for (t, &p) in modes.iter().enumerate() {
+            let p = p.min(amplitude.len());
+            for (k, a) in amplitude.iter().enumerate().take(p).skip(done) {
+                for (i, x) in m.iter_mut().enumerate() {
+                    *x += v[(i, k)] * a;
+                }
+            }
+            done = done.max(p);
+            let diff: Vec<f64> = m.iter().zip(&exact).map(|(a, e)| a - e).collect();
+            patch_error[t] = patch_error[t].max(weighted_norm(&model.area, &diff) / norm);
+            let out = model.outputs(&m);
+            let worst = out
+                .iter()
+                .zip(&exact_out)
+                .fold(0.0f64, |w, (a, e)| w.max((a - e).abs()));
+            output_error[t] = output_error[t].max(if exact_out.is_empty() {
+                0.0
+            } else {
+                worst / out_scale
+            });
+        }
+    }
+    Curve {
+        case: case.name.clone(),
+        modes: modes.to_vec(),
+        patch_error,
+        output_error,
+    }
+}
+
+/// The smallest p whose patch error stays at or under `tolerance` for every curve, if any.
+pub fn smallest_p(curves: &[Curve], tolerance: f64) -> Option<usize> {
+    let modes = &curves.first()?.modes;
+    (0..modes.len())
+        .find(|&t| curves.iter().all(|c| c.patch_error[t] <= tolerance))
+        .map(|t| modes[t])
+}

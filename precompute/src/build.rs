@@ -1,0 +1,375 @@
+//! `eigenrad build`: scene → form factors → modes → basis bytes, with a report of every
+//! stage and the accuracy of the result measured through the runtime.
+
+use std::path::Path;
+use std::time::Instant;
+
+use eigenrad_runtime::Precision;
+use faer::Mat;
+use serde::Serialize;
+
+use crate::accuracy::{self, Case};
+use crate::eigen::{Formulation, Solver};
+use crate::error::{Error, Result};
+use crate::formfactor::{self, FormFactorOptions, Occluders};
+use crate::host_eval;
+use crate::model::Model;
+use crate::outputs;
+use crate::scene::{self, Scene};
+use crate::tables;
+
+/// How many modes to keep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ModeSelection {
+    /// Exactly this many per band (fewer if a band has fewer reflecting patches).
+    Count(usize),
+    /// The smallest count whose relative error against the exact solve is at most this for
+    /// every channel and every random emitter pattern.
+    Tolerance(f64),
+}
+
+/// Options of a build.
+#[derive(Clone, Debug)]
+pub struct BuildOptions {
+    /// Mode count or tolerance.
+    pub modes: ModeSelection,
+    /// Expansion.
+    pub formulation: Formulation,
+    /// Storage of the large tables.
+    pub precision: Precision,
+    /// Eigensolver path.
+    pub solver: Solver,
+    /// Form-factor settings.
+    pub form_factors: FormFactorOptions,
+    /// Random emitter patterns used by `--tolerance` and the report.
+    pub random_patterns: usize,
+}
+
+impl Default for BuildOptions {
+    fn default() -> Self {
+        BuildOptions {
+            modes: ModeSelection::Tolerance(0.01),
+            formulation: Formulation::Split,
+            precision: Precision::F32,
+            solver: Solver::Auto,
+            form_factors: FormFactorOptions::default(),
+            random_patterns: 4,
+        }
+    }
+}
+
+/// Health of the form-factor matrix.
+#[derive(Clone, Debug, Serialize)]
+pub struct Closure {
+    /// Worst reciprocity mismatch before symmetrising, relative.
+    pub reciprocity_mismatch: f64,
+    /// Smallest row sum of F after symmetrising.
+    pub row_sum_min: f64,
+    /// Largest row sum of F after symmetrising.
+    pub row_sum_max: f64,
+    /// Whether every row sums to 1 within 1e-3 (a closed scene). Otherwise the deficit is
+    /// light leaving through openings.
+    pub closed: bool,
+}
+
+/// Accuracy of the written basis for one test case, evaluated through the runtime.
+#[derive(Clone, Debug, Serialize)]
+pub struct CaseAccuracy {
+    /// Case name.
+    pub case: String,
+    /// Area-weighted RMS error of per-patch exitance over its RMS (worst band).
+    pub patch_error: f64,
+    /// Worst sensor/zone error over the largest reading (worst band).
+    pub output_error: f64,
+}
+
+/// Time spent in one stage.
+#[derive(Clone, Debug, Serialize)]
+pub struct Stage {
+    /// Stage name.
+    pub stage: &'static str,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// What `eigenrad build` reports.
+#[derive(Clone, Debug, Serialize)]
+pub struct BuildReport {
+    /// Scene name.
+    pub scene: String,
+    /// Number of patches.
+    pub patches: usize,
+    /// Number of bands.
+    pub bands: usize,
+    /// Unit of exitance and irradiance.
+    pub unit: &'static str,
+    /// Formulation.
+    pub formulation: &'static str,
+    /// Storage precision.
+    pub precision: &'static str,
+    /// Modes kept per band.
+    pub modes: usize,
+    /// Basis size in bytes.
+    pub bytes: usize,
+    /// Form-factor health.
+    pub form_factors: Closure,
+    /// Accuracy per case, through the runtime.
+    pub accuracy: Vec<CaseAccuracy>,
+    /// Time per stage.
+    pub timings: Vec<Stage>,
+}
+
+/// A scene with its form factors and output rows: everything before the eigensolve.
+pub struct Prepared {
+    /// The scene.
+    pub scene: Scene,
+    /// `G = A F`, symmetrised.
+    pub g: Mat<f64>,
+    /// Patch areas, m².
+    pub area: Vec<f64>,
+    /// Sensor and zone rows.
+    pub output_rows: Vec<Vec<f64>>,
+    /// Form-factor health.
+    pub closure: Closure,
+    /// Stage timings so far.
+    pub timings: Vec<Stage>,
+}
+
+fn timed<T>(timings: &mut Vec<Stage>, stage: &'static str, f: impl FnOnce() -> T) -> T {
+    let start = Instant::now();
+    let out = f();
+    timings.push(Stage {
+        stage,
+        seconds: start.elapsed().as_secs_f64(),
+    });
+    out
+}
+
+/// Loads a scene and computes its form factors and output rows.
+pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
+    let mut timings = Vec::new();
+    let scene = timed(&mut timings, "scene and meshing", || scene::load(path))?;
+    let n = scene.patches.len();
+    // G (n×n f64) plus the LU of the exact solve are the big allocations.
+    let needed = 2.0 * (n as f64).powi(2) * 8.0;
+    let available = 0.8 * total_memory_bytes();
+    if needed > available {
+        return Err(Error::TooLarge(format!(
+            "{}: {n} patches need about {:.1} GB for the form-factor matrix and its factorisation, more than the {:.1} GB this machine can spare; raise `max_edge` to mesh coarser",
+            path.display(),
+            needed / 1e9,
+            available / 1e9
+        )));
+    }
+    let ff = timed(&mut timings, "form factors", || {
+        formfactor::patch_form_factors(&scene.patches, opts)
+    });
+    let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
+    let row_sum_min = ff.row_sums.iter().copied().fold(f64::INFINITY, f64::min);
+    let row_sum_max = ff
+        .row_sums
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    let closure = Closure {
+        reciprocity_mismatch: ff.reciprocity_mismatch,
+        row_sum_min,
+        row_sum_max,
+        closed: (row_sum_min - 1.0).abs() <= 1e-3 && (row_sum_max - 1.0).abs() <= 1e-3,
+    };
+    let mut g = ff.matrix;
+    for i in 0..n {
+        for j in 0..n {
+            g[(i, j)] *= area[i];
+        }
+    }
+    let output_rows = timed(&mut timings, "sensors and zones", || {
+        let occluders = Occluders::new(&scene.patches);
+        outputs::output_rows(&scene, &g, &area, &occluders, opts)
+    });
+    Ok(Prepared {
+        scene,
+        g,
+        area,
+        output_rows,
+        closure,
+        timings,
+    })
+}
+
+/// Total physical memory, bytes (Linux `/proc/meminfo`; 8 GB assumed elsewhere).
+fn total_memory_bytes() -> f64 {
+    std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("MemTotal:"))
+                .and_then(|l| {
+                    l.split_whitespace()
+                        .nth(1)
+                        .and_then(|kb| kb.parse::<f64>().ok())
+                })
+        })
+        .map_or(8e9, |kb| kb * 1024.0)
+}
+
+/// Mode counts tested for the tolerance search and reports: 1, 2, 3, 4, 6, 8, 12, 16, …
+/// (about √2 apart) up to and including `max`.
+pub fn mode_ladder(max: usize) -> Vec<usize> {
+    let mut out = Vec::new();
+    let mut p = 1usize;
+    let mut step_half = false;
+    while p < max {
+        out.push(p);
+        p = if p < 4 {
+            p + 1
+        } else if step_half {
+            step_half = false;
+            p / 3 * 4
+        } else {
+            step_half = true;
+            p / 2 * 3
+        };
+    }
+    out.push(max);
+    out.dedup();
+    out
+}
+
+/// Runs the whole build; returns the basis bytes and the report. Writes nothing.
+pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)> {
+    let prepared = prepare(path, &opts.form_factors)?;
+    let Prepared {
+        scene,
+        g,
+        area: _,
+        output_rows,
+        closure,
+        mut timings,
+    } = prepared;
+    let n = scene.patches.len();
+    let p_max = match opts.modes {
+        ModeSelection::Count(p) => p.min(n),
+        ModeSelection::Tolerance(_) => n.min(512),
+    };
+    let model = timed(&mut timings, "eigenbasis", || {
+        Model::new(&scene, g, output_rows, opts.formulation, p_max, opts.solver)
+    })?;
+    let bands = model.bands.len();
+    let solvers = timed(&mut timings, "exact solve (LU)", || {
+        (0..bands)
+            .map(|b| model.exact_solver(b))
+            .collect::<std::result::Result<Vec<_>, _>>()
+    })?;
+    let cases = accuracy::standard_cases(&scene, opts.random_patterns);
+    let available = model
+        .bands
+        .iter()
+        .map(|b| b.mode_count())
+        .max()
+        .unwrap_or(0);
+    let p = match opts.modes {
+        ModeSelection::Count(p) => p.min(available),
+        ModeSelection::Tolerance(t) => timed(&mut timings, "mode count search", || {
+            let ladder = mode_ladder(available.max(1));
+            let curves: Vec<_> = cases
+                .iter()
+                .map(|c| accuracy::curve(&model, &solvers, c, &ladder))
+                .collect();
+            accuracy::smallest_p(&curves, t).ok_or_else(|| Error::Tolerance {
+                tolerance: t,
+                modes: available,
+                best: curves
+                    .iter()
+                    .map(|c| c.patch_error.last().copied().unwrap_or(f64::NAN))
+                    .fold(0.0, f64::max),
+            })
+        })?,
+    };
+    let bytes = timed(&mut timings, "serialization", || {
+        tables::basis_tables(&scene, &model, p, opts.precision).to_bytes()
+    })?;
+    let accuracy = timed(&mut timings, "verification through the runtime", || {
+        verify(&model, &solvers, &cases, &bytes)
+    })?;
+    let report = BuildReport {
+        scene: scene.name.clone(),
+        patches: n,
+        bands,
+        unit: scene.bands.unit(),
+        formulation: match opts.formulation {
+            Formulation::Split => "split",
+            Formulation::Seed => "seed",
+        },
+        precision: match opts.precision {
+            Precision::F32 => "f32",
+            Precision::F16 => "f16",
+            Precision::I16 => "i16",
+        },
+        modes: p,
+        bytes: bytes.len(),
+        form_factors: closure,
+        accuracy,
+        timings,
+    };
+    Ok((bytes, report))
+}
+
+/// Evaluates the encoded basis through the runtime for every case and compares with the
+/// exact solve.
+fn verify(
+    model: &Model,
+    solvers: &[crate::solve::ExactSolver],
+    cases: &[Case],
+    bytes: &[u8],
+) -> Result<Vec<CaseAccuracy>> {
+    let mut out = Vec::new();
+    for case in cases {
+        let levels: Vec<f32> = case.levels.iter().map(|&l| l as f32).collect();
+        let got = host_eval::evaluate(bytes, &levels, &case.extra, true)?;
+        let mut patch_error = 0.0f64;
+        let mut output_error = 0.0f64;
+        for (b, solver) in solvers.iter().enumerate() {
+            let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
+            let num: f64 = (0..exact.len())
+                .map(|i| model.area[i] * (got.exitance[i][b] - exact[i]).powi(2))
+                .sum();
+            let den: f64 = (0..exact.len())
+                .map(|i| model.area[i] * exact[i].powi(2))
+                .sum();
+            if den > 0.0 {
+                patch_error = patch_error.max((num / den).sqrt());
+            }
+            let exact_out = model.outputs(&exact);
+            let readings: Vec<f64> = got.sensors.iter().chain(&got.zones).map(|r| r[b]).collect();
+            let scale = exact_out.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            if scale > 0.0 {
+                let worst = readings
+                    .iter()
+                    .zip(&exact_out)
+                    .fold(0.0f64, |w, (a, e)| w.max((a - e).abs()));
+                output_error = output_error.max(worst / scale);
+            }
+        }
+        out.push(CaseAccuracy {
+            case: case.name.clone(),
+            patch_error,
+            output_error,
+        });
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mode_ladder;
+
+    #[test]
+    fn ladder_is_ascending_and_ends_at_max() {
+        assert_eq!(mode_ladder(1), vec![1]);
+        assert_eq!(mode_ladder(20), vec![1, 2, 3, 4, 6, 8, 12, 16, 20]);
+        let l = mode_ladder(600);
+        assert!(l.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(*l.last().unwrap_or(&0), 600);
+    }
+}

@@ -1,0 +1,58 @@
+//! The precompute's error type: every failure names the file, line, field or patch at fault.
+
+use std::path::PathBuf;
+
+/// Result with the precompute's [`Error`].
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Everything that can stop a precompute command.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The scene file or a file it references is invalid.
+    #[error(transparent)]
+    Scene(#[from] crate::scene::SceneError),
+    /// The eigensolver failed (non-convergence, bad input).
+    #[error("eigensolver: {0}")]
+    Eigen(#[from] crate::eigen::EigenError),
+    /// A basis file is unreadable or invalid.
+    #[error("basis {}: {source}", path.display())]
+    Basis {
+        /// The basis file.
+        path: PathBuf,
+        /// What the runtime's decoder or evaluator said.
+        source: eigenrad_runtime::Error,
+    },
+    /// The runtime refused a request while evaluating.
+    #[error("runtime: {0}")]
+    Runtime(#[from] eigenrad_runtime::Error),
+    /// Reading or writing a file failed.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// A `--level NAME=VALUE` argument is wrong.
+    #[error("--level {argument}: {reason}")]
+    Level {
+        /// The argument as given.
+        argument: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// `--tolerance` could not be met with the modes available.
+    #[error("tolerance {tolerance} not reached with up to {modes} modes (best relative error {best:.3e}); raise the tolerance or refine the mesh")]
+    Tolerance {
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// Largest p tried.
+        modes: usize,
+        /// Best error reached.
+        best: f64,
+    },
+    /// The scene is too large for this machine.
+    #[error("{0}")]
+    TooLarge(String),
+}

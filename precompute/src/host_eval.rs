@@ -1,0 +1,91 @@
+//! Evaluating a basis on the host through the runtime crate: exactly the arithmetic firmware
+//! performs, with capacities large enough for any basis the precompute writes.
+
+use eigenrad_runtime::{Basis, Evaluator};
+
+use crate::error::{Error, Result};
+
+/// Patch capacity of the host evaluator.
+pub const MAX_PATCHES: usize = 1 << 17;
+const MAX_MODES: usize = 2048;
+const MAX_CHANNELS: usize = 1024;
+const MAX_OUTPUTS: usize = 1024;
+
+type Host<'a, const B: usize> = Evaluator<'a, B, MAX_PATCHES, MAX_MODES, MAX_CHANNELS, MAX_OUTPUTS>;
+
+/// Every reading of a basis for one emitter state, per band (W/m² or lux).
+#[derive(Clone, Debug, Default)]
+pub struct Readout {
+    /// `exitance[i][b]`.
+    pub exitance: Vec<Vec<f64>>,
+    /// `irradiance[i][b]`; `None` for a patch that is black in some band.
+    pub irradiance: Vec<Option<Vec<f64>>>,
+    /// `sensors[s][b]`.
+    pub sensors: Vec<Vec<f64>>,
+    /// `zones[z][b]`.
+    pub zones: Vec<Vec<f64>>,
+}
+
+/// Evaluates `bytes` for channel `levels` and per-patch exitance `extra` (`extra[b][i]`,
+/// empty for none). `patches`: also read every patch.
+pub fn evaluate(
+    bytes: &[u8],
+    levels: &[f32],
+    extra: &[Vec<f64>],
+    patches: bool,
+) -> Result<Readout> {
+    let basis = Basis::from_bytes(bytes)?;
+    // The evaluator's buffers are sized for the largest basis (a few MB): give it a stack of
+    // its own rather than rely on the caller's.
+    std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(64 << 20)
+            .spawn_scoped(s, || match basis.bands() {
+                1 => run::<1>(basis, levels, extra, patches),
+                _ => run::<3>(basis, levels, extra, patches),
+            })
+            .map_err(|e| Error::TooLarge(format!("cannot start the evaluator thread: {e}")))?
+            .join()
+            .unwrap_or_else(|_| Err(Error::TooLarge("the evaluator thread failed".into())))
+    })
+}
+
+fn run<const B: usize>(
+    basis: Basis<'_>,
+    levels: &[f32],
+    extra: &[Vec<f64>],
+    patches: bool,
+) -> Result<Readout> {
+    let mut eval = Box::new(Host::<B>::new(basis)?);
+    eval.set_channel_levels(levels)?;
+    let n = basis.patch_count();
+    if !extra.is_empty() {
+        for i in 0..n {
+            let x: [f32; B] = std::array::from_fn(|b| {
+                extra.get(b).and_then(|e| e.get(i)).copied().unwrap_or(0.0) as f32
+            });
+            if x.iter().any(|v| *v != 0.0) {
+                eval.set_patch_exitance(i, x)?;
+            }
+        }
+    }
+    let widen = |v: [f32; B]| v.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
+    let mut out = Readout::default();
+    for s in 0..basis.sensor_count() {
+        out.sensors.push(widen(eval.sensor_irradiance(s)?));
+    }
+    for z in 0..basis.zone_count() {
+        out.zones.push(widen(eval.zone_irradiance(z)?));
+    }
+    if patches {
+        for i in 0..n {
+            out.exitance.push(widen(eval.exitance(i)?));
+            out.irradiance.push(match eval.irradiance(i) {
+                Ok(e) => Some(widen(e)),
+                Err(eigenrad_runtime::Error::BlackPatch { .. }) => None,
+                Err(e) => return Err(e.into()),
+            });
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,71 @@
+//! Sensors and zones as rows over the patches: the irradiance at output `o` is
+//! `Σ_j R_oj M_j` (math.md, "Outputs people need").
+
+use faer::Mat;
+use rayon::prelude::*;
+
+use crate::formfactor::{self, FormFactorOptions, Occluders};
+use crate::scene::{Scene, Zone, ZoneKind};
+
+/// Area of a zone, m².
+pub fn zone_area(scene: &Scene, zone: &Zone) -> f64 {
+    match &zone.kind {
+        ZoneKind::Surfaces(patches) => patches.iter().map(|&i| scene.patches[i].area).sum(),
+        ZoneKind::WorkPlane { receivers, .. } => receivers.iter().map(|r| r.area).sum(),
+    }
+}
+
+/// One row per sensor (point form factors with occlusion and field of view), then one per
+/// zone (area-weighted average of its patches' or receivers' form-factor rows).
+///
+/// `g` is `A F` symmetrised, `area` the patch areas (m²).
+pub fn output_rows(
+    scene: &Scene,
+    g: &Mat<f64>,
+    area: &[f64],
+    occluders: &Occluders,
+    opts: &FormFactorOptions,
+) -> Vec<Vec<f64>> {
+    let n = scene.patches.len();
+    let mut rows: Vec<Vec<f64>> = scene
+        .sensors
+        .par_iter()
+        .map(|s| {
+            formfactor::point_form_factors(
+                s.position,
+                s.normal,
+                s.half_angle,
+                &scene.patches,
+                occluders,
+            )
+        })
+        .collect();
+    for zone in &scene.zones {
+        let row = match &zone.kind {
+            ZoneKind::Surfaces(patches) => {
+                // Σ_i A_i F_ij / Σ A_i = Σ_i G_ij / Σ A_i.
+                let total: f64 = patches.iter().map(|&i| area[i]).sum();
+                (0..n)
+                    .map(|j| patches.iter().map(|&i| g[(i, j)]).sum::<f64>() / total)
+                    .collect()
+            }
+            ZoneKind::WorkPlane { receivers, .. } => {
+                let f =
+                    formfactor::receiver_form_factors(receivers, &scene.patches, occluders, opts);
+                let total: f64 = receivers.iter().map(|r| r.area).sum();
+                (0..n)
+                    .map(|j| {
+                        receivers
+                            .iter()
+                            .enumerate()
+                            .map(|(r, rec)| rec.area * f[(r, j)])
+                            .sum::<f64>()
+                            / total
+                    })
+                    .collect()
+            }
+        };
+        rows.push(row);
+    }
+    rows
+}
