@@ -22,7 +22,9 @@ const RTOL: f64 = 1e-5;
 fn scene_text(seed: u64) -> String {
     let mut state = seed;
     let mut next = move || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         0.05 + 0.85 * ((state >> 11) as f64 / (1u64 << 53) as f64)
     };
     format!(
@@ -115,23 +117,38 @@ fn full_basis_equals_the_dense_solve_for_both_formulations() {
         let exact = model.exact(&solver, 0, &levels, &extra);
         let exact_out = model.outputs(&exact);
 
-        let bytes = basis_tables(scene, &model, n, Precision::F32).to_bytes().unwrap();
+        let bytes = basis_tables(scene, &model, n, Precision::F32)
+            .to_bytes()
+            .unwrap();
         let levels32: Vec<f32> = levels.iter().map(|&l| l as f32).collect();
         let got = host_eval::evaluate(&bytes, &levels32, &[extra.clone()], true).unwrap();
 
         let scale = exact.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        let worst = (0..n).map(|i| (got.exitance[i][0] - exact[i]).abs()).fold(0.0, f64::max);
-        assert!(worst <= RTOL * scale, "{formulation:?}: exitance error {worst:e} of {scale:e}");
+        let worst = (0..n)
+            .map(|i| (got.exitance[i][0] - exact[i]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst <= RTOL * scale,
+            "{formulation:?}: exitance error {worst:e} of {scale:e}"
+        );
 
         let out_scale = exact_out.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let readings: Vec<f64> = got.sensors.iter().chain(&got.zones).map(|r| r[0]).collect();
         for (o, (a, e)) in readings.iter().zip(&exact_out).enumerate() {
-            assert!((a - e).abs() <= RTOL * out_scale, "{formulation:?}: output {o}: {a} vs {e}");
+            assert!(
+                (a - e).abs() <= RTOL * out_scale,
+                "{formulation:?}: output {o}: {a} vs {e}"
+            );
         }
         // The f64 truncated expansion itself, before f32 storage: exact to rounding.
         let f64_full = model.truncated(0, n, &levels, &extra);
-        let worst64 = (0..n).map(|i| (f64_full[i] - exact[i]).abs()).fold(0.0, f64::max);
-        assert!(worst64 <= 1e-9 * scale, "{formulation:?}: f64 expansion error {worst64:e}");
+        let worst64 = (0..n)
+            .map(|i| (f64_full[i] - exact[i]).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst64 <= 1e-9 * scale,
+            "{formulation:?}: f64 expansion error {worst64:e}"
+        );
     }
     std::fs::remove_dir_all(&dir).ok();
 }

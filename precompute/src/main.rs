@@ -58,11 +58,12 @@ enum Command {
         /// Output basis file; written atomically (a failed build leaves it untouched).
         #[arg(short, long)]
         output: PathBuf,
-        /// Number of modes per band.
+        /// Number of modes per band [default: 32, when --tolerance is not given].
         #[arg(long, conflicts_with = "tolerance")]
         modes: Option<usize>,
-        /// Smallest mode count whose relative error against the exact solve stays under
-        /// this, for every channel and random emitter patterns [default: 0.01].
+        /// Instead of --modes: the smallest mode count whose relative error (area-weighted
+        /// RMS of patch exitance) against the exact solve stays under this, for every
+        /// channel alone and for random emitter patterns.
         #[arg(long)]
         tolerance: Option<f64>,
         /// Expansion to store.
@@ -161,7 +162,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 modes: match (modes, tolerance) {
                     (Some(p), _) => ModeSelection::Count(p),
                     (None, Some(t)) => ModeSelection::Tolerance(t),
-                    (None, None) => ModeSelection::Tolerance(0.01),
+                    (None, None) => ModeSelection::Count(build::DEFAULT_MODES),
                 },
                 formulation: match formulation {
                     FormulationArg::Split => Formulation::Split,

@@ -135,7 +135,11 @@ impl<
     pub fn set_channel_levels(&mut self, levels: &[f32]) -> Result<()> {
         let m = self.basis.channels;
         if levels.len() != m {
-            return Err(Error::LengthMismatch { what: "levels", expected: m, found: levels.len() });
+            return Err(Error::LengthMismatch {
+                what: "levels",
+                expected: m,
+                found: levels.len(),
+            });
         }
         for &l in levels {
             Self::check_level(l)?;
@@ -158,14 +162,19 @@ impl<
     fn recompute_amplitude(&mut self, levels: &[f32]) {
         let p = self.p();
         for b in 0..BANDS {
-            let (Some(amp), Some(base)) = (self.amplitude.get_mut(b), self.patch_amplitude.get(b)) else {
+            let (Some(amp), Some(base)) = (self.amplitude.get_mut(b), self.patch_amplitude.get(b))
+            else {
                 continue;
             };
             let amp = amp.get_mut(..p).unwrap_or(&mut []);
             amp.copy_from_slice(base.get(..p).unwrap_or(&[]));
             for (c, &l) in levels.iter().enumerate() {
                 let start = (c * self.basis.bands + b) * p * 4;
-                let proj = self.basis.channel_projection.get(start..start + p * 4).unwrap_or(&[]);
+                let proj = self
+                    .basis
+                    .channel_projection
+                    .get(start..start + p * 4)
+                    .unwrap_or(&[]);
                 axpy_f32(l, proj, amp);
             }
         }
@@ -173,7 +182,9 @@ impl<
 
     fn amplitude_is_finite(&self) -> bool {
         let p = self.p();
-        self.amplitude.iter().all(|a| a.get(..p).unwrap_or(&[]).iter().all(|v| v.is_finite()))
+        self.amplitude
+            .iter()
+            .all(|a| a.get(..p).unwrap_or(&[]).iter().all(|v| v.is_finite()))
     }
 
     /// Changes one channel's level (relative, 1 = as built), updating the mode amplitudes
@@ -231,22 +242,32 @@ impl<
     /// truncation (exact when `p = n`).
     pub fn set_patch_exitance(&mut self, patch: usize, exitance: [f32; BANDS]) -> Result<()> {
         check_index("patch", patch, self.basis.patches)?;
-        if exitance.iter().any(|e| !e.is_finite() || !(0.0..=MAX_EXITANCE).contains(e)) {
+        if exitance
+            .iter()
+            .any(|e| !e.is_finite() || !(0.0..=MAX_EXITANCE).contains(e))
+        {
             return Err(Error::InvalidInput { what: "exitance" });
         }
-        let old = self.patch_exitance.get(patch).copied().unwrap_or([0.0; BANDS]);
+        let old = self
+            .patch_exitance
+            .get(patch)
+            .copied()
+            .unwrap_or([0.0; BANDS]);
         let outputs = self.outputs();
         // Two passes: check that every updated value stays finite, then apply, so that a
         // rejected request leaves the state exactly as it was.
         for apply in [false, true] {
             for b in 0..BANDS {
-                let delta = exitance.get(b).copied().unwrap_or(0.0) - old.get(b).copied().unwrap_or(0.0);
+                let delta =
+                    exitance.get(b).copied().unwrap_or(0.0) - old.get(b).copied().unwrap_or(0.0);
                 if delta == 0.0 {
                     continue;
                 }
                 let mut ok = true;
                 let (amp, patch_amp) = (self.amplitude.get_mut(b), self.patch_amplitude.get_mut(b));
-                let (Some(amp), Some(patch_amp)) = (amp, patch_amp) else { continue };
+                let (Some(amp), Some(patch_amp)) = (amp, patch_amp) else {
+                    continue;
+                };
                 let basis = &self.basis;
                 patch_response(basis, patch, b, delta, |k, step| {
                     if let (Some(a), Some(pa)) = (amp.get_mut(k), patch_amp.get_mut(k)) {
@@ -260,15 +281,17 @@ impl<
                 });
                 if identity(basis, patch, b) {
                     let direct = &mut self.patch_direct;
-                    basis.output_view.for_each(patch, 0, outputs.min(OUTPUTS), |o, f| {
-                        if let Some(slot) = direct.get_mut(o).and_then(|r| r.get_mut(b)) {
-                            if apply {
-                                *slot += f * delta;
-                            } else {
-                                ok &= (*slot + f * delta).is_finite();
+                    basis
+                        .output_view
+                        .for_each(patch, 0, outputs.min(OUTPUTS), |o, f| {
+                            if let Some(slot) = direct.get_mut(o).and_then(|r| r.get_mut(b)) {
+                                if apply {
+                                    *slot += f * delta;
+                                } else {
+                                    ok &= (*slot + f * delta).is_finite();
+                                }
                             }
-                        }
-                    });
+                        });
                 }
                 if !ok {
                     return Err(Error::InvalidInput { what: "exitance" });
@@ -449,20 +472,33 @@ impl<
 /// Whether exitance of `patch` in `band` is carried exactly (not through the modes): all
 /// patches in the split formulation, black patches only in the seed formulation.
 fn identity(basis: &Basis<'_>, patch: usize, band: usize) -> bool {
-    basis.formulation == Formulation::Split || f32_at(basis.reflectance, patch * basis.bands + band) == 0.0
+    basis.formulation == Formulation::Split
+        || f32_at(basis.reflectance, patch * basis.bands + band) == 0.0
 }
 
 /// Calls `f(k, response)` with the mode-space response to `delta` more exitance on `patch`
 /// in `band`, coefficient included: `α_k (A/ρ) v_k` for a reflecting patch, the stored row for
 /// a black one. `α_k = μ_k/(1−μ_k)` (split) or `1/λ_k` (seed).
-fn patch_response(basis: &Basis<'_>, patch: usize, band: usize, delta: f32, mut f: impl FnMut(usize, f32)) {
+fn patch_response(
+    basis: &Basis<'_>,
+    patch: usize,
+    band: usize,
+    delta: f32,
+    mut f: impl FnMut(usize, f32),
+) {
     let p = basis.modes;
     let rho = f32_at(basis.reflectance, patch * basis.bands + band);
-    let eigenvalues = basis.eigenvalues.get(band * p * 4..(band + 1) * p * 4).unwrap_or(&[]);
+    let eigenvalues = basis
+        .eigenvalues
+        .get(band * p * 4..(band + 1) * p * 4)
+        .unwrap_or(&[]);
     if rho == 0.0 {
         if let Some(j) = basis.black_index(patch) {
             let start = (j * basis.bands + band) * p * 4;
-            let row = basis.black_projection.get(start..start + p * 4).unwrap_or(&[]);
+            let row = basis
+                .black_projection
+                .get(start..start + p * 4)
+                .unwrap_or(&[]);
             for (k, x) in f32s(row).enumerate() {
                 f(k, delta * x);
             }
