@@ -1,6 +1,7 @@
 //! The `eigenrad` command: a thin layer over `eigenrad_precompute` that parses arguments and
 //! prints. Every number printed carries its unit.
 
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -8,6 +9,7 @@ use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
 use eigenrad_precompute::build::{self, BuildOptions, ModeSelection};
 use eigenrad_precompute::eigen::{Formulation, Solver};
+use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::{atomic, cli, Error};
 use eigenrad_runtime::Precision;
 
@@ -177,6 +179,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     SolverArg::Auto => Solver::Auto,
                     SolverArg::Dense => Solver::Dense,
                     SolverArg::Partial => Solver::Partial,
+                },
+                // A progress bar only where someone watches: never in logs or pipes.
+                form_factors: FormFactorOptions {
+                    progress: std::io::stderr().is_terminal(),
+                    ..FormFactorOptions::default()
                 },
                 ..BuildOptions::default()
             };
