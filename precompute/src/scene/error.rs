@@ -175,4 +175,23 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
+    /// Meshing would make more patches than this machine's memory can hold; refused before
+    /// meshing.
+    #[error(
+        "{at}: {field}: meshing would make about {patches:.3e} patches; the form factors and \
+         the solve need about {needed:.3e} bytes ({patches:.3e}² × 8 bytes × 3 matrices), more \
+         than this machine's {available:.3e} bytes of memory; raise `max_edge`"
+    )]
+    TooManyPatches {
+        /// Where the scene's `max_edge` was written.
+        at: Location,
+        /// The mesh size setting at fault (`scene.max_edge`, or the surface's).
+        field: String,
+        /// Estimated patch count.
+        patches: f64,
+        /// Estimated memory, bytes.
+        needed: f64,
+        /// Physical memory, bytes.
+        available: f64,
+    },
 }

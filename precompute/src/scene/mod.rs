@@ -10,12 +10,15 @@ mod channels;
 mod context;
 mod error;
 mod file;
+mod limits;
 mod mesh;
 mod obj;
 mod observers;
+mod openings;
 mod primitives;
 #[cfg(test)]
 mod tests;
+mod winding;
 
 use std::ops::Range;
 use std::path::Path;
