@@ -118,7 +118,8 @@ pub(crate) fn mesh_face(corners: &[Vec3], max_edge: f64, out: &mut Vec<Polygon>)
 /// How many patches [`mesh_face`] would make of a face, without making them (f64, so that an
 /// absurd count is a number rather than an overflow).
 pub(crate) fn estimate(corners: &[Vec3], max_edge: f64) -> f64 {
-    let count = |length: f64| (length / max_edge).ceil().max(1.0);
+    // As `parts` does, so that a side of exactly k × max_edge counts k.
+    let count = |length: f64| (length / max_edge * (1.0 - 1e-12)).ceil().max(1.0);
     let triangle = |a: Vec3, b: Vec3, c: Vec3| {
         let m = count((b - a).length().max((c - b).length()).max((a - c).length()));
         m * m
