@@ -206,6 +206,7 @@ fn obj_problem(text: &str) -> Option<(usize, String)> {
         .count();
     let mut seen = 0usize;
     for (n, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("");
         let mut fields = line.split_whitespace();
         match fields.next() {
             Some("v") => {
@@ -256,7 +257,7 @@ fn obj_problem(text: &str) -> Option<(usize, String)> {
 /// The first malformed line of an MTL file (1-based): a colour or scalar that is not numbers.
 fn mtl_problem(text: &str) -> Option<(usize, String)> {
     for (n, line) in text.lines().enumerate() {
-        let mut fields = line.split_whitespace();
+        let mut fields = line.split('#').next().unwrap_or("").split_whitespace();
         let Some(key) = fields.next() else { continue };
         let expected = match key {
             "Ka" | "Kd" | "Ks" | "Ke" | "Tf" => 3,
