@@ -53,12 +53,14 @@ impl fmt::Display for Location {
 #[non_exhaustive]
 pub enum SceneError {
     /// A file (scene, OBJ or MTL) could not be read.
-    #[error("{path}: cannot read file: {source}", path = path.display())]
+    // The reason is in the message and deliberately not a `source`: callers printing the
+    // error chain would show it twice.
+    #[error("{path}: cannot read file: {reason}", path = path.display())]
     Read {
         /// The path that was tried.
         path: PathBuf,
         /// The operating system's reason.
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     /// The scene file is not valid TOML or does not match the schema (wrong type, unknown or
     /// missing field).

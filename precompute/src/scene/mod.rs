@@ -149,9 +149,9 @@ pub struct Scene {
 ///
 /// OBJ files it names are found relative to its folder.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+    let text = std::fs::read_to_string(path).map_err(|reason| SceneError::Read {
         path: path.to_path_buf(),
-        source,
+        reason,
     })?;
     parse(&text, path)
 }

@@ -41,7 +41,7 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         },
         _ => SceneError::Read {
             path: path.clone(),
-            source,
+            reason: source,
         },
     })?;
     // tobj reports a missing MTL without its name: look for it first, so the error can say.
