@@ -129,8 +129,14 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         winding::check(&raw[range.clone()], &flip[range])?;
     }
     let mut claimed = vec![false; raw.len()];
+    let standing: Vec<(String, Vec3, Vec3)> = blocks
+        .iter()
+        .zip(&file.block)
+        .filter(|(_, def)| !def.get_ref().bottom)
+        .map(|(b, _)| b.clone())
+        .collect();
     for (r, faces) in file.room.iter().zip(room_faces) {
-        openings::cut(&ctx, r, faces, &mut raw, &flip, &mut claimed)?;
+        openings::cut(&ctx, r, faces, &mut raw, &flip, &mut claimed, &standing)?;
     }
     limits::check(&raw, max_edge, &ctx.at(&file.scene.max_edge))?;
 

@@ -2,6 +2,9 @@
 //! meshed around them, so no part of the wall hides behind an opening and every patch of a
 //! closed room exchanges light with the rest of it.
 //!
+//! Blocks standing on the floor without a bottom face are cut out of the floor the same way:
+//! the floor under a desk sees only the inside of the desk, which is no surface at all.
+//!
 //! The face rectangle is cut into a grid at every opening's edge coordinates; the cells an
 //! opening covers are dropped and every other cell becomes a face of its own, meshed later at
 //! the face's `max_edge`. The cut depends only on the corners, so it is deterministic.
@@ -24,8 +27,8 @@ pub(crate) const CONTACT_TOLERANCE: f64 = 1e-6;
 /// An opening placed in a face, in the face's parameters: `s` runs a→b, `t` runs a→d, both
 /// in [0, 1].
 struct Placed {
-    /// Index of the opening in the raw surfaces.
-    surface: usize,
+    /// Index of the opening in the raw surfaces; `None` for a block's footprint on the floor.
+    surface: Option<usize>,
     /// Room face (0..6) it lies in.
     face: usize,
     s: [f64; 2],
@@ -66,12 +69,14 @@ impl Frame {
     }
 }
 
-/// Cuts the openings of one room out of its faces.
+/// Cuts the openings of one room, and the footprints of the blocks standing on its floor
+/// without a bottom face, out of its faces.
 ///
 /// `faces` are the room's six surfaces in `raw` (floor, ceiling, wall_xmin, wall_xmax,
 /// wall_ymin, wall_ymax); `flip` says which surfaces will have their winding reversed;
-/// `claimed` marks surfaces already used as an opening (by this or an earlier room). The
-/// openings' corners are snapped onto the face plane and the shared grid lines.
+/// `claimed` marks surfaces already used as an opening (by this or an earlier room);
+/// `standing` are the (name, min, max) of blocks without a bottom face, metres. The openings'
+/// corners are snapped onto the face plane and the shared grid lines.
 pub(crate) fn cut(
     ctx: &Ctx,
     def: &Spanned<RoomDef>,
@@ -79,13 +84,16 @@ pub(crate) fn cut(
     raw: &mut [RawSurface],
     flip: &[bool],
     claimed: &mut [bool],
+    standing: &[(String, Vec3, Vec3)],
 ) -> Result<(), SceneError> {
     let r = def.get_ref();
-    let Some(list) = &r.openings else {
-        return Ok(());
-    };
+    let empty = Vec::new();
+    let list = r.openings.as_ref().map_or(&empty, |l| l.get_ref());
     let field = format!("room `{}`.openings", r.name);
-    let at = ctx.at(list);
+    let at = r
+        .openings
+        .as_ref()
+        .map_or_else(|| ctx.at(def), |l| ctx.at(l));
     let invalid = |message: String| SceneError::Invalid {
         at: at.clone(),
         field: field.clone(),
@@ -99,7 +107,7 @@ pub(crate) fn cut(
     let tol = CONTACT_TOLERANCE * diagonal;
 
     let mut placed: Vec<Placed> = Vec::new();
-    for name in list.get_ref() {
+    for name in list {
         let Some(index) = raw.iter().position(|s| &s.name == name) else {
             return Err(SceneError::Unknown {
                 at: at.clone(),
@@ -204,16 +212,50 @@ pub(crate) fn cut(
             if overlap_s > tol_s && overlap_t > tol_t {
                 return Err(invalid(format!(
                     "openings `{}` and `{name}` overlap in face `{face_name}`",
-                    raw[other.surface].name
+                    other.surface.map_or("?", |o| raw[o].name.as_str())
                 )));
             }
         }
         placed.push(Placed {
-            surface: index,
+            surface: Some(index),
             face,
             s,
             t,
             upper,
+        });
+    }
+
+    // Blocks standing on the floor without a bottom face hide the floor under them: cut their
+    // footprints out too (they may overlap each other, not an opening).
+    let floor = &frames[0];
+    for (name, lo, hi) in standing {
+        if (lo.z - floor.a.z).abs() > tol {
+            continue;
+        }
+        let (s0, t0) = floor.params(*lo);
+        let (s1, t1) = floor.params(*hi);
+        let s = [s0.min(s1).max(0.0), s0.max(s1).min(1.0)];
+        let t = [t0.min(t1).max(0.0), t0.max(t1).min(1.0)];
+        if s[1] <= s[0] || t[1] <= t[0] {
+            continue;
+        }
+        let (tol_s, tol_t) = (tol / floor.ab.length(), tol / floor.ad.length());
+        for other in placed.iter().filter(|o| o.face == 0) {
+            let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
+            let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
+            if let (Some(o), true) = (other.surface, overlap_s > tol_s && overlap_t > tol_t) {
+                return Err(invalid(format!(
+                    "opening `{}` lies under block `{name}`, which stands on the floor",
+                    raw[o].name
+                )));
+            }
+        }
+        placed.push(Placed {
+            surface: None,
+            face: 0,
+            s,
+            t,
+            upper: Vec::new(),
         });
     }
 
@@ -231,12 +273,14 @@ pub(crate) fn cut(
         for p in mine.iter_mut() {
             p.s = p.s.map(|x| snap(&grid_s, x));
             p.t = p.t.map(|x| snap(&grid_t, x));
-            let corners = p
-                .upper
-                .iter()
-                .map(|&(us, ut)| frame.point(p.s[us as usize], p.t[ut as usize]))
-                .collect();
-            raw[p.surface].faces = vec![corners];
+            if let Some(surface) = p.surface {
+                let corners = p
+                    .upper
+                    .iter()
+                    .map(|&(us, ut)| frame.point(p.s[us as usize], p.t[ut as usize]))
+                    .collect();
+                raw[surface].faces = vec![corners];
+            }
         }
         let mut cells = Vec::new();
         for j in 0..grid_t.len() - 1 {
@@ -258,8 +302,8 @@ pub(crate) fn cut(
         }
         if cells.is_empty() {
             return Err(invalid(format!(
-                "the openings cover the whole face `{}`; leave them out and give the face \
-                 their material in [surfaces] instead",
+                "the openings (or blocks standing on it) cover the whole face `{}`; leave them \
+                 out and give the face their material in [surfaces] instead",
                 raw[face].name
             )));
         }
