@@ -8,7 +8,7 @@ use super::context::{unique, Ctx, MaterialInfo, RawSurface};
 use super::error::SceneError;
 use super::file::{BandsDef, SceneFile};
 use super::mesh::{check_face, mesh_face, triangulate};
-use super::{channels, obj, observers, primitives};
+use super::{channels, limits, obj, observers, openings, primitives, winding};
 use super::{Bands, Scene, Surface};
 use crate::geometry::{Patch, Vec3};
 
@@ -66,20 +66,30 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     // Geometry, in file order by kind.
     let mut raw: Vec<RawSurface> = Vec::new();
     let mut rooms: Vec<(String, Vec3, Vec3)> = Vec::new();
+    let mut room_faces = Vec::new();
     for r in &file.room {
+        let start = raw.len();
         raw.extend(primitives::room(&ctx, r)?);
+        room_faces.push(start..raw.len());
         let (lo, hi) = primitives::box_corners(&ctx, "room", &r.get_ref().min, &r.get_ref().max)?;
         rooms.push((r.get_ref().name.clone(), lo, hi));
     }
+    let mut blocks: Vec<(String, Vec3, Vec3)> = Vec::new();
     for b in &file.block {
         raw.extend(primitives::block(&ctx, b)?);
+        let (lo, hi) = primitives::box_corners(&ctx, "block", &b.get_ref().min, &b.get_ref().max)?;
+        primitives::check_inside_rooms(&ctx, b, lo, hi, &rooms)?;
+        blocks.push((b.get_ref().name.clone(), lo, hi));
     }
     for q in &file.quad {
         raw.push(primitives::quad(&ctx, q)?);
     }
+    let mut obj_surfaces = Vec::new();
     for o in &file.obj {
         let content = obj::load(&ctx, o)?;
+        let start = raw.len();
         raw.extend(content.surfaces);
+        obj_surfaces.push(start..raw.len());
         for (name, info) in content.materials {
             materials.entry(name).or_insert(info);
         }
@@ -112,6 +122,23 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         flip[i] = o.flip;
         split[i] = o.triangulate;
     }
+
+    // Faces wound against their neighbours, openings cut out of room faces, and the patch
+    // count checked against memory: all before meshing.
+    for range in obj_surfaces {
+        winding::check(&raw[range.clone()], &flip[range])?;
+    }
+    let mut claimed = vec![false; raw.len()];
+    let standing: Vec<(String, Vec3, Vec3)> = blocks
+        .iter()
+        .zip(&file.block)
+        .filter(|(_, def)| !def.get_ref().bottom)
+        .map(|(b, _)| b.clone())
+        .collect();
+    for (r, faces) in file.room.iter().zip(room_faces) {
+        openings::cut(&ctx, r, faces, &mut raw, &flip, &mut claimed, &standing)?;
+    }
+    limits::check(&raw, max_edge, &ctx.at(&file.scene.max_edge))?;
 
     // Materials resolved, faces checked and meshed.
     let mut surfaces = Vec::with_capacity(raw.len());
@@ -186,7 +213,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         channel_of_patch.push(emitters.channel_of_surface[p.surface]);
     }
 
-    let sensors = observers::sensors(&ctx, &file.sensor)?;
+    let sensors = observers::sensors(&ctx, &file.sensor, &rooms, &blocks)?;
     let zones = observers::zones(&ctx, &file.zone, &rooms, &surfaces, max_edge)?;
 
     Ok(Scene {

@@ -53,12 +53,14 @@ impl fmt::Display for Location {
 #[non_exhaustive]
 pub enum SceneError {
     /// A file (scene, OBJ or MTL) could not be read.
-    #[error("{path}: cannot read file: {source}", path = path.display())]
+    // The reason is in the message and deliberately not a `source`: callers printing the
+    // error chain would show it twice.
+    #[error("{path}: cannot read file: {reason}", path = path.display())]
     Read {
         /// The path that was tried.
         path: PathBuf,
         /// The operating system's reason.
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     /// The scene file is not valid TOML or does not match the schema (wrong type, unknown or
     /// missing field).
@@ -174,5 +176,24 @@ pub enum SceneError {
         field: String,
         /// What is wrong.
         message: String,
+    },
+    /// Meshing would make more patches than this machine's memory can hold; refused before
+    /// meshing.
+    #[error(
+        "{at}: {field}: meshing would make about {patches:.3e} patches; the form factors and \
+         the solve need about {needed:.3e} bytes ({patches:.3e}² × 8 bytes × 3 matrices), more \
+         than this machine's {available:.3e} bytes of memory; raise `max_edge`"
+    )]
+    TooManyPatches {
+        /// Where the scene's `max_edge` was written.
+        at: Location,
+        /// The mesh size setting at fault (`scene.max_edge`, or the surface's).
+        field: String,
+        /// Estimated patch count.
+        patches: f64,
+        /// Estimated memory, bytes.
+        needed: f64,
+        /// Physical memory, bytes.
+        available: f64,
     },
 }

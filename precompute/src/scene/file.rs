@@ -180,6 +180,9 @@ pub(crate) struct RoomDef {
     pub walls: Option<Spanned<String>>,
     #[serde(default)]
     pub max_edge: Option<Spanned<f64>>,
+    /// Quads set flush into the room's faces; the faces are meshed around them.
+    #[serde(default)]
+    pub openings: Option<Spanned<Vec<String>>>,
 }
 
 /// `[[block]]`: axis-aligned box seen from outside.

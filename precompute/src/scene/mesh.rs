@@ -115,6 +115,27 @@ pub(crate) fn mesh_face(corners: &[Vec3], max_edge: f64, out: &mut Vec<Polygon>)
     }
 }
 
+/// How many patches [`mesh_face`] would make of a face, without making them (f64, so that an
+/// absurd count is a number rather than an overflow).
+pub(crate) fn estimate(corners: &[Vec3], max_edge: f64) -> f64 {
+    // As `parts` does, so that a side of exactly k × max_edge counts k.
+    let count = |length: f64| (length / max_edge * (1.0 - 1e-12)).ceil().max(1.0);
+    let triangle = |a: Vec3, b: Vec3, c: Vec3| {
+        let m = count((b - a).length().max((c - b).length()).max((a - c).length()));
+        m * m
+    };
+    match corners {
+        [a, b, c] => triangle(*a, *b, *c),
+        [a, b, c, d] => {
+            count((*b - *a).length().max((*c - *d).length()))
+                * count((*d - *a).length().max((*c - *b).length()))
+        }
+        _ => (1..corners.len().saturating_sub(1))
+            .map(|i| triangle(corners[0], corners[i], corners[i + 1]))
+            .sum(),
+    }
+}
+
 /// Cuts a face into triangles: a quad along its shorter diagonal, other polygons as a fan.
 pub(crate) fn triangulate(corners: &[Vec3]) -> Vec<Vec<Vec3>> {
     if let [a, b, c, d] = corners {

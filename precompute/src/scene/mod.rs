@@ -10,12 +10,15 @@ mod channels;
 mod context;
 mod error;
 mod file;
+mod limits;
 mod mesh;
 mod obj;
 mod observers;
+mod openings;
 mod primitives;
 #[cfg(test)]
 mod tests;
+mod winding;
 
 use std::ops::Range;
 use std::path::Path;
@@ -146,9 +149,9 @@ pub struct Scene {
 ///
 /// OBJ files it names are found relative to its folder.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+    let text = std::fs::read_to_string(path).map_err(|reason| SceneError::Read {
         path: path.to_path_buf(),
-        source,
+        reason,
     })?;
     parse(&text, path)
 }

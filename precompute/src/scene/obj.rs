@@ -41,7 +41,7 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         },
         _ => SceneError::Read {
             path: path.clone(),
-            source,
+            reason: source,
         },
     })?;
     // tobj reports a missing MTL without its name: look for it first, so the error can say.
@@ -65,6 +65,26 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         field: o.file.get_ref().clone(),
         message: format!("{what}: {e}"),
     };
+    // tobj says what failed but not where: find the line first, so the error can say.
+    let located = |file: &Path, (line, message): (usize, String)| SceneError::Obj {
+        at: Location {
+            file: file.to_path_buf(),
+            line: Some(line),
+        },
+        field: o.file.get_ref().clone(),
+        message,
+    };
+    if let Some(problem) = obj_problem(&text) {
+        return Err(located(&path, problem));
+    }
+    for mtl in &mtls {
+        if let Some(problem) = std::fs::read_to_string(mtl)
+            .ok()
+            .and_then(|t| mtl_problem(&t))
+        {
+            return Err(located(mtl, problem));
+        }
+    }
     let (models, materials) = tobj::load_obj(&path, &options).map_err(|e| obj_error("OBJ", e))?;
     let materials = materials.map_err(|e| obj_error("MTL", e))?;
 
@@ -174,6 +194,89 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         surfaces,
         materials: infos,
     })
+}
+
+/// The first malformed line of an OBJ file (1-based) and what is wrong with it: a vertex
+/// whose coordinates are not numbers, a face with fewer than 3 corners or a corner index that
+/// is not a vertex of the file.
+fn obj_problem(text: &str) -> Option<(usize, String)> {
+    let total = text
+        .lines()
+        .filter(|l| l.split_whitespace().next() == Some("v"))
+        .count();
+    let mut seen = 0usize;
+    for (n, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("");
+        let mut fields = line.split_whitespace();
+        match fields.next() {
+            Some("v") => {
+                seen += 1;
+                let values: Vec<&str> = fields.collect();
+                if values.len() < 3 {
+                    return Some((
+                        n + 1,
+                        format!("vertex `{}` needs 3 coordinates", line.trim()),
+                    ));
+                }
+                if let Some(bad) = values.iter().find(|v| v.parse::<f64>().is_err()) {
+                    return Some((n + 1, format!("vertex coordinate `{bad}` is not a number")));
+                }
+            }
+            Some("f") => {
+                let corners: Vec<&str> = fields.collect();
+                if corners.len() < 3 {
+                    return Some((
+                        n + 1,
+                        format!("face `{}` needs at least 3 corners", line.trim()),
+                    ));
+                }
+                for c in corners {
+                    let index = c.split('/').next().unwrap_or("");
+                    let valid = match index.parse::<i64>() {
+                        Ok(i) if i > 0 => (i as usize) <= total,
+                        Ok(i) if i < 0 => i.unsigned_abs() as usize <= seen,
+                        _ => false,
+                    };
+                    if !valid {
+                        return Some((
+                            n + 1,
+                            format!(
+                                "face corner `{c}` is not a vertex of the file ({total} \
+                                 vertices; indices start at 1, negative ones count back)"
+                            ),
+                        ));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// The first malformed line of an MTL file (1-based): a colour or scalar that is not numbers.
+fn mtl_problem(text: &str) -> Option<(usize, String)> {
+    for (n, line) in text.lines().enumerate() {
+        let mut fields = line.split('#').next().unwrap_or("").split_whitespace();
+        let Some(key) = fields.next() else { continue };
+        let expected = match key {
+            "Ka" | "Kd" | "Ks" | "Ke" | "Tf" => 3,
+            "Ns" | "Ni" | "d" | "Tr" => 1,
+            _ => continue,
+        };
+        let values: Vec<&str> = fields.collect();
+        if let Some(bad) = values.iter().find(|v| v.parse::<f64>().is_err()) {
+            return Some((n + 1, format!("`{key}` value `{bad}` is not a number")));
+        }
+        // A colour may be one grey value; tobj reads 1 or 3.
+        if values.is_empty() || values.len() > expected {
+            return Some((
+                n + 1,
+                format!("`{key}` takes {expected} number(s), found {}", values.len()),
+            ));
+        }
+    }
+    None
 }
 
 /// The MTL files an OBJ file names, resolved against its folder.

@@ -6,6 +6,7 @@ use toml::Spanned;
 use super::context::{Ctx, RawSurface};
 use super::error::SceneError;
 use super::file::{BlockDef, QuadDef, RoomDef};
+use super::openings::CONTACT_TOLERANCE;
 use crate::geometry::Vec3;
 
 /// The six faces of an axis-aligned box, each wound so that its normal points *into* the box:
@@ -139,5 +140,44 @@ pub(crate) fn quad(ctx: &Ctx, def: &Spanned<QuadDef>) -> Result<RawSurface, Scen
         faces: vec![corners],
         max_edge: ctx.optional_length(q.max_edge.as_ref(), &format!("{what}.max_edge"))?,
         at: ctx.at(&q.corners),
+    })
+}
+
+/// Checks that a block (`lo`..`hi`, metres) stands inside one of the rooms, if the scene has
+/// any: a block reaching through a wall would put faces outside the room, facing away from it.
+pub(crate) fn check_inside_rooms(
+    ctx: &Ctx,
+    def: &Spanned<BlockDef>,
+    lo: Vec3,
+    hi: Vec3,
+    rooms: &[(String, Vec3, Vec3)],
+) -> Result<(), SceneError> {
+    if rooms.is_empty() {
+        return Ok(());
+    }
+    let inside = rooms.iter().any(|(_, rlo, rhi)| {
+        let tol = CONTACT_TOLERANCE * (*rhi - *rlo).length();
+        (0..3).all(|k| lo.axis(k) >= rlo.axis(k) - tol && hi.axis(k) <= rhi.axis(k) + tol)
+    });
+    if inside {
+        return Ok(());
+    }
+    let b = def.get_ref();
+    Err(SceneError::OutOfRange {
+        at: ctx.at(&b.max),
+        field: format!("block `{}`.min/max", b.name),
+        message: format!(
+            "the block is not inside any room ({}): it would reach through a wall, with faces \
+             outside the room facing away from it",
+            rooms
+                .iter()
+                .map(|(n, l, h)| format!(
+                    "`{n}` spans {:?} to {:?}",
+                    (*l / ctx.unit).to_array(),
+                    (*h / ctx.unit).to_array()
+                ))
+                .collect::<Vec<_>>()
+                .join("; ")
+        ),
     })
 }

@@ -1,0 +1,340 @@
+//! Openings: quads set flush into a room's face (a window, a recessed luminaire). The face is
+//! meshed around them, so no part of the wall hides behind an opening and every patch of a
+//! closed room exchanges light with the rest of it.
+//!
+//! Blocks standing on the floor without a bottom face are cut out of the floor the same way:
+//! the floor under a desk sees only the inside of the desk, which is no surface at all.
+//!
+//! The face rectangle is cut into a grid at every opening's edge coordinates; the cells an
+//! opening covers are dropped and every other cell becomes a face of its own, meshed later at
+//! the face's `max_edge`. The cut depends only on the corners, so it is deterministic.
+
+use std::ops::Range;
+
+use toml::Spanned;
+
+use super::context::{Ctx, RawSurface};
+use super::error::SceneError;
+use super::file::RoomDef;
+use crate::geometry::{Polygon, Vec3};
+
+/// How far a point may lie from a room's or block's face and still count as on it (an
+/// opening's corner, a sensor, another opening's edge line), as a fraction of the room's (or
+/// block's) diagonal: 1 µm for a diagonal of 1 m. Coordinates written with a few decimals are
+/// exact to far better than this; anything further off is a placement error, not rounding.
+pub(crate) const CONTACT_TOLERANCE: f64 = 1e-6;
+
+/// An opening placed in a face, in the face's parameters: `s` runs a→b, `t` runs a→d, both
+/// in [0, 1].
+struct Placed {
+    /// Index of the opening in the raw surfaces; `None` for a block's footprint on the floor.
+    surface: Option<usize>,
+    /// Room face (0..6) it lies in.
+    face: usize,
+    s: [f64; 2],
+    t: [f64; 2],
+    /// Per corner, whether its `s` (then `t`) is the upper bound.
+    upper: Vec<(bool, bool)>,
+}
+
+/// A face rectangle a-b-c-d and its parameterisation `a + (b − a) s + (d − a) t`.
+struct Frame {
+    a: Vec3,
+    ab: Vec3,
+    ad: Vec3,
+    /// Inward unit normal of the face.
+    normal: Vec3,
+}
+
+impl Frame {
+    fn new(corners: &[Vec3]) -> Self {
+        Frame {
+            a: corners[0],
+            ab: corners[1] - corners[0],
+            ad: corners[3] - corners[0],
+            normal: Polygon::new(corners.to_vec()).normal(),
+        }
+    }
+
+    fn point(&self, s: f64, t: f64) -> Vec3 {
+        self.a + self.ab * s + self.ad * t
+    }
+
+    fn params(&self, p: Vec3) -> (f64, f64) {
+        let d = p - self.a;
+        (
+            d.dot(self.ab) / self.ab.dot(self.ab),
+            d.dot(self.ad) / self.ad.dot(self.ad),
+        )
+    }
+}
+
+/// Cuts the openings of one room, and the footprints of the blocks standing on its floor
+/// without a bottom face, out of its faces.
+///
+/// `faces` are the room's six surfaces in `raw` (floor, ceiling, wall_xmin, wall_xmax,
+/// wall_ymin, wall_ymax); `flip` says which surfaces will have their winding reversed;
+/// `claimed` marks surfaces already used as an opening (by this or an earlier room);
+/// `standing` are the (name, min, max) of blocks without a bottom face, metres. The openings'
+/// corners are snapped onto the face plane and the shared grid lines.
+pub(crate) fn cut(
+    ctx: &Ctx,
+    def: &Spanned<RoomDef>,
+    faces: Range<usize>,
+    raw: &mut [RawSurface],
+    flip: &[bool],
+    claimed: &mut [bool],
+    standing: &[(String, Vec3, Vec3)],
+) -> Result<(), SceneError> {
+    let r = def.get_ref();
+    let empty = Vec::new();
+    let list = r.openings.as_ref().map_or(&empty, |l| l.get_ref());
+    let field = format!("room `{}`.openings", r.name);
+    let at = r
+        .openings
+        .as_ref()
+        .map_or_else(|| ctx.at(def), |l| ctx.at(l));
+    let invalid = |message: String| SceneError::Invalid {
+        at: at.clone(),
+        field: field.clone(),
+        message,
+    };
+    let frames: Vec<Frame> = faces
+        .clone()
+        .map(|f| Frame::new(&raw[f].faces[0]))
+        .collect();
+    let diagonal = (frames[0].ab + frames[0].ad + frames[2].ad).length();
+    let tol = CONTACT_TOLERANCE * diagonal;
+
+    let mut placed: Vec<Placed> = Vec::new();
+    for name in list {
+        let Some(index) = raw.iter().position(|s| &s.name == name) else {
+            return Err(SceneError::Unknown {
+                at: at.clone(),
+                field: field.clone(),
+                kind: "surface",
+                name: name.clone(),
+            });
+        };
+        if faces.contains(&index) || claimed[index] {
+            return Err(invalid(format!(
+                "`{name}` cannot be an opening here: it is a face of a room or already an opening"
+            )));
+        }
+        claimed[index] = true;
+        let quad = match raw[index].faces.as_slice() {
+            [q] if q.len() == 4 => q.clone(),
+            _ => {
+                return Err(invalid(format!(
+                    "opening `{name}` must be one quadrilateral (a [[quad]]), found {} face(s)",
+                    raw[index].faces.len()
+                )))
+            }
+        };
+        // The face whose plane holds every corner.
+        let distance = |f: &Frame| {
+            quad.iter()
+                .map(|&p| (p - f.a).dot(f.normal).abs())
+                .fold(0.0, f64::max)
+        };
+        let (face, nearest) = frames
+            .iter()
+            .enumerate()
+            .map(|(k, f)| (k, distance(f)))
+            .fold(
+                (0, f64::INFINITY),
+                |best, x| if x.1 < best.1 { x } else { best },
+            );
+        let face_name = &raw[faces.start + face].name;
+        if nearest > tol {
+            return Err(invalid(format!(
+                "opening `{name}` is not in a face of the room: its corners are up to \
+                 {nearest:.3e} m from the plane of the nearest face `{face_name}` (tolerance \
+                 {tol:.1e} m)"
+            )));
+        }
+        let frame = &frames[face];
+        let st: Vec<(f64, f64)> = quad.iter().map(|&p| frame.params(p)).collect();
+        let tol_s = tol / frame.ab.length();
+        let tol_t = tol / frame.ad.length();
+        let s = [
+            st.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
+            st.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
+        ];
+        let t = [
+            st.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
+            st.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
+        ];
+        let mut upper = Vec::with_capacity(4);
+        for &(cs, ct) in &st {
+            let us = (cs - s[1]).abs() <= tol_s;
+            let ut = (ct - t[1]).abs() <= tol_t;
+            let on_s = us || (cs - s[0]).abs() <= tol_s;
+            let on_t = ut || (ct - t[0]).abs() <= tol_t;
+            if !(on_s && on_t) {
+                return Err(invalid(format!(
+                    "opening `{name}` is not a rectangle with sides along the edges of face \
+                     `{face_name}`"
+                )));
+            }
+            upper.push((us, ut));
+        }
+        let mut kinds = upper.clone();
+        kinds.sort_unstable();
+        kinds.dedup();
+        if kinds.len() != 4 || s[1] - s[0] <= tol_s || t[1] - t[0] <= tol_t {
+            return Err(invalid(format!(
+                "opening `{name}` is not a rectangle with sides along the edges of face \
+                 `{face_name}` (or has zero width)"
+            )));
+        }
+        if s[0] < -tol_s || t[0] < -tol_t || s[1] > 1.0 + tol_s || t[1] > 1.0 + tol_t {
+            return Err(invalid(format!(
+                "opening `{name}` reaches outside face `{face_name}`"
+            )));
+        }
+        let mut winding = quad.clone();
+        if flip[index] {
+            winding.reverse();
+        }
+        let facing = Polygon::new(winding).normal().dot(frame.normal);
+        if facing <= 0.0 {
+            return Err(invalid(format!(
+                "opening `{name}` faces out of the room (its normal is opposite to the inward \
+                 normal of face `{face_name}`): list its corners in the opposite order"
+            )));
+        }
+        let s = [s[0].max(0.0), s[1].min(1.0)];
+        let t = [t[0].max(0.0), t[1].min(1.0)];
+        for other in placed.iter().filter(|o| o.face == face) {
+            let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
+            let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
+            if overlap_s > tol_s && overlap_t > tol_t {
+                return Err(invalid(format!(
+                    "openings `{}` and `{name}` overlap in face `{face_name}`",
+                    other.surface.map_or("?", |o| raw[o].name.as_str())
+                )));
+            }
+        }
+        placed.push(Placed {
+            surface: Some(index),
+            face,
+            s,
+            t,
+            upper,
+        });
+    }
+
+    // Blocks standing on the floor without a bottom face hide the floor under them: cut their
+    // footprints out too (they may overlap each other, not an opening).
+    let floor = &frames[0];
+    for (name, lo, hi) in standing {
+        if (lo.z - floor.a.z).abs() > tol {
+            continue;
+        }
+        let (s0, t0) = floor.params(*lo);
+        let (s1, t1) = floor.params(*hi);
+        let s = [s0.min(s1).max(0.0), s0.max(s1).min(1.0)];
+        let t = [t0.min(t1).max(0.0), t0.max(t1).min(1.0)];
+        if s[1] <= s[0] || t[1] <= t[0] {
+            continue;
+        }
+        let (tol_s, tol_t) = (tol / floor.ab.length(), tol / floor.ad.length());
+        for other in placed.iter().filter(|o| o.face == 0) {
+            let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
+            let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
+            if let (Some(o), true) = (other.surface, overlap_s > tol_s && overlap_t > tol_t) {
+                return Err(invalid(format!(
+                    "opening `{}` lies under block `{name}`, which stands on the floor",
+                    raw[o].name
+                )));
+            }
+        }
+        placed.push(Placed {
+            surface: None,
+            face: 0,
+            s,
+            t,
+            upper: Vec::new(),
+        });
+    }
+
+    for (k, frame) in frames.iter().enumerate() {
+        let mine: Vec<&mut Placed> = placed.iter_mut().filter(|p| p.face == k).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let face = faces.start + k;
+        let tol_s = tol / frame.ab.length();
+        let tol_t = tol / frame.ad.length();
+        let grid_s = grid(mine.iter().flat_map(|p| p.s), tol_s);
+        let grid_t = grid(mine.iter().flat_map(|p| p.t), tol_t);
+        let mut mine = mine;
+        for p in mine.iter_mut() {
+            p.s = p.s.map(|x| snap(&grid_s, x));
+            p.t = p.t.map(|x| snap(&grid_t, x));
+            if let Some(surface) = p.surface {
+                let corners = p
+                    .upper
+                    .iter()
+                    .map(|&(us, ut)| frame.point(p.s[us as usize], p.t[ut as usize]))
+                    .collect();
+                raw[surface].faces = vec![corners];
+            }
+        }
+        let mut cells = Vec::new();
+        for j in 0..grid_t.len() - 1 {
+            for i in 0..grid_s.len() - 1 {
+                let (s0, s1, t0, t1) = (grid_s[i], grid_s[i + 1], grid_t[j], grid_t[j + 1]);
+                let (sm, tm) = (0.5 * (s0 + s1), 0.5 * (t0 + t1));
+                let covered = mine
+                    .iter()
+                    .any(|p| p.s[0] < sm && sm < p.s[1] && p.t[0] < tm && tm < p.t[1]);
+                if !covered {
+                    cells.push(vec![
+                        frame.point(s0, t0),
+                        frame.point(s1, t0),
+                        frame.point(s1, t1),
+                        frame.point(s0, t1),
+                    ]);
+                }
+            }
+        }
+        if cells.is_empty() {
+            return Err(invalid(format!(
+                "the openings (or blocks standing on it) cover the whole face `{}`; leave them \
+                 out and give the face their material in [surfaces] instead",
+                raw[face].name
+            )));
+        }
+        raw[face].faces = cells;
+    }
+    Ok(())
+}
+
+/// The sorted cut positions in [0, 1]: both ends and every opening edge, positions closer
+/// than `tol` merged into the first.
+fn grid(edges: impl Iterator<Item = f64>, tol: f64) -> Vec<f64> {
+    let mut all: Vec<f64> = edges.chain([0.0, 1.0]).collect();
+    all.sort_by(f64::total_cmp);
+    let mut out: Vec<f64> = Vec::with_capacity(all.len());
+    for x in all {
+        match out.last() {
+            Some(&last) if x - last <= tol => {}
+            _ => out.push(x),
+        }
+    }
+    // The far end is exactly 1 even if an opening edge within `tol` of it came first.
+    if let Some(last) = out.last_mut() {
+        *last = 1.0;
+    }
+    out
+}
+
+/// The grid position nearest to `x`.
+fn snap(grid: &[f64], x: f64) -> f64 {
+    grid.iter()
+        .copied()
+        .min_by(|a, b| (a - x).abs().total_cmp(&(b - x).abs()))
+        .unwrap_or(x)
+}

@@ -1,0 +1,358 @@
+//! The `eigenrad` command and its files, run as a user runs it: bad `--level` arguments,
+//! unreadable bases, failed and interrupted builds (the previous basis survives, no temporary
+//! file is left that could pass for a basis), and open scenes.
+//!
+//! The binary is built once per test run (`cargo build -p eigenrad-precompute --bin
+//! eigenrad`, a no-op when it is up to date) next to this test's own profile folder.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+use std::time::Duration;
+
+/// The `eigenrad` binary of this test's profile, built if needed.
+fn eigenrad() -> &'static Path {
+    static BINARY: OnceLock<PathBuf> = OnceLock::new();
+    BINARY.get_or_init(|| {
+        // target/<profile>/deps/cli_files-<hash> → target/<profile>/eigenrad
+        let exe = std::env::current_exe().expect("test executable path");
+        let profile_dir = exe
+            .parent()
+            .and_then(Path::parent)
+            .expect("target/<profile>/deps")
+            .to_path_buf();
+        let mut build = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+        build
+            .args(["build", "-p", "eigenrad-precompute", "--bin", "eigenrad"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"));
+        if profile_dir.file_name().is_some_and(|n| n == "release") {
+            build.arg("--release");
+        }
+        let status = build.status().expect("run cargo build");
+        assert!(status.success(), "cargo build of eigenrad failed");
+        let binary = profile_dir.join(format!("eigenrad{}", std::env::consts::EXE_SUFFIX));
+        assert!(binary.is_file(), "no binary at {}", binary.display());
+        binary
+    })
+}
+
+/// A fresh folder for one test.
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("eigenrad-cli-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir
+}
+
+/// A closed 2 m cube with one flush ceiling luminaire (channel `lamp`) and a floor sensor;
+/// `max_edge` in metres sets its size (1 m: 28 patches).
+fn scene(max_edge: f64) -> String {
+    format!(
+        r#"[scene]
+name = "cube"
+bands = "photopic"
+unit = "m"
+max_edge = {max_edge}
+
+[materials]
+wall = {{ reflectance = 0.5 }}
+lamp = {{ reflectance = 0.0 }}
+
+[[room]]
+name = "room"
+min = [0, 0, 0]
+max = [2, 2, 2]
+material = "wall"
+openings = ["lamp"]
+
+[[quad]]
+name = "lamp"
+material = "lamp"
+corners = [[0.7, 0.7, 2], [0.7, 1.3, 2], [1.3, 1.3, 2], [1.3, 0.7, 2]]
+
+[[channel]]
+name = "lamp"
+surfaces = ["lamp"]
+flux = 1000
+
+[[sensor]]
+name = "floor"
+position = [1, 1, 0]
+normal = [0, 0, 1]
+"#
+    )
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(eigenrad())
+        .args(args)
+        .output()
+        .expect("run eigenrad")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Builds `scene` (text) in `dir` into `out`; returns the command's output.
+fn build(dir: &Path, scene_text: &str, out: &str, extra: &[&str]) -> Output {
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, scene_text).expect("write scene");
+    let out = dir.join(out);
+    let mut args = vec![
+        "build",
+        scene.to_str().expect("utf-8 path"),
+        "-o",
+        out.to_str().expect("utf-8 path"),
+        "--modes",
+        "4",
+    ];
+    args.extend_from_slice(extra);
+    run(&args)
+}
+
+/// A good basis of the small cube, built in `dir` as `good.basis`.
+fn good_basis(dir: &Path) -> PathBuf {
+    let o = build(dir, &scene(1.0), "good.basis", &[]);
+    assert!(o.status.success(), "build failed: {}", stderr(&o));
+    dir.join("good.basis")
+}
+
+/// The names of the files in `dir`, sorted.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("list folder")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn cli_level_naming_an_unknown_channel_or_not_a_number_fails_and_says_so() {
+    let dir = scratch("levels");
+    let basis = good_basis(&dir);
+    let basis = basis.to_str().expect("utf-8 path");
+    let scene = dir.join("scene.toml");
+    let scene = scene.to_str().expect("utf-8 path");
+
+    let ok = run(&["eval", basis, "--level", "lamp=0.5"]);
+    assert!(ok.status.success(), "eval failed: {}", stderr(&ok));
+
+    for command in ["eval", "solve"] {
+        let target = if command == "eval" { basis } else { scene };
+        let o = run(&[command, target, "--level", "skylight=0.5"]);
+        assert!(!o.status.success(), "{command}: unknown channel accepted");
+        let e = stderr(&o);
+        assert!(e.contains("skylight"), "{command}: channel not named: {e}");
+        assert!(e.contains("no channel named"), "{command}: {e}");
+        assert!(e.contains("lamp"), "{command}: channels not listed: {e}");
+
+        let o = run(&[command, target, "--level", "lamp=bright"]);
+        assert!(!o.status.success(), "{command}: non-number accepted");
+        let e = stderr(&o);
+        assert!(e.contains("`bright` is not a number"), "{command}: {e}");
+
+        let o = run(&[command, target, "--level", "lamp"]);
+        assert!(!o.status.success(), "{command}: missing value accepted");
+        assert!(
+            stderr(&o).contains("NAME=VALUE"),
+            "{command}: {}",
+            stderr(&o)
+        );
+    }
+}
+
+#[test]
+fn cli_unreadable_basis_names_the_file_and_the_fault() {
+    let dir = scratch("unreadable");
+    let good = std::fs::read(good_basis(&dir)).expect("read basis");
+
+    let garbage = dir.join("garbage.basis");
+    std::fs::write(&garbage, b"this is not a basis, just some bytes.....").expect("write");
+    let truncated = dir.join("truncated.basis");
+    std::fs::write(&truncated, &good[..good.len() / 2]).expect("write");
+    // Header bytes 8..10 are the format version, little-endian (docs/format.md).
+    let mut v2 = good.clone();
+    v2[8..10].copy_from_slice(&2u16.to_le_bytes());
+    let version2 = dir.join("version2.basis");
+    std::fs::write(&version2, &v2).expect("write");
+    let missing = dir.join("missing.basis");
+
+    for (path, expected) in [
+        (&garbage, "magic"),
+        (&truncated, "truncated"),
+        (&version2, "version 2 is not supported"),
+        (&missing, "No such file"),
+    ] {
+        for command in ["eval", "inspect"] {
+            let o = run(&[command, path.to_str().expect("utf-8 path")]);
+            assert!(!o.status.success(), "{command} accepted {}", path.display());
+            let e = stderr(&o);
+            let name = path.file_name().and_then(|n| n.to_str()).expect("name");
+            assert!(e.contains(name), "{command}: file not named: {e}");
+            assert!(e.contains(expected), "{command}: `{expected}` missing: {e}");
+        }
+    }
+}
+
+#[test]
+fn cli_failed_build_leaves_the_previous_basis_untouched() {
+    let dir = scratch("failed-build");
+    let basis = good_basis(&dir);
+    let before = std::fs::read(&basis).expect("read basis");
+    let broken = scene(1.0).replace("reflectance = 0.5", "reflectance = 1.5");
+    let o = build(&dir, &broken, "good.basis", &[]);
+    assert!(!o.status.success(), "broken scene built");
+    let e = stderr(&o);
+    assert!(
+        e.contains("scene.toml") && e.contains("materials.wall.reflectance"),
+        "{e}"
+    );
+    assert_eq!(std::fs::read(&basis).expect("read basis"), before);
+    assert_eq!(listing(&dir), ["good.basis", "scene.toml"]);
+}
+
+#[test]
+fn cli_killed_build_leaves_no_partial_basis_and_no_stray_file() {
+    let dir = scratch("killed-build");
+    let basis = good_basis(&dir);
+    let before = std::fs::read(&basis).expect("read basis");
+    // A finer mesh of the same cube (621 patches): about 15 s of form factors and eigensolve
+    // in the dev profile, killed after 0.7 s.
+    let scene_path = dir.join("scene.toml");
+    std::fs::write(&scene_path, scene(0.2)).expect("write scene");
+    let mut child = Command::new(eigenrad())
+        .args([
+            "build",
+            scene_path.to_str().expect("utf-8 path"),
+            "-o",
+            basis.to_str().expect("utf-8 path"),
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("start build");
+    std::thread::sleep(Duration::from_millis(700));
+    let still_running = child.try_wait().expect("poll build").is_none();
+    child.kill().expect("SIGKILL the build"); // Child::kill is SIGKILL on Unix
+    let _ = child.wait();
+    assert!(
+        still_running,
+        "the build finished before it could be interrupted; make the scene larger"
+    );
+    assert_eq!(std::fs::read(&basis).expect("read basis"), before);
+    assert_eq!(listing(&dir), ["good.basis", "scene.toml"]);
+}
+
+#[test]
+fn cli_build_removes_temporary_files_of_dead_processes_only() {
+    let dir = scratch("stale-temp");
+    // A process that has exited: its id names a stale temporary file.
+    let mut dead = Command::new(eigenrad())
+        .arg("--version")
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .expect("start");
+    let dead_pid = dead.id();
+    dead.wait().expect("wait");
+    let stale = dir.join(format!(".good.basis.{dead_pid}.tmp"));
+    std::fs::write(&stale, b"half a basis").expect("write");
+    // This test process is alive: its file may be in use and is kept.
+    let live = dir.join(format!(".good.basis.{}.tmp", std::process::id()));
+    std::fs::write(&live, b"in use").expect("write");
+    good_basis(&dir);
+    let names = listing(&dir);
+    assert!(
+        !names.contains(&format!(".good.basis.{dead_pid}.tmp")),
+        "{names:?}"
+    );
+    assert!(
+        names.contains(&format!(".good.basis.{}.tmp", std::process::id())),
+        "{names:?}"
+    );
+    assert!(names.contains(&"good.basis".to_string()), "{names:?}");
+}
+
+/// The `form_factors` part of a `build --json` report.
+fn form_factors(o: &Output) -> serde_json::Value {
+    assert!(o.status.success(), "build failed: {}", stderr(o));
+    let report: serde_json::Value =
+        serde_json::from_slice(&o.stdout).expect("build --json prints one JSON document");
+    report["form_factors"].clone()
+}
+
+/// How far a form-factor row sum of a closed room may be from 1 (the summation rule): the
+/// quadrature's error between adjacent patches of a coarse mesh, 2e-3 measured on this cube,
+/// with margin.
+const ROW_SUM_TOLERANCE: f64 = 1e-2;
+
+#[test]
+fn cli_open_scene_builds_and_reports_open_and_flush_openings_keep_a_room_closed() {
+    let dir = scratch("open");
+    // The cube with a flush opening: every patch sees the whole room, so every row sums to 1.
+    let ff = form_factors(&build(&dir, &scene(1.0), "closed.basis", &["--json"]));
+    let (min, max) = (
+        ff["row_sum_min"].as_f64().expect("row_sum_min"),
+        ff["row_sum_max"].as_f64().expect("row_sum_max"),
+    );
+    assert!(
+        (min - 1.0).abs() <= ROW_SUM_TOLERANCE && (max - 1.0).abs() <= ROW_SUM_TOLERANCE,
+        "row sums {min} .. {max}"
+    );
+    // The same luminaire floating 2 cm below the ceiling instead: the ceiling patches behind
+    // it see its back, and their rows fall short by the part it hides.
+    let floating = scene(1.0)
+        .replace("openings = [\"lamp\"]\n", "")
+        .replace("0.7, 2]", "0.7, 1.98]")
+        .replace("1.3, 2]", "1.3, 1.98]");
+    let ff = form_factors(&build(&dir, &floating, "floating.basis", &["--json"]));
+    let hidden = ff["row_sum_min"].as_f64().expect("row_sum_min");
+    assert!(
+        hidden < 1.0 - 5.0 * ROW_SUM_TOLERANCE,
+        "row sum behind the luminaire {hidden}"
+    );
+    // The same cube built from quads without a ceiling: light leaves through the top.
+    let open = r#"[scene]
+name = "open-box"
+bands = "photopic"
+unit = "m"
+max_edge = 1.0
+
+[materials]
+wall = { reflectance = 0.5 }
+
+[[quad]]
+name = "floor"
+material = "wall"
+corners = [[0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0]]
+
+[[quad]]
+name = "wall_xmin"
+material = "wall"
+corners = [[0, 0, 0], [0, 2, 0], [0, 2, 2], [0, 0, 2]]
+
+[[quad]]
+name = "wall_xmax"
+material = "wall"
+corners = [[2, 0, 0], [2, 0, 2], [2, 2, 2], [2, 2, 0]]
+
+[[quad]]
+name = "wall_ymin"
+material = "wall"
+corners = [[0, 0, 0], [0, 0, 2], [2, 0, 2], [2, 0, 0]]
+
+[[quad]]
+name = "wall_ymax"
+material = "wall"
+corners = [[0, 2, 0], [2, 2, 0], [2, 2, 2], [0, 2, 2]]
+
+[[channel]]
+name = "floor"
+surfaces = ["floor"]
+exitance = 100
+"#;
+    let ff = form_factors(&build(&dir, open, "open.basis", &["--json"]));
+    assert_eq!(ff["closed"].as_bool(), Some(false), "{ff}");
+    assert!(dir.join("open.basis").is_file());
+}
