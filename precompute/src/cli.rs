@@ -184,9 +184,9 @@ pub fn solve(scene_path: &Path, level_args: &[String], patches: bool) -> Result<
 }
 
 fn basis_error(path: &Path) -> impl Fn(eigenrad_runtime::Error) -> Error + '_ {
-    move |source| Error::Basis {
+    move |reason| Error::Basis {
         path: path.to_path_buf(),
-        source,
+        reason,
     }
 }
 
@@ -479,11 +479,18 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
     let f = &r.form_factors;
     let _ = writeln!(
         s,
-        "form factors: reciprocity mismatch before symmetrising {:.2e}; row sums {:.5} .. {:.5} ({})",
+        "form factors: reciprocity mismatch before symmetrising {:.2e}; row sums {:.5} .. {:.5}; {}",
         f.reciprocity_mismatch,
         f.row_sum_min,
         f.row_sum_max,
-        if f.closed { "closed scene" } else { "open scene: the deficit leaves through openings" }
+        if f.closed {
+            "closed scene".to_owned()
+        } else {
+            format!(
+                "open scene: {:.2} % of the light leaving the surfaces escapes through openings",
+                100.0 * f.escaping
+            )
+        }
     );
     let _ = writeln!(
         s,

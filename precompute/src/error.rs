@@ -16,23 +16,23 @@ pub enum Error {
     #[error("eigensolver: {0}")]
     Eigen(#[from] crate::eigen::EigenError),
     /// A basis file is unreadable or invalid.
-    #[error("basis {}: {source}", path.display())]
+    #[error("basis {}: {reason}", path.display())]
     Basis {
         /// The basis file.
         path: PathBuf,
         /// What the runtime's decoder or evaluator said.
-        source: eigenrad_runtime::Error,
+        reason: eigenrad_runtime::Error,
     },
     /// The runtime refused a request while evaluating.
     #[error("runtime: {0}")]
     Runtime(#[from] eigenrad_runtime::Error),
     /// Reading or writing a file failed.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {reason}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
         /// The operating system's error.
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     /// A `--level NAME=VALUE` argument is wrong.
     #[error("--level {argument}: {reason}")]

@@ -139,10 +139,10 @@ fn main() -> ExitCode {
 }
 
 fn read(path: &Path) -> anyhow::Result<Vec<u8>> {
-    std::fs::read(path).map_err(|source| {
+    std::fs::read(path).map_err(|reason| {
         Error::Io {
             path: path.to_path_buf(),
-            source,
+            reason,
         }
         .into()
     })
