@@ -20,7 +20,7 @@ mod tests;
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par, Side};
-use krylov::{lanczos, KrylovSettings, ScaledOp};
+use krylov::{block_lanczos, KrylovSettings, ScaledOp};
 
 /// Which eigenproblem the basis diagonalises (math.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -402,7 +402,7 @@ fn split_partial(
     }
     let op = ScaledOp::new(g, r, s);
     let settings = krylov_settings();
-    let pairs = lanczos(&op, p, split_key, settings, par()).map_err(|residual| {
+    let pairs = block_lanczos(&op, p, split_key, settings, par()).map_err(|residual| {
         EigenError::NoConvergence {
             wanted: p,
             residual,
