@@ -316,22 +316,6 @@ impl Occluders {
         true
     }
 
-    /// Conservative test: can any occluder (other than those in `ignore`) cut a segment from a
-    /// point of polygon `a` to a point of polygon `b`? Each polygon is given by its corners and
-    /// the unit normal of the side that emits or receives (a point sensor is a one-corner
-    /// polygon). False means every such segment is unobstructed, so no ray is needed.
-    #[cfg(test)]
-    pub(crate) fn may_block(
-        &self,
-        a: &[Vec3],
-        a_normal: Vec3,
-        b: &[Vec3],
-        b_normal: Vec3,
-        ignore: &[usize],
-    ) -> bool {
-        !self.shaft(a, a_normal, b, b_normal, ignore).is_clear()
-    }
-
     /// The occluders (other than those in `ignore`) that may cut a segment from a point of
     /// polygon `a` to a point of polygon `b` (corners and the unit normal of the side that
     /// emits or receives; a point sensor is a one-corner polygon): those whose box meets the
