@@ -156,7 +156,11 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let n = scene.patches.len();
     // G (n×n f64) is the big allocation, plus the LU of the exact reference for small n
     // (above `EXACT_LU_MAX` the reference uses conjugate gradients on G itself).
-    let copies = if n <= crate::solve::EXACT_LU_MAX { 2.0 } else { 1.0 };
+    let copies = if n <= crate::solve::EXACT_LU_MAX {
+        2.0
+    } else {
+        1.0
+    };
     let needed = copies * (n as f64).powi(2) * 8.0;
     let available = 0.8 * total_memory_bytes();
     if needed > available {

@@ -91,11 +91,7 @@ impl<'g> ExactSolver<'g> {
     }
 
     /// LU up to [`EXACT_LU_MAX`] patches, conjugate gradients above.
-    pub fn auto(
-        g: MatRef<'g, f64>,
-        area: &[f64],
-        reflectance: &[f64],
-    ) -> Result<Self, EigenError> {
+    pub fn auto(g: MatRef<'g, f64>, area: &[f64], reflectance: &[f64]) -> Result<Self, EigenError> {
         if g.nrows() <= EXACT_LU_MAX {
             Self::new(g, area, reflectance)
         } else {
@@ -195,14 +191,18 @@ fn cg(g: MatRef<'_, f64>, area: &[f64], rho: &[f64], m0: MatRef<'_, f64>) -> Mat
             }
         }
     };
-    let dot = |a: &Mat<f64>, b: &Mat<f64>, j: usize| -> f64 { (0..n).map(|i| a[(i, j)] * b[(i, j)]).sum() };
+    let dot = |a: &Mat<f64>, b: &Mat<f64>, j: usize| -> f64 {
+        (0..n).map(|i| a[(i, j)] * b[(i, j)]).sum()
+    };
     let mut x = Mat::<f64>::zeros(n, c);
     let mut r = rhs.clone();
     let mut z = Mat::<f64>::from_fn(n, c, |i, j| r[(i, j)] / diag[i]);
     let mut p = z.clone();
     let mut q = Mat::<f64>::zeros(n, c);
     let mut rz: Vec<f64> = (0..c).map(|j| dot(&r, &z, j)).collect();
-    let target: Vec<f64> = (0..c).map(|j| CG_TOLERANCE * dot(&rhs, &rhs, j).sqrt()).collect();
+    let target: Vec<f64> = (0..c)
+        .map(|j| CG_TOLERANCE * dot(&rhs, &rhs, j).sqrt())
+        .collect();
     for _ in 0..CG_MAX_ITERATIONS {
         if (0..c).all(|j| dot(&r, &r, j).sqrt() <= target[j]) {
             break;
@@ -320,7 +320,13 @@ mod tests {
         let n = 60;
         let (g, area) = closed_room(n);
         let rho: Vec<f64> = (0..n)
-            .map(|i| if i % 9 == 0 { 0.0 } else { 0.05 + 0.85 * ((i * 13 % 17) as f64) / 17.0 })
+            .map(|i| {
+                if i % 9 == 0 {
+                    0.0
+                } else {
+                    0.05 + 0.85 * ((i * 13 % 17) as f64) / 17.0
+                }
+            })
             .collect();
         let lu = ExactSolver::new(g.as_ref(), &area, &rho).expect("lu");
         let cg = ExactSolver::iterative(g.as_ref(), &area, &rho).expect("cg");

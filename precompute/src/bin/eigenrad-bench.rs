@@ -210,6 +210,9 @@ fn output_error(a: &[f64], b: &[f64]) -> f64 {
     }
 }
 
+/// Patch exitances and sensor/zone readings for a level vector.
+type Solution<'s> = dyn FnMut(&[f64]) -> (Vec<f64>, Vec<f64>) + 's;
+
 /// One row of the update table.
 struct Row {
     method: String,
@@ -323,10 +326,16 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
     let scene = prepared.scene;
     let n = scene.patches.len();
     if scene.bands.count() != 1 {
-        bail!("{}: the update benchmark takes one-band scenes", path.display());
+        bail!(
+            "{}: the update benchmark takes one-band scenes",
+            path.display()
+        );
     }
     if n > PATCHES {
-        bail!("{}: {n} patches, the benchmark holds {PATCHES}", path.display());
+        bail!(
+            "{}: {n} patches, the benchmark holds {PATCHES}",
+            path.display()
+        );
     }
     let p_max = *MODE_COUNTS.iter().max().unwrap_or(&128);
     let model = Model::new(
@@ -368,7 +377,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             (x, o)
         })
         .collect();
-    let errors = |solve: &mut dyn FnMut(&[f64]) -> (Vec<f64>, Vec<f64>)| -> (f64, f64) {
+    let errors = |solve: &mut Solution<'_>| -> (f64, f64) {
         let (mut ep, mut eo) = (0.0f64, 0.0f64);
         for (l, (x, o)) in cases.iter().zip(&truth) {
             let (gx, go) = solve(l);
@@ -390,7 +399,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             let zones = basis.zone_count();
             let mut out = vec![[0.0f32; 1]; n];
             let mut k = 0usize;
-            let mut next = |k: &mut usize| -> Vec<f32> {
+            let next = |k: &mut usize| -> Vec<f32> {
                 *k += 1;
                 levels(*k, m).iter().map(|&x| x as f32).collect()
             };
@@ -421,10 +430,16 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
                 if eval.set_channel_levels(&lf).is_ok() {
                     let _ = eval.exitance_all(&mut o);
                     for s in 0..sensors {
-                        readings.push(eval.sensor_irradiance(s).map_or(f64::NAN, |v| f64::from(v[0])));
+                        readings.push(
+                            eval.sensor_irradiance(s)
+                                .map_or(f64::NAN, |v| f64::from(v[0])),
+                        );
                     }
                     for z in 0..zones {
-                        readings.push(eval.zone_irradiance(z).map_or(f64::NAN, |v| f64::from(v[0])));
+                        readings.push(
+                            eval.zone_irradiance(z)
+                                .map_or(f64::NAN, |v| f64::from(v[0])),
+                        );
                     }
                 }
                 (o.iter().map(|v| f64::from(v[0])).collect(), readings)
@@ -654,15 +669,19 @@ fn cpu_seconds() -> f64 {
     // Fields after the command name (which is in parentheses): utime is field 14, stime 15.
     let rest = stat.rsplit(')').next().unwrap_or("");
     let f: Vec<&str> = rest.split_whitespace().collect();
-    let ticks = |k: usize| f.get(k).and_then(|v| v.parse::<f64>().ok()).unwrap_or(f64::NAN);
+    let ticks = |k: usize| {
+        f.get(k)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
     // rest starts at field 3; utime (14) is index 11, stime (15) index 12; 100 ticks/s.
     (ticks(11) + ticks(12)) / 100.0
 }
 
 fn scale_one(path: &Path) -> Result<()> {
     let start = Instant::now();
-    let scene = eigenrad_precompute::scene::load(path)
-        .with_context(|| format!("{}", path.display()))?;
+    let scene =
+        eigenrad_precompute::scene::load(path).with_context(|| format!("{}", path.display()))?;
     let t = Instant::now();
     let occ = eigenrad_precompute::formfactor::Occluders::new(&scene.patches);
     let bvh_s = t.elapsed().as_secs_f64();
@@ -694,10 +713,9 @@ fn scale_one(path: &Path) -> Result<()> {
         cpu_seconds(),
         peak_rss() / 1e6
     );
-    let worst = report
-        .accuracy
-        .iter()
-        .fold((0.0f64, 0.0f64), |w, c| (w.0.max(c.patch_error), w.1.max(c.output_error)));
+    let worst = report.accuracy.iter().fold((0.0f64, 0.0f64), |w, c| {
+        (w.0.max(c.patch_error), w.1.max(c.output_error))
+    });
     eprintln!(
         "  {}: {} modes, row sums {:.4}..{:.4}, reciprocity {:.1e}, worst patch error {:.1e}, worst sensor/zone error {:.1e}",
         path.display(),
@@ -717,11 +735,25 @@ fn eigen_compare(path: &Path, dense_max: usize) -> Result<()> {
     let nr = rho.iter().filter(|&&r| r > 0.0).count();
     let g = prepared.g.as_ref();
     let t = Instant::now();
-    let partial = eigen::modes(g, &prepared.area, &rho, Formulation::Split, REFERENCE_MODES, Solver::Partial)?;
+    let partial = eigen::modes(
+        g,
+        &prepared.area,
+        &rho,
+        Formulation::Split,
+        REFERENCE_MODES,
+        Solver::Partial,
+    )?;
     let partial_s = t.elapsed().as_secs_f64();
     let (dense_s, diff) = if nr <= dense_max {
         let t = Instant::now();
-        let dense = eigen::modes(g, &prepared.area, &rho, Formulation::Split, REFERENCE_MODES, Solver::Dense)?;
+        let dense = eigen::modes(
+            g,
+            &prepared.area,
+            &rho,
+            Formulation::Split,
+            REFERENCE_MODES,
+            Solver::Dense,
+        )?;
         let s = t.elapsed().as_secs_f64();
         let d = dense
             .values

@@ -471,7 +471,14 @@ fn orthonormalise(v: MatRef<'_, f64>, mut x: MatMut<'_, f64>, seed: &mut u64, pa
     let mut proj = Mat::<f64>::zeros(v.ncols(), width);
     for _ in 0..2 {
         if v.ncols() > 0 {
-            matmul(proj.as_mut(), Accum::Replace, v.transpose(), x.rb(), 1.0, par);
+            matmul(
+                proj.as_mut(),
+                Accum::Replace,
+                v.transpose(),
+                x.rb(),
+                1.0,
+                par,
+            );
             matmul(x.rb_mut(), Accum::Add, v, proj.as_ref(), -1.0, par);
         }
     }
@@ -512,7 +519,14 @@ fn orthonormalise(v: MatRef<'_, f64>, mut x: MatMut<'_, f64>, seed: &mut u64, pa
                 let mut pc = Mat::<f64>::zeros(v.ncols(), 1);
                 for _ in 0..2 {
                     let xc = x.rb().get(.., c..c + 1).to_owned();
-                    matmul(pc.as_mut(), Accum::Replace, v.transpose(), xc.as_ref(), 1.0, par);
+                    matmul(
+                        pc.as_mut(),
+                        Accum::Replace,
+                        v.transpose(),
+                        xc.as_ref(),
+                        1.0,
+                        par,
+                    );
                     let mut xcm = x.rb_mut().get_mut(.., c..c + 1);
                     matmul(xcm.rb_mut(), Accum::Add, v, pc.as_ref(), -1.0, par);
                 }

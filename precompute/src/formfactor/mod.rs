@@ -314,7 +314,10 @@ impl Context<'_> {
         });
         // Other polygons, or only a grazing sliver in view: one ray to the centroid.
         fraction.unwrap_or_else(|| {
-            if self.occluders.visible_in(shaft, v.point, tgt.centroid, ignore) {
+            if self
+                .occluders
+                .visible_in(shaft, v.point, tgt.centroid, ignore)
+            {
                 1.0
             } else {
                 0.0
