@@ -20,7 +20,7 @@ mod tests;
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par, Side};
-use krylov::{lanczos, KrylovSettings, ScaledOp};
+use krylov::{block_lanczos, KrylovSettings, ScaledOp};
 
 /// Which eigenproblem the basis diagonalises (math.md).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -49,7 +49,8 @@ pub enum Solver {
 pub enum Method {
     /// faer's dense self-adjoint eigendecomposition.
     Dense,
-    /// Our thick-restart Lanczos with full reorthogonalisation (bounded restarts).
+    /// Our thick-restart block Lanczos with full reorthogonalisation (bounded restarts), the
+    /// operator applied to 16 vectors at once.
     Lanczos,
 }
 
@@ -258,7 +259,8 @@ pub fn split_weight(mu: f64) -> f64 {
 /// the *smallest* eigenvalues of `S`, which need a shift-invert the project has no use for
 /// beyond comparison.
 ///
-/// Split, partial: thick-restart Lanczos (module `krylov`) selects the Ritz pairs by `|c|`
+/// Split, partial: thick-restart block Lanczos (module `krylov`, `G` applied to a block of
+/// vectors at once) selects the Ritz pairs by `|c|`
 /// directly; Lanczos converges the ends of the spectrum first, where `|c|` is largest. Not
 /// faer's Krylov–Schur: it hangs in faer 0.24 (issue 262; see `krylov`). Every returned pair
 /// has an explicit residual `‖H u − μ u‖₂ ≤` [`RESIDUAL_TOLERANCE`], else
@@ -388,7 +390,7 @@ fn split_key(mu: f64) -> f64 {
     split_weight(mu).abs()
 }
 
-/// Split modes from the partial solver (Lanczos with full reorthogonalisation, see
+/// Split modes from the partial solver (block Lanczos with full reorthogonalisation, see
 /// [`krylov`]); `Ok(None)` when the problem is too small for a Krylov method to pay off.
 fn split_partial(
     g: MatRef<'_, f64>,
@@ -402,7 +404,7 @@ fn split_partial(
     }
     let op = ScaledOp::new(g, r, s);
     let settings = krylov_settings();
-    let pairs = lanczos(&op, p, split_key, settings, par()).map_err(|residual| {
+    let pairs = block_lanczos(&op, p, split_key, settings, par()).map_err(|residual| {
         EigenError::NoConvergence {
             wanted: p,
             residual,

@@ -277,9 +277,36 @@ impl Model {
             .collect()
     }
 
-    /// The exact solver of band `b` (an LU factorisation of `I − R F`).
-    pub fn exact_solver(&self, b: usize) -> Result<ExactSolver, eigen::EigenError> {
-        ExactSolver::new(self.g.as_ref(), &self.area, &self.bands[b].reflectance)
+    /// The exact solver of band `b`: an LU factorisation of `I − R F` up to
+    /// [`crate::solve::EXACT_LU_MAX`] patches, conjugate gradients on `G` above (no n×n copy).
+    pub fn exact_solver(&self, b: usize) -> Result<ExactSolver<'_>, eigen::EigenError> {
+        ExactSolver::auto(self.g.as_ref(), &self.area, &self.bands[b].reflectance)
+    }
+
+    /// [`Model::exact`] for several `(levels, extra)` cases at once (one solve with as many
+    /// right-hand sides: one pass over `G` per iteration for all of them).
+    pub fn exact_many(
+        &self,
+        solver: &ExactSolver,
+        b: usize,
+        cases: &[(&[f64], &[f64])],
+    ) -> Vec<Vec<f64>> {
+        let n = self.patch_count();
+        let mut m0 = Mat::<f64>::zeros(n, cases.len());
+        for (k, (levels, extra)) in cases.iter().enumerate() {
+            for i in 0..n {
+                m0[(i, k)] = extra.get(i).copied().unwrap_or(0.0);
+            }
+            for (c, &l) in levels.iter().enumerate() {
+                for (i, e) in self.emission[c][b].iter().enumerate() {
+                    m0[(i, k)] += l * e;
+                }
+            }
+        }
+        let m = solver.solve_many(m0.as_ref());
+        (0..cases.len())
+            .map(|k| (0..n).map(|i| m[(i, k)]).collect())
+            .collect()
     }
 }
 

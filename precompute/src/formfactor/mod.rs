@@ -29,6 +29,7 @@ mod tests;
 mod visibility;
 
 pub use bvh::Occluders;
+use bvh::Shaft;
 
 use crate::geometry::{Patch, Vec3};
 use faer::Mat;
@@ -232,9 +233,8 @@ impl Context<'_> {
         if !any_in_front(tv, src.normal, s0, tol) || !any_in_front(sv, tgt.normal, t0, tol) {
             return 0.0;
         }
-        let occluded = self
-            .occluders
-            .may_block(sv, src.normal, tv, tgt.normal, ignore);
+        let shaft = self.occluders.shaft(sv, src.normal, tv, tgt.normal, ignore);
+        let occluded = !shaft.is_clear();
         let mut order = self.source_order(src, sources.bounds[i], j);
         if occluded && order <= self.opts.gauss_order {
             // One rule for every pair a blocker may cut (touching pairs keep their own).
@@ -250,7 +250,7 @@ impl Context<'_> {
             let k = self.kernel(viewer, j);
             if k > 0.0 {
                 let v = if occluded {
-                    self.visible_fraction(viewer, j, ignore)
+                    self.visible_fraction(viewer, j, &shaft, ignore)
                 } else {
                     1.0
                 };
@@ -295,11 +295,12 @@ impl Context<'_> {
 
     /// Fraction of target `j`'s contribution seen from the viewer that is not blocked, by rays
     /// refined at silhouettes ([`visibility`]).
-    fn visible_fraction(&self, v: Viewer, j: usize, ignore: &[usize]) -> f64 {
+    fn visible_fraction(&self, v: Viewer, j: usize, shaft: &Shaft, ignore: &[usize]) -> f64 {
         let tgt = &self.targets.patches[j];
         let fraction = visibility::Param::of(tgt).and_then(|target| {
             visibility::Query {
                 occluders: self.occluders,
+                shaft,
                 point: v.point,
                 normal: v.normal,
                 cone: v.cone,
@@ -313,7 +314,10 @@ impl Context<'_> {
         });
         // Other polygons, or only a grazing sliver in view: one ray to the centroid.
         fraction.unwrap_or_else(|| {
-            if self.occluders.visible(v.point, tgt.centroid, ignore) {
+            if self
+                .occluders
+                .visible_in(shaft, v.point, tgt.centroid, ignore)
+            {
                 1.0
             } else {
                 0.0
@@ -474,10 +478,9 @@ pub fn point_form_factors(
                 return 0.0;
             }
             let tgt = &patches[j];
-            let occluded =
-                occluders.may_block(&[point], normal, &tgt.polygon.vertices, tgt.normal, &[j]);
-            if occluded {
-                k * ctx.visible_fraction(viewer, j, &[j])
+            let shaft = occluders.shaft(&[point], normal, &tgt.polygon.vertices, tgt.normal, &[j]);
+            if !shaft.is_clear() {
+                k * ctx.visible_fraction(viewer, j, &shaft, &[j])
             } else {
                 k
             }

@@ -7,7 +7,7 @@
 //! weighted by the point-to-point kernel `cos θ_x cos θ_y / r²` times their area, so the result
 //! is the kernel-weighted visible fraction that multiplies the exact unoccluded form factor.
 
-use super::bvh::Occluders;
+use super::bvh::{Occluders, Shaft};
 use super::kernel::Cone;
 use crate::geometry::{Patch, Vec3};
 
@@ -59,6 +59,8 @@ impl Param {
 /// One visibility query: from `point` (normal `normal`, optional field of view) to a target.
 pub(crate) struct Query<'a> {
     pub(crate) occluders: &'a Occluders,
+    /// The occluders that can cut a ray of this query ([`Occluders::shaft`]).
+    pub(crate) shaft: &'a Shaft,
     pub(crate) point: Vec3,
     pub(crate) normal: Vec3,
     pub(crate) cone: Option<&'a Cone>,
@@ -92,7 +94,7 @@ impl Query<'_> {
 
     fn ray(&self, u: f64, v: f64) -> bool {
         self.occluders
-            .visible(self.point, self.target.point(u, v), self.ignore)
+            .visible_in(self.shaft, self.point, self.target.point(u, v), self.ignore)
     }
 
     /// Kernel weight of the cell `[u0, u1] × [v0, v1]` from its centre (midpoint rule):
