@@ -32,7 +32,8 @@ pub struct Evaluator<
     const OUTPUTS: usize,
 > {
     basis: Basis<'a>,
-    levels: [f32; CHANNELS],
+    /// One level per channel of the basis (length m).
+    levels: heapless::Vec<f32, CHANNELS>,
     /// Mode amplitudes from channels and patches together, coefficient included.
     amplitude: [[f32; MODES]; BANDS],
     /// The part of `amplitude` that comes from per-patch exitance.
@@ -92,9 +93,17 @@ impl<
             basis.sensor_count() + basis.zone_count(),
             OUTPUTS,
         )?;
+        let mut levels = heapless::Vec::new();
+        levels
+            .resize(basis.channel_count(), 0.0)
+            .map_err(|_| Error::Capacity {
+                what: "channels",
+                needed: basis.channel_count(),
+                capacity: CHANNELS,
+            })?;
         Ok(Evaluator {
             basis,
-            levels: [0.0; CHANNELS],
+            levels,
             amplitude: [[0.0; MODES]; BANDS],
             patch_amplitude: [[0.0; MODES]; BANDS],
             patch_exitance: [[0.0; BANDS]; PATCHES],
@@ -152,8 +161,8 @@ impl<
             Ok(())
         } else {
             // Back to the previous, valid levels.
-            let old = self.levels;
-            self.recompute_amplitude(old.get(..m).unwrap_or(&[]));
+            let old = self.levels.clone();
+            self.recompute_amplitude(&old);
             Err(Error::InvalidInput { what: "levels" })
         }
     }
@@ -202,9 +211,8 @@ impl<
             }
         }
         if !self.amplitude_is_finite() {
-            let m = self.basis.channels;
-            let levels = self.levels;
-            self.recompute_amplitude(levels.get(..m).unwrap_or(&[]));
+            let levels = self.levels.clone();
+            self.recompute_amplitude(&levels);
             return Err(Error::InvalidInput { what: "level" });
         }
         if let Some(slot) = self.levels.get_mut(channel) {
@@ -449,8 +457,7 @@ impl<
                 .and_then(|d| d.get(b))
                 .copied()
                 .unwrap_or(0.0);
-            *slot =
-                dot_f32(modes, amp) + dot_f32(chans, self.levels.get(..m).unwrap_or(&[])) + direct;
+            *slot = dot_f32(modes, amp) + dot_f32(chans, &self.levels) + direct;
         }
         Self::checked(out)
     }

@@ -109,13 +109,35 @@ impl<'a> Matrix<'a> {
         }
     }
 
-    /// `Σ_k value(row, col + k) · x[k]` for `k < x.len()`.
+    /// `Σ_k value(row, col + k) · x[k]` for `k < x.len()`. Specialised per precision so
+    /// that the inner loop is a plain zip the compiler can unroll.
     #[inline]
     pub fn row_dot(&self, row: usize, col: usize, x: &[f32]) -> f32 {
-        let mut acc = 0.0;
-        self.for_each(row, col, x.len(), |k, v| {
-            acc += v * x.get(k).copied().unwrap_or(0.0)
-        });
-        acc
+        let data = self.span(row, col, x.len());
+        match self.precision {
+            Precision::F32 => dot_f32(data, x),
+            Precision::F16 => {
+                let scales = f32s(self.scale_span(col, x.len()));
+                data.chunks_exact(2)
+                    .zip(scales)
+                    .zip(x)
+                    .map(|((c, s), &b)| match *c {
+                        [lo, hi] => f16_to_f32(u16::from_le_bytes([lo, hi])) * s * b,
+                        _ => 0.0,
+                    })
+                    .sum()
+            }
+            Precision::I16 => {
+                let scales = f32s(self.scale_span(col, x.len()));
+                data.chunks_exact(2)
+                    .zip(scales)
+                    .zip(x)
+                    .map(|((c, s), &b)| match *c {
+                        [lo, hi] => f32::from(i16::from_le_bytes([lo, hi])) * s * b,
+                        _ => 0.0,
+                    })
+                    .sum()
+            }
+        }
     }
 }
