@@ -94,16 +94,19 @@ fn cie_171_case_5_8_average_irradiance_in_a_cube() {
 
         let solved = cli::solve(&path, &[], false).unwrap().zones[0].irradiance[0];
         let basis = full_basis(&path);
-        let evaluated = host_eval::evaluate(&basis, &[1.0], &[], false).unwrap().zones[0][0];
+        let evaluated = host_eval::evaluate(&basis, &[1.0], &[], false)
+            .unwrap()
+            .zones[0][0];
         let (e1, e2) = (
             (solved - want).abs() / want,
             (evaluated - want).abs() / want,
         );
-        println!(
-            "  {rho:.1} {want:15.4} {solved:11.4} {e1:10.2e} {evaluated:11.4} {e2:10.2e}"
-        );
+        println!("  {rho:.1} {want:15.4} {solved:11.4} {e1:10.2e} {evaluated:11.4} {e2:10.2e}");
         assert!(e1 <= CIE_TOLERANCE, "solve, ρ = {rho}: {solved} vs {want}");
-        assert!(e2 <= CIE_TOLERANCE, "basis, ρ = {rho}: {evaluated} vs {want}");
+        assert!(
+            e2 <= CIE_TOLERANCE,
+            "basis, ρ = {rho}: {evaluated} vs {want}"
+        );
     }
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -176,9 +179,15 @@ fn the_constant_vector_is_the_top_mode_with_mu_equal_to_rho() {
             (mu - rho).abs() / rho,
             modes.values[1]
         );
-        assert!((mu - rho).abs() <= MODE_TOLERANCE * rho, "μ = {mu}, ρ = {rho}");
+        assert!(
+            (mu - rho).abs() <= MODE_TOLERANCE * rho,
+            "μ = {mu}, ρ = {rho}"
+        );
         assert!(worst_shape <= MODE_TOLERANCE, "shape {worst_shape:e}");
-        assert!(modes.values[1].abs() < mu, "the constant mode is the strongest");
+        assert!(
+            modes.values[1].abs() < mu,
+            "the constant mode is the strongest"
+        );
     }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -283,7 +283,8 @@ fn c41_coaxial_disks_as_polygons_converge_to_the_closed_form() {
     let dir = scratch("c41");
     write(&dir, "disks.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n");
     // max_edge larger than the disks: each polygon is only fanned into triangles.
-    let scene_text = "[scene]\nname = \"disks\"\nbands = \"photopic\"\nunit = \"m\"\nmax_edge = 5\n\n\
+    let scene_text =
+        "[scene]\nname = \"disks\"\nbands = \"photopic\"\nunit = \"m\"\nmax_edge = 5\n\n\
                       [[obj]]\nfile = \"disks.obj\"\nname_by = \"group\"\n";
     let path = write(&dir, "disks.toml", scene_text);
     println!("Howell C-41, r1 = {r1} m to r2 = {r2} m at h = {h} m: F = {want:.6}");
@@ -422,7 +423,11 @@ fn a_blocker_never_increases_a_form_factor() {
     let text = std::fs::read_to_string("examples/office/scene.toml").unwrap();
     let without_text = drop_tables(
         &text,
-        &[("[[block]]", "desk1"), ("[[block]]", "desk2"), ("[[zone]]", "desks")],
+        &[
+            ("[[block]]", "desk1"),
+            ("[[block]]", "desk2"),
+            ("[[zone]]", "desks"),
+        ],
     )
     .replace("max_edge = 0.35", "max_edge = 1.0");
     let without = scene::parse(&without_text, Path::new("examples/office/scene.toml")).unwrap();
@@ -437,7 +442,10 @@ fn a_blocker_never_increases_a_form_factor() {
     for i in 0..room {
         assert_eq!(with.patches[i].centroid, without.patches[i].centroid);
     }
-    assert!(with.patches.len() > without.patches.len(), "the desks are gone");
+    assert!(
+        with.patches.len() > without.patches.len(),
+        "the desks are gone"
+    );
 
     let opts = FormFactorOptions {
         gauss_order: 8,

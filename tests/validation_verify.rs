@@ -115,7 +115,10 @@ fn verify_reports_every_case_and_is_exact_with_every_mode() {
             ]
         );
         assert_eq!(f.basis_bytes.len(), r.modes.len());
-        assert!(f.basis_bytes.windows(2).all(|w| w[0] < w[1]), "bytes grow with p");
+        assert!(
+            f.basis_bytes.windows(2).all(|w| w[0] < w[1]),
+            "bytes grow with p"
+        );
         for c in &f.cases {
             assert_eq!(c.patches.len(), r.modes.len());
             assert_eq!(c.zones.len(), 2);
@@ -140,8 +143,11 @@ fn verify_reports_every_case_and_is_exact_with_every_mode() {
     let split = &r.formulations[0];
     let seed = &r.formulations[1];
     let (s1, e1) = (
-        split.worst(Some(CaseKind::Channel), Metric::Patches, 0).unwrap(),
-        seed.worst(Some(CaseKind::Channel), Metric::Patches, 0).unwrap(),
+        split
+            .worst(Some(CaseKind::Channel), Metric::Patches, 0)
+            .unwrap(),
+        seed.worst(Some(CaseKind::Channel), Metric::Patches, 0)
+            .unwrap(),
     );
     println!("p = 1, channels alone, patches: split {s1:.2e}, seed {e1:.2e}");
     assert!(s1 > FULL_BASIS && s1 < e1);
@@ -165,10 +171,15 @@ fn verify_reports_every_case_and_is_exact_with_every_mode() {
         assert!(md.contains(heading), "missing {heading}");
     }
     assert!(md.contains("| zone `work_plane` |"));
-    assert!(md.contains("| emitter pattern | not representable | not representable | not representable |"));
+    assert!(md.contains(
+        "| emitter pattern | not representable | not representable | not representable |"
+    ));
     // One row per tested p in each formulation's table (plus the per-output table).
     for p in &r.modes {
-        let rows = md.lines().filter(|l| l.starts_with(&format!("| {p} |"))).count();
+        let rows = md
+            .lines()
+            .filter(|l| l.starts_with(&format!("| {p} |")))
+            .count();
         assert_eq!(rows, 3, "rows for p = {p}");
     }
     let ps = r.zone_p("work_plane", 0.01);

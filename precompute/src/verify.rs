@@ -526,11 +526,7 @@ pub fn markdown(r: &VerifyReport) -> String {
         "patch exitance".into(),
         r.formulations
             .iter()
-            .map(|f| {
-                r.smallest_p(0.01, |t| {
-                    f.worst(None, Metric::Patches, t).unwrap_or(0.0)
-                })
-            })
+            .map(|f| r.smallest_p(0.01, |t| f.worst(None, Metric::Patches, t).unwrap_or(0.0)))
             .collect(),
     )];
     for (z, name) in r.zones.iter().enumerate() {
@@ -645,7 +641,13 @@ pub fn markdown(r: &VerifyReport) -> String {
                 Metric::ALL
                     .iter()
                     .zip(e)
-                    .map(|(m, v)| if has(*m) { format!("{v:.1e}") } else { "—".into() })
+                    .map(|(m, v)| {
+                        if has(*m) {
+                            format!("{v:.1e}")
+                        } else {
+                            "—".into()
+                        }
+                    })
                     .collect()
             }
         };
@@ -723,7 +725,11 @@ pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
 }
 
 fn plot(r: &VerifyReport, metric: Metric) -> std::result::Result<String, String> {
-    let colors = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44)];
+    let colors = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+    ];
     let mut series: Vec<(String, usize, bool, Vec<(f64, f64)>)> = Vec::new();
     for (fi, f) in r.formulations.iter().enumerate() {
         for (ki, k) in CaseKind::ALL.iter().enumerate() {
@@ -788,12 +794,7 @@ fn plot(r: &VerifyReport, metric: Metric) -> std::result::Result<String, String>
                     });
             } else {
                 chart
-                    .draw_series(DashedLineSeries::new(
-                        points,
-                        6,
-                        4,
-                        color.stroke_width(1),
-                    ))
+                    .draw_series(DashedLineSeries::new(points, 6, 4, color.stroke_width(1)))
                     .map_err(|e| e.to_string())?
                     .label(label)
                     .legend(move |(x, y)| {
