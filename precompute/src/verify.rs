@@ -724,13 +724,16 @@ pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
     Ok(written)
 }
 
+/// One curve: legend label, case kind (colour), split (solid) or seed (dashed), (p, error).
+type Series = (String, usize, bool, Vec<(f64, f64)>);
+
 fn plot(r: &VerifyReport, metric: Metric) -> std::result::Result<String, String> {
     let colors = [
         RGBColor(31, 119, 180),
         RGBColor(214, 39, 40),
         RGBColor(44, 160, 44),
     ];
-    let mut series: Vec<(String, usize, bool, Vec<(f64, f64)>)> = Vec::new();
+    let mut series: Vec<Series> = Vec::new();
     for (fi, f) in r.formulations.iter().enumerate() {
         for (ki, k) in CaseKind::ALL.iter().enumerate() {
             let points: Option<Vec<(f64, f64)>> = r
