@@ -14,5 +14,6 @@ pub mod outputs;
 pub mod scene;
 pub mod solve;
 pub mod tables;
+pub mod verify;
 
 pub use error::{Error, Result};

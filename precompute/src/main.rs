@@ -10,7 +10,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 use eigenrad_precompute::build::{self, BuildOptions, ModeSelection};
 use eigenrad_precompute::eigen::{Formulation, Solver};
 use eigenrad_precompute::formfactor::FormFactorOptions;
-use eigenrad_precompute::{atomic, cli, Error};
+use eigenrad_precompute::{atomic, cli, verify, Error};
 use eigenrad_runtime::Precision;
 
 /// Real-time radiosity for lighting controllers: precompute a room's eigenbasis, evaluate it
@@ -125,6 +125,18 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Accuracy report: relative error against the exact solve as the mode count grows, for
+    /// both formulations and the per-channel baseline, as markdown tables and SVG curves.
+    Verify {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Write `<scene>.md` and `<scene>-{patches,zones,sensors}.svg` into this folder.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print the report as one JSON document on stdout instead of the tables.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 fn main() -> ExitCode {
@@ -232,6 +244,26 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 println!("{}", serde_json::to_string_pretty(&info)?);
             } else {
                 print!("{}", cli::format_inspect(&info));
+            }
+        }
+        Command::Verify { scene, out, json } => {
+            let report = verify::verify(&scene, &verify::VerifyOptions::default())?;
+            let tables = verify::markdown(&report);
+            if let Some(dir) = out {
+                for path in verify::write_svgs(&report, &dir)? {
+                    eprintln!("wrote {}", path.display());
+                }
+                let path = dir.join(format!("{}.md", report.scene));
+                std::fs::write(&path, &tables).map_err(|source| Error::Io {
+                    path: path.clone(),
+                    source,
+                })?;
+                eprintln!("wrote {}", path.display());
+            }
+            if json {
+                println!("{}", serde_json::to_string_pretty(&report)?);
+            } else {
+                print!("{tables}");
             }
         }
     }

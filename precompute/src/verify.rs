@@ -1,0 +1,818 @@
+//! `eigenrad verify`: how the error of a truncated basis against the exact dense solve falls
+//! with the mode count p, for both formulations, with the exact per-channel superposition as
+//! the baseline (math.md, "Be honest about the baseline").
+//!
+//! Cases: every channel alone at level 1; random channel mixes (every channel at a random
+//! level in [0, 1]); random emitter patterns (see [`accuracy::standard_cases`]). Metrics, each
+//! the worst spectral band:
+//!
+//! - patches: area-weighted RMS of the per-patch exitance error over the RMS exitance;
+//! - zones, sensors: `|E − E_exact| / |E_exact|` per zone or sensor (irradiance, W/m² or lux).
+//!
+//! The curves use the host model in f64 ([`Model::truncated`] arithmetic), so they show the
+//! truncation alone; `eigenrad build` reports the same cases through the runtime's f32.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use eigenrad_runtime::Precision;
+use plotters::prelude::*;
+use serde::Serialize;
+
+use crate::accuracy::{self, Case};
+use crate::build::{self, Prepared};
+use crate::eigen::{Formulation, Solver};
+use crate::error::{Error, Result};
+use crate::formfactor::FormFactorOptions;
+use crate::model::Model;
+use crate::solve::ExactSolver;
+use crate::tables;
+
+/// Options of `eigenrad verify`.
+#[derive(Clone, Debug)]
+pub struct VerifyOptions {
+    /// Random channel mixes (skipped when the scene has no channel).
+    pub random_mixes: usize,
+    /// Random emitter patterns.
+    pub random_patterns: usize,
+    /// Form-factor settings.
+    pub form_factors: FormFactorOptions,
+}
+
+impl Default for VerifyOptions {
+    fn default() -> Self {
+        VerifyOptions {
+            random_mixes: 4,
+            random_patterns: 4,
+            form_factors: FormFactorOptions::default(),
+        }
+    }
+}
+
+/// What a case is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CaseKind {
+    /// One channel at level 1, the others off.
+    Channel,
+    /// Every channel at a random level.
+    ChannelMix,
+    /// Random exitance on a random fifth of the patches; no channel.
+    EmitterPattern,
+}
+
+impl CaseKind {
+    /// All kinds, in table order.
+    pub const ALL: [CaseKind; 3] = [
+        CaseKind::Channel,
+        CaseKind::ChannelMix,
+        CaseKind::EmitterPattern,
+    ];
+
+    /// Name in tables and legends.
+    pub fn label(self) -> &'static str {
+        match self {
+            CaseKind::Channel => "channel alone",
+            CaseKind::ChannelMix => "channel mix",
+            CaseKind::EmitterPattern => "emitter pattern",
+        }
+    }
+}
+
+/// Which reading an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Metric {
+    /// Per-patch exitance (area-weighted RMS).
+    Patches,
+    /// Zone averages.
+    Zones,
+    /// Sensors.
+    Sensors,
+}
+
+impl Metric {
+    /// All metrics, in table order.
+    pub const ALL: [Metric; 3] = [Metric::Patches, Metric::Zones, Metric::Sensors];
+
+    /// Name in tables and file names.
+    pub fn label(self) -> &'static str {
+        match self {
+            Metric::Patches => "patches",
+            Metric::Zones => "zones",
+            Metric::Sensors => "sensors",
+        }
+    }
+}
+
+/// Relative errors of one case, per tested p (index `t` of [`VerifyReport::modes`]).
+#[derive(Clone, Debug, Serialize)]
+pub struct CaseCurve {
+    /// Case name (`channel lum1`, `channel mix 2`, `random pattern 3`).
+    pub case: String,
+    /// Its kind.
+    pub kind: CaseKind,
+    /// Patch exitance error at each p.
+    pub patches: Vec<f64>,
+    /// `zones[z][t]`: error of zone z at the t-th p.
+    pub zones: Vec<Vec<f64>>,
+    /// `sensors[s][t]`: error of sensor s at the t-th p.
+    pub sensors: Vec<Vec<f64>>,
+}
+
+/// Curves of one formulation.
+#[derive(Clone, Debug, Serialize)]
+pub struct FormulationReport {
+    /// `split` or `seed`.
+    pub formulation: &'static str,
+    /// Size of the f32 basis at each tested p, bytes.
+    pub basis_bytes: Vec<usize>,
+    /// One curve per case.
+    pub cases: Vec<CaseCurve>,
+}
+
+/// The exact per-channel superposition: `(I − R F)⁻¹ e_c` stored for each channel.
+#[derive(Clone, Debug, Serialize)]
+pub struct Baseline {
+    /// Worst error of the superposition over the channel-only cases (alone and mixes) per
+    /// metric: rounding only, by construction. `None` without channels.
+    pub channel_error: Option<[f64; 3]>,
+    /// Bytes of the responses in f32: per-patch exitance and every sensor and zone, for each
+    /// channel and band: `4 (n + outputs) m bands`.
+    pub bytes: usize,
+    /// Bytes when only sensors and zones are needed: `4 · outputs · m · bands`.
+    pub output_bytes: usize,
+}
+
+/// The whole report.
+#[derive(Clone, Debug, Serialize)]
+pub struct VerifyReport {
+    /// Scene file as given.
+    pub path: String,
+    /// Scene name.
+    pub scene: String,
+    /// Number of patches.
+    pub patches: usize,
+    /// Number of bands.
+    pub bands: usize,
+    /// Unit of exitance and irradiance.
+    pub unit: &'static str,
+    /// Channel names.
+    pub channels: Vec<String>,
+    /// Sensor names.
+    pub sensors: Vec<String>,
+    /// Zone names.
+    pub zones: Vec<String>,
+    /// Tested mode counts, ascending (`build::mode_ladder` up to every mode).
+    pub modes: Vec<usize>,
+    /// `split`, then `seed`.
+    pub formulations: Vec<FormulationReport>,
+    /// The per-channel baseline.
+    pub baseline: Baseline,
+}
+
+/// Deterministic xorshift64* for the mixes: reports must not change from run to run.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
+    let scene = &prepared.scene;
+    let m = scene.channels.len();
+    let n = scene.patches.len();
+    let standard = accuracy::standard_cases(scene, opts.random_patterns);
+    let mut out: Vec<(CaseKind, Case)> = Vec::new();
+    let mut patterns = Vec::new();
+    for (i, c) in standard.into_iter().enumerate() {
+        if i < m {
+            out.push((CaseKind::Channel, c));
+        } else {
+            patterns.push((CaseKind::EmitterPattern, c));
+        }
+    }
+    if m > 0 {
+        let mut rng = Rng(0xD1B5_4A32_D192_ED03);
+        for k in 0..opts.random_mixes {
+            out.push((
+                CaseKind::ChannelMix,
+                Case {
+                    name: format!("channel mix {}", k + 1),
+                    levels: (0..m).map(|_| rng.next()).collect(),
+                    extra: vec![vec![0.0; n]; scene.bands.count()],
+                },
+            ));
+        }
+    }
+    out.extend(patterns);
+    out
+}
+
+/// `|a − e|` over `|e|`, with readings that are exactly 0 measured against `floor`.
+fn relative(a: f64, e: f64, floor: f64) -> f64 {
+    let d = (a - e).abs();
+    if d == 0.0 {
+        0.0
+    } else {
+        d / e.abs().max(floor)
+    }
+}
+
+fn weighted_norm(area: &[f64], x: &[f64]) -> f64 {
+    area.iter()
+        .zip(x)
+        .map(|(a, v)| a * v * v)
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Errors of every metric of `case` at each p of `modes` for `model`.
+fn case_curve(
+    model: &Model,
+    solvers: &[ExactSolver],
+    kind: CaseKind,
+    case: &Case,
+    modes: &[usize],
+    sensors: usize,
+) -> CaseCurve {
+    let outputs = model.output_rows.len();
+    let mut curve = CaseCurve {
+        case: case.name.clone(),
+        kind,
+        patches: vec![0.0; modes.len()],
+        zones: vec![vec![0.0; modes.len()]; outputs - sensors],
+        sensors: vec![vec![0.0; modes.len()]; sensors],
+    };
+    for (b, solver) in solvers.iter().enumerate() {
+        let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
+        let exact_out = model.outputs(&exact);
+        let norm = weighted_norm(&model.area, &exact).max(f64::MIN_POSITIVE);
+        let floor = 1e-12
+            * exact_out
+                .iter()
+                .fold(0.0f64, |a, v| a.max(v.abs()))
+                .max(f64::MIN_POSITIVE);
+        let (mut m, amplitude) = model.expansion(b, &case.levels, &case.extra[b]);
+        let v = &model.bands[b].modes.vectors;
+        let mut done = 0;
+        for (t, &p) in modes.iter().enumerate() {
+            let p = p.min(amplitude.len());
+            for (k, a) in amplitude.iter().enumerate().take(p).skip(done) {
+                for (i, x) in m.iter_mut().enumerate() {
+                    *x += v[(i, k)] * a;
+                }
+            }
+            done = done.max(p);
+            let diff: Vec<f64> = m.iter().zip(&exact).map(|(a, e)| a - e).collect();
+            let e = weighted_norm(&model.area, &diff) / norm;
+            curve.patches[t] = curve.patches[t].max(e);
+            for (o, (a, e)) in model.outputs(&m).iter().zip(&exact_out).enumerate() {
+                let r = relative(*a, *e, floor);
+                let slot = if o < sensors {
+                    &mut curve.sensors[o][t]
+                } else {
+                    &mut curve.zones[o - sensors][t]
+                };
+                *slot = slot.max(r);
+            }
+        }
+    }
+    curve
+}
+
+fn formulation_name(f: Formulation) -> &'static str {
+    match f {
+        Formulation::Split => "split",
+        Formulation::Seed => "seed",
+    }
+}
+
+/// Runs the whole report for the scene at `path`.
+pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
+    let prepared = build::prepare(path, &opts.form_factors)?;
+    let scene = &prepared.scene;
+    let n = scene.patches.len();
+    let bands = scene.bands.count();
+    let m = scene.channels.len();
+    let sensors = scene.sensors.len();
+    let outputs = prepared.output_rows.len();
+    let cases = cases(&prepared, opts);
+
+    let mut formulations = Vec::new();
+    let mut modes = Vec::new();
+    let mut baseline_error: Option<[f64; 3]> = None;
+    for formulation in [Formulation::Split, Formulation::Seed] {
+        let model = Model::new(
+            scene,
+            prepared.g.clone(),
+            prepared.output_rows.clone(),
+            formulation,
+            n,
+            Solver::Dense,
+        )?;
+        let solvers = (0..bands)
+            .map(|b| model.exact_solver(b))
+            .collect::<std::result::Result<Vec<_>, _>>()?;
+        if modes.is_empty() {
+            let available = model
+                .bands
+                .iter()
+                .map(|b| b.mode_count())
+                .max()
+                .unwrap_or(0);
+            modes = build::mode_ladder(available.max(1));
+            if m > 0 {
+                baseline_error = Some(superposition_error(&model, &solvers, &cases, sensors));
+            }
+        }
+        let curves = cases
+            .iter()
+            .map(|(kind, case)| case_curve(&model, &solvers, *kind, case, &modes, sensors))
+            .collect();
+        let mut basis_bytes = Vec::with_capacity(modes.len());
+        for &p in &modes {
+            let bytes = tables::basis_tables(scene, &model, p, Precision::F32).to_bytes()?;
+            basis_bytes.push(bytes.len());
+        }
+        formulations.push(FormulationReport {
+            formulation: formulation_name(formulation),
+            basis_bytes,
+            cases: curves,
+        });
+    }
+    Ok(VerifyReport {
+        path: path.display().to_string(),
+        scene: scene.name.clone(),
+        patches: n,
+        bands,
+        unit: scene.bands.unit(),
+        channels: scene.channels.iter().map(|c| c.name.clone()).collect(),
+        sensors: scene.sensors.iter().map(|s| s.name.clone()).collect(),
+        zones: scene.zones.iter().map(|z| z.name.clone()).collect(),
+        modes,
+        formulations,
+        baseline: Baseline {
+            channel_error: baseline_error,
+            bytes: 4 * (n + outputs) * m * bands,
+            output_bytes: 4 * outputs * m * bands,
+        },
+    })
+}
+
+/// The per-channel superposition `Σ_c l_c (I − R F)⁻¹ e_c` against the direct solve of each
+/// channel-only case: worst error per metric.
+fn superposition_error(
+    model: &Model,
+    solvers: &[ExactSolver],
+    cases: &[(CaseKind, Case)],
+    sensors: usize,
+) -> [f64; 3] {
+    let m = model.emission.len();
+    let mut worst = [0.0f64; 3];
+    for (b, solver) in solvers.iter().enumerate() {
+        let responses: Vec<Vec<f64>> = (0..m)
+            .map(|c| solver.solve(&model.emission[c][b]))
+            .collect();
+        for (kind, case) in cases {
+            if *kind == CaseKind::EmitterPattern {
+                continue;
+            }
+            let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
+            let mut sum = vec![0.0; exact.len()];
+            for (c, l) in case.levels.iter().enumerate() {
+                for (s, r) in sum.iter_mut().zip(&responses[c]) {
+                    *s += l * r;
+                }
+            }
+            let diff: Vec<f64> = sum.iter().zip(&exact).map(|(a, e)| a - e).collect();
+            let norm = weighted_norm(&model.area, &exact).max(f64::MIN_POSITIVE);
+            worst[0] = worst[0].max(weighted_norm(&model.area, &diff) / norm);
+            let (got, want) = (model.outputs(&sum), model.outputs(&exact));
+            let floor = 1e-12 * want.iter().fold(f64::MIN_POSITIVE, |a, v| a.max(v.abs()));
+            for (o, (a, e)) in got.iter().zip(&want).enumerate() {
+                let slot = if o < sensors { 2 } else { 1 };
+                worst[slot] = worst[slot].max(relative(*a, *e, floor));
+            }
+        }
+    }
+    worst
+}
+
+impl FormulationReport {
+    /// Worst error of `metric` over the cases of `kind` at the t-th p (`None`: no such case,
+    /// or no zone/sensor).
+    pub fn worst(&self, kind: Option<CaseKind>, metric: Metric, t: usize) -> Option<f64> {
+        let mut out: Option<f64> = None;
+        for c in self
+            .cases
+            .iter()
+            .filter(|c| kind.is_none_or(|k| c.kind == k))
+        {
+            let values: Vec<f64> = match metric {
+                Metric::Patches => vec![c.patches[t]],
+                Metric::Zones => c.zones.iter().map(|z| z[t]).collect(),
+                Metric::Sensors => c.sensors.iter().map(|s| s[t]).collect(),
+            };
+            for v in values {
+                out = Some(out.map_or(v, |o| o.max(v)));
+            }
+        }
+        out
+    }
+
+    /// Worst error of zone (`zone = true`) or sensor `index` over every case at the t-th p.
+    pub fn worst_output(&self, zone: bool, index: usize, t: usize) -> f64 {
+        self.cases
+            .iter()
+            .map(|c| {
+                if zone {
+                    c.zones[index][t]
+                } else {
+                    c.sensors[index][t]
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+impl VerifyReport {
+    /// The smallest tested p at which `f(t)` is at most `tolerance`, and stays so for every
+    /// larger tested p.
+    pub fn smallest_p(&self, tolerance: f64, f: impl Fn(usize) -> f64) -> Option<usize> {
+        let ok: Vec<bool> = (0..self.modes.len()).map(|t| f(t) <= tolerance).collect();
+        let last_bad = ok.iter().rposition(|&x| !x);
+        match last_bad {
+            None => self.modes.first().copied(),
+            Some(t) => self.modes.get(t + 1).copied(),
+        }
+    }
+
+    /// The smallest p at which zone `name` is within `tolerance` in every case, per
+    /// formulation (`split`, `seed`).
+    pub fn zone_p(&self, name: &str, tolerance: f64) -> Vec<(&'static str, Option<usize>)> {
+        let Some(z) = self.zones.iter().position(|x| x == name) else {
+            return Vec::new();
+        };
+        self.formulations
+            .iter()
+            .map(|f| {
+                (
+                    f.formulation,
+                    self.smallest_p(tolerance, |t| f.worst_output(true, z, t)),
+                )
+            })
+            .collect()
+    }
+}
+
+fn sci(x: Option<f64>) -> String {
+    x.map_or("—".into(), |v| format!("{v:.1e}"))
+}
+
+fn p_text(p: Option<usize>) -> String {
+    p.map_or("not reached".into(), |p| p.to_string())
+}
+
+/// The report as markdown tables.
+pub fn markdown(r: &VerifyReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# Accuracy of the eigenbasis: {}\n", r.scene);
+    let _ = writeln!(
+        s,
+        "Scene `{}`: {} patches, {} band(s) in {}; {} channel(s), {} sensor(s), {} zone(s). \
+         Modes available: {}.\n",
+        r.path,
+        r.patches,
+        r.bands,
+        r.unit,
+        r.channels.len(),
+        r.sensors.len(),
+        r.zones.len(),
+        r.modes.last().copied().unwrap_or(0)
+    );
+    let count = |k: CaseKind| {
+        r.formulations
+            .first()
+            .map_or(0, |f| f.cases.iter().filter(|c| c.kind == k).count())
+    };
+    let _ = writeln!(
+        s,
+        "Cases: {} channel(s) alone at level 1; {} random channel mix(es) (every channel at a \
+         random level in [0, 1]); {} random emitter pattern(s) (a random fifth of the patches, \
+         each at a random exitance up to the brightest channel's, no channel). Every error is \
+         relative to the exact dense solve (LU) of the same scene and form factors, worst \
+         spectral band, worst case of its kind: **patches** = area-weighted RMS of the \
+         per-patch exitance error over the RMS exitance; **zones**, **sensors** = worst \
+         |E − E_exact| / E_exact over the zones or sensors. Computed in f64 (truncation alone; \
+         `eigenrad build` reports the runtime's f32 on top).\n",
+        count(CaseKind::Channel),
+        count(CaseKind::ChannelMix),
+        count(CaseKind::EmitterPattern)
+    );
+
+    let _ = writeln!(s, "## Smallest p within 1 %, every case\n");
+    let _ = write!(s, "| reading |");
+    for f in &r.formulations {
+        let _ = write!(s, " {} |", f.formulation);
+    }
+    let _ = writeln!(s);
+    let _ = writeln!(s, "|---|{}", "---:|".repeat(r.formulations.len()));
+    let mut rows: Vec<(String, Vec<Option<usize>>)> = vec![(
+        "patch exitance".into(),
+        r.formulations
+            .iter()
+            .map(|f| r.smallest_p(0.01, |t| f.worst(None, Metric::Patches, t).unwrap_or(0.0)))
+            .collect(),
+    )];
+    for (z, name) in r.zones.iter().enumerate() {
+        rows.push((
+            format!("zone `{name}`"),
+            r.formulations
+                .iter()
+                .map(|f| r.smallest_p(0.01, |t| f.worst_output(true, z, t)))
+                .collect(),
+        ));
+    }
+    for (i, name) in r.sensors.iter().enumerate() {
+        rows.push((
+            format!("sensor `{name}`"),
+            r.formulations
+                .iter()
+                .map(|f| r.smallest_p(0.01, |t| f.worst_output(false, i, t)))
+                .collect(),
+        ));
+    }
+    for (name, ps) in rows {
+        let _ = write!(s, "| {name} |");
+        for p in ps {
+            let _ = write!(s, " {} |", p_text(p));
+        }
+        let _ = writeln!(s);
+    }
+    let _ = writeln!(s);
+
+    for f in &r.formulations {
+        let _ = writeln!(
+            s,
+            "## `{}`: worst relative error by case kind\n",
+            f.formulation
+        );
+        let _ = write!(s, "| p | basis bytes (f32) |");
+        for k in CaseKind::ALL {
+            for m in Metric::ALL {
+                let _ = write!(s, " {}: {} |", k.label(), m.label());
+            }
+        }
+        let _ = writeln!(s);
+        let _ = writeln!(s, "|---:|---:|{}", "---:|".repeat(9));
+        for (t, p) in r.modes.iter().enumerate() {
+            let _ = write!(s, "| {p} | {} |", f.basis_bytes[t]);
+            for k in CaseKind::ALL {
+                for m in Metric::ALL {
+                    let _ = write!(s, " {} |", sci(f.worst(Some(k), m, t)));
+                }
+            }
+            let _ = writeln!(s);
+        }
+        let _ = writeln!(s);
+    }
+
+    if !r.zones.is_empty() || !r.sensors.is_empty() {
+        let _ = writeln!(s, "## Each zone and sensor, worst over every case\n");
+        let _ = write!(s, "| p |");
+        let mut columns: Vec<(bool, usize, &str)> = Vec::new();
+        for (z, name) in r.zones.iter().enumerate() {
+            columns.push((true, z, name));
+        }
+        for (i, name) in r.sensors.iter().enumerate() {
+            columns.push((false, i, name));
+        }
+        for (zone, _, name) in &columns {
+            for f in &r.formulations {
+                let what = if *zone { "zone" } else { "sensor" };
+                let _ = write!(s, " {what} `{name}` {} |", f.formulation);
+            }
+        }
+        let _ = writeln!(s);
+        let _ = writeln!(
+            s,
+            "|---:|{}",
+            "---:|".repeat(columns.len() * r.formulations.len())
+        );
+        for (t, p) in r.modes.iter().enumerate() {
+            let _ = write!(s, "| {p} |");
+            for (zone, index, _) in &columns {
+                for f in &r.formulations {
+                    let _ = write!(s, " {:.1e} |", f.worst_output(*zone, *index, t));
+                }
+            }
+            let _ = writeln!(s);
+        }
+        let _ = writeln!(s);
+    }
+
+    let _ = writeln!(s, "## Baseline: exact per-channel superposition\n");
+    let _ = writeln!(
+        s,
+        "The exact response `(I − R F)⁻¹ e_c` of each of the {} channel(s), scaled by the \
+         levels and added: exact for any channel state by construction (the figures below are \
+         the measured rounding), but it cannot represent an emitter pattern that is not a \
+         combination of the fixed channels.\n",
+        r.channels.len()
+    );
+    let _ = writeln!(s, "| case kind | patches | zones | sensors |");
+    let _ = writeln!(s, "|---|---:|---:|---:|");
+    for k in CaseKind::ALL {
+        let cells: Vec<String> = match (k, r.baseline.channel_error) {
+            (CaseKind::EmitterPattern, _) | (_, None) => {
+                vec!["not representable".into(); 3]
+            }
+            (_, Some(e)) => {
+                let has = |m: Metric| match m {
+                    Metric::Patches => true,
+                    Metric::Zones => !r.zones.is_empty(),
+                    Metric::Sensors => !r.sensors.is_empty(),
+                };
+                Metric::ALL
+                    .iter()
+                    .zip(e)
+                    .map(|(m, v)| {
+                        if has(*m) {
+                            format!("{v:.1e}")
+                        } else {
+                            "—".into()
+                        }
+                    })
+                    .collect()
+            }
+        };
+        let _ = writeln!(s, "| {} | {} |", k.label(), cells.join(" | "));
+    }
+    let split_bytes = r
+        .formulations
+        .first()
+        .map(|f| {
+            r.modes
+                .iter()
+                .zip(&f.basis_bytes)
+                .map(|(p, b)| format!("{b} at p = {p}"))
+                .collect::<Vec<_>>()
+        })
+        .unwrap_or_default();
+    let _ = writeln!(
+        s,
+        "\nStorage in f32: {} bytes for per-patch exitance and every sensor and zone \
+         (`4 (n + outputs) m bands`, n × m = {} × {}), {} bytes for the sensors and zones \
+         alone. The split basis, which also takes any emitter pattern: {}.\n",
+        r.baseline.bytes,
+        r.patches,
+        r.channels.len(),
+        r.baseline.output_bytes,
+        pick(&split_bytes)
+    );
+    s
+}
+
+/// A few entries of a long list: first, some middle ones, last.
+fn pick(items: &[String]) -> String {
+    if items.len() <= 4 {
+        return items.join(", ");
+    }
+    let idx = [0, items.len() / 3, 2 * items.len() / 3, items.len() - 1];
+    idx.iter()
+        .map(|&i| items[i].clone())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Errors under this are drawn at it on the log axis (the exact end of the curves).
+pub const PLOT_FLOOR: f64 = 1e-9;
+
+/// Draws one SVG per metric (error vs p, log-log; one curve per case kind and formulation,
+/// the worst case of the kind): `<dir>/<scene>-<metric>.svg`. Returns the files written.
+pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut written = Vec::new();
+    for metric in Metric::ALL {
+        let has = match metric {
+            Metric::Patches => true,
+            Metric::Zones => !r.zones.is_empty(),
+            Metric::Sensors => !r.sensors.is_empty(),
+        };
+        if !has {
+            continue;
+        }
+        let path = dir.join(format!("{}-{}.svg", r.scene, metric.label()));
+        let svg = plot(r, metric).map_err(|e| Error::Io {
+            path: path.clone(),
+            source: std::io::Error::other(e),
+        })?;
+        std::fs::write(&path, svg).map_err(|source| Error::Io {
+            path: path.clone(),
+            source,
+        })?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// One curve: legend label, case kind (colour), split (solid) or seed (dashed), (p, error).
+type Series = (String, usize, bool, Vec<(f64, f64)>);
+
+fn plot(r: &VerifyReport, metric: Metric) -> std::result::Result<String, String> {
+    let colors = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+    ];
+    let mut series: Vec<Series> = Vec::new();
+    for (fi, f) in r.formulations.iter().enumerate() {
+        for (ki, k) in CaseKind::ALL.iter().enumerate() {
+            let points: Option<Vec<(f64, f64)>> = r
+                .modes
+                .iter()
+                .enumerate()
+                .map(|(t, &p)| {
+                    f.worst(Some(*k), metric, t)
+                        .map(|e| (p as f64, e.max(PLOT_FLOOR)))
+                })
+                .collect();
+            if let Some(points) = points {
+                series.push((
+                    format!("{}, {}", f.formulation, k.label()),
+                    ki,
+                    fi == 0,
+                    points,
+                ));
+            }
+        }
+    }
+    let top = series
+        .iter()
+        .flat_map(|s| s.3.iter().map(|p| p.1))
+        .fold(PLOT_FLOOR * 10.0, f64::max)
+        * 2.0;
+    let p_max = r.modes.last().copied().unwrap_or(1).max(2) as f64;
+    let title = format!(
+        "{}: {} error vs modes p (errors < {PLOT_FLOOR:.0e} drawn at it)",
+        r.scene,
+        metric.label()
+    );
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 520)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d((1.0..p_max).log_scale(), (PLOT_FLOOR..top).log_scale())
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc("modes p")
+            .y_desc("relative error")
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for (label, kind, split, points) in series {
+            let color = colors[kind % colors.len()];
+            if split {
+                chart
+                    .draw_series(LineSeries::new(points, color.stroke_width(2)).point_size(3))
+                    .map_err(|e| e.to_string())?
+                    .label(label)
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2))
+                    });
+            } else {
+                chart
+                    .draw_series(DashedLineSeries::new(points, 6, 4, color.stroke_width(1)))
+                    .map_err(|e| e.to_string())?
+                    .label(label)
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(1))
+                    });
+            }
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}
