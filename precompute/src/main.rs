@@ -254,10 +254,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     eprintln!("wrote {}", path.display());
                 }
                 let path = dir.join(format!("{}.md", report.scene));
-                std::fs::write(&path, &tables).map_err(|source| Error::Io {
-                    path: path.clone(),
-                    source,
-                })?;
+                atomic::write(&path, tables.as_bytes())?;
                 eprintln!("wrote {}", path.display());
             }
             if json {

@@ -696,9 +696,9 @@ pub const PLOT_FLOOR: f64 = 1e-9;
 /// Draws one SVG per metric (error vs p, log-log; one curve per case kind and formulation,
 /// the worst case of the kind): `<dir>/<scene>-<metric>.svg`. Returns the files written.
 pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+    std::fs::create_dir_all(dir).map_err(|reason| Error::Io {
         path: dir.to_path_buf(),
-        source,
+        reason,
     })?;
     let mut written = Vec::new();
     for metric in Metric::ALL {
@@ -713,12 +713,9 @@ pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
         let path = dir.join(format!("{}-{}.svg", r.scene, metric.label()));
         let svg = plot(r, metric).map_err(|e| Error::Io {
             path: path.clone(),
-            source: std::io::Error::other(e),
+            reason: std::io::Error::other(e),
         })?;
-        std::fs::write(&path, svg).map_err(|source| Error::Io {
-            path: path.clone(),
-            source,
-        })?;
+        crate::atomic::write(&path, svg.as_bytes())?;
         written.push(path);
     }
     Ok(written)
