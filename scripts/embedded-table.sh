@@ -50,8 +50,8 @@ field() {
 
 kib() { awk -v b="$1" 'BEGIN { printf "%.1f", b / 1024 }'; }
 
-printf '| p | storage | basis (bytes) | .text (tiny → with basis) | .rodata (tiny → with basis) | flash used | fits 512 KiB | Evaluator size_of / RAM_BYTES (bytes) | stack high-water (bytes) | full update (instr.) | one channel (instr.) | read all outputs (instr.) |\n'
-printf '|---|---|---|---|---|---|---|---|---|---|---|---|\n'
+printf '| p | storage | basis (bytes) | .text (tiny → with basis) | .rodata (tiny → with basis) | flash used | fits 512 KiB | Evaluator size_of / RAM_BYTES (bytes) | stack high-water (bytes) | full update (instr.) | one channel (instr.) | read all outputs (instr.) | one patch exitance (instr.) |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|---|---|\n'
 
 for p in $modes_list; do
     for s in $storage_list; do
@@ -74,7 +74,7 @@ for p in $modes_list; do
                 reason="does not link: flash overflows"
             fi
             log "$name: $reason"
-            printf '| %s | %s | %s | – | – | – | no (%s) | – | – | – | – | – |\n' \
+            printf '| %s | %s | %s | – | – | – | no (%s) | – | – | – | – | – | – |\n' \
                 "$p" "$s" "$bytes" "$reason"
             continue
         fi
@@ -93,8 +93,9 @@ for p in $modes_list; do
         full=$(awk '$1 == "instructions" && $2 == "full_update" { print $3 }' "$out")
         chan=$(awk '$1 == "instructions" && $2 == "channel_update" { print $3 }' "$out")
         read_all=$(awk '$1 == "instructions" && $2 == "read_outputs" { print $3 }' "$out")
-        printf '| %s | %s | %s | %s → %s | %s → %s | %s B (%s KiB) | %s | %s / %s | %s | %s | %s | %s |\n' \
+        patch=$(awk '$1 == "instructions" && $2 == "patch_exitance" { print $3 }' "$out")
+        printf '| %s | %s | %s | %s → %s | %s → %s | %s B (%s KiB) | %s | %s / %s | %s | %s | %s | %s | %s |\n' \
             "$p" "$s" "$bytes" "$text0" "$text1" "$ro0" "$ro1" "$flash" "$(kib "$flash")" "$fits" \
-            "$size_of" "$ram" "$stack" "$full" "$chan" "$read_all"
+            "$size_of" "$ram" "$stack" "$full" "$chan" "$read_all" "$patch"
     done
 done

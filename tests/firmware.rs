@@ -765,7 +765,12 @@ fn check_against_eval(name: &str, path: &Path) -> Option<Arc<FirmwareRun>> {
         "instructions per SysTick tick: {}",
         run.instructions_per_tick
     );
-    for what in ["full_update", "channel_update", "read_outputs"] {
+    for what in [
+        "full_update",
+        "channel_update",
+        "read_outputs",
+        "patch_exitance",
+    ] {
         assert!(run.instructions.get(what).is_some_and(|&n| n > 0), "{what}");
     }
     assert!(0 < run.stack_high_water && run.stack_high_water < run.stack_region);

@@ -15,7 +15,7 @@
 //! exitance <k> patch <i> <v0> [<v1> <v2>]       every PATCH_STRIDE-th patch, W/m² or lux
 //! systick calibration instructions <n> ticks <t> instructions_per_tick <x>
 //! timing <what> reps <r> ticks <t> baseline_ticks <t0>
-//! instructions full_update|channel_update|read_outputs <per call>
+//! instructions full_update|channel_update|read_outputs|patch_exitance <per call>
 //! stack high_water <bytes> region <bytes>
 //! done
 //! ```
@@ -212,8 +212,8 @@ fn report<const B: usize, const N: usize, const P: usize, const C: usize, const 
     Ok(())
 }
 
-/// Counts instructions for full updates, single-channel updates and reads of all outputs,
-/// each repeated [`REPS`] times and set against an empty loop of the same shape.
+/// Counts instructions for full updates, single-channel updates, reads of all outputs and
+/// reads of one patch's exitance, each repeated [`REPS`] times and set against an empty loop of the same shape.
 fn measure<const B: usize, const N: usize, const P: usize, const C: usize, const O: usize>(
     eval: &mut Evaluator<'_, B, N, P, C, O>,
     ticks: &mut Ticks,
@@ -247,10 +247,18 @@ fn measure<const B: usize, const N: usize, const P: usize, const C: usize, const
         }
         Ok::<(), Error>(())
     })?;
+    // One patch's exitance: the read that decodes the f16/i16 tables (mode vectors and first
+    // bounces), over patches spread through the basis.
+    let n = basis.patch_count().max(1);
+    let patch = ticks.count(REPS, |i| {
+        black_box(eval.exitance(i as usize * PATCH_STRIDE % n)?);
+        Ok::<(), Error>(())
+    })?;
     for (what, t) in [
         ("full_update", full),
         ("channel_update", channel),
         ("read_outputs", read),
+        ("patch_exitance", patch),
     ] {
         hprintln!(
             "timing {} reps {} ticks {} baseline_ticks {}",
