@@ -26,7 +26,6 @@ tiny="$root/runtime/tests/data/tiny.basis"
 target_dir="${FIRMWARE_TARGET_DIR:-$root/target/firmware}"
 timeout_s="${FIRMWARE_TIMEOUT:-300}"
 triple=thumbv7em-none-eabihf
-elf="$target_dir/$triple/release/eigenrad-firmware"
 
 log() { printf '== %s\n' "$*" >&2; }
 
@@ -55,12 +54,14 @@ if ! rustup target list --installed | grep -qx "$triple"; then
     rustup target add "$triple" >&2
 fi
 
-# Builds the firmware with basis $1 and copies the ELF to $2.
+# Builds the firmware with basis $1 in target folder $2 and copies the ELF to $3. The tiny
+# build has a folder of its own: its fingerprint then stays fresh from one call to the next,
+# and only the build with the caller's basis is redone.
 build() {
     log "building the firmware with $1"
     (cd "$root/examples/firmware" &&
-        EIGENRAD_BASIS="$1" CARGO_TARGET_DIR="$target_dir" cargo build --release --quiet) >&2
-    cp "$elf" "$2"
+        EIGENRAD_BASIS="$1" CARGO_TARGET_DIR="$2" cargo build --release --quiet) >&2
+    cp "$2/$triple/release/eigenrad-firmware" "$3"
 }
 
 # A tool that prints section sizes in System V form (`name size addr` rows).
@@ -107,8 +108,8 @@ report_size() {
 }
 
 mkdir -p "$target_dir"
-build "$tiny" "$target_dir/firmware-tiny.elf"
-build "$basis" "$target_dir/firmware.elf"
+build "$tiny" "$target_dir/tiny" "$target_dir/firmware-tiny.elf"
+build "$basis" "$target_dir" "$target_dir/firmware.elf"
 
 log "running under QEMU"
 status=0

@@ -24,6 +24,15 @@ step "runtime for the microcontroller targets"
 cargo build -p eigenrad-runtime --release --target thumbv7em-none-eabihf
 cargo build -p eigenrad-runtime --release --target thumbv6m-none-eabi
 
+step "firmware under QEMU (installs qemu-system-arm when missing; tests/firmware.rs runs it on real bases)"
+status=0
+scripts/firmware.sh runtime/tests/data/tiny.basis target/firmware/tiny.out >/dev/null || status=$?
+if [[ $status -eq 77 ]]; then
+  echo "SKIPPED: QEMU is unavailable; the firmware tests in tests/firmware.rs will skip too"
+elif [[ $status -ne 0 ]]; then
+  exit "$status"
+fi
+
 step "tests"
 cargo test --workspace
 

@@ -1,29 +1,48 @@
-//! The firmware example (`examples/firmware`) run under QEMU agrees with a host evaluation,
-//! and its evaluator's RAM does not grow with the basis.
+//! The firmware example (`examples/firmware`) run under QEMU agrees with `eigenrad eval`, and
+//! its evaluator's RAM does not grow with the basis.
 //!
-//! Each test writes a basis, runs `scripts/firmware.sh` on it (build for
-//! `thumbv7em-none-eabihf`, run on QEMU `mps2-an386`), parses the records the firmware prints
-//! and checks every sensor and zone reading against a reference evaluation at the levels the
-//! firmware reports. The reference has the shape of `eigenrad eval --json` (see
-//! [`reference_json`]): switching to the CLI means replacing that one function.
+//! Each test takes a basis, runs `scripts/firmware.sh` on it (build for
+//! `thumbv7em-none-eabihf` with the basis in flash, run on QEMU `mps2-an386`), parses the
+//! records the firmware prints and, for every step of the firmware's level sequence, runs the
+//! real command `eigenrad eval BASIS --json --patches --level NAME=VALUE ...` at the levels
+//! the firmware reports. Every sensor and zone reading and every patch exitance the firmware
+//! prints (patches 0, 97, 194, ...) must agree with it within [`REL_TOL`].
+//!
+//! The bases, all written by `eigenrad build` except the last:
+//!
+//! - the office example (`examples/office/scene.toml`, 1078 patches, 5 channels, 2 sensors,
+//!   2 zones) at 32 modes, f32 storage;
+//! - the same office on a coarser mesh (`max_edge` 0.7 m instead of 0.35 m: 290 patches) at
+//!   16 modes in f16 and at 64 modes in i16. A build's form factors cost grows as the square
+//!   of the patch count, so the coarse mesh keeps the test's run time down while the
+//!   precisions and mode counts still differ from the f32 basis;
+//! - a random three-band basis (tables of plausible size but no room behind them): the RGB
+//!   example scene, the Cornell box, takes as long to build as the office.
+//!
+//! The `eigenrad` command is built with `cargo build --profile test` (a no-op when it is up
+//! to date) unless `EIGENRAD_BIN` names one. Each basis is built once per test run, in
+//! `target/firmware-test/`.
 //!
 //! When QEMU is missing and cannot be installed, the tests say so on stderr and return
-//! without checking anything.
+//! without checking the firmware.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::collections::HashMap;
-use std::path::PathBuf;
-use std::process::Command;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use eigenrad_runtime::dali::arc_power_to_level;
 use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Basis, Evaluator, Formulation, Precision, Quantity};
-use serde_json::{json, Value};
+use serde_json::Value;
 
-/// Readings agree within this fraction. The firmware applies the levels step by step
-/// (incremental updates), the reference evaluates each state from scratch; both are `f32`
-/// with sums of `p` terms, so they differ by rounding, orders of magnitude below this.
+/// Readings agree within this fraction of the larger of the reference and the output's
+/// reading with every channel at 1. The firmware applies the levels step by step
+/// (incremental updates), `eigenrad eval` evaluates each state from scratch with the same
+/// runtime code and the same stored (f32, f16 or i16) values; both sum `p + m` products in
+/// `f32`, so they differ by rounding (a few times 2⁻²⁴ ≈ 6e-8 per step), orders of
+/// magnitude below this.
 const REL_TOL: f64 = 1e-4;
 
 /// Capacities of the firmware's evaluator (`examples/firmware/src/main.rs`).
@@ -32,13 +51,163 @@ const FW_MODES: usize = 128;
 const FW_CHANNELS: usize = 8;
 const FW_OUTPUTS: usize = 8;
 
-/// DALI arc levels the firmware applies to each channel in turn, and the level it sets
-/// channel 0 to after all channels start at 1 (`examples/firmware/src/main.rs`).
+/// DALI arc levels the firmware applies to each channel in turn, the level it sets channel 0
+/// to after all channels start at 1, and the stride of the patches whose exitance it prints
+/// (`examples/firmware/src/main.rs`).
 const ARC_LEVELS: [u8; 5] = [254, 200, 128, 1, 0];
 const HALF: f32 = 0.5;
+const PATCH_STRIDE: usize = 97;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Where this test writes bases, scenes and firmware output.
+fn work_dir() -> PathBuf {
+    let dir = root().join("target/firmware-test");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn tiny_basis_path() -> PathBuf {
+    root().join("runtime/tests/data/tiny.basis")
+}
+
+// ---------------------------------------------------------------------------------------
+// The eigenrad command
+
+/// The `eigenrad` executable: `EIGENRAD_BIN`, or the one `cargo build --profile test`
+/// reports (the test profile shares its compiled dependencies with this test).
+fn eigenrad() -> &'static Path {
+    static BIN: OnceLock<PathBuf> = OnceLock::new();
+    BIN.get_or_init(|| {
+        if let Some(bin) = std::env::var_os("EIGENRAD_BIN") {
+            return PathBuf::from(bin);
+        }
+        let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+        let output = Command::new(cargo)
+            .current_dir(root())
+            .args(["build", "--quiet", "--profile", "test"])
+            .args(["-p", "eigenrad-precompute", "--bin", "eigenrad"])
+            .arg("--message-format=json-render-diagnostics")
+            .output()
+            .expect("run cargo build");
+        assert!(
+            output.status.success(),
+            "cargo build of the eigenrad command failed:\n{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        String::from_utf8_lossy(&output.stdout)
+            .lines()
+            .filter_map(|line| serde_json::from_str::<Value>(line).ok())
+            .filter(|m| m["reason"] == "compiler-artifact" && m["target"]["name"] == "eigenrad")
+            .find_map(|m| m["executable"].as_str().map(PathBuf::from))
+            .expect("cargo build named no eigenrad executable")
+    })
+}
+
+/// Runs `eigenrad ARGS`, failing the test with its stderr when it fails.
+fn run_eigenrad(args: &[&std::ffi::OsStr]) -> Output {
+    let output = Command::new(eigenrad())
+        .args(args)
+        .output()
+        .expect("run eigenrad");
+    assert!(
+        output.status.success(),
+        "eigenrad {:?} failed ({}):\n{}",
+        args,
+        output.status,
+        String::from_utf8_lossy(&output.stderr)
+    );
+    output
+}
 
 // ---------------------------------------------------------------------------------------
 // Bases
+
+/// The office example's scene file.
+fn office_scene() -> PathBuf {
+    root().join("examples/office/scene.toml")
+}
+
+/// The office's `[scene]` mesh setting, and the coarser one of the precision variants.
+const OFFICE_MAX_EDGE: &str = "max_edge = 0.35";
+const COARSE_MAX_EDGE: &str = "max_edge = 0.7";
+
+/// The office scene with `max_edge` 0.7 m (290 patches instead of 1078), written next to
+/// the test's bases. Everything else (geometry, materials, channels, sensors, zones) is
+/// the example's.
+fn coarse_office_scene() -> PathBuf {
+    let text = std::fs::read_to_string(office_scene()).unwrap();
+    let matches: Vec<usize> = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.starts_with(OFFICE_MAX_EDGE))
+        .map(|(i, _)| i)
+        .collect();
+    assert_eq!(
+        matches.len(),
+        1,
+        "examples/office/scene.toml: expected one line starting `{OFFICE_MAX_EDGE}`"
+    );
+    let coarse: Vec<&str> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| if i == matches[0] { COARSE_MAX_EDGE } else { l })
+        .collect();
+    let path = work_dir().join("office-coarse.toml");
+    std::fs::write(&path, coarse.join("\n") + "\n").unwrap();
+    path
+}
+
+/// Which office mesh a basis is built from.
+#[derive(Clone, Copy, Debug)]
+enum Mesh {
+    /// `examples/office/scene.toml` as it is.
+    Office,
+    /// [`coarse_office_scene`].
+    Coarse,
+}
+
+/// `eigenrad build` of the office at `modes` modes per band and storage `precision`
+/// (`f32`, `f16`, `i16`), once per test run. Returns the basis' path and name.
+fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) {
+    static BUILT: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
+    let name = match mesh {
+        Mesh::Office => format!("office-p{modes}-{precision}"),
+        Mesh::Coarse => format!("office-coarse-p{modes}-{precision}"),
+    };
+    // Builds run one at a time: each uses every core for its form factors.
+    let mut built = BUILT
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    if let Some(path) = built.get(&name) {
+        return (path.clone(), name);
+    }
+    let scene = match mesh {
+        Mesh::Office => office_scene(),
+        Mesh::Coarse => coarse_office_scene(),
+    };
+    let path = work_dir().join(format!("{name}.basis"));
+    let modes = modes.to_string();
+    let report = run_eigenrad(&[
+        "build".as_ref(),
+        scene.as_os_str(),
+        "-o".as_ref(),
+        path.as_os_str(),
+        "--modes".as_ref(),
+        modes.as_ref(),
+        "--precision".as_ref(),
+        precision.as_ref(),
+    ]);
+    eprintln!("built {name}:\n{}", String::from_utf8_lossy(&report.stdout));
+    built.insert(name.clone(), path.clone());
+    (path, name)
+}
+
+// ---------------------------------------------------------------------------------------
+// A random basis (three bands)
 
 /// xorshift64*: deterministic, dependency-free.
 struct Rng(u64);
@@ -144,22 +313,22 @@ fn random_basis(seed: u64, d: Dims, precision: Precision) -> Vec<u8> {
     t.to_bytes().expect("random tables encode")
 }
 
-/// The bases of the brief: 300 patches, 32 modes, 3 channels, 2 sensors, 1 zone.
-const ROOM: Dims = Dims {
-    patches: 300,
-    modes: 32,
-    bands: 1,
+/// Dimensions of the random RGB basis: 200 patches, 24 modes, 3 bands, 3 channels, 2
+/// sensors, 1 zone.
+const RGB: Dims = Dims {
+    patches: 200,
+    modes: 24,
+    bands: 3,
     channels: 3,
     sensors: 2,
     zones: 1,
 };
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn tiny_basis() -> Vec<u8> {
-    std::fs::read(root().join("runtime/tests/data/tiny.basis")).unwrap()
+/// The random RGB basis, written next to the test's other bases.
+fn rgb_basis() -> PathBuf {
+    let path = work_dir().join("random-rgb.basis");
+    std::fs::write(&path, random_basis(12, RGB, Precision::F32)).unwrap();
+    path
 }
 
 // ---------------------------------------------------------------------------------------
@@ -193,6 +362,8 @@ struct Step {
     levels: Vec<f32>,
     sensors: Vec<(String, Vec<f64>)>,
     zones: Vec<(String, Vec<f64>)>,
+    /// `(patch, exitance per band)` for the sample of patches the firmware prints.
+    patches: Vec<(usize, Vec<f64>)>,
 }
 
 fn number<T: std::str::FromStr>(field: &str, line: &str) -> T {
@@ -262,6 +433,16 @@ impl FirmwareRun {
                         step.zones.push(reading);
                     }
                 }
+                ["exitance", k, "patch", i, values @ ..] => {
+                    assert_eq!(number::<usize>(k, line) + 1, run.steps.len());
+                    assert_eq!(values.len(), bands, "exitance bands in {line:?}");
+                    let step = run.steps.last_mut().expect("exitance before op");
+                    let values = values
+                        .iter()
+                        .map(|v| f64::from(number::<f32>(v, line)))
+                        .collect();
+                    step.patches.push((number(i, line), values));
+                }
                 ["timing", ..] => {}
                 ["instructions", what, n] => {
                     run.instructions.insert(what.to_string(), number(n, line));
@@ -294,9 +475,10 @@ impl FirmwareRun {
 /// `scripts/firmware.sh` exits with this when QEMU is missing and cannot be installed.
 const NO_QEMU: i32 = 77;
 
-/// Runs the firmware on `basis` (once per name in this test binary: runs are cached and
-/// serialised, as they share one build directory). `None` when QEMU is unavailable.
-fn firmware(name: &str, basis: &[u8]) -> Option<Arc<FirmwareRun>> {
+/// Runs the firmware on the basis at `basis_path` (once per name in this test binary: runs
+/// are cached and serialised, as they share one build directory). `None` when QEMU is
+/// unavailable.
+fn firmware(name: &str, basis_path: &Path) -> Option<Arc<FirmwareRun>> {
     static RUNS: OnceLock<Mutex<HashMap<String, Option<Arc<FirmwareRun>>>>> = OnceLock::new();
     let mut runs = RUNS
         .get_or_init(Default::default)
@@ -305,15 +487,11 @@ fn firmware(name: &str, basis: &[u8]) -> Option<Arc<FirmwareRun>> {
     if let Some(run) = runs.get(name) {
         return run.clone();
     }
-    let dir = root().join("target/firmware-test");
-    std::fs::create_dir_all(&dir).unwrap();
-    let basis_path = dir.join(format!("{name}.basis"));
-    let out_path = dir.join(format!("{name}.out"));
-    std::fs::write(&basis_path, basis).unwrap();
+    let out_path = work_dir().join(format!("{name}.out"));
     let script = root().join("scripts/firmware.sh");
     let output = Command::new("bash")
         .arg(&script)
-        .arg(&basis_path)
+        .arg(basis_path)
         .arg(&out_path)
         .output()
         .expect("run scripts/firmware.sh");
@@ -356,88 +534,94 @@ fn summary(run: &FirmwareRun) -> String {
 }
 
 // ---------------------------------------------------------------------------------------
-// The reference
+// The reference: `eigenrad eval --json`
 
-/// One evaluation: the content of `eigenrad eval --json`.
+/// One evaluation, as `eigenrad eval --json --patches` prints it: `{"unit", "bands",
+/// "levels":[{name, level}], "sensors":[{name, irradiance}], "zones":[...],
+/// "patches":[{id, surface, area, centroid, exitance, irradiance}]}`.
 #[derive(Debug)]
 struct Evaluation {
+    unit: String,
+    levels: Vec<(String, f64)>,
     sensors: Vec<(String, Vec<f64>)>,
     zones: Vec<(String, Vec<f64>)>,
+    /// Exitance per band of every patch, in patch order.
+    patches: Vec<Vec<f64>>,
+}
+
+fn numbers(v: &Value, what: &str) -> Vec<f64> {
+    v.as_array()
+        .unwrap_or_else(|| panic!("{what}: not an array: {v}"))
+        .iter()
+        .map(|x| {
+            x.as_f64()
+                .unwrap_or_else(|| panic!("{what}: not a number: {x}"))
+        })
+        .collect()
 }
 
 impl Evaluation {
-    /// Reads `{"unit", "bands", "levels":[{name, level}], "sensors":[{name, irradiance}],
-    /// "zones":[...]}`.
     fn from_json(v: &Value) -> Evaluation {
-        let outputs = |key: &str| -> Vec<(String, Vec<f64>)> {
+        let list = |key: &str| -> &Vec<Value> {
             v[key]
                 .as_array()
-                .unwrap_or_else(|| panic!("no {key:?} in {v}"))
+                .unwrap_or_else(|| panic!("no {key:?} in the eval JSON"))
+        };
+        let outputs = |key: &str| -> Vec<(String, Vec<f64>)> {
+            list(key)
                 .iter()
                 .map(|o| {
                     let name = o["name"].as_str().expect("output name").to_string();
-                    let values = o["irradiance"]
-                        .as_array()
-                        .expect("irradiance")
-                        .iter()
-                        .map(|x| x.as_f64().expect("irradiance value"))
-                        .collect();
-                    (name, values)
+                    (name, numbers(&o["irradiance"], key))
                 })
                 .collect()
         };
+        let patches = list("patches")
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                assert_eq!(p["id"].as_u64(), Some(i as u64), "patch ids in order");
+                numbers(&p["exitance"], "patch exitance")
+            })
+            .collect();
         Evaluation {
+            unit: v["unit"].as_str().expect("unit").to_string(),
+            levels: list("levels")
+                .iter()
+                .map(|l| {
+                    let name = l["name"].as_str().expect("level name").to_string();
+                    (name, l["level"].as_f64().expect("level value"))
+                })
+                .collect(),
             sensors: outputs("sensors"),
             zones: outputs("zones"),
+            patches,
         }
     }
 }
 
-/// The reference evaluation of `basis` with channels at `levels` (name → relative level),
-/// as `eigenrad eval --json --level NAME=VALUE ...` will print it. For now the runtime's
-/// evaluator on the host, with room to spare, evaluating each state from scratch.
-fn reference_json(basis: &[u8], levels: &[(String, f32)]) -> Value {
-    let basis = Basis::from_bytes(basis).unwrap();
-    match basis.bands() {
-        1 => host_json::<1>(basis, levels),
-        3 => host_json::<3>(basis, levels),
-        b => panic!("{b} bands"),
-    }
-}
-
-fn host_json<const B: usize>(basis: Basis<'_>, levels: &[(String, f32)]) -> Value {
-    let mut eval = Evaluator::<B, 4096, 256, 16, 16>::new(basis).unwrap();
-    let mut all = vec![0.0; basis.channel_count()];
+/// `eigenrad eval BASIS --json --patches --level NAME=VALUE ...` with every channel named.
+/// Each level is passed as the shortest decimal that reads back to the same `f32`.
+fn eval_json(basis: &Path, levels: &[(String, f32)]) -> Evaluation {
+    let mut args: Vec<std::ffi::OsString> = vec![
+        "eval".into(),
+        basis.into(),
+        "--json".into(),
+        "--patches".into(),
+    ];
     for (name, level) in levels {
-        let c = basis
-            .find_channel(name)
-            .unwrap_or_else(|| panic!("no channel {name}"));
-        all[c] = *level;
+        args.push("--level".into());
+        args.push(format!("{name}={level}").into());
     }
-    eval.set_channel_levels(&all).unwrap();
-    let sensors: Vec<Value> = (0..basis.sensor_count())
-        .map(|s| {
-            json!({"name": basis.sensor_name(s).unwrap(),
-                   "irradiance": eval.sensor_irradiance(s).unwrap().to_vec()})
-        })
-        .collect();
-    let zones: Vec<Value> = (0..basis.zone_count())
-        .map(|z| {
-            json!({"name": basis.zone_name(z).unwrap(),
-                   "irradiance": eval.zone_irradiance(z).unwrap().to_vec()})
-        })
-        .collect();
-    let levels: Vec<Value> = levels
-        .iter()
-        .map(|(name, level)| json!({"name": name, "level": level}))
-        .collect();
-    let bands = if B == 1 {
-        vec!["photopic"]
-    } else {
-        vec!["red", "green", "blue"]
-    };
-    json!({"unit": if B == 1 { "lux" } else { "W/m2" }, "bands": bands,
-           "levels": levels, "sensors": sensors, "zones": zones})
+    let args: Vec<&std::ffi::OsStr> = args.iter().map(|a| a.as_os_str()).collect();
+    let output = run_eigenrad(&args);
+    let json: Value = serde_json::from_slice(&output.stdout).unwrap_or_else(|e| {
+        panic!(
+            "eigenrad eval printed no JSON ({e}):\n{}",
+            String::from_utf8_lossy(&output.stdout)
+        )
+    });
+    Evaluation::from_json(&json)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -458,40 +642,59 @@ fn expected_steps(m: usize) -> Vec<(String, Vec<f32>)> {
     steps
 }
 
-fn close(a: f64, b: f64, scale: f64) -> bool {
-    (a - b).abs() <= REL_TOL * b.abs().max(scale)
+/// Largest difference seen so far, relative as in [`REL_TOL`], and where it was.
+#[derive(Default)]
+struct Worst {
+    compared: usize,
+    relative: f64,
+    at: String,
 }
 
-/// Runs the firmware on `basis` and checks every reading against the reference.
-fn check_against_host(name: &str, basis: &[u8]) {
-    let Some(run) = firmware(name, basis) else {
-        return;
-    };
-    let decoded = Basis::from_bytes(basis).unwrap();
-    let m = decoded.channel_count();
+impl Worst {
+    /// Checks `firmware` against `reference` with `scale` (the reading with every channel at
+    /// 1) as the floor of the relative test, and records the difference.
+    fn check(&mut self, firmware: f64, reference: f64, scale: f64, what: &dyn Fn() -> String) {
+        let relative = (firmware - reference).abs() / reference.abs().max(scale.abs());
+        assert!(
+            relative <= REL_TOL,
+            "{}: firmware {firmware:e}, eigenrad eval {reference:e} (relative {relative:e})",
+            what()
+        );
+        self.compared += 1;
+        if relative > self.relative || self.at.is_empty() {
+            self.relative = relative;
+            self.at = what();
+        }
+    }
+}
+
+/// Runs the firmware on the basis at `path` and checks every reading and every printed patch
+/// exitance against `eigenrad eval --json` at each step. Returns the run, or `None` when
+/// QEMU is unavailable.
+fn check_against_eval(name: &str, path: &Path) -> Option<Arc<FirmwareRun>> {
+    let run = firmware(name, path)?;
+    let bytes = std::fs::read(path).unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let m = basis.channel_count();
+    let bands = basis.bands();
     let channel_names: Vec<String> = (0..m)
-        .map(|c| decoded.channel_name(c).unwrap().to_string())
+        .map(|c| basis.channel_name(c).unwrap().to_string())
         .collect();
+    let unit = match basis.quantity() {
+        Quantity::Photometric => "lux",
+        _ => "W/m²",
+    };
+    let sample: Vec<usize> = (0..basis.patch_count()).step_by(PATCH_STRIDE).collect();
 
     let expected = expected_steps(m);
     assert_eq!(run.steps.len(), expected.len(), "number of steps");
 
-    // Each output's reading with every channel at 1 (step 0): all levels in the sequence are
-    // at most 1, so the rounding residue of incremental updates is bounded by this scale. At
-    // steps where the reading is small (channels off) a test relative to the reading itself
-    // would measure that residue instead of a disagreement.
+    // Each quantity's value with every channel at 1 (step 0) is the floor of the relative
+    // test: all levels in the sequence are at most 1, so the rounding residue of incremental
+    // updates is bounded by it. Where a reading is small (its channels off) a test relative
+    // to the reading itself would measure that residue instead of a disagreement.
     let full = &run.steps[0];
-    let scale = |kind: &str, o: usize, b: usize| -> f64 {
-        let list = if kind == "sensor" {
-            &full.sensors
-        } else {
-            &full.zones
-        };
-        list[o].1[b].abs()
-    };
-
-    let mut compared = 0;
-    let mut worst = 0.0f64;
+    let mut worst = Worst::default();
     for (k, (step, (op, levels))) in run.steps.iter().zip(&expected).enumerate() {
         assert_eq!(&step.op, op, "step {k}");
         assert_eq!(step.levels.len(), m, "step {k} levels");
@@ -504,29 +707,55 @@ fn check_against_host(name: &str, basis: &[u8]) {
             .cloned()
             .zip(step.levels.iter().copied())
             .collect();
-        let reference = Evaluation::from_json(&reference_json(basis, &named));
-        for (kind, got, want) in [
-            ("sensor", &step.sensors, &reference.sensors),
-            ("zone", &step.zones, &reference.zones),
+        let reference = eval_json(path, &named);
+        assert_eq!(reference.unit, unit, "step {k}: unit");
+        // eval used exactly the firmware's levels.
+        assert_eq!(reference.levels.len(), m, "step {k}: eval levels");
+        for ((rname, rlevel), (name, level)) in reference.levels.iter().zip(&named) {
+            assert_eq!(rname, name, "step {k}: eval channel order");
+            assert_eq!(*rlevel as f32, *level, "step {k}: eval level of {name}");
+        }
+
+        for (kind, got, want, at_full) in [
+            ("sensor", &step.sensors, &reference.sensors, &full.sensors),
+            ("zone", &step.zones, &reference.zones, &full.zones),
         ] {
             assert_eq!(got.len(), want.len(), "step {k}: {kind} count");
             for (o, ((gname, gv), (wname, wv))) in got.iter().zip(want).enumerate() {
                 assert_eq!(gname, wname, "step {k}: {kind} {o} name");
-                assert_eq!(gv.len(), wv.len(), "step {k}: {kind} {gname} bands");
-                for (b, (&g, &w)) in gv.iter().zip(wv).enumerate() {
-                    assert!(
-                        close(g, w, scale(kind, o, b)),
-                        "step {k} ({op}): {kind} {gname} band {b}: firmware {g:e}, host {w:e}"
-                    );
-                    compared += 1;
-                    worst = worst.max((g - w).abs() / w.abs().max(scale(kind, o, b)));
+                assert_eq!(gv.len(), bands, "step {k}: {kind} {gname} bands");
+                assert_eq!(wv.len(), bands, "step {k}: eval {kind} {gname} bands");
+                for b in 0..bands {
+                    worst.check(gv[b], wv[b], at_full[o].1[b], &|| {
+                        format!("step {k} ({op}): {kind} {gname} band {b}")
+                    });
                 }
             }
         }
+
+        let printed: Vec<usize> = step.patches.iter().map(|(i, _)| *i).collect();
+        assert_eq!(printed, sample, "step {k}: patches printed");
+        assert_eq!(reference.patches.len(), basis.patch_count(), "eval patches");
+        for (j, (i, gv)) in step.patches.iter().enumerate() {
+            let wv = &reference.patches[*i];
+            assert_eq!(wv.len(), bands, "step {k}: eval patch {i} bands");
+            for b in 0..bands {
+                worst.check(gv[b], wv[b], full.patches[j].1[b], &|| {
+                    format!("step {k} ({op}): patch {i} exitance band {b}")
+                });
+            }
+        }
     }
-    let outputs = decoded.sensor_count() + decoded.zone_count();
-    assert_eq!(compared, expected.len() * outputs * decoded.bands());
-    eprintln!("firmware {name}: {compared} readings, largest relative difference {worst:e}");
+    let outputs = basis.sensor_count() + basis.zone_count();
+    assert_eq!(
+        worst.compared,
+        expected.len() * (outputs + sample.len()) * bands
+    );
+    eprintln!(
+        "firmware {name}: {} values against eigenrad eval, largest relative difference {:e} \
+         ({})",
+        worst.compared, worst.relative, worst.at
+    );
 
     // Measurements: present, and the SysTick scale is the one QEMU's mps2-an386 model implies
     // (25 MHz SYSCLK, 1 ns per instruction under -icount shift=0: 40 instructions a tick), to
@@ -536,77 +765,116 @@ fn check_against_host(name: &str, basis: &[u8]) {
         "instructions per SysTick tick: {}",
         run.instructions_per_tick
     );
-    for what in ["full_update", "channel_update", "read_outputs"] {
+    for what in [
+        "full_update",
+        "channel_update",
+        "read_outputs",
+        "patch_exitance",
+    ] {
         assert!(run.instructions.get(what).is_some_and(|&n| n > 0), "{what}");
     }
     assert!(0 < run.stack_high_water && run.stack_high_water < run.stack_region);
-    assert_eq!(run.basis["bytes"], basis.len());
+    assert_eq!(run.basis["bytes"], bytes.len());
+    assert_eq!(run.basis["modes"], basis.mode_count());
+    Some(run)
 }
 
 #[test]
-fn firmware_matches_host_f32() {
-    check_against_host("room-f32", &random_basis(11, ROOM, Precision::F32));
-}
-
-/// Sensors and zones read only `f32` tables (output modes and channels, channel projections),
-/// so their readings equal the f32 basis' exactly; what this adds is decoding and linking a
-/// basis whose mode vectors, channel bounce and view factors are f16.
-#[test]
-fn firmware_matches_host_f16() {
-    check_against_host("room-f16", &random_basis(11, ROOM, Precision::F16));
-}
-
-#[test]
-fn firmware_matches_host_rgb() {
-    let rgb = Dims {
-        patches: 200,
-        modes: 24,
-        bands: 3,
-        ..ROOM
+fn firmware_matches_eval_office_f32() {
+    let (path, name) = office_basis(Mesh::Office, 32, "f32");
+    let Some(run) = check_against_eval(&name, &path) else {
+        return;
     };
-    check_against_host("room-rgb", &random_basis(12, rgb, Precision::F32));
+    // The office example as documented: 5 channels, 2 sensors, 2 zones, about 1100 patches.
+    assert_eq!(run.basis["channels"], 5);
+    assert_eq!(run.basis["sensors"], 2);
+    assert_eq!(run.basis["zones"], 2);
+    assert!(run.basis["patches"] > 1000);
 }
 
-/// The evaluator's state is fixed by its capacities: a basis 100 times larger takes the same
-/// RAM, on the host and on the target.
+/// Mode vectors, first bounces and view rows in f16: the patch exitances read them.
+#[test]
+fn firmware_matches_eval_office_f16() {
+    let (path, name) = office_basis(Mesh::Coarse, 16, "f16");
+    check_against_eval(&name, &path);
+}
+
+/// The same tables in i16 with a per-column scale, at 64 modes.
+#[test]
+fn firmware_matches_eval_office_i16() {
+    let (path, name) = office_basis(Mesh::Coarse, 64, "i16");
+    check_against_eval(&name, &path);
+}
+
+#[test]
+fn firmware_matches_eval_rgb() {
+    check_against_eval("random-rgb", &rgb_basis());
+}
+
+/// The evaluator's state is fixed by its capacities: bases of 16, 32 and 64 modes, up to a
+/// thousand times larger than the 2-patch one, take the same RAM on the host and on the
+/// target, and the basis goes to flash.
 #[test]
 fn evaluator_ram_does_not_grow_with_basis() {
     type Fw<'a> = Evaluator<'a, 1, FW_PATCHES, FW_MODES, FW_CHANNELS, FW_OUTPUTS>;
-    let small = tiny_basis();
-    let large = random_basis(11, ROOM, Precision::F32);
-    assert!(
-        large.len() > 100 * small.len(),
-        "bases of very different sizes"
-    );
-
+    let tiny = tiny_basis_path();
+    let office = [
+        office_basis(Mesh::Coarse, 16, "f16"),
+        office_basis(Mesh::Office, 32, "f32"),
+        office_basis(Mesh::Coarse, 64, "i16"),
+    ];
+    let small = std::fs::read(&tiny).unwrap();
     let a = Fw::new(Basis::from_bytes(&small).unwrap()).unwrap();
-    let b = Fw::new(Basis::from_bytes(&large).unwrap()).unwrap();
-    assert_eq!(std::mem::size_of_val(&a), std::mem::size_of_val(&b));
+    for (path, name) in &office {
+        let large = std::fs::read(path).unwrap();
+        assert!(
+            large.len() > 100 * small.len(),
+            "{name}: a much larger basis"
+        );
+        let b = Fw::new(Basis::from_bytes(&large).unwrap()).unwrap();
+        assert_eq!(
+            std::mem::size_of_val(&a),
+            std::mem::size_of_val(&b),
+            "{name}"
+        );
+    }
     // The state is RAM_BYTES plus the basis' slice headers (pointers and lengths).
     assert!(std::mem::size_of_val(&a) >= Fw::RAM_BYTES);
 
-    let (Some(small_run), Some(large_run)) =
-        (firmware("tiny", &small), firmware("room-f32", &large))
-    else {
+    let Some(small_run) = firmware("tiny", &tiny) else {
         return;
     };
-    assert_eq!(small_run.evaluator_size_of, large_run.evaluator_size_of);
     assert_eq!(small_run.ram_bytes, Fw::RAM_BYTES);
-    assert_eq!(large_run.ram_bytes, Fw::RAM_BYTES);
-    // Flash is where the basis goes: it grows by the basis' size, give or take the section
-    // alignment padding around it (a few bytes).
+    // Flash is where the basis goes: .rodata grows by at least the basis' size.
     let rodata = |run: &FirmwareRun| run.sizes["basis"]["rodata"];
-    let growth = large.len() - small.len();
-    assert!(rodata(&large_run) + 64 >= rodata(&small_run) + growth);
+    for ((path, name), modes) in office.iter().zip([16, 32, 64]) {
+        let Some(run) = firmware(name, path) else {
+            return;
+        };
+        let bytes = std::fs::metadata(path).unwrap().len() as usize;
+        assert_eq!(run.basis["modes"], modes, "{name}");
+        assert_eq!(
+            run.evaluator_size_of, small_run.evaluator_size_of,
+            "{name}: evaluator size_of on the target"
+        );
+        assert_eq!(run.ram_bytes, Fw::RAM_BYTES, "{name}");
+        assert!(
+            rodata(&run) >= rodata(&small_run) + bytes - small.len(),
+            "{name}: .rodata {} with the basis, {} with tiny.basis, basis {bytes} bytes",
+            rodata(&run),
+            rodata(&small_run)
+        );
+    }
 }
 
 #[test]
 fn parser_reads_names_with_spaces() {
     let stdout = "basis bytes 1 bands 1\nstep 0 op all 1e0\nstep 0 levels 1e0\n\
-                  reading 0 sensor north desk 2.5e2\ndone\n";
+                  reading 0 sensor north desk 2.5e2\nexitance 0 patch 97 1.5e1\ndone\n";
     let run = FirmwareRun::parse(stdout, "");
     assert_eq!(
         run.steps[0].sensors[0],
         ("north desk".to_string(), vec![250.0])
     );
+    assert_eq!(run.steps[0].patches[0], (97, vec![15.0]));
 }

@@ -12,9 +12,10 @@
 //! step <k> levels <l0> <l1> ...                 relative level of every channel
 //! reading <k> sensor <name> <v0> [<v1> <v2>]    W/m² per band, or lux
 //! reading <k> zone <name> <v0> [<v1> <v2>]
+//! exitance <k> patch <i> <v0> [<v1> <v2>]       every PATCH_STRIDE-th patch, W/m² or lux
 //! systick calibration instructions <n> ticks <t> instructions_per_tick <x>
 //! timing <what> reps <r> ticks <t> baseline_ticks <t0>
-//! instructions full_update|channel_update|read_outputs <per call>
+//! instructions full_update|channel_update|read_outputs|patch_exitance <per call>
 //! stack high_water <bytes> region <bytes>
 //! done
 //! ```
@@ -54,6 +55,11 @@ const ARC_LEVELS: [u8; 5] = [254, 200, 128, 1, 0];
 const HALF: f32 = 0.5;
 /// Repetitions of each timed operation; the count is divided out.
 const REPS: u32 = 1000;
+/// The exitance of patches 0, 97, 194, ... is printed at every step. Sensors and zones read
+/// only `f32` tables; a patch's exitance reads its row of mode vectors and first bounces,
+/// the tables an f16 or i16 basis stores in 16 bits. 97 is prime, so the sample does not
+/// follow the regular order in which a mesher emits the patches of one wall.
+const PATCH_STRIDE: usize = 97;
 
 /// Why the firmware stopped.
 enum Fail {
@@ -174,7 +180,8 @@ fn exercise<const BANDS: usize>(
     measure(&mut eval, ticks, calibration)
 }
 
-/// Prints the levels and every sensor and zone reading after step `step`.
+/// Prints the levels, every sensor and zone reading and a sample of patch exitances after
+/// step `step`.
 fn report<const B: usize, const N: usize, const P: usize, const C: usize, const O: usize>(
     eval: &Evaluator<'_, B, N, P, C, O>,
     step: usize,
@@ -198,11 +205,15 @@ fn report<const B: usize, const N: usize, const P: usize, const C: usize, const 
         let values = Line::of(&eval.zone_irradiance(z)?);
         hprintln!("reading {} zone {}{}", step, basis.zone_name(z)?, values);
     }
+    for i in (0..basis.patch_count()).step_by(PATCH_STRIDE) {
+        let values = Line::of(&eval.exitance(i)?);
+        hprintln!("exitance {} patch {}{}", step, i, values);
+    }
     Ok(())
 }
 
-/// Counts instructions for full updates, single-channel updates and reads of all outputs,
-/// each repeated [`REPS`] times and set against an empty loop of the same shape.
+/// Counts instructions for full updates, single-channel updates, reads of all outputs and
+/// reads of one patch's exitance, each repeated [`REPS`] times and set against an empty loop of the same shape.
 fn measure<const B: usize, const N: usize, const P: usize, const C: usize, const O: usize>(
     eval: &mut Evaluator<'_, B, N, P, C, O>,
     ticks: &mut Ticks,
@@ -236,10 +247,18 @@ fn measure<const B: usize, const N: usize, const P: usize, const C: usize, const
         }
         Ok::<(), Error>(())
     })?;
+    // One patch's exitance: the read that decodes the f16/i16 tables (mode vectors and first
+    // bounces), over patches spread through the basis.
+    let n = basis.patch_count().max(1);
+    let patch = ticks.count(REPS, |i| {
+        black_box(eval.exitance(i as usize * PATCH_STRIDE % n)?);
+        Ok::<(), Error>(())
+    })?;
     for (what, t) in [
         ("full_update", full),
         ("channel_update", channel),
         ("read_outputs", read),
+        ("patch_exitance", patch),
     ] {
         hprintln!(
             "timing {} reps {} ticks {} baseline_ticks {}",

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# Measures the firmware example (examples/firmware) on one scene for mode counts 16, 32, 64
+# and storage f32, f16, i16 (9 bases), and prints the markdown table of docs/embedded.md.
+#
+# For each basis: `eigenrad build SCENE --modes P --precision S`, then scripts/firmware.sh
+# (build for thumbv7em-none-eabihf with the basis in flash, run under QEMU mps2-an386 with
+# -icount shift=0). The figures are what the firmware prints (see the top of
+# examples/firmware/src/main.rs) and the section sizes firmware.sh reports, with the basis and
+# with the 2-patch runtime/tests/data/tiny.basis.
+#
+# Usage: scripts/embedded-table.sh [SCENE]        (default examples/office/scene.toml)
+#
+# Environment:
+#   EMBEDDED_TABLE_DIR    where bases, firmware output and builds go
+#                         (default target/embedded-table)
+#   EMBEDDED_TABLE_REUSE  1: keep bases already in that folder instead of rebuilding them
+#                         (a build of the office takes about a minute of CPU)
+#   EMBEDDED_TABLE_MODES  mode counts (default "16 32 64")
+#   EMBEDDED_TABLE_STORAGE storage precisions (default "f32 f16 i16")
+#
+# Progress goes to stderr; the table goes to stdout.
+set -euo pipefail
+
+root="$(cd "$(dirname "$0")/.." && pwd)"
+scene="$(realpath "${1:-$root/examples/office/scene.toml}")"
+dir="${EMBEDDED_TABLE_DIR:-$root/target/embedded-table}"
+reuse="${EMBEDDED_TABLE_REUSE:-0}"
+modes_list="${EMBEDDED_TABLE_MODES:-16 32 64}"
+storage_list="${EMBEDDED_TABLE_STORAGE:-f32 f16 i16}"
+# Flash of the part memory.x describes (bytes).
+flash_limit=$((512 * 1024))
+
+log() { printf '== %s\n' "$*" >&2; }
+
+mkdir -p "$dir"
+log "building the eigenrad command (release)"
+(cd "$root" && cargo build --release --quiet -p eigenrad-precompute --bin eigenrad) >&2
+eigenrad="$root/target/release/eigenrad"
+
+# Value of field $2 in the first record of file $1 that starts with words $3...: records are
+# `word word ... key value key value`.
+field() {
+    local file="$1" key="$2"
+    shift 2
+    awk -v key="$key" -v prefix="$*" '
+        index($0, prefix " ") == 1 {
+            for (i = 1; i < NF; i++) if ($i == key) { print $(i + 1); exit }
+        }' "$file"
+}
+
+kib() { awk -v b="$1" 'BEGIN { printf "%.1f", b / 1024 }'; }
+
+printf '| p | storage | basis (bytes) | .text (tiny → with basis) | .rodata (tiny → with basis) | flash used | fits 512 KiB | Evaluator size_of / RAM_BYTES (bytes) | stack high-water (bytes) | full update (instr.) | one channel (instr.) | read all outputs (instr.) | one patch exitance (instr.) |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|---|---|\n'
+
+for p in $modes_list; do
+    for s in $storage_list; do
+        name="p$p-$s"
+        basis="$dir/$name.basis"
+        if [[ $reuse != 1 || ! -s $basis ]]; then
+            log "building $name from $scene"
+            "$eigenrad" build "$scene" -o "$basis" --modes "$p" --precision "$s" \
+                >"$dir/$name.report"
+        fi
+        bytes=$(stat -c %s "$basis")
+        log "running the firmware with $name ($bytes bytes)"
+        status=0
+        FIRMWARE_TARGET_DIR="$dir/firmware" "$root/scripts/firmware.sh" "$basis" "$dir/$name.out" \
+            >"$dir/$name.sizes" 2>"$dir/$name.log" || status=$?
+        if [[ $status -ne 0 ]]; then
+            # A basis too large for flash fails at link time (memory.x); say so in the row.
+            reason="firmware failed, see $dir/$name.log"
+            if grep -q "will not fit in region\|overflowed by" "$dir/$name.log"; then
+                reason="does not link: flash overflows"
+            fi
+            log "$name: $reason"
+            printf '| %s | %s | %s | – | – | – | no (%s) | – | – | – | – | – | – |\n' \
+                "$p" "$s" "$bytes" "$reason"
+            continue
+        fi
+        sizes="$dir/$name.sizes"
+        out="$dir/$name.out"
+        text0=$(field "$sizes" text size tiny)
+        text1=$(field "$sizes" text size basis)
+        ro0=$(field "$sizes" rodata size tiny)
+        ro1=$(field "$sizes" rodata size basis)
+        flash=$(field "$sizes" flash size basis)
+        fits=yes
+        ((flash <= flash_limit)) || fits=no
+        size_of=$(field "$out" size_of evaluator)
+        ram=$(field "$out" ram_bytes evaluator)
+        stack=$(field "$out" high_water stack)
+        full=$(awk '$1 == "instructions" && $2 == "full_update" { print $3 }' "$out")
+        chan=$(awk '$1 == "instructions" && $2 == "channel_update" { print $3 }' "$out")
+        read_all=$(awk '$1 == "instructions" && $2 == "read_outputs" { print $3 }' "$out")
+        patch=$(awk '$1 == "instructions" && $2 == "patch_exitance" { print $3 }' "$out")
+        printf '| %s | %s | %s | %s → %s | %s → %s | %s B (%s KiB) | %s | %s / %s | %s | %s | %s | %s | %s |\n' \
+            "$p" "$s" "$bytes" "$text0" "$text1" "$ro0" "$ro1" "$flash" "$(kib "$flash")" "$fits" \
+            "$size_of" "$ram" "$stack" "$full" "$chan" "$read_all" "$patch"
+    done
+done
