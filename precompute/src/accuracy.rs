@@ -87,7 +87,8 @@ pub fn standard_cases(scene: &Scene, random: usize) -> Vec<Case> {
     cases
 }
 
-fn weighted_norm(area: &[f64], x: &[f64]) -> f64 {
+/// Area-weighted 2-norm `sqrt(Σ A_i x_i²)`.
+pub fn weighted_norm(area: &[f64], x: &[f64]) -> f64 {
     area.iter()
         .zip(x)
         .map(|(a, v)| a * v * v)
@@ -95,18 +96,34 @@ fn weighted_norm(area: &[f64], x: &[f64]) -> f64 {
         .sqrt()
 }
 
-/// Error curves of `case` for every p in `modes` (ascending), against the exact solve.
-pub fn curve(model: &Model, solvers: &[ExactSolver], case: &Case, modes: &[usize]) -> Curve {
-    let mut patch_error = vec![0.0f64; modes.len()];
-    let mut output_error = vec![0.0f64; modes.len()];
+/// One point of a truncation sweep (one band, one mode count): the index into the mode
+/// ladder, and the truncated and exact solutions (patch exitance and output readings) there.
+pub struct SweepPoint<'s> {
+    /// Index of the mode count in the ladder.
+    pub step: usize,
+    /// Truncated exitance of every patch.
+    pub exitance: &'s [f64],
+    /// Exact exitance of every patch.
+    pub exact: &'s [f64],
+    /// Truncated readings of every output (sensors, then zones).
+    pub outputs: &'s [f64],
+    /// Exact readings of every output.
+    pub exact_outputs: &'s [f64],
+}
+
+/// Evaluates `case` with the first p modes for every p of `modes` (ascending), adding one
+/// mode's contribution at a time, and shows each point to `visit` together with the exact
+/// solve. Shared by `--tolerance`, the build report and `eigenrad verify`.
+pub fn sweep(
+    model: &Model,
+    solvers: &[ExactSolver],
+    case: &Case,
+    modes: &[usize],
+    mut visit: impl FnMut(SweepPoint<'_>),
+) {
     for (b, solver) in solvers.iter().enumerate() {
         let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
-        let exact_out = model.outputs(&exact);
-        let norm = weighted_norm(&model.area, &exact).max(f64::MIN_POSITIVE);
-        let out_scale = exact_out
-            .iter()
-            .fold(0.0f64, |a, v| a.max(v.abs()))
-            .max(f64::MIN_POSITIVE);
+        let exact_outputs = model.outputs(&exact);
         let (mut m, amplitude) = model.expansion(b, &case.levels, &case.extra[b]);
         let v = &model.bands[b].modes.vectors;
         let mut done = 0;
@@ -118,20 +135,42 @@ pub fn curve(model: &Model, solvers: &[ExactSolver], case: &Case, modes: &[usize
                 }
             }
             done = done.max(p);
-            let diff: Vec<f64> = m.iter().zip(&exact).map(|(a, e)| a - e).collect();
-            patch_error[t] = patch_error[t].max(weighted_norm(&model.area, &diff) / norm);
-            let out = model.outputs(&m);
-            let worst = out
-                .iter()
-                .zip(&exact_out)
-                .fold(0.0f64, |w, (a, e)| w.max((a - e).abs()));
-            output_error[t] = output_error[t].max(if exact_out.is_empty() {
-                0.0
-            } else {
-                worst / out_scale
+            let outputs = model.outputs(&m);
+            visit(SweepPoint {
+                step: t,
+                exitance: &m,
+                exact: &exact,
+                outputs: &outputs,
+                exact_outputs: &exact_outputs,
             });
         }
     }
+}
+
+/// Error curves of `case` for every p in `modes` (ascending), against the exact solve.
+pub fn curve(model: &Model, solvers: &[ExactSolver], case: &Case, modes: &[usize]) -> Curve {
+    let mut patch_error = vec![0.0f64; modes.len()];
+    let mut output_error = vec![0.0f64; modes.len()];
+    sweep(model, solvers, case, modes, |pt| {
+        let norm = weighted_norm(&model.area, pt.exact).max(f64::MIN_POSITIVE);
+        let diff: Vec<f64> = pt
+            .exitance
+            .iter()
+            .zip(pt.exact)
+            .map(|(a, e)| a - e)
+            .collect();
+        let t = pt.step;
+        patch_error[t] = patch_error[t].max(weighted_norm(&model.area, &diff) / norm);
+        let out_scale = pt.exact_outputs.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        if out_scale > 0.0 {
+            let worst = pt
+                .outputs
+                .iter()
+                .zip(pt.exact_outputs)
+                .fold(0.0f64, |w, (a, e)| w.max((a - e).abs()));
+            output_error[t] = output_error[t].max(worst / out_scale);
+        }
+    });
     Curve {
         case: case.name.clone(),
         modes: modes.to_vec(),

@@ -19,7 +19,7 @@ use eigenrad_runtime::Precision;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use crate::accuracy::{self, Case};
+use crate::accuracy::{self, weighted_norm, Case};
 use crate::build::{self, Prepared};
 use crate::eigen::{Formulation, Solver};
 use crate::error::{Error, Result};
@@ -223,14 +223,6 @@ fn relative(a: f64, e: f64, floor: f64) -> f64 {
     }
 }
 
-fn weighted_norm(area: &[f64], x: &[f64]) -> f64 {
-    area.iter()
-        .zip(x)
-        .map(|(a, v)| a * v * v)
-        .sum::<f64>()
-        .sqrt()
-}
-
 /// Errors of every metric of `case` at each p of `modes` for `model`.
 fn case_curve(
     model: &Model,
@@ -248,40 +240,32 @@ fn case_curve(
         zones: vec![vec![0.0; modes.len()]; outputs - sensors],
         sensors: vec![vec![0.0; modes.len()]; sensors],
     };
-    for (b, solver) in solvers.iter().enumerate() {
-        let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
-        let exact_out = model.outputs(&exact);
-        let norm = weighted_norm(&model.area, &exact).max(f64::MIN_POSITIVE);
+    accuracy::sweep(model, solvers, case, modes, |pt| {
+        let t = pt.step;
+        let norm = weighted_norm(&model.area, pt.exact).max(f64::MIN_POSITIVE);
         let floor = 1e-12
-            * exact_out
+            * pt.exact_outputs
                 .iter()
                 .fold(0.0f64, |a, v| a.max(v.abs()))
                 .max(f64::MIN_POSITIVE);
-        let (mut m, amplitude) = model.expansion(b, &case.levels, &case.extra[b]);
-        let v = &model.bands[b].modes.vectors;
-        let mut done = 0;
-        for (t, &p) in modes.iter().enumerate() {
-            let p = p.min(amplitude.len());
-            for (k, a) in amplitude.iter().enumerate().take(p).skip(done) {
-                for (i, x) in m.iter_mut().enumerate() {
-                    *x += v[(i, k)] * a;
-                }
-            }
-            done = done.max(p);
-            let diff: Vec<f64> = m.iter().zip(&exact).map(|(a, e)| a - e).collect();
-            let e = weighted_norm(&model.area, &diff) / norm;
-            curve.patches[t] = curve.patches[t].max(e);
-            for (o, (a, e)) in model.outputs(&m).iter().zip(&exact_out).enumerate() {
-                let r = relative(*a, *e, floor);
-                let slot = if o < sensors {
-                    &mut curve.sensors[o][t]
-                } else {
-                    &mut curve.zones[o - sensors][t]
-                };
-                *slot = slot.max(r);
-            }
+        let diff: Vec<f64> = pt
+            .exitance
+            .iter()
+            .zip(pt.exact)
+            .map(|(a, e)| a - e)
+            .collect();
+        let e = weighted_norm(&model.area, &diff) / norm;
+        curve.patches[t] = curve.patches[t].max(e);
+        for (o, (a, e)) in pt.outputs.iter().zip(pt.exact_outputs).enumerate() {
+            let r = relative(*a, *e, floor);
+            let slot = if o < sensors {
+                &mut curve.sensors[o][t]
+            } else {
+                &mut curve.zones[o - sensors][t]
+            };
+            *slot = slot.max(r);
         }
-    }
+    });
     curve
 }
 
