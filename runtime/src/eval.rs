@@ -4,7 +4,7 @@ use crate::basis::{check_index, Basis};
 use crate::dali;
 use crate::error::{Error, Result};
 use crate::format::{Formulation, NO_CHANNEL};
-use crate::storage::{axpy_f32, dot_f32, f32_at, f32s, u16_at};
+use crate::storage::{axpy_f32, dot_f32, f32_at, f32_row, f32s, u16_at};
 
 /// Largest channel level accepted (relative; 1 is the level the basis was built for).
 pub const MAX_LEVEL: f32 = 1.0e3;
@@ -130,12 +130,11 @@ impl<
 
     /// Bytes of channel `c`'s mode projection in band `b`.
     fn channel_projection(&self, c: usize, b: usize) -> &'a [u8] {
-        let p = self.p();
-        let start = (c * self.basis.bands + b) * p * 4;
-        self.basis
-            .channel_projection
-            .get(start..start + p * 4)
-            .unwrap_or(&[])
+        f32_row(
+            self.basis.channel_projection,
+            c * self.basis.bands + b,
+            self.p(),
+        )
     }
 
     /// Sets every channel's level at once (relative, 1 = as built) and recomputes the mode
@@ -178,13 +177,9 @@ impl<
             let amp = amp.get_mut(..p).unwrap_or(&mut []);
             amp.copy_from_slice(base.get(..p).unwrap_or(&[]));
             for (c, &l) in levels.iter().enumerate() {
-                let start = (c * self.basis.bands + b) * p * 4;
-                let proj = self
-                    .basis
-                    .channel_projection
-                    .get(start..start + p * 4)
-                    .unwrap_or(&[]);
-                axpy_f32(l, proj, amp);
+                let projection =
+                    f32_row(self.basis.channel_projection, c * self.basis.bands + b, p);
+                axpy_f32(l, projection, amp);
             }
         }
     }
@@ -435,22 +430,12 @@ impl<
         let bands = self.basis.bands;
         let mut out = [0.0f32; BANDS];
         for (b, slot) in out.iter_mut().enumerate() {
-            let start = (o * bands + b) * p * 4;
-            let modes = self
-                .basis
-                .output_modes
-                .get(start..start + p * 4)
-                .unwrap_or(&[]);
+            let modes = f32_row(self.basis.output_modes, o * bands + b, p);
             let amp = self
                 .amplitude
                 .get(b)
                 .map_or(&[][..], |a| a.get(..p).unwrap_or(&[]));
-            let cstart = (o * bands + b) * m * 4;
-            let chans = self
-                .basis
-                .output_channels
-                .get(cstart..cstart + m * 4)
-                .unwrap_or(&[]);
+            let chans = f32_row(self.basis.output_channels, o * bands + b, m);
             let direct = self
                 .patch_direct
                 .get(o)
@@ -495,17 +480,10 @@ fn patch_response(
 ) {
     let p = basis.modes;
     let rho = f32_at(basis.reflectance, patch * basis.bands + band);
-    let eigenvalues = basis
-        .eigenvalues
-        .get(band * p * 4..(band + 1) * p * 4)
-        .unwrap_or(&[]);
+    let eigenvalues = f32_row(basis.eigenvalues, band, p);
     if rho == 0.0 {
         if let Some(j) = basis.black_index(patch) {
-            let start = (j * basis.bands + band) * p * 4;
-            let row = basis
-                .black_projection
-                .get(start..start + p * 4)
-                .unwrap_or(&[]);
+            let row = f32_row(basis.black_projection, j * basis.bands + band, p);
             for (k, x) in f32s(row).enumerate() {
                 f(k, delta * x);
             }

@@ -33,6 +33,13 @@ pub(crate) fn u32_at(bytes: &[u8], i: usize) -> u32 {
     }
 }
 
+/// Row `row` of a little-endian `f32` table with rows of `len` values (empty past the end).
+#[inline]
+pub(crate) fn f32_row(bytes: &[u8], row: usize, len: usize) -> &[u8] {
+    let start = row * len * 4;
+    bytes.get(start..start + len * 4).unwrap_or(&[])
+}
+
 /// `f32` values of a little-endian table, in order.
 #[inline]
 pub(crate) fn f32s(bytes: &[u8]) -> impl Iterator<Item = f32> + '_ {
