@@ -182,8 +182,9 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
             available / 1e9
         )));
     }
+    let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
     let ff = timed(&mut timings, "form factors", || {
-        formfactor::patch_form_factors(&scene.patches, opts)
+        formfactor::patch_form_factors_with(&scene.patches, &occluders, opts)
     });
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
     let row_sum_min = ff.row_sums.iter().copied().fold(f64::INFINITY, f64::min);
@@ -214,7 +215,6 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         }
     }
     let output_rows = timed(&mut timings, "sensors and zones", || {
-        let occluders = Occluders::new(&scene.patches);
         outputs::output_rows(&scene, &g, &area, &occluders, opts)
     });
     Ok(Prepared {

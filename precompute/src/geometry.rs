@@ -177,6 +177,17 @@ impl Polygon {
     }
 }
 
+/// A convex planar face of a surface as the scene gives it, before meshing. Its patches tile
+/// it exactly, so for occlusion the face stands in for all of them: one blocker instead of
+/// dozens, and no ray can slip through a seam between two of its patches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Face {
+    /// The outline (convex, counter-clockwise seen from the front).
+    pub polygon: Polygon,
+    /// The patches it was cut into: consecutive indices into the scene's patch list.
+    pub patches: std::ops::Range<usize>,
+}
+
 /// A meshed patch: the unit of the radiosity system.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {

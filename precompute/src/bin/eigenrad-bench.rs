@@ -683,7 +683,7 @@ fn scale_one(path: &Path) -> Result<()> {
     let scene =
         eigenrad_precompute::scene::load(path).with_context(|| format!("{}", path.display()))?;
     let t = Instant::now();
-    let occ = eigenrad_precompute::formfactor::Occluders::new(&scene.patches);
+    let occ = eigenrad_precompute::formfactor::Occluders::with_faces(&scene.patches, &scene.faces);
     let bvh_s = t.elapsed().as_secs_f64();
     black_box(occ.len());
     drop(occ);

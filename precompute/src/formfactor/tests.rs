@@ -1,7 +1,7 @@
 //! Form factors against closed forms (Howell's catalogue) and the shared reference data.
 
 use super::*;
-use crate::geometry::Polygon;
+use crate::geometry::{Face, Polygon};
 use std::f64::consts::PI;
 
 fn v(x: f64, y: f64, z: f64) -> Vec3 {
@@ -27,6 +27,18 @@ fn grid(origin: Vec3, e1: Vec3, e2: Vec3, n1: usize, n2: usize, surface: usize) 
 /// The six faces of the box `lo..hi` cut into patches about `size` metres wide, facing inwards
 /// (a room) or outwards (a blocker).
 fn meshed_box(lo: Vec3, hi: Vec3, size: f64, inward: bool, surface: usize) -> Vec<Patch> {
+    meshed_box_with_faces(lo, hi, size, inward, surface, 0).0
+}
+
+/// [`meshed_box`] and its six faces, the first patch being number `first` of the scene.
+fn meshed_box_with_faces(
+    lo: Vec3,
+    hi: Vec3,
+    size: f64,
+    inward: bool,
+    surface: usize,
+    first: usize,
+) -> (Vec<Patch>, Vec<Face>) {
     let d = hi - lo;
     let cuts = |len: f64| ((len / size).round() as usize).max(1);
     let (ex, ey, ez) = (v(d.x, 0.0, 0.0), v(0.0, d.y, 0.0), v(0.0, 0.0, d.z));
@@ -41,14 +53,21 @@ fn meshed_box(lo: Vec3, hi: Vec3, size: f64, inward: bool, surface: usize) -> Ve
         (lo + ey, ex, ez, nx, nz),
     ];
     let mut out = Vec::new();
+    let mut outlines = Vec::new();
     for (k, &(o, e1, e2, n1, n2)) in faces.iter().enumerate() {
-        if inward {
-            out.extend(grid(o, e1, e2, n1, n2, surface + k));
+        let start = first + out.len();
+        let (e1, e2, n1, n2) = if inward {
+            (e1, e2, n1, n2)
         } else {
-            out.extend(grid(o, e2, e1, n2, n1, surface + k));
-        }
+            (e2, e1, n2, n1)
+        };
+        out.extend(grid(o, e1, e2, n1, n2, surface + k));
+        outlines.push(Face {
+            polygon: Polygon::new(vec![o, o + e1, o + e1 + e2, o + e2]),
+            patches: start..first + out.len(),
+        });
     }
-    out
+    (out, outlines)
 }
 
 fn unit_square_facing(z: f64, up: bool) -> Patch {
@@ -248,6 +267,44 @@ fn closed_room_rows_sum_to_one_with_and_without_blocker() {
     );
     assert!(dev_empty < 1e-3);
     assert!(dev_full < 1e-3);
+}
+
+#[test]
+fn faces_block_like_their_patches() {
+    // Reference: the patch-level occluders. A face is exactly the union of its patches, so
+    // form factors with face-level blockers must equal those with one blocker per patch, up to
+    // rays that graze a seam between two patches. Tolerance 1e-9 on G = A F per entry.
+    let (mut scene, mut faces) =
+        meshed_box_with_faces(v(0.0, 0.0, 0.0), v(4.0, 3.0, 2.7), 0.5, true, 0, 0);
+    let (desk, desk_faces) = meshed_box_with_faces(
+        v(1.5, 1.0, 0.5),
+        v(2.5, 2.0, 1.2),
+        0.35,
+        false,
+        6,
+        scene.len(),
+    );
+    scene.extend(desk);
+    faces.extend(desk_faces);
+    let per_patch = Occluders::new(&scene);
+    let per_face = Occluders::with_faces(&scene, &faces);
+    assert_eq!(
+        per_face.len(),
+        6,
+        "the desk's six faces block, the room's walls do not"
+    );
+    assert!(per_patch.len() > 6 * 4);
+    let opts = FormFactorOptions::default();
+    let a = patch_form_factors_with(&scene, &per_patch, &opts);
+    let b = patch_form_factors_with(&scene, &per_face, &opts);
+    let mut worst = 0.0_f64;
+    for i in 0..scene.len() {
+        for j in 0..scene.len() {
+            worst = worst.max(scene[i].area * (a.matrix[(i, j)] - b.matrix[(i, j)]).abs());
+        }
+    }
+    println!("{} patches: worst |ΔG| {worst:.2e} m²", scene.len());
+    assert!(worst < 1e-9);
 }
 
 #[test]

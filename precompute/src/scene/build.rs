@@ -10,7 +10,7 @@ use super::file::{BandsDef, SceneFile};
 use super::mesh::{check_face, mesh_face, triangulate};
 use super::{channels, limits, obj, observers, openings, primitives, winding};
 use super::{Bands, Scene, Surface};
-use crate::geometry::{Patch, Vec3};
+use crate::geometry::{Face, Patch, Polygon, Vec3};
 
 /// Default planarity tolerance: a corner may sit 0.1 % of the face's diagonal off its plane.
 const PLANARITY: f64 = 1e-3;
@@ -143,6 +143,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     // Materials resolved, faces checked and meshed.
     let mut surfaces = Vec::with_capacity(raw.len());
     let mut patches = Vec::new();
+    let mut faces = Vec::new();
     let mut reflectance = Vec::new();
     let mut material_emission = Vec::with_capacity(raw.len());
     for (index, s) in raw.iter().enumerate() {
@@ -183,7 +184,12 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
             };
             for piece in pieces {
                 check_face(&piece, planarity).map_err(bad)?;
+                let first = patches.len() + polygons.len();
                 mesh_face(&piece, edge, &mut polygons);
+                faces.push(Face {
+                    polygon: Polygon::new(piece),
+                    patches: first..patches.len() + polygons.len(),
+                });
             }
         }
         for polygon in polygons {
@@ -221,6 +227,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         bands,
         surfaces,
         patches,
+        faces,
         reflectance,
         emission,
         channel_of_patch,

@@ -23,7 +23,7 @@ mod winding;
 use std::ops::Range;
 use std::path::Path;
 
-use crate::geometry::{Patch, Vec3};
+use crate::geometry::{Face, Patch, Vec3};
 
 pub use error::{Location, SceneError};
 
@@ -129,6 +129,8 @@ pub struct Scene {
     pub surfaces: Vec<Surface>,
     /// Patches; `patch.surface` indexes [`Scene::surfaces`].
     pub patches: Vec<Patch>,
+    /// The convex faces the patches were cut from, in patch order (used for occlusion).
+    pub faces: Vec<Face>,
     /// Reflectance per patch and band, each in [0, 1).
     pub reflectance: Vec<Vec<f64>>,
     /// Exitance emitted per patch and band at level 1 of its channel (lux or W/m²); zero for

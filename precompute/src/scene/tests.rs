@@ -223,6 +223,46 @@ fn scene_cornell_box_example() {
 }
 
 #[test]
+fn scene_faces_are_tiled_by_their_patches() {
+    // Reference: meshing cuts each convex face into patches that tile it, so occlusion may use
+    // the face in their place. Every patch is in exactly one face, in the face's plane and
+    // facing its way, and the patch areas add up to the face area (1e-9 relative).
+    for name in ["office", "cornell-box"] {
+        let scene = load(&example(name)).expect("example loads");
+        let mut covered = 0;
+        for face in &scene.faces {
+            assert_eq!(face.patches.start, covered, "{name}: faces in patch order");
+            covered = face.patches.end;
+            let (normal, face_area) = (face.polygon.normal(), face.polygon.area());
+            let origin = face.polygon.vertices[0];
+            let mut sum = 0.0;
+            for p in &scene.patches[face.patches.clone()] {
+                assert!(
+                    p.normal.dot(normal) > 1.0 - 1e-12,
+                    "{name}: patch faces its face's way"
+                );
+                for &c in &p.polygon.vertices {
+                    assert!(
+                        normal.dot(c - origin).abs() < 1e-9,
+                        "{name}: patch off its face"
+                    );
+                }
+                sum += p.area;
+            }
+            assert!(
+                (sum - face_area).abs() <= 1e-9 * face_area,
+                "{name}: {sum} vs {face_area}"
+            );
+        }
+        assert_eq!(
+            covered,
+            scene.patches.len(),
+            "{name}: every patch in a face"
+        );
+    }
+}
+
+#[test]
 fn scene_meshing_is_deterministic() {
     let a = load(&example("office")).expect("loads");
     let b = load(&example("office")).expect("loads");
