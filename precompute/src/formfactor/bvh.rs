@@ -447,6 +447,22 @@ impl Occluders {
     }
 }
 
+impl Occluders {
+    /// The outlines of the occluders a shaft lists (corners in order, metres), or `None` when it
+    /// overflowed and only rays through the whole hierarchy can tell.
+    pub(crate) fn shaft_outlines<'s>(
+        &'s self,
+        shaft: &'s Shaft,
+    ) -> Option<impl Iterator<Item = &'s [Vec3]> + 's> {
+        (!shaft.overflow).then(|| {
+            shaft.ids[..shaft.len]
+                .iter()
+                .filter_map(|&k| self.blockers.get(k as usize))
+                .map(|b| &b.corners[..b.len])
+        })
+    }
+}
+
 /// Most occluders a [`Shaft`] lists; beyond that rays traverse the whole hierarchy.
 const SHAFT_MAX: usize = 64;
 

@@ -14,16 +14,19 @@
 //!   ([`FormFactorOptions::quadrature_tolerance`]), rises for touching patches, is one common
 //!   rule for all pairs a blocker may cut, and covers only the front part of i when j's plane
 //!   cuts i;
-//! - `V_ij(x)` is the visible fraction of j seen from `x`, estimated with rays to j's corners
-//!   and centre weighted by the point-to-point kernel, refined where the rays disagree (a
-//!   blocker silhouette; module `visibility`). Rays are only cast when a blocker can cut the
-//!   pair at all ([`Occluders`]).
+//! - `V_ij(x)` restricts the kernel to the part of j that no blocker hides from `x`. It is exact:
+//!   the shadows of the blockers that can cut the pair (shaft culling, [`Occluders`]) are cut
+//!   out of j, and the contour integral runs over the visible pieces (module `shadow`). Only when
+//!   a shaft holds more blockers, or the visible part more pieces, than fixed capacities does it
+//!   fall back to a visible fraction estimated by rays refined at silhouettes (module
+//!   `visibility`). Pairs that no blocker can cut cost no visibility work at all.
 //!
 //! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `math.md`).
 
 mod bvh;
 mod kernel;
 mod quadrature;
+mod shadow;
 #[cfg(test)]
 mod tests;
 mod visibility;
@@ -57,12 +60,14 @@ pub struct FormFactorOptions {
     /// source patch's radius and `d` the gap to the target (metres), capped by `gauss_order`.
     /// Default 1e-6.
     pub quadrature_tolerance: f64,
-    /// How often a cell of the target may be split in four where the rays to its corners and
-    /// centre disagree (a blocker's silhouette crosses it). Default 4: silhouettes are resolved
+    /// For the ray fallback of visibility only (a shaft with more than 64 blockers): how often
+    /// a cell of the target may be split in four where the rays to its corners and centre
+    /// disagree (a blocker's silhouette crosses it). Default 4: silhouettes are resolved
     /// to 1/16 of the target's side; a target entirely in view or in shadow costs 5 rays.
     pub visibility_depth: u32,
-    /// Cells of a target whose unoccluded form factor from the point exceeds this share are
-    /// split even when all their rays agree (dimensionless). Default 1e-3.
+    /// For the ray fallback of visibility only: cells of a target whose unoccluded form factor
+    /// from the point exceeds this share are split even when all their rays agree
+    /// (dimensionless). Default 1e-3.
     pub visibility_cell_share: f64,
     /// Outer-quadrature order on the emitting patch for every pair that a blocker may cut
     /// (except touching pairs). All such pairs of a row share the rule: their summed kernel ×
@@ -247,15 +252,12 @@ impl Context<'_> {
                 normal: src.normal,
                 cone: None,
             };
-            let k = self.kernel(viewer, j);
-            if k > 0.0 {
-                let v = if occluded {
-                    self.visible_fraction(viewer, j, &shaft, ignore)
+            sum += weight
+                * if occluded {
+                    self.visible_kernel(viewer, j, &shaft, ignore)
                 } else {
-                    1.0
+                    self.kernel(viewer, j)
                 };
-                sum += weight * k * v;
-            }
         };
         if any_in_front(sv, -tgt.normal, t0, tol) && src.area > 0.0 {
             // The target's plane cuts the source: only the part in front sees the target, and
@@ -281,15 +283,42 @@ impl Context<'_> {
     /// Unoccluded differential form factor from the viewer to target `j` (exact).
     fn kernel(&self, v: Viewer, j: usize) -> f64 {
         let tgt = &self.targets.patches[j];
-        match v.cone {
-            None => kernel::point_to_polygon(v.point, v.normal, &tgt.polygon.vertices, tgt.normal),
-            Some(cone) => kernel::point_to_polygon_in_cone(
+        self.kernel_on(v, &tgt.polygon.vertices, tgt.normal)
+    }
+
+    /// Differential form factor from the viewer to the part of target `j` that the shaft's
+    /// occluders leave visible: exact ([`shadow`]), or the exact unoccluded kernel times a
+    /// visible fraction estimated with rays when the shaft overflowed or the visible part is too
+    /// fragmented for the fixed capacities.
+    fn visible_kernel(&self, v: Viewer, j: usize, shaft: &Shaft, ignore: &[usize]) -> f64 {
+        let tgt = &self.targets.patches[j];
+        let exact = self.occluders.shaft_outlines(shaft).and_then(|outlines| {
+            shadow::visible_sum(
                 v.point,
-                v.normal,
-                cone,
                 &tgt.polygon.vertices,
                 tgt.normal,
-            ),
+                outlines,
+                |piece| self.kernel_on(v, piece, tgt.normal),
+            )
+        });
+        if let Some(k) = exact {
+            return k;
+        }
+        let k = self.kernel(v, j);
+        if k > 0.0 {
+            k * self.visible_fraction(v, j, shaft, ignore)
+        } else {
+            0.0
+        }
+    }
+
+    /// Unoccluded differential form factor from the viewer to a polygon (exact).
+    fn kernel_on(&self, v: Viewer, corners: &[Vec3], normal: Vec3) -> f64 {
+        match v.cone {
+            None => kernel::point_to_polygon(v.point, v.normal, corners, normal),
+            Some(cone) => {
+                kernel::point_to_polygon_in_cone(v.point, v.normal, cone, corners, normal)
+            }
         }
     }
 
@@ -480,7 +509,7 @@ pub fn point_form_factors(
             let tgt = &patches[j];
             let shaft = occluders.shaft(&[point], normal, &tgt.polygon.vertices, tgt.normal, &[j]);
             if !shaft.is_clear() {
-                k * ctx.visible_fraction(viewer, j, &shaft, &[j])
+                ctx.visible_kernel(viewer, j, &shaft, &[j])
             } else {
                 k
             }

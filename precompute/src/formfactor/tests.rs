@@ -272,8 +272,10 @@ fn closed_room_rows_sum_to_one_with_and_without_blocker() {
 #[test]
 fn faces_block_like_their_patches() {
     // Reference: the patch-level occluders. A face is exactly the union of its patches, so
-    // form factors with face-level blockers must equal those with one blocker per patch, up to
-    // rays that graze a seam between two patches. Tolerance 1e-9 on G = A F per entry.
+    // form factors with face-level blockers must equal those with one blocker per patch. With
+    // dozens of patch blockers a few visible parts exceed the fixed piece capacity and fall
+    // back to rays, hence the tolerance: 1e-7 m² on G = A F per entry (G of a neighbouring
+    // pair here is about 1e-2 m²).
     let (mut scene, mut faces) =
         meshed_box_with_faces(v(0.0, 0.0, 0.0), v(4.0, 3.0, 2.7), 0.5, true, 0, 0);
     let (desk, desk_faces) = meshed_box_with_faces(
@@ -304,7 +306,7 @@ fn faces_block_like_their_patches() {
         }
     }
     println!("{} patches: worst |ΔG| {worst:.2e} m²", scene.len());
-    assert!(worst < 1e-9);
+    assert!(worst < 1e-7);
 }
 
 #[test]
