@@ -90,6 +90,10 @@ pub(crate) fn point_to_polygon(x: Vec3, normal: Vec3, target: &[Vec3], target_no
     if target_normal.dot(x - first) <= 0.0 {
         return 0.0;
     }
+    // Usually the whole target is in front: no clipping (and no copy) needed.
+    if target.iter().all(|&c| normal.dot(c - x) >= 0.0) {
+        return contour_integral(x, normal, target);
+    }
     let clipped = SmallPolygon::<PATCH_CLIPPED>::from_slice(target).clip(x, normal);
     contour_integral(x, normal, clipped.corners())
 }

@@ -95,9 +95,15 @@ impl Shadow {
             return None;
         }
         // The slab between the target's plane and (just below) the point's height.
-        let slab = SmallPolygon::<SHADOW_CORNERS>::from_slice(blocker)
-            .clip(origin, normal)
-            .clip(x - normal * (height * 1e-9), -normal);
+        let top = x - normal * (height * 1e-9);
+        let mut slab = SmallPolygon::<SHADOW_CORNERS>::from_slice(blocker);
+        // Most blockers lie within the slab: clip only those that do not.
+        if blocker.iter().any(|&c| normal.dot(c - origin) < 0.0) {
+            slab = slab.clip(origin, normal);
+        }
+        if blocker.iter().any(|&c| normal.dot(c - top) > 0.0) {
+            slab = slab.clip(top, -normal);
+        }
         if slab.len < 3 {
             return None;
         }
@@ -151,6 +157,10 @@ impl Shadow {
             }
             let mut rest = *piece;
             for (&a, &m) in edges.clone() {
+                // Only an edge that crosses what is left cuts a piece off it.
+                if rest.corners().iter().all(|&c| m.dot(c - a) >= 0.0) {
+                    continue;
+                }
                 if rest.len + 1 > PIECE_CORNERS {
                     return None;
                 }
