@@ -128,12 +128,9 @@ impl Model {
 
     /// `F x` for a vector over patches: `(G x)_i / A_i`.
     pub fn apply_f(&self, x: &[f64]) -> Vec<f64> {
-        let n = self.patch_count();
-        (0..n)
-            .map(|i| {
-                let row: f64 = (0..n).map(|j| self.g[(i, j)] * x[j]).sum();
-                row / self.area[i]
-            })
+        let gx = &self.g * faer::ColRef::from_slice(x);
+        (0..self.patch_count())
+            .map(|i| gx[i] / self.area[i])
             .collect()
     }
 
