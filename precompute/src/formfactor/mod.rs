@@ -95,6 +95,9 @@ impl Default for FormFactorOptions {
 /// 412-patch test room keeps its row sums within 1e-5 with it.
 const ORDER_SCALE: f64 = 0.5;
 
+/// Splits of a source cell toward a target it touches (`Context::integrate_toward`).
+const TOUCHING_DEPTH: u32 = 4;
+
 /// Share of the smaller patch's output below which a pair's reciprocity mismatch is measured
 /// against that share instead of the pair's own exchange.
 const RECIPROCITY_FLOOR: f64 = 1e-3;
@@ -187,6 +190,45 @@ struct Viewer<'c> {
 }
 
 impl Context<'_> {
+    /// Does source patch `src` touch target `j` (share an edge, part of one, or a corner)?
+    fn touches(&self, src: &Patch, bound: Bound, j: usize) -> bool {
+        let tgt = self.targets.bounds[j];
+        let gap = (bound.centre - tgt.centre).length() - tgt.radius;
+        let tol = 1e-9 * (bound.radius + tgt.radius);
+        gap <= bound.radius + tol
+            && touching(
+                &src.polygon.vertices,
+                &self.targets.patches[j].polygon.vertices,
+                tol,
+            )
+    }
+
+    /// Integrates `f(point, weight in m²)` over the convex `cell` of a source, splitting cells
+    /// that touch `target` (within `tol` metres) `depth` more times; cells clear of it take the
+    /// near-pair rule (`gauss_order`), the finest touching cells `touching_order`.
+    fn integrate_toward(
+        &self,
+        cell: &[Vec3],
+        target: &[Vec3],
+        tol: f64,
+        depth: u32,
+        f: &mut dyn FnMut(Vec3, f64),
+    ) {
+        let touching_cell = touching(cell, target, tol);
+        if depth == 0 || !touching_cell {
+            let order = if touching_cell {
+                self.opts.touching_order
+            } else {
+                self.opts.gauss_order
+            };
+            quadrature::for_each_on_cell(cell, self.gauss_rule(order), &mut *f);
+            return;
+        }
+        for sub in quadrature::split_cell(cell) {
+            self.integrate_toward(&sub, target, tol, depth - 1, f);
+        }
+    }
+
     /// Outer-quadrature order for source patch `src` towards target `j` (module docs).
     fn source_order(&self, src: &Patch, bound: Bound, j: usize) -> usize {
         let max = self.opts.gauss_order.max(1);
@@ -195,14 +237,7 @@ impl Context<'_> {
         if bound.radius <= 0.0 {
             return 1;
         }
-        let tol = 1e-9 * (bound.radius + tgt.radius);
-        if gap <= bound.radius + tol
-            && touching(
-                &src.polygon.vertices,
-                &self.targets.patches[j].polygon.vertices,
-                tol,
-            )
-        {
+        if self.touches(src, bound, j) {
             return max.max(self.opts.touching_order);
         }
         if gap <= 0.0 {
@@ -259,11 +294,22 @@ impl Context<'_> {
                     self.kernel(viewer, j)
                 };
         };
-        if any_in_front(sv, -tgt.normal, t0, tol) && src.area > 0.0 {
-            // The target's plane cuts the source: only the part in front sees the target, and
-            // the integrand has a kink on the cut, so integrate over that part alone.
-            let front = kernel::SmallPolygon::<{ kernel::PATCH_CLIPPED }>::from_slice(sv)
-                .clip(t0, tgt.normal);
+        let cut = any_in_front(sv, -tgt.normal, t0, tol) && src.area > 0.0;
+        // The target's plane cuts the source: only the part in front sees the target, and the
+        // integrand has a kink on the cut, so integrate over that part alone.
+        let front = cut.then(|| {
+            kernel::SmallPolygon::<{ kernel::PATCH_CLIPPED }>::from_slice(sv).clip(t0, tgt.normal)
+        });
+        let region = front.as_ref().map_or(sv.as_slice(), |f| f.corners());
+        if src.area > 0.0 && self.touches(src, sources.bounds[i], j) {
+            // The kernel is singular along the contact: cells that touch the target are split
+            // down to 1/2^TOUCHING_DEPTH of the source's side, so that a contact along part of
+            // an edge (a T-junction of the mesh) or at a corner is resolved as well as one
+            // along a whole edge.
+            self.integrate_toward(region, tv, tol, TOUCHING_DEPTH, &mut |p, w| {
+                add(p, w / src.area)
+            });
+        } else if let Some(front) = front {
             let gl = self.gauss_rule(order);
             quadrature::for_each_on_polygon(front.corners(), gl, |p, w| add(p, w / src.area));
         } else {

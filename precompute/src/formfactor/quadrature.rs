@@ -103,6 +103,52 @@ pub(crate) fn for_each_on_polygon(
     }
 }
 
+/// Calls `f(point, weight)` for the rule of Gauss–Legendre nodes `gl` on a convex cell: the
+/// bilinear tensor rule on a quadrilateral, [`for_each_on_polygon`] otherwise; weights are
+/// areas in m².
+pub(crate) fn for_each_on_cell(corners: &[Vec3], gl: &[(f64, f64)], mut f: impl FnMut(Vec3, f64)) {
+    if let &[a, b, c, d] = corners {
+        let mut samples = Vec::with_capacity(gl.len() * gl.len());
+        quad_rule([a, b, c, d], gl, &mut samples);
+        for s in samples {
+            f(s.point, s.weight);
+        }
+    } else {
+        for_each_on_polygon(corners, gl, f);
+    }
+}
+
+/// The four cells of a convex cell split at its edge midpoints: a quadrilateral into four
+/// quadrilaterals through its bilinear centre, a triangle into four triangles, other polygons
+/// into the triangles of their fan (then split).
+pub(crate) fn split_cell(corners: &[Vec3]) -> Vec<Vec<Vec3>> {
+    let mid = |p: Vec3, q: Vec3| (p + q) * 0.5;
+    match *corners {
+        [a, b, c, d] => {
+            let (ab, bc, cd, da) = (mid(a, b), mid(b, c), mid(c, d), mid(d, a));
+            let centre = (a + b + c + d) * 0.25;
+            vec![
+                vec![a, ab, centre, da],
+                vec![ab, b, bc, centre],
+                vec![centre, bc, c, cd],
+                vec![da, centre, cd, d],
+            ]
+        }
+        [a, b, c] => {
+            let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+            vec![
+                vec![a, ab, ca],
+                vec![ab, b, bc],
+                vec![ca, bc, c],
+                vec![ab, bc, ca],
+            ]
+        }
+        _ => (1..corners.len().saturating_sub(1))
+            .flat_map(|k| split_cell(&[corners[0], corners[k], corners[k + 1]]))
+            .collect(),
+    }
+}
+
 /// Appends the rule of order `m` (points per side) on `patch`, weights normalised to sum to 1.
 /// Quadrilaterals are mapped bilinearly; other polygons are cut into a fan of triangles.
 fn patch_rule(patch: &Patch, gl: &[(f64, f64)], out: &mut Vec<Sample>) {

@@ -119,6 +119,70 @@ fn perpendicular_unit_squares_sharing_an_edge_match_howell_c14() {
     }
 }
 
+/// Howell C-14: `A₁ F₁₂` (m²) between two rectangles at 90° sharing an edge of length `l` (m),
+/// of widths `w` and `h` (m) away from the edge. Symmetric in `w` and `h` (reciprocity).
+fn howell_c14_exchange(l: f64, w: f64, h: f64) -> f64 {
+    if l == 0.0 {
+        return 0.0;
+    }
+    let (hh, ww) = (h / l, w / l);
+    let (h2, w2) = (hh * hh, ww * ww);
+    let r = (h2 + w2).sqrt();
+    let log = ((1.0 + w2) * (1.0 + h2) / (1.0 + w2 + h2)).ln()
+        + w2 * (w2 * (1.0 + w2 + h2) / ((1.0 + w2) * (w2 + h2))).ln()
+        + h2 * (h2 * (1.0 + h2 + w2) / ((1.0 + h2) * (h2 + w2))).ln();
+    let f = (ww * (1.0 / ww).atan() + hh * (1.0 / hh).atan() - r * (1.0 / r).atan() + 0.25 * log)
+        / (PI * ww);
+    l * w * f
+}
+
+#[test]
+fn perpendicular_patches_meeting_along_part_of_an_edge() {
+    // Reference: Howell C-14 by form-factor algebra. The exchange between a floor strip
+    // y ∈ [a, b] and a wall strip y ∈ [c, d] (both on the line x = z = 0, widths w and h)
+    // only depends on y − y′, so G = ½ [H(b − c) − H(a − c) − H(b − d) + H(a − d)], H(l) the
+    // C-14 exchange of strips sharing an edge of length l (H even, H(0) = 0). Meshes whose
+    // patches meet at T-junctions (a patch edge half covered by a neighbour) produce these
+    // pairs. Tolerance 1e-8 relative on each pair's G (the source is refined toward the
+    // contact; a single 6 × 6 rule left 2.9e-3 on the middle case).
+    let h_of = |l: f64| howell_c14_exchange(l.abs(), 1.0, 1.0);
+    for (a, b, c, d) in [
+        (0.0, 1.0, 0.5, 1.5),
+        (0.0, 1.0, 0.25, 0.75),
+        (0.0, 1.0, 1.0, 2.0),
+    ] {
+        let floor = grid(
+            v(0.0, a, 0.0),
+            v(1.0, 0.0, 0.0),
+            v(0.0, b - a, 0.0),
+            1,
+            1,
+            0,
+        )
+        .remove(0);
+        // Wall x = 0, facing +x.
+        let wall = grid(
+            v(0.0, c, 0.0),
+            v(0.0, d - c, 0.0),
+            v(0.0, 0.0, 1.0),
+            1,
+            1,
+            1,
+        )
+        .remove(0);
+        let (af, aw) = (floor.area, wall.area);
+        let ff = patch_form_factors(&[floor, wall], &FormFactorOptions::default());
+        let want = 0.5 * (h_of(b - c) - h_of(a - c) - h_of(b - d) + h_of(a - d));
+        for got in [af * ff.matrix[(0, 1)], aw * ff.matrix[(1, 0)]] {
+            println!(
+                "floor y ∈ [{a}, {b}], wall y ∈ [{c}, {d}]: G = {got:.7} m², C-14 algebra {want:.7}, rel. error {:.1e}",
+                rel(got, want)
+            );
+            assert!(rel(got, want) < 1e-8);
+        }
+    }
+}
+
 fn reference_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/reference")
 }
@@ -242,8 +306,10 @@ fn worst_row_deviation(sums: &[f64]) -> f64 {
 
 #[test]
 fn closed_room_rows_sum_to_one_with_and_without_blocker() {
-    // Reference: a closed scene's rows sum to 1 (math.md). Tolerance 1e-3 per row, with a
-    // blocker inside (occlusion) and without.
+    // Reference: a closed scene's rows sum to 1 (math.md). Tolerance per row 1e-6 for the
+    // empty room; 1e-3 with a blocker inside, where a shadow edge crossing a source patch
+    // limits its fixed outer quadrature (each raw row still sums to 1; symmetrising G mixes
+    // in the other direction's error).
     let empty = room(0.4);
     let mut furnished = empty.clone();
     furnished.extend(blocker(0.35));
@@ -265,7 +331,7 @@ fn closed_room_rows_sum_to_one_with_and_without_blocker() {
         furnished.len(),
         ff_full.reciprocity_mismatch
     );
-    assert!(dev_empty < 1e-3);
+    assert!(dev_empty < 1e-6);
     assert!(dev_full < 1e-3);
 }
 
