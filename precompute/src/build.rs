@@ -81,9 +81,9 @@ pub struct Closure {
     pub closed: bool,
 }
 
-/// Row-sum deviation up to which a scene counts as closed. The form factors themselves are
-/// accurate to about 10⁻³ per row with occlusion (quadrature and visibility sampling), so a
-/// tighter bound would call closed rooms open; an opening that matters takes far more than
+/// Row-sum deviation up to which a scene counts as closed. With occlusion the symmetrised
+/// form factors are accurate to a few 10⁻⁴ per row (the fixed outer quadrature where a shadow
+/// edge crosses a source patch), so a much tighter bound would call closed rooms open; an opening that matters takes far more than
 /// 1 % of the view of the patches facing it.
 pub const CLOSED_TOLERANCE: f64 = 1e-2;
 
