@@ -433,6 +433,52 @@ fn point_under_rectangle_corner_matches_howell_b3() {
 }
 
 #[test]
+fn rays_take_over_beyond_the_shadow_capacities() {
+    // Reference: the exact (shadow-cutting) visibility of the same scene. A plate cut into
+    // 30 × 30 patches, each its own blocker, seen from near the floor gives shafts of more
+    // than 64 blockers (a ceiling patch's shadow spans about 9 × 9 of them): visibility then
+    // falls back to rays refined at silhouettes. With the plate as one face it is exact.
+    // The two must agree to the rays' accuracy, and both see a full hemisphere (nine ceiling
+    // patches take the ray path here; they agree to about 1e-6). Tolerance 1e-4 on the
+    // ceiling's share (about 0.22) and on the sum.
+    let mut scene = room(0.5);
+    let first = scene.len();
+    let (o, e1, e2) = (v(1.5, 1.0, 1.5), v(1.0, 0.0, 0.0), v(0.0, 1.0, 0.0));
+    scene.extend(grid(o, e2, e1, 30, 30, 6));
+    let mut faces: Vec<Face> = (0..first)
+        .map(|i| Face {
+            polygon: scene[i].polygon.clone(),
+            patches: i..i + 1,
+        })
+        .collect();
+    faces.push(Face {
+        polygon: Polygon::new(vec![o, o + e2, o + e1 + e2, o + e1]),
+        patches: first..scene.len(),
+    });
+    let per_patch = Occluders::new(&scene);
+    let per_face = Occluders::with_faces(&scene, &faces);
+    let (x, up) = (v(1.9, 1.6, 0.1), v(0.0, 0.0, 1.0));
+    let rays = point_form_factors(x, up, None, &scene, &per_patch);
+    let exact = point_form_factors(x, up, None, &scene, &per_face);
+    let ceiling = |f: &[f64]| -> f64 {
+        (0..first)
+            .filter(|&i| scene[i].normal.z < -0.5)
+            .map(|i| f[i])
+            .sum()
+    };
+    let (c_rays, c_exact) = (ceiling(&rays), ceiling(&exact));
+    let (s_rays, s_exact) = (rays.iter().sum::<f64>(), exact.iter().sum::<f64>());
+    println!("ceiling share: rays {c_rays:.6}, exact {c_exact:.6}; Σ F rays {s_rays:.6}, exact {s_exact:.9}");
+    assert!(
+        c_exact > 0.05 && c_exact < 0.5,
+        "the plate hides part of the ceiling"
+    );
+    assert!((c_rays - c_exact).abs() < 1e-4);
+    assert!((s_exact - 1.0).abs() < 1e-9);
+    assert!((s_rays - 1.0).abs() < 1e-4);
+}
+
+#[test]
 fn points_in_closed_room_see_everything() {
     // Reference: a point inside a closed room sees a full hemisphere, Σ_j F_sj = 1.
     // Tolerance 1e-6 unoccluded; 1e-6 with the blocker too, as visibility is exact (the
