@@ -56,9 +56,9 @@ pub enum Method {
 
 /// Above this many reflecting patches [`Solver::Auto`] uses the partial solver.
 ///
-/// Measured (release, 2 shared cores, smooth closed room, p = 64): dense EVD 0.23 s at
-/// n = 1000 and 1.5 s at n = 2000; partial (Lanczos) 1.3 s at n = 2000 and 11 s at n = 5000,
-/// where dense would take about 20–25 s (O(n³)). The crossover is near n = 2000.
+/// Measured by `eigenrad-bench eigen` (release, 2 idle cores, the office meshed finer,
+/// p = 32; docs/performance.md): dense 0.2 s and partial 0.2 s at 1061 reflecting patches,
+/// 0.7 s and 0.6 s at 1944, 14.7 s and 2.4 s at 4766. The crossover is near n = 2000.
 pub const AUTO_DENSE_MAX: usize = 2000;
 
 /// Relative asymmetry `max |G_ij − G_ji| / max |G|` accepted in the input.
