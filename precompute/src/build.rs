@@ -67,8 +67,12 @@ impl Default for BuildOptions {
 /// Health of the form-factor matrix.
 #[derive(Clone, Debug, Serialize)]
 pub struct Closure {
-    /// Worst reciprocity mismatch before symmetrising, relative.
+    /// Worst reciprocity mismatch before symmetrising, relative to the pair's own exchange
+    /// (or to 0.1 % of the smaller patch's output, whichever is larger).
     pub reciprocity_mismatch: f64,
+    /// Worst reciprocity mismatch before symmetrising as a share of the smaller patch's
+    /// output (`FormFactors::reciprocity_share`).
+    pub reciprocity_share: f64,
     /// Smallest row sum of F after symmetrising.
     pub row_sum_min: f64,
     /// Largest row sum of F after symmetrising.
@@ -195,6 +199,7 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         .fold(f64::NEG_INFINITY, f64::max);
     let closure = Closure {
         reciprocity_mismatch: ff.reciprocity_mismatch,
+        reciprocity_share: ff.reciprocity_share,
         row_sum_min,
         row_sum_max,
         escaping: ff

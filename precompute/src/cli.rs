@@ -479,7 +479,8 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
     let f = &r.form_factors;
     let _ = writeln!(
         s,
-        "form factors: reciprocity mismatch before symmetrising {:.2e}; row sums {:.5} .. {:.5}; {}",
+        "form factors: before symmetrising, the two directions of a pair differ by at most {:.1e} of a patch's output ({:.1e} relative to the exchange, floored at 0.1 % of the output); row sums {:.5} .. {:.5}; {}",
+        f.reciprocity_share,
         f.reciprocity_mismatch,
         f.row_sum_min,
         f.row_sum_max,

@@ -114,6 +114,12 @@ pub struct FormFactors {
     /// dominating: their mismatch counts relative to 0.1 % of the smaller patch's output.
     /// Dimensionless.
     pub reciprocity_mismatch: f64,
+    /// The same disagreement as a share of the patches' output: max over pairs of
+    /// `|A_i F_ij − A_j F_ji| / min(A_i, A_j)`, the most light (as a fraction of the smaller
+    /// patch's total output) that the two directions assign differently. This is what
+    /// symmetrising moves, so it bounds how far it can shift a row sum by one pair.
+    /// Dimensionless.
+    pub reciprocity_share: f64,
     /// Row sums of the symmetrised matrix (1 for every patch of a closed scene).
     pub row_sums: Vec<f64>,
 }
@@ -476,21 +482,24 @@ pub fn patch_form_factors_with(
     });
     bar.finish_and_clear();
     let areas: Vec<f64> = patches.iter().map(|p| p.area).collect();
-    let reciprocity_mismatch = symmetrise_transposed(&mut m, &areas);
+    let (reciprocity_mismatch, reciprocity_share) = symmetrise_transposed(&mut m, &areas);
     let row_sums = row_sums(&m);
     FormFactors {
         matrix: m,
         reciprocity_mismatch,
+        reciprocity_share,
         row_sums,
     }
 }
 
 /// Turns `m` holding the raw Fᵀ (`m[(j, i)] = F_ij`) into the symmetrised F in place:
-/// `G = A F`, `G_sym = (G + Gᵀ)/2`, `F = A⁻¹ G_sym` (math.md). Returns the worst relative
-/// reciprocity mismatch of the raw matrix (see [`FormFactors::reciprocity_mismatch`]).
-fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> f64 {
+/// `G = A F`, `G_sym = (G + Gᵀ)/2`, `F = A⁻¹ G_sym` (math.md). Returns the worst reciprocity
+/// mismatch of the raw matrix, relative and as a share of the output
+/// ([`FormFactors::reciprocity_mismatch`], [`FormFactors::reciprocity_share`]).
+fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> (f64, f64) {
     let n = areas.len();
     let mut worst = 0.0_f64;
+    let mut worst_share = 0.0_f64;
     for j in 0..n {
         for i in 0..j {
             let (ai, aj) = (areas[i], areas[j]);
@@ -499,13 +508,14 @@ fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> f64 {
             let big = gij.max(gji).max(RECIPROCITY_FLOOR * ai.min(aj));
             if big > 0.0 {
                 worst = worst.max((gij - gji).abs() / big);
+                worst_share = worst_share.max((gij - gji).abs() / ai.min(aj));
             }
             let g = 0.5 * (gij + gji);
             m[(i, j)] = if ai > 0.0 { g / ai } else { 0.0 };
             m[(j, i)] = if aj > 0.0 { g / aj } else { 0.0 };
         }
     }
-    worst
+    (worst, worst_share)
 }
 
 /// Row sums of a square matrix, summed column by column (contiguous in faer's layout).

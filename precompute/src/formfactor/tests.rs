@@ -322,17 +322,22 @@ fn closed_room_rows_sum_to_one_with_and_without_blocker() {
         worst_row_deviation(&ff_full.row_sums),
     );
     println!(
-        "room {} patches: worst row-sum deviation {dev_empty:.2e}, reciprocity {:.2e}",
+        "room {} patches: worst row-sum deviation {dev_empty:.2e}, reciprocity {:.2e} (share {:.2e})",
         empty.len(),
-        ff_empty.reciprocity_mismatch
+        ff_empty.reciprocity_mismatch,
+        ff_empty.reciprocity_share
     );
     println!(
-        "room + blocker {} patches: worst row-sum deviation {dev_full:.2e}, reciprocity {:.2e}",
+        "room + blocker {} patches: worst row-sum deviation {dev_full:.2e}, reciprocity {:.2e} (share {:.2e})",
         furnished.len(),
-        ff_full.reciprocity_mismatch
+        ff_full.reciprocity_mismatch,
+        ff_full.reciprocity_share
     );
     assert!(dev_empty < 1e-6);
     assert!(dev_full < 1e-3);
+    // Symmetrising moves at most the reciprocity share per pair; the rows above bound it too.
+    assert!(ff_empty.reciprocity_share < 1e-6);
+    assert!(ff_full.reciprocity_share < 5e-4);
 }
 
 #[test]
