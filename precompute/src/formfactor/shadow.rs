@@ -58,8 +58,10 @@ pub(crate) fn visible_sum<'b>(
         current.clear();
         current.push(Piece::from_slice(target));
         for blocker in blockers {
-            let Some(shadow) = Shadow::cast(x, height, origin, normal, blocker, negligible) else {
-                continue;
+            let shadow = match Shadow::cast(x, height, origin, normal, blocker, negligible) {
+                Cast::Nothing => continue,
+                Cast::Shadow(shadow) => shadow,
+                Cast::TooComplex => return None,
             };
             next.clear();
             shadow.subtract(current, next, negligible)?;
@@ -72,17 +74,30 @@ pub(crate) fn visible_sum<'b>(
     })
 }
 
-/// A convex shadow in the target's plane: corners and, per edge, the in-plane normal pointing
-/// into the shadow.
+/// A convex shadow in the target's plane, as the half-planes of its edges: a point on each
+/// edge and the in-plane normal pointing into the shadow.
 struct Shadow {
     corners: [Vec3; SHADOW_CORNERS],
     inward: [Vec3; SHADOW_CORNERS],
     len: usize,
 }
 
+/// What one blocker does to the target.
+// A short-lived value on the stack, once per blocker and point: boxing the shadow would put an
+// allocation in the innermost loop of the form factors.
+#[allow(clippy::large_enum_variant)]
+enum Cast {
+    /// It hides nothing (outside the slab, or seen edge-on).
+    Nothing,
+    /// It hides this shadow.
+    Shadow(Shadow),
+    /// More corners than the fixed capacity: the caller must fall back to rays.
+    TooComplex,
+}
+
 impl Shadow {
     /// The shadow of `blocker` seen from `x` (at `height` m above the target's plane through
-    /// `origin` with unit `normal`), or `None` when it hides nothing.
+    /// `origin` with unit `normal`).
     fn cast(
         x: Vec3,
         height: f64,
@@ -90,9 +105,9 @@ impl Shadow {
         normal: Vec3,
         blocker: &[Vec3],
         negligible: f64,
-    ) -> Option<Shadow> {
+    ) -> Cast {
         if blocker.len() > SHADOW_CORNERS - 2 {
-            return None;
+            return Cast::TooComplex;
         }
         // The slab between the target's plane and (just below) the point's height.
         let top = x - normal * (height * 1e-9);
@@ -105,30 +120,46 @@ impl Shadow {
             slab = slab.clip(top, -normal);
         }
         if slab.len < 3 {
-            return None;
+            return Cast::Nothing;
         }
-        let mut shadow = Shadow {
-            corners: [Vec3::ZERO; SHADOW_CORNERS],
-            inward: [Vec3::ZERO; SHADOW_CORNERS],
-            len: slab.len,
-        };
-        for (s, &p) in shadow.corners.iter_mut().zip(slab.corners()) {
+        let mut projected = [Vec3::ZERO; SHADOW_CORNERS];
+        for (s, &p) in projected.iter_mut().zip(slab.corners()) {
             let h = normal.dot(p - origin);
             *s = x + (p - x) * (height / (height - h));
         }
-        let corners = &shadow.corners[..shadow.len];
-        let centre = corners.iter().fold(Vec3::ZERO, |a, &c| a + c) / shadow.len as f64;
+        let corners = &projected[..slab.len];
+        let centre = corners.iter().fold(Vec3::ZERO, |a, &c| a + c) / slab.len as f64;
+        let extent = corners
+            .iter()
+            .map(|&c| (c - centre).length())
+            .fold(0.0, f64::max);
+        let mut shadow = Shadow {
+            corners: [Vec3::ZERO; SHADOW_CORNERS],
+            inward: [Vec3::ZERO; SHADOW_CORNERS],
+            len: 0,
+        };
         let mut twice_area = Vec3::ZERO;
-        for k in 0..shadow.len {
-            let (a, b) = (corners[k], corners[(k + 1) % shadow.len]);
+        for k in 0..slab.len {
+            let (a, b) = (corners[k], corners[(k + 1) % slab.len]);
             twice_area += (a - centre).cross(b - centre);
+            // A clipped corner can leave an edge of rounding length, whose direction (and so
+            // half-plane) is noise: the neighbouring edges bound the shadow there.
+            if (b - a).length() <= 1e-12 * extent {
+                continue;
+            }
             let mut m = normal.cross(b - a);
             if m.dot(centre - a) < 0.0 {
                 m = -m;
             }
-            shadow.inward[k] = m;
+            shadow.corners[shadow.len] = a;
+            shadow.inward[shadow.len] = m;
+            shadow.len += 1;
         }
-        (0.5 * twice_area.length() > negligible).then_some(shadow)
+        if 0.5 * twice_area.length() > negligible && shadow.len >= 3 {
+            Cast::Shadow(shadow)
+        } else {
+            Cast::Nothing
+        }
     }
 
     /// Appends `pieces` minus this shadow to `out`; `None` beyond [`MAX_PIECES`] pieces or
