@@ -355,26 +355,34 @@ impl<
         let m = self.basis.channels;
         let mut out = [0.0f32; BANDS];
         for (b, slot) in out.iter_mut().enumerate() {
-            let mut value = if self.identity(patch, b) {
-                self.emitted(patch, b)
-            } else {
-                0.0
-            };
-            if self.basis.channel_bounce.cols != 0 {
-                self.basis
-                    .channel_bounce
-                    .for_each(patch, 0, m * bands, |col, v| {
-                        if col % bands == b {
-                            value += v * self.levels.get(col / bands).copied().unwrap_or(0.0);
-                        }
-                    });
+            if self.identity(patch, b) {
+                *slot = self.emitted(patch, b);
             }
+        }
+        if self.basis.channel_bounce.cols != 0 {
+            // One pass over the row (channel-major, band-minor), no index arithmetic per value.
+            let (mut channel, mut band) = (0, 0);
+            self.basis
+                .channel_bounce
+                .for_each(patch, 0, m * bands, |_, v| {
+                    if let (Some(slot), Some(&level)) =
+                        (out.get_mut(band), self.levels.get(channel))
+                    {
+                        *slot += v * level;
+                    }
+                    band += 1;
+                    if band == bands {
+                        band = 0;
+                        channel += 1;
+                    }
+                });
+        }
+        for (b, slot) in out.iter_mut().enumerate() {
             let amp = self
                 .amplitude
                 .get(b)
                 .map_or(&[][..], |a| a.get(..p).unwrap_or(&[]));
-            value += self.basis.mode_vectors.row_dot(patch, b * p, amp);
-            *slot = value;
+            *slot += self.basis.mode_vectors.row_dot(patch, b * p, amp);
         }
         Self::checked(out)
     }
