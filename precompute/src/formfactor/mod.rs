@@ -235,15 +235,16 @@ impl Context<'_> {
         }
     }
 
-    /// Outer-quadrature order for source patch `src` towards target `j` (module docs).
-    fn source_order(&self, src: &Patch, bound: Bound, j: usize) -> usize {
+    /// Outer-quadrature order for a source patch (`bound`) towards target `j` (module docs).
+    /// `touches`: [`Context::touches`] for the pair.
+    fn source_order(&self, bound: Bound, j: usize, touches: bool) -> usize {
         let max = self.opts.gauss_order.max(1);
         let tgt = self.targets.bounds[j];
         let gap = (bound.centre - tgt.centre).length() - tgt.radius;
         if bound.radius <= 0.0 {
             return 1;
         }
-        if self.touches(src, bound, j) {
+        if touches {
             return max.max(self.opts.touching_order);
         }
         if gap <= 0.0 {
@@ -281,7 +282,8 @@ impl Context<'_> {
         }
         let shaft = self.occluders.shaft(sv, src.normal, tv, tgt.normal, ignore);
         let occluded = !shaft.is_clear();
-        let mut order = self.source_order(src, sources.bounds[i], j);
+        let touches = self.touches(src, sources.bounds[i], j);
+        let mut order = self.source_order(sources.bounds[i], j, touches);
         if occluded && order <= self.opts.gauss_order {
             // One rule for every pair a blocker may cut (touching pairs keep their own).
             order = self.opts.occluded_order;
@@ -307,7 +309,7 @@ impl Context<'_> {
             kernel::SmallPolygon::<{ kernel::PATCH_CLIPPED }>::from_slice(sv).clip(t0, tgt.normal)
         });
         let region = front.as_ref().map_or(sv.as_slice(), |f| f.corners());
-        if src.area > 0.0 && self.touches(src, sources.bounds[i], j) {
+        if src.area > 0.0 && touches {
             // The kernel is singular along the contact: cells that touch the target are split
             // down to 1/2^TOUCHING_DEPTH of the source's side, so that a contact along part of
             // an edge (a T-junction of the mesh) or at a corner is resolved as well as one
