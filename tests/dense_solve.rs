@@ -5,12 +5,12 @@
 
 use std::path::Path;
 
-use eigenrad::precompute::build::prepare;
-use eigenrad::precompute::eigen::{Formulation, Solver};
+use eigenrad::precompute::accuracy::runtime_eval;
+use eigenrad::precompute::basis::basis_tables;
 use eigenrad::precompute::formfactor::FormFactorOptions;
-use eigenrad::precompute::host_eval;
-use eigenrad::precompute::model::Model;
-use eigenrad::precompute::tables::basis_tables;
+use eigenrad::precompute::pipeline::prepare;
+use eigenrad::precompute::radiosity::eigen::{Formulation, Solver};
+use eigenrad::precompute::radiosity::model::Model;
 use eigenrad::runtime::Precision;
 
 /// f32 evaluation of sums of up to ~100 terms against an f64 LU solve: 1e-5 relative,
@@ -121,7 +121,7 @@ fn full_basis_equals_the_dense_solve_for_both_formulations() {
             .to_bytes()
             .unwrap();
         let levels32: Vec<f32> = levels.iter().map(|&l| l as f32).collect();
-        let got = host_eval::evaluate(&bytes, &levels32, &[extra.clone()], true).unwrap();
+        let got = runtime_eval::evaluate(&bytes, &levels32, &[extra.clone()], true).unwrap();
 
         let scale = exact.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let worst = (0..n)

@@ -12,11 +12,11 @@
 
 use std::path::{Path, PathBuf};
 
-use eigenrad::precompute::build::{self, prepare, BuildOptions, ModeSelection};
+use eigenrad::precompute::accuracy::runtime_eval;
 use eigenrad::precompute::cli;
-use eigenrad::precompute::eigen::{self, Formulation, Solver};
 use eigenrad::precompute::formfactor::FormFactorOptions;
-use eigenrad::precompute::host_eval;
+use eigenrad::precompute::pipeline::{self, prepare, BuildOptions, ModeSelection};
+use eigenrad::precompute::radiosity::eigen::{self, Formulation, Solver};
 
 /// CIE 171:2006 test case 5.8 asks for the analytic average; the project's acceptance figure
 /// is 0.2 % relative (project issue 5).
@@ -77,7 +77,7 @@ fn full_basis(path: &Path) -> Vec<u8> {
         solver: Solver::Dense,
         ..BuildOptions::default()
     };
-    build::build(path, &opts).unwrap().0
+    pipeline::build(path, &opts).unwrap().0
 }
 
 #[test]
@@ -94,7 +94,7 @@ fn cie_171_case_5_8_average_irradiance_in_a_cube() {
 
         let solved = cli::solve(&path, &[], false).unwrap().zones[0].irradiance[0];
         let basis = full_basis(&path);
-        let evaluated = host_eval::evaluate(&basis, &[1.0], &[], false)
+        let evaluated = runtime_eval::evaluate(&basis, &[1.0], &[], false)
             .unwrap()
             .zones[0][0];
         let (e1, e2) = (
@@ -130,7 +130,7 @@ fn white_furnace() {
             .fold(0.0, f64::max);
 
         let basis = full_basis(&path);
-        let got = host_eval::evaluate(&basis, &[1.0], &[], true).unwrap();
+        let got = runtime_eval::evaluate(&basis, &[1.0], &[], true).unwrap();
         assert_eq!(got.exitance.len(), patches.len());
         let worst_basis = got
             .exitance

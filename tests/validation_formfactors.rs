@@ -2,7 +2,7 @@
 //! factors (J. R. Howell, "A Catalog of Radiation Heat Transfer Configuration Factors",
 //! cases B-3, C-11, C-14, C-41; the formulas are written out below), computed through the
 //! library exactly as `eigenrad form-factors` does (`cli::surface_form_factors`) or, for a
-//! point sensor, through the sensor row of `build::prepare` (`formfactor::point_form_factors`).
+//! point sensor, through the sensor row of `pipeline::prepare` (`formfactor::point_form_factors`).
 //!
 //! Plus invariants every form-factor matrix must satisfy on the example scenes, and the first
 //! bounce at a sensor under an emitting rectangle (B-3 again, through the exact solve).
@@ -12,9 +12,9 @@
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-use eigenrad::precompute::build::prepare;
 use eigenrad::precompute::cli;
 use eigenrad::precompute::formfactor::{patch_form_factors, FormFactorOptions};
+use eigenrad::precompute::pipeline::prepare;
 use eigenrad::precompute::scene;
 
 /// Goal for the rectangle cases of the catalogue at default settings: 0.1 % relative

@@ -1,6 +1,7 @@
 //! `eigenrad verify` on a tiny room: the report's structure, and its split (and seed) error at
 //! p = n is rounding (math.md: "Any truncation p = n reproduces the dense solve to rounding").
 
+use eigenrad::precompute::cli;
 use eigenrad::precompute::verify::{self, CaseKind, Metric, VerifyOptions};
 
 /// f64 expansion with every mode against an f64 LU solve, ~100 patches: 1e-9 relative leaves
@@ -187,7 +188,7 @@ fn verify_reports_every_case_and_is_exact_with_every_mode() {
     assert!(ps.iter().all(|(_, p)| p.is_some_and(|p| p <= n)));
 
     // The curves.
-    let files = verify::write_svgs(&r, &dir).unwrap();
+    let files = cli::write_svgs(&r, &dir).unwrap();
     assert_eq!(files.len(), 3);
     for f in &files {
         let svg = std::fs::read_to_string(f).unwrap();

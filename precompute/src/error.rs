@@ -14,7 +14,7 @@ pub enum Error {
     Scene(#[from] crate::scene::SceneError),
     /// The eigensolver failed (non-convergence, bad input).
     #[error("eigensolver: {0}")]
-    Eigen(#[from] crate::eigen::EigenError),
+    Eigen(#[from] crate::radiosity::eigen::EigenError),
     /// A basis file is unreadable or invalid.
     #[error("basis {}: {reason}", path.display())]
     Basis {

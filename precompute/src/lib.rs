@@ -1,19 +1,28 @@
 //! Host precompute for eigenrad: scene in; form factors, eigenbasis, serialized basis and an
 //! accuracy report out. The `eigenrad` command is a thin layer over this library.
+//!
+//! The modules are the pipeline's stages, each using only the ones above it:
+//!
+//! | module | stage |
+//! |---|---|
+//! | [`geometry`] | points, polygons, patches |
+//! | [`scene`] | scene files, OBJ/MTL, meshing |
+//! | [`formfactor`] | form factors with occlusion, sensor and zone rows, their health |
+//! | [`radiosity`] | the model (`G`, `ρ`, `b`), exact solves, eigenmodes |
+//! | [`basis`] | a model and its modes as the runtime's tables |
+//! | [`accuracy`] | test cases, the error metric, the truncation sweep, evaluation through the runtime |
+//! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
+//! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
+//! | [`cli`] | what the commands compute and print, atomic file writes |
 pub mod accuracy;
-pub mod atomic;
-pub mod build;
+pub mod basis;
 pub mod cli;
-pub mod eigen;
 mod error;
 pub mod formfactor;
 pub mod geometry;
-pub mod host_eval;
-pub mod model;
-pub mod outputs;
+pub mod pipeline;
+pub mod radiosity;
 pub mod scene;
-pub mod solve;
-pub mod tables;
 pub mod verify;
 
 pub use error::{Error, Result};

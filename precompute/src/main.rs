@@ -7,10 +7,11 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
-use eigenrad_precompute::build::{self, BuildOptions, ModeSelection};
-use eigenrad_precompute::eigen::{Formulation, Solver};
+use eigenrad_precompute::cli::{self, atomic};
 use eigenrad_precompute::formfactor::FormFactorOptions;
-use eigenrad_precompute::{atomic, cli, verify, Error};
+use eigenrad_precompute::pipeline::{self, BuildOptions, ModeSelection};
+use eigenrad_precompute::radiosity::eigen::{Formulation, Solver};
+use eigenrad_precompute::{verify, Error};
 use eigenrad_runtime::Precision;
 
 /// Real-time radiosity for lighting controllers: precompute a room's eigenbasis, evaluate it
@@ -176,7 +177,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 modes: match (modes, tolerance) {
                     (Some(p), _) => ModeSelection::Count(p),
                     (None, Some(t)) => ModeSelection::Tolerance(t),
-                    (None, None) => ModeSelection::Count(build::DEFAULT_MODES),
+                    (None, None) => ModeSelection::Count(pipeline::DEFAULT_MODES),
                 },
                 formulation: match formulation {
                     FormulationArg::Split => Formulation::Split,
@@ -199,7 +200,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 },
                 ..BuildOptions::default()
             };
-            let (bytes, report) = build::build(&scene, &opts)?;
+            let (bytes, report) = pipeline::build(&scene, &opts)?;
             atomic::write(&output, &bytes)?;
             if json {
                 println!("{}", serde_json::to_string_pretty(&report)?);
@@ -250,7 +251,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let report = verify::verify(&scene, &verify::VerifyOptions::default())?;
             let tables = verify::markdown(&report);
             if let Some(dir) = out {
-                for path in verify::write_svgs(&report, &dir)? {
+                for path in cli::write_svgs(&report, &dir)? {
                     eprintln!("wrote {}", path.display());
                 }
                 let path = dir.join(format!("{}.md", report.scene));

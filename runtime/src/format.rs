@@ -28,11 +28,12 @@ pub const HEADER_LEN: usize = 20;
 pub const NO_CHANNEL: u16 = u16::MAX;
 
 /// How the interreflection operator is expanded (see `docs/format.md` and math.md).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[repr(u8)]
 pub enum Formulation {
     /// Default. `M = M0 + first bounce + Σ c_k v_k (v_k · b∘M0)` with `c_k = μ_k/(1−μ_k)`;
     /// the stored eigenvalues are `μ_k` (eigenvalues of `R F`).
+    #[default]
     Split = 0,
     /// The seed paper's expansion, corrected: `M = Σ (1/λ_k) v_k (v_k · b∘M0)` over the
     /// smallest eigenvalues `λ_k` of `S = A R⁻¹ (I − R F)`; kept for comparison.
@@ -51,7 +52,26 @@ pub enum Precision {
     I16 = 2,
 }
 
+impl Formulation {
+    /// The name used on the command line and in reports: `split` or `seed`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Formulation::Split => "split",
+            Formulation::Seed => "seed",
+        }
+    }
+}
+
 impl Precision {
+    /// The name used on the command line and in reports: `f32`, `f16` or `i16`.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Precision::F32 => "f32",
+            Precision::F16 => "f16",
+            Precision::I16 => "i16",
+        }
+    }
+
     /// Bytes per stored value.
     pub const fn bytes(self) -> usize {
         match self {

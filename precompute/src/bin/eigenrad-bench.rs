@@ -17,12 +17,13 @@ use std::time::Instant;
 
 use anyhow::{bail, Context as _, Result};
 use clap::{Parser, Subcommand};
-use eigenrad_precompute::build::{self, BuildOptions};
-use eigenrad_precompute::eigen::{self, Formulation, Solver};
+use eigenrad_precompute::basis;
 use eigenrad_precompute::formfactor::FormFactorOptions;
-use eigenrad_precompute::model::Model;
-use eigenrad_precompute::solve::ExactSolver;
-use eigenrad_precompute::tables;
+use eigenrad_precompute::pipeline::{self, BuildOptions};
+use eigenrad_precompute::radiosity::eigen::{self, Formulation, Solver};
+use eigenrad_precompute::radiosity::exact::ExactSolver;
+use eigenrad_precompute::radiosity::iterative::System;
+use eigenrad_precompute::radiosity::model::Model;
 use eigenrad_runtime::{Basis, Evaluator, Precision};
 
 /// Capacities of the benchmark's evaluator (one band).
@@ -225,106 +226,9 @@ struct Row {
     bytes: usize,
 }
 
-/// The radiosity system of one band in the form the iterative methods use.
-struct System<'a> {
-    n: usize,
-    /// Row `i` of `G` (= column `i`, G symmetric), m².
-    g: &'a [f64],
-    area: &'a [f64],
-    rho: &'a [f64],
-}
-
-impl System<'_> {
-    fn g_row(&self, i: usize) -> &[f64] {
-        self.g.get(i * self.n..(i + 1) * self.n).unwrap_or(&[])
-    }
-
-    fn norm(&self, x: &[f64]) -> f64 {
-        self.area
-            .iter()
-            .zip(x)
-            .map(|(a, v)| a * v * v)
-            .sum::<f64>()
-            .sqrt()
-    }
-
-    /// Relative residual `‖M0 + R F M − M‖ / ‖M‖` (area-weighted 2-norms).
-    fn residual(&self, m0: &[f64], m: &[f64]) -> f64 {
-        let r: Vec<f64> = (0..self.n)
-            .map(|i| {
-                let gm: f64 = self.g_row(i).iter().zip(m).map(|(g, x)| g * x).sum();
-                m0[i] + self.rho[i] / self.area[i] * gm - m[i]
-            })
-            .collect();
-        self.norm(&r) / self.norm(m).max(f64::MIN_POSITIVE)
-    }
-
-    /// Gauss–Seidel sweeps `M_i ← M0_i + ρ_i Σ_j F_ij M_j` until the relative residual is at
-    /// most `tol` (checked after every sweep). Returns the solution and the sweep count.
-    fn gauss_seidel(&self, m0: &[f64], tol: f64) -> (Vec<f64>, usize) {
-        let mut m = m0.to_vec();
-        for sweep in 1..=10_000 {
-            for i in 0..self.n {
-                if self.rho[i] == 0.0 {
-                    continue;
-                }
-                let gm: f64 = self.g_row(i).iter().zip(&m).map(|(g, x)| g * x).sum();
-                m[i] = m0[i] + self.rho[i] / self.area[i] * gm;
-            }
-            if self.residual(m0, &m) <= tol {
-                return (m, sweep);
-            }
-        }
-        (m, 10_000)
-    }
-
-    /// Southwell iteration (progressive refinement): repeatedly shoot the patch with the most
-    /// unshot flux `A_i |U_i|`, until the unshot exitance is at most `tol` of the exitance
-    /// (area-weighted 2-norms; the true residual is `R F U`, smaller). Returns the solution
-    /// and the number of shots.
-    fn southwell(&self, m0: &[f64], tol: f64) -> (Vec<f64>, usize) {
-        let n = self.n;
-        let mut m = m0.to_vec();
-        let mut unshot = m0.to_vec();
-        let (mut sum_u, mut sum_m) = (0.0, 0.0);
-        let mut best = (0usize, 0.0f64);
-        for i in 0..n {
-            sum_u += self.area[i] * unshot[i] * unshot[i];
-            sum_m += self.area[i] * m[i] * m[i];
-            let flux = self.area[i] * unshot[i].abs();
-            if flux > best.1 {
-                best = (i, flux);
-            }
-        }
-        let mut shots = 0;
-        while sum_u > tol * tol * sum_m && shots < 100 * n {
-            let i = best.0;
-            let u = unshot[i];
-            unshot[i] = 0.0;
-            shots += 1;
-            let row = self.g_row(i);
-            sum_u = 0.0;
-            sum_m = 0.0;
-            best = (0, 0.0);
-            for j in 0..n {
-                let d = self.rho[j] / self.area[j] * row[j] * u;
-                unshot[j] += d;
-                m[j] += d;
-                sum_u += self.area[j] * unshot[j] * unshot[j];
-                sum_m += self.area[j] * m[j] * m[j];
-                let flux = self.area[j] * unshot[j].abs();
-                if flux > best.1 {
-                    best = (j, flux);
-                }
-            }
-        }
-        (m, shots)
-    }
-}
-
 fn update(path: &Path, skip_lu: bool) -> Result<()> {
     let t = Instant::now();
-    let prepared = build::prepare(path, &FormFactorOptions::default())?;
+    let prepared = pipeline::prepare(path, &FormFactorOptions::default())?;
     let scene = prepared.scene;
     let n = scene.patches.len();
     if scene.bands.count() != 1 {
@@ -394,7 +298,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
     // (1) The eigenbasis through the runtime.
     for &p in &MODE_COUNTS {
         for precision in [Precision::F32, Precision::F16, Precision::I16] {
-            let bytes = tables::basis_tables(&scene, &model, p, precision).to_bytes()?;
+            let bytes = basis::basis_tables(&scene, &model, p, precision).to_bytes()?;
             let basis = Basis::from_bytes(&bytes)?;
             let mut eval = Box::new(Eval::new(basis)?);
             let sensors = basis.sensor_count();
@@ -446,13 +350,9 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
                 }
                 (o.iter().map(|v| f64::from(v[0])).collect(), readings)
             });
-            let name = match precision {
-                Precision::F32 => "f32",
-                Precision::F16 => "f16",
-                Precision::I16 => "i16",
-            };
+            let name = precision.name();
             // Bytes read by (b): the mode vectors and first-bounce rows of every patch.
-            let read = n * (p + m) * if precision == Precision::F32 { 4 } else { 2 };
+            let read = n * (p + m) * precision.bytes();
             if p == REFERENCE_MODES && precision == Precision::F32 {
                 reference_bytes = read;
             }
@@ -567,12 +467,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             .flat_map(|i| (0..n).map(move |j| (i, j)))
             .map(|(i, j)| model.g[(j, i)])
             .collect();
-        let sys = System {
-            n,
-            g: &g_rows,
-            area: &area,
-            rho: &rho,
-        };
+        let sys = System::new(&g_rows, &area, &rho);
         let mut k = 0usize;
         let mut counts = (0usize, 0usize);
         let sw_s = per_call(|| {
@@ -690,7 +585,7 @@ fn scale_one(path: &Path) -> Result<()> {
     black_box(occ.len());
     drop(occ);
     drop(scene);
-    let (_bytes, report) = build::build(path, &BuildOptions::default())?;
+    let (_bytes, report) = pipeline::build(path, &BuildOptions::default())?;
     let total = start.elapsed().as_secs_f64();
     let stage = |name: &str| {
         report
@@ -732,7 +627,7 @@ fn scale_one(path: &Path) -> Result<()> {
 }
 
 fn eigen_compare(path: &Path, dense_max: usize) -> Result<()> {
-    let prepared = build::prepare(path, &FormFactorOptions::default())?;
+    let prepared = pipeline::prepare(path, &FormFactorOptions::default())?;
     let rho: Vec<f64> = prepared.scene.reflectance.iter().map(|r| r[0]).collect();
     let nr = rho.iter().filter(|&&r| r > 0.0).count();
     let g = prepared.g.as_ref();

@@ -24,7 +24,9 @@
 //! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `math.md`).
 
 mod bvh;
+mod health;
 mod kernel;
+pub mod outputs;
 mod quadrature;
 mod shadow;
 #[cfg(test)]
@@ -33,6 +35,7 @@ mod visibility;
 
 pub use bvh::Occluders;
 use bvh::Shaft;
+pub use health::{FormFactorHealth, CLOSED_TOLERANCE};
 
 use crate::geometry::{Patch, Vec3};
 use faer::Mat;

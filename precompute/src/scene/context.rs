@@ -8,9 +8,11 @@ use toml::Spanned;
 
 use super::error::{Location, SceneError};
 use super::file::PerBand;
-use super::obj::LUMINANCE;
 use super::Surface;
 use crate::geometry::Vec3;
+
+/// Luminance weights of linear RGB (ITU-R BT.709 primaries), used to make photopic values.
+pub(crate) const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
 
 /// Parsing context: where the text came from, its bands and its length unit.
 pub(crate) struct Ctx<'a> {

@@ -13,9 +13,6 @@ use super::error::{Location, SceneError};
 use super::file::{NameBy, ObjDef, UpAxis};
 use crate::geometry::Vec3;
 
-/// Luminance weights of linear RGB (ITU-R BT.709 primaries), used to make photopic values.
-pub(crate) const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
-
 /// What one OBJ file contributes.
 pub(crate) struct ObjContent {
     /// Its surfaces, in the order they first appear in the file.

@@ -22,15 +22,9 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par, Side};
 use krylov::{block_lanczos, KrylovSettings, ScaledOp};
 
-/// Which eigenproblem the basis diagonalises (math.md).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Formulation {
-    /// `R F v = μ v` with `Vᵀ B V = I`; direct term exact, interreflection low rank.
-    #[default]
-    Split,
-    /// The seed paper's `S = B − G`, corrected: smallest eigenvalues of `S` first.
-    Seed,
-}
+/// Which eigenproblem the basis diagonalises: the runtime's own type, so that the name a
+/// basis records is the one the precompute used.
+pub use eigenrad_runtime::Formulation;
 
 /// Which eigensolver to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

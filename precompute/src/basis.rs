@@ -1,19 +1,11 @@
 //! From a [`Model`] to the runtime's [`BasisTables`]: what the basis stores, table by table.
 
 use eigenrad_runtime::writer::BasisTables;
-use eigenrad_runtime::{Formulation as WireFormulation, Precision, Quantity};
+use eigenrad_runtime::{Precision, Quantity};
 
-use crate::eigen::Formulation;
-use crate::model::Model;
+use crate::radiosity::eigen::Formulation;
+use crate::radiosity::model::Model;
 use crate::scene::{Bands, Scene};
-
-/// The wire enum of a formulation.
-pub fn wire_formulation(f: Formulation) -> WireFormulation {
-    match f {
-        Formulation::Split => WireFormulation::Split,
-        Formulation::Seed => WireFormulation::Seed,
-    }
-}
 
 /// Fills every table of the basis for the first `p` modes of `model`.
 pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision) -> BasisTables {
@@ -35,7 +27,7 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
             Bands::Photopic => Quantity::Photometric,
             Bands::Rgb => Quantity::Radiometric,
         }),
-        formulation: Some(wire_formulation(model.formulation)),
+        formulation: Some(model.formulation),
         precision: Some(precision),
         bands,
         modes: p,
@@ -127,7 +119,8 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         ]);
     }
     for z in &scene.zones {
-        t.zone_area.push(crate::outputs::zone_area(scene, z));
+        t.zone_area
+            .push(crate::formfactor::outputs::zone_area(scene, z));
     }
     for row in &model.output_rows {
         for b in 0..bands {

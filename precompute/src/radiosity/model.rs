@@ -8,9 +8,9 @@
 
 use faer::Mat;
 
-use crate::eigen::{self, Formulation, Modes, Solver};
+use crate::radiosity::eigen::{self, Formulation, Modes, Solver};
+use crate::radiosity::exact::ExactSolver;
 use crate::scene::Scene;
-use crate::solve::ExactSolver;
 
 /// Per-band part of the model.
 pub struct BandModel {
@@ -275,7 +275,7 @@ impl Model {
     }
 
     /// The exact solver of band `b`: an LU factorisation of `I − R F` up to
-    /// [`crate::solve::EXACT_LU_MAX`] patches, conjugate gradients on `G` above (no n×n copy).
+    /// [`crate::radiosity::exact::EXACT_LU_MAX`] patches, conjugate gradients on `G` above (no n×n copy).
     pub fn exact_solver(&self, b: usize) -> Result<ExactSolver<'_>, eigen::EigenError> {
         ExactSolver::auto(self.g.as_ref(), &self.area, &self.bands[b].reflectance)
     }

@@ -3,9 +3,11 @@
 
 use serde::Serialize;
 
-use crate::model::Model;
+pub mod runtime_eval;
+
+use crate::radiosity::exact::ExactSolver;
+use crate::radiosity::model::Model;
 use crate::scene::Scene;
-use crate::solve::ExactSolver;
 
 /// An emitter state to test: channel levels and per-patch exitance per band.
 #[derive(Clone, Debug)]

@@ -5,7 +5,7 @@
 //! response" lighting practice uses when the emitter channels are fixed (math.md, "Sharper
 //! still").
 
-use crate::eigen::{check_inputs, EigenError};
+use crate::radiosity::eigen::{check_inputs, EigenError};
 use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::{Accum, Mat, MatRef};
@@ -50,7 +50,7 @@ enum Kind<'g> {
 impl<'g> ExactSolver<'g> {
     /// Factorises `I − R F` with `(R F)_ij = ρ_i G_ij / A_i` (`G` in m², `A` in m²).
     ///
-    /// Inputs are checked as for [`crate::eigen::modes`] (symmetric finite `G`, `A > 0`,
+    /// Inputs are checked as for [`crate::radiosity::eigen::modes`] (symmetric finite `G`, `A > 0`,
     /// `ρ ∈ [0, 1)`). `O(n³)`.
     pub fn new(g: MatRef<'_, f64>, area: &[f64], reflectance: &[f64]) -> Result<Self, EigenError> {
         check_inputs(g, area, reflectance)?;

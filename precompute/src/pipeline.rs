@@ -8,15 +8,15 @@ use eigenrad_runtime::Precision;
 use faer::Mat;
 use serde::Serialize;
 
+use crate::accuracy::runtime_eval;
 use crate::accuracy::{self, Case};
-use crate::eigen::{Formulation, Solver};
+use crate::basis;
 use crate::error::{Error, Result};
-use crate::formfactor::{self, FormFactorOptions, Occluders};
-use crate::host_eval;
-use crate::model::Model;
-use crate::outputs;
+use crate::formfactor::outputs;
+use crate::formfactor::{self, FormFactorHealth, FormFactorOptions, Occluders};
+use crate::radiosity::eigen::{Formulation, Solver};
+use crate::radiosity::model::Model;
 use crate::scene::{self, Scene};
-use crate::tables;
 
 /// Modes kept when neither a count nor a tolerance is given. On the example office (1101
 /// patches) it gives, for each channel alone, about 0.8 % error in patch exitance, 0.6 % in
@@ -64,33 +64,6 @@ impl Default for BuildOptions {
     }
 }
 
-/// Health of the form-factor matrix.
-#[derive(Clone, Debug, Serialize)]
-pub struct Closure {
-    /// Worst reciprocity mismatch before symmetrising, relative to the pair's own exchange
-    /// (or to 0.1 % of the smaller patch's output, whichever is larger).
-    pub reciprocity_mismatch: f64,
-    /// Worst reciprocity mismatch before symmetrising as a share of the smaller patch's
-    /// output (`FormFactors::reciprocity_share`).
-    pub reciprocity_share: f64,
-    /// Smallest row sum of F after symmetrising.
-    pub row_sum_min: f64,
-    /// Largest row sum of F after symmetrising.
-    pub row_sum_max: f64,
-    /// Share of the light leaving the patches that leaves the scene: `Σ A_i (1 − Σ_j F_ij) /
-    /// Σ A_i` (0 for a closed room; an open window or a missing ceiling raise it).
-    pub escaping: f64,
-    /// Whether every row sums to 1 within [`CLOSED_TOLERANCE`]: a closed scene. Otherwise the
-    /// deficit is light leaving through openings.
-    pub closed: bool,
-}
-
-/// Row-sum deviation up to which a scene counts as closed. With occlusion the symmetrised
-/// form factors are accurate to a few 10⁻⁴ per row (the fixed outer quadrature where a shadow
-/// edge crosses a source patch), so a much tighter bound would call closed rooms open; an opening that matters takes far more than
-/// 1 % of the view of the patches facing it.
-pub const CLOSED_TOLERANCE: f64 = 1e-2;
-
 /// Accuracy of the written basis for one test case, evaluated through the runtime.
 #[derive(Clone, Debug, Serialize)]
 pub struct CaseAccuracy {
@@ -131,7 +104,7 @@ pub struct BuildReport {
     /// Basis size in bytes.
     pub bytes: usize,
     /// Form-factor health.
-    pub form_factors: Closure,
+    pub form_factors: FormFactorHealth,
     /// Accuracy per case, through the runtime.
     pub accuracy: Vec<CaseAccuracy>,
     /// Time per stage.
@@ -149,7 +122,7 @@ pub struct Prepared {
     /// Sensor and zone rows.
     pub output_rows: Vec<Vec<f64>>,
     /// Form-factor health.
-    pub closure: Closure,
+    pub form_factor_health: FormFactorHealth,
     /// Stage timings so far.
     pub timings: Vec<Stage>,
 }
@@ -171,7 +144,7 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let n = scene.patches.len();
     // G (n×n f64) is the big allocation, plus the LU of the exact reference for small n
     // (above `EXACT_LU_MAX` the reference uses conjugate gradients on G itself).
-    let copies = if n <= crate::solve::EXACT_LU_MAX {
+    let copies = if n <= crate::radiosity::exact::EXACT_LU_MAX {
         2.0
     } else {
         1.0
@@ -191,27 +164,7 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         formfactor::patch_form_factors_with(&scene.patches, &occluders, opts)
     });
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
-    let row_sum_min = ff.row_sums.iter().copied().fold(f64::INFINITY, f64::min);
-    let row_sum_max = ff
-        .row_sums
-        .iter()
-        .copied()
-        .fold(f64::NEG_INFINITY, f64::max);
-    let closure = Closure {
-        reciprocity_mismatch: ff.reciprocity_mismatch,
-        reciprocity_share: ff.reciprocity_share,
-        row_sum_min,
-        row_sum_max,
-        escaping: ff
-            .row_sums
-            .iter()
-            .zip(&area)
-            .map(|(s, a)| a * (1.0 - s))
-            .sum::<f64>()
-            / area.iter().sum::<f64>(),
-        closed: (row_sum_min - 1.0).abs() <= CLOSED_TOLERANCE
-            && (row_sum_max - 1.0).abs() <= CLOSED_TOLERANCE,
-    };
+    let form_factor_health = FormFactorHealth::of(&ff, &area);
     let mut g = ff.matrix;
     // Column by column: contiguous in faer's layout.
     for j in 0..n {
@@ -227,7 +180,7 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         g,
         area,
         output_rows,
-        closure,
+        form_factor_health,
         timings,
     })
 }
@@ -279,7 +232,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         g,
         area: _,
         output_rows,
-        closure,
+        form_factor_health,
         mut timings,
     } = prepared;
     let n = scene.patches.len();
@@ -324,7 +277,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         })?,
     };
     let bytes = timed(&mut timings, "serialization", || {
-        tables::basis_tables(&scene, &model, p, opts.precision).to_bytes()
+        basis::basis_tables(&scene, &model, p, opts.precision).to_bytes()
     })?;
     let accuracy = timed(&mut timings, "verification through the runtime", || {
         verify(&model, &solvers, &cases, &bytes)
@@ -334,18 +287,11 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         patches: n,
         bands,
         unit: scene.bands.unit(),
-        formulation: match opts.formulation {
-            Formulation::Split => "split",
-            Formulation::Seed => "seed",
-        },
-        precision: match opts.precision {
-            Precision::F32 => "f32",
-            Precision::F16 => "f16",
-            Precision::I16 => "i16",
-        },
+        formulation: opts.formulation.name(),
+        precision: opts.precision.name(),
         modes: p,
         bytes: bytes.len(),
-        form_factors: closure,
+        form_factors: form_factor_health,
         accuracy,
         timings,
     };
@@ -356,7 +302,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
 /// exact solve.
 fn verify(
     model: &Model,
-    solvers: &[crate::solve::ExactSolver],
+    solvers: &[crate::radiosity::exact::ExactSolver],
     cases: &[Case],
     bytes: &[u8],
 ) -> Result<Vec<CaseAccuracy>> {
@@ -375,7 +321,7 @@ fn verify(
     let mut out = Vec::new();
     for (index, case) in cases.iter().enumerate() {
         let levels: Vec<f32> = case.levels.iter().map(|&l| l as f32).collect();
-        let got = host_eval::evaluate(bytes, &levels, &case.extra, true)?;
+        let got = runtime_eval::evaluate(bytes, &levels, &case.extra, true)?;
         let mut patch_error = 0.0f64;
         let mut output_error = 0.0f64;
         for b in 0..solvers.len() {

@@ -1,8 +1,8 @@
-//! Tests of the eigenbasis against the exact solve ([`crate::solve::ExactSolver`]) and the
+//! Tests of the eigenbasis against the exact solve ([`crate::radiosity::exact::ExactSolver`]) and the
 //! analytic cases of math.md ("Exact results every implementation must reproduce").
 
 use super::*;
-use crate::solve::ExactSolver;
+use crate::radiosity::exact::ExactSolver;
 use std::time::Instant;
 
 /// splitmix64: deterministic test data without a dependency.

@@ -20,13 +20,13 @@ use plotters::prelude::*;
 use serde::Serialize;
 
 use crate::accuracy::{self, weighted_norm, Case};
-use crate::build::{self, Prepared};
-use crate::eigen::{Formulation, Solver};
+use crate::basis;
 use crate::error::{Error, Result};
 use crate::formfactor::FormFactorOptions;
-use crate::model::Model;
-use crate::solve::ExactSolver;
-use crate::tables;
+use crate::pipeline::{self, Prepared};
+use crate::radiosity::eigen::{Formulation, Solver};
+use crate::radiosity::exact::ExactSolver;
+use crate::radiosity::model::Model;
 
 /// Options of `eigenrad verify`.
 #[derive(Clone, Debug)]
@@ -163,7 +163,7 @@ pub struct VerifyReport {
     pub sensors: Vec<String>,
     /// Zone names.
     pub zones: Vec<String>,
-    /// Tested mode counts, ascending (`build::mode_ladder` up to every mode).
+    /// Tested mode counts, ascending (`pipeline::mode_ladder` up to every mode).
     pub modes: Vec<usize>,
     /// `split`, then `seed`.
     pub formulations: Vec<FormulationReport>,
@@ -269,16 +269,9 @@ fn case_curve(
     curve
 }
 
-fn formulation_name(f: Formulation) -> &'static str {
-    match f {
-        Formulation::Split => "split",
-        Formulation::Seed => "seed",
-    }
-}
-
 /// Runs the whole report for the scene at `path`.
 pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
-    let prepared = build::prepare(path, &opts.form_factors)?;
+    let prepared = pipeline::prepare(path, &opts.form_factors)?;
     let scene = &prepared.scene;
     let n = scene.patches.len();
     let bands = scene.bands.count();
@@ -309,7 +302,7 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
                 .map(|b| b.mode_count())
                 .max()
                 .unwrap_or(0);
-            modes = build::mode_ladder(available.max(1));
+            modes = pipeline::mode_ladder(available.max(1));
             if m > 0 {
                 baseline_error = Some(superposition_error(&model, &solvers, &cases, sensors));
             }
@@ -320,11 +313,11 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
             .collect();
         let mut basis_bytes = Vec::with_capacity(modes.len());
         for &p in &modes {
-            let bytes = tables::basis_tables(scene, &model, p, Precision::F32).to_bytes()?;
+            let bytes = basis::basis_tables(scene, &model, p, Precision::F32).to_bytes()?;
             basis_bytes.push(bytes.len());
         }
         formulations.push(FormulationReport {
-            formulation: formulation_name(formulation),
+            formulation: formulation.name(),
             basis_bytes,
             cases: curves,
         });
@@ -677,14 +670,10 @@ fn pick(items: &[String]) -> String {
 /// Errors under this are drawn at it on the log axis (the exact end of the curves).
 pub const PLOT_FLOOR: f64 = 1e-9;
 
-/// Draws one SVG per metric (error vs p, log-log; one curve per case kind and formulation,
-/// the worst case of the kind): `<dir>/<scene>-<metric>.svg`. Returns the files written.
-pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(|reason| Error::Io {
-        path: dir.to_path_buf(),
-        reason,
-    })?;
-    let mut written = Vec::new();
+/// One SVG per metric (error vs p, log-log; one curve per case kind and formulation, the
+/// worst case of the kind), with its file name `<scene>-<metric>.svg`.
+pub fn svgs(r: &VerifyReport) -> Result<Vec<(String, String)>> {
+    let mut out = Vec::new();
     for metric in Metric::ALL {
         let has = match metric {
             Metric::Patches => true,
@@ -694,15 +683,14 @@ pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
         if !has {
             continue;
         }
-        let path = dir.join(format!("{}-{}.svg", r.scene, metric.label()));
+        let name = format!("{}-{}.svg", r.scene, metric.label());
         let svg = plot(r, metric).map_err(|e| Error::Io {
-            path: path.clone(),
+            path: PathBuf::from(&name),
             reason: std::io::Error::other(e),
         })?;
-        crate::atomic::write(&path, svg.as_bytes())?;
-        written.push(path);
+        out.push((name, svg));
     }
-    Ok(written)
+    Ok(out)
 }
 
 /// One curve: legend label, case kind (colour), split (solid) or seed (dashed), (p, error).

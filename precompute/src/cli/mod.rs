@@ -1,17 +1,20 @@
 //! What the `eigenrad` subcommands compute and print, kept in the library so tests can call
 //! it. `main.rs` only parses arguments.
 
-use std::fmt::Write as _;
-use std::path::Path;
+pub mod atomic;
 
-use eigenrad_runtime::{Basis, Formulation as WireFormulation, Precision, Quantity};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use eigenrad_runtime::{Basis, Quantity};
 use serde::Serialize;
 
-use crate::build::{self, BuildReport};
+use crate::accuracy::runtime_eval;
 use crate::error::{Error, Result};
 use crate::formfactor::FormFactorOptions;
-use crate::host_eval;
-use crate::solve::ExactSolver;
+use crate::pipeline::{self, BuildReport};
+use crate::radiosity::exact::ExactSolver;
+use crate::verify::{self, VerifyReport};
 
 /// A channel level as applied.
 #[derive(Clone, Debug, Serialize)]
@@ -109,7 +112,7 @@ pub fn parse_levels(arguments: &[String], channels: &[String]) -> Result<Vec<f64
 
 /// `eigenrad solve`: the exact dense solution.
 pub fn solve(scene_path: &Path, level_args: &[String], patches: bool) -> Result<Readout> {
-    let prepared = build::prepare(scene_path, &FormFactorOptions::default())?;
+    let prepared = pipeline::prepare(scene_path, &FormFactorOptions::default())?;
     let scene = &prepared.scene;
     let names: Vec<String> = scene.channels.iter().map(|c| c.name.clone()).collect();
     let levels = parse_levels(level_args, &names)?;
@@ -199,7 +202,7 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &[String], patches: bool) -> 
         .map_err(basis_error(path))?;
     let levels = parse_levels(level_args, &names)?;
     let levels32: Vec<f32> = levels.iter().map(|&l| l as f32).collect();
-    let got = host_eval::evaluate(bytes, &levels32, &[], patches)?;
+    let got = runtime_eval::evaluate(bytes, &levels32, &[], patches)?;
     let name = |r: std::result::Result<&str, eigenrad_runtime::Error>| {
         r.map(str::to_owned).map_err(basis_error(path))
     };
@@ -324,7 +327,7 @@ pub struct SurfaceFactor {
 
 /// `eigenrad form-factors`: surface-to-surface form factors (area-weighted), non-zero ones.
 pub fn surface_form_factors(scene_path: &Path) -> Result<Vec<SurfaceFactor>> {
-    let prepared = build::prepare(scene_path, &FormFactorOptions::default())?;
+    let prepared = pipeline::prepare(scene_path, &FormFactorOptions::default())?;
     let scene = &prepared.scene;
     let s = scene.surfaces.len();
     let mut sums = vec![vec![0.0f64; s]; s];
@@ -404,15 +407,8 @@ pub fn inspect(path: &Path, bytes: &[u8]) -> Result<BasisInfo> {
         bytes: b.byte_len(),
         unit: unit(b.quantity()),
         bands: band_names(b.bands()),
-        formulation: match b.formulation() {
-            WireFormulation::Split => "split",
-            _ => "seed",
-        },
-        precision: match b.precision() {
-            Precision::F32 => "f32",
-            Precision::F16 => "f16",
-            _ => "i16",
-        },
+        formulation: b.formulation().name(),
+        precision: b.precision().name(),
         patches: b.patch_count(),
         modes: b.mode_count(),
         surfaces: names(b.surface_count(), |i| b.surface_name(i)).map_err(&e)?,
@@ -523,4 +519,20 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         let _ = writeln!(s, "  {:<34} {:>8.3} s", t.stage, t.seconds);
     }
     s
+}
+
+/// Writes `eigenrad verify`'s curves into `dir` (created if missing), one SVG per metric
+/// ([`verify::svgs`]), each atomically. Returns the files written.
+pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|reason| Error::Io {
+        path: dir.to_path_buf(),
+        reason,
+    })?;
+    let mut written = Vec::new();
+    for (name, svg) in verify::svgs(r)? {
+        let path = dir.join(name);
+        atomic::write(&path, svg.as_bytes())?;
+        written.push(path);
+    }
+    Ok(written)
 }
