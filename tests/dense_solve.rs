@@ -1,5 +1,5 @@
 //! With every mode kept (p = n), a basis must reproduce the dense solve of (I − R F) M = M0
-//! (math.md: "Any truncation p = n reproduces the dense solve to rounding"), for both
+//! (docs/math.md: "Any truncation p = n reproduces the dense solve to rounding"), for both
 //! formulations, through the runtime's f32 arithmetic — with random reflectances, a black
 //! (ρ = 0) luminaire, channels and arbitrary per-patch exitance.
 

@@ -1,4 +1,4 @@
-//! Exact results of a closed room of uniform reflectance (math.md, "Exact results every
+//! Exact results of a closed room of uniform reflectance (docs/math.md, "Exact results"
 //! implementation must reproduce"), through the exact solve (`cli::solve`, the code behind
 //! `eigenrad solve`) and through a basis with every mode kept (p = n) evaluated by the runtime
 //! (`host_eval`, the arithmetic firmware performs):

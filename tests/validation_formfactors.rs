@@ -115,8 +115,8 @@ fn howell_c41(r1: f64, r2: f64, h: f64) -> f64 {
 }
 
 #[test]
-fn closed_forms_match_the_values_quoted_in_the_design_note() {
-    // math.md quotes the catalogue for unit squares: 0.199825 (C-11) and 0.200044 (C-14);
+fn closed_forms_match_the_values_quoted_in_docs_math() {
+    // docs/math.md quotes the catalogue for unit squares: 0.199825 (C-11) and 0.200044 (C-14);
     // a slip in the transcription above would show here first.
     assert!((howell_c11(1.0, 1.0, 1.0) - 0.199825).abs() < 5e-7);
     assert!((howell_c14(1.0, 1.0, 1.0) - 0.200044).abs() < 5e-7);

@@ -1,5 +1,5 @@
 //! `eigenrad verify` on a tiny room: the report's structure, and its split (and seed) error at
-//! p = n is rounding (math.md: "Any truncation p = n reproduces the dense solve to rounding").
+//! p = n is rounding (docs/math.md: "Any truncation p = n reproduces the dense solve to rounding").
 
 use eigenrad::precompute::cli;
 use eigenrad::precompute::verify::{self, CaseKind, Metric, VerifyOptions};
@@ -140,7 +140,7 @@ fn verify_reports_every_case_and_is_exact_with_every_mode() {
         }
     }
     // The split carries the direct light exactly: with one mode it is already far better than
-    // the seed expansion for every channel (math.md: 0.3–1.3 % vs 84 % on a 600-patch box).
+    // the seed expansion for every channel (docs/math.md: 0.3–1.3 % vs 84 % on a 600-patch box).
     let split = &r.formulations[0];
     let seed = &r.formulations[1];
     let (s1, e1) = (

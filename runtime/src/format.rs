@@ -27,7 +27,7 @@ pub const HEADER_LEN: usize = 20;
 /// `patch_channel` value of a patch that belongs to no channel.
 pub const NO_CHANNEL: u16 = u16::MAX;
 
-/// How the interreflection operator is expanded (see `docs/format.md` and math.md).
+/// How the interreflection operator is expanded (see `docs/format.md` and docs/math.md).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[repr(u8)]
 pub enum Formulation {

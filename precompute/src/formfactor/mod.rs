@@ -21,7 +21,7 @@
 //!   fall back to a visible fraction estimated by rays refined at silhouettes (module
 //!   `visibility`). Pairs that no blocker can cut cost no visibility work at all.
 //!
-//! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `math.md`).
+//! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `docs/math.md`).
 
 mod bvh;
 mod health;
@@ -498,7 +498,7 @@ pub fn patch_form_factors_with(
 }
 
 /// Turns `m` holding the raw Fᵀ (`m[(j, i)] = F_ij`) into the symmetrised F in place:
-/// `G = A F`, `G_sym = (G + Gᵀ)/2`, `F = A⁻¹ G_sym` (math.md). Returns the worst reciprocity
+/// `G = A F`, `G_sym = (G + Gᵀ)/2`, `F = A⁻¹ G_sym` (docs/math.md). Returns the worst reciprocity
 /// mismatch of the raw matrix, relative and as a share of the output
 /// ([`FormFactors::reciprocity_mismatch`], [`FormFactors::reciprocity_share`]).
 fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> (f64, f64) {

@@ -1,5 +1,5 @@
 //! Sensors and zones as rows over the patches: the irradiance at output `o` is
-//! `Σ_j R_oj M_j` (math.md, "Outputs people need").
+//! `Σ_j R_oj M_j` (docs/math.md, "Outputs people need").
 
 use faer::Mat;
 use rayon::prelude::*;

@@ -306,7 +306,7 @@ fn worst_row_deviation(sums: &[f64]) -> f64 {
 
 #[test]
 fn closed_room_rows_sum_to_one_with_and_without_blocker() {
-    // Reference: a closed scene's rows sum to 1 (math.md). Tolerance per row 1e-6 for the
+    // Reference: a closed scene's rows sum to 1 (docs/math.md). Tolerance per row 1e-6 for the
     // empty room; 1e-3 with a blocker inside, where a shadow edge crossing a source patch
     // limits its fixed outer quadrature (each raw row still sums to 1; symmetrising G mixes
     // in the other direction's error).

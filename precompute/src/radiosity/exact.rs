@@ -1,9 +1,9 @@
-//! Exact reference solve of the radiosity equation for one band (math.md, "Notation"):
+//! Exact reference solve of the radiosity equation for one band (docs/math.md, "Notation"):
 //! `M = M0 + R F M`, so `M = (I − R F)⁻¹ M0` (seed eq. 6–7), by LU with partial pivoting.
 //!
 //! This is the baseline every truncated basis is measured against, and the "exact per-channel
-//! response" lighting practice uses when the emitter channels are fixed (math.md, "Sharper
-//! still").
+//! response" lighting practice uses when the emitter channels are fixed (docs/math.md, "Be
+//! honest about the baseline").
 
 use crate::radiosity::eigen::{check_inputs, EigenError};
 use faer::linalg::matmul::matmul;
@@ -29,7 +29,7 @@ const CG_MAX_ITERATIONS: usize = 2000;
 ///
 /// Two ways: an LU factorisation with partial pivoting ([`ExactSolver::new`]), or conjugate
 /// gradients on the symmetric positive definite reflecting subsystem
-/// `(B_r − G_rr) M_r = B_r M0_r + G_rk M0_k` (`B = A/ρ`, math.md "Zero reflectance";
+/// `(B_r − G_rr) M_r = B_r M0_r + G_rk M0_k` (`B = A/ρ`, docs/math.md "Zero reflectance";
 /// [`ExactSolver::iterative`]), which borrows `G` and needs no n×n copy.
 #[derive(Debug)]
 pub struct ExactSolver<'g> {
@@ -262,7 +262,7 @@ mod tests {
         (g, area)
     }
 
-    /// White furnace (math.md "Exact results"): closed room, uniform ρ, every patch emitting E:
+    /// White furnace (docs/math.md "Exact results"): closed room, uniform ρ, every patch emitting E:
     /// `M = E / (1 − ρ)` everywhere, to 1e-12 relative.
     #[test]
     fn solve_white_furnace() {

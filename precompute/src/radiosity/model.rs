@@ -1,7 +1,7 @@
 //! The radiosity model of a scene in `f64`: form factors, per-band modes, the exact solver,
 //! and the truncated expansions the basis stores — the host-side twin of the runtime.
 //!
-//! Notation (math.md): `G = A F` symmetric, `b_i = A_i/ρ_i`, modes `v_k` with eigenvalue
+//! Notation (docs/math.md): `G = A F` symmetric, `b_i = A_i/ρ_i`, modes `v_k` with eigenvalue
 //! `μ_k` (split) or `λ_k` (seed). A patch with ρ = 0 in a band is "black" there: it is not
 //! part of that band's eigenproblem (its mode entries are 0) and its emission enters the room
 //! through its first bounce `G e_j`.
@@ -163,7 +163,7 @@ impl Model {
 
     /// Mode-space response (coefficient included) of a channel at level 1, band `b`.
     ///
-    /// Split (exact first bounce, math.md "Sharper still"): `(I−RF)⁻¹ e = e + RF e +
+    /// Split (exact first bounce, docs/math.md "Sharper still: exact first bounce"): `(I−RF)⁻¹ e = e + RF e +
     /// V diag(μ/(1−μ)) Vᵀ G e`. Seed: `M_r = S⁻¹ (B e_r + G e_black)`.
     pub fn channel_projection(&self, c: usize, b: usize) -> Vec<f64> {
         let e = &self.emission[c][b];

@@ -1,6 +1,6 @@
 //! `eigenrad verify`: how the error of a truncated basis against the exact dense solve falls
 //! with the mode count p, for both formulations, with the exact per-channel superposition as
-//! the baseline (math.md, "Be honest about the baseline").
+//! the baseline (docs/math.md, "Be honest about the baseline").
 //!
 //! Cases: every channel alone at level 1; random channel mixes (every channel at a random
 //! level in [0, 1]); random emitter patterns (see [`accuracy::standard_cases`]). Metrics, each

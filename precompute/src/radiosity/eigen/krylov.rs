@@ -1,5 +1,5 @@
 //! Extreme eigenpairs of `H = diag(s) G_rr diag(s)` without forming `H`
-//! (math.md, "Default formulation: split", large n).
+//! (docs/math.md, "Default formulation: split", large n).
 //!
 //! The partial path is a Lanczos iteration with full reorthogonalisation written here, whose
 //! loop bound we own, and every result is checked by its explicit residual `‖H u − μ u‖₂`.

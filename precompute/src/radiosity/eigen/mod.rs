@@ -1,10 +1,10 @@
-//! Radiosity eigenbasis of one spectral band (math.md, "Default formulation: split" and
+//! Radiosity eigenbasis of one spectral band (docs/math.md, "Default formulation: split" and
 //! "Seed errata").
 //!
 //! Input: `G = A F` (n×n, symmetric, m²), patch areas `A_i` (m²) and reflectances `ρ_i ∈ [0, 1)`.
 //! Patches with `ρ_i = 0` ("black", e.g. a luminaire's emitting face) take no part in the
 //! eigenproblem: their rows of the mode vectors are zero and their emission reaches the room
-//! through an exact first bounce (math.md, "Zero reflectance"; see [`Modes::exitance`]).
+//! through an exact first bounce (docs/math.md, "Zero reflectance"; see [`Modes::exitance`]).
 //! Everything below works on the reflecting subsystem `r = {i : ρ_i > 0}` of size `n_r`.
 //!
 //! - [`Formulation::Split`] (default): `G v = μ B v`, `B = diag(A/ρ)`, computed as the ordinary
@@ -119,7 +119,7 @@ pub enum EigenError {
         /// Column.
         col: usize,
     },
-    /// `G = A F` is not symmetric (reciprocity); symmetrise it first (math.md, "Notation").
+    /// `G = A F` is not symmetric (reciprocity); symmetrise it first (docs/math.md, "Notation").
     #[error("G is not symmetric: |G[{row},{col}] − G[{col},{row}]| = {asymmetry:e} > {tolerance:e} (relative)")]
     NotSymmetric {
         /// Row of the worst pair.
@@ -229,19 +229,19 @@ pub(crate) fn check_inputs(
     Ok(())
 }
 
-/// The reflecting subsystem `r = {i : ρ_i > 0}` (math.md, "Zero reflectance").
+/// The reflecting subsystem `r = {i : ρ_i > 0}` (docs/math.md, "Zero reflectance").
 fn reflecting(reflectance: &[f64]) -> Vec<usize> {
     (0..reflectance.len())
         .filter(|&i| reflectance[i] > 0.0)
         .collect()
 }
 
-/// `c = μ / (1 − μ)`, the weight of a split mode in `(I − R F)⁻¹ − I` (math.md).
+/// `c = μ / (1 − μ)`, the weight of a split mode in `(I − R F)⁻¹ − I` (docs/math.md).
 pub fn split_weight(mu: f64) -> f64 {
     mu / (1.0 - mu)
 }
 
-/// Computes `p` modes of one band (math.md, "Default formulation: split"; "Seed errata").
+/// Computes `p` modes of one band (docs/math.md, "Default formulation: split"; "Seed errata").
 ///
 /// If `p > n_r` (the number of reflecting patches), `n_r` modes are returned: no padding, so
 /// `values.len() == vectors.ncols() == min(p, n_r)`.
@@ -476,7 +476,7 @@ impl Modes {
     ///
     /// Black patches (`ρ_k = 0`) keep `M_k = M0_k`; their emission enters the reflecting
     /// subsystem through its exact first bounce `y_r = R F_rk M0_k = B_r⁻¹ G_rk M0_k`
-    /// (math.md, "Zero reflectance"; from `M_r = M0_r + R F_rr M_r + R F_rk M0_k`):
+    /// (docs/math.md, "Zero reflectance"; from `M_r = M0_r + R F_rr M_r + R F_rk M0_k`):
     ///
     /// - split: `M_r = M0_r + y_r + V diag(c) Vᵀ (b ∘ M0_r + G_rk M0_k)`, `c = μ/(1−μ)`.
     ///   With all `n_r` modes `y_r = V Vᵀ B y_r`, so the black part equals
@@ -484,7 +484,7 @@ impl Modes {
     ///   bounce of black emitters exact.
     /// - seed: `M_r = S⁻¹ (B M0_r + G_rk M0_k) ≈ V diag(1/λ) Vᵀ (b ∘ M0_r + G_rk M0_k)`.
     ///
-    /// Exact (to rounding) when all `n_r` modes are kept (math.md, "Exact results").
+    /// Exact (to rounding) when all `n_r` modes are kept (docs/math.md, "Exact results").
     #[track_caller]
     pub fn exitance(
         &self,

@@ -1,5 +1,5 @@
 //! Tests of the eigenbasis against the exact solve ([`crate::radiosity::exact::ExactSolver`]) and the
-//! analytic cases of math.md ("Exact results every implementation must reproduce").
+//! analytic cases of docs/math.md ("Exact results").
 
 use super::*;
 use crate::radiosity::exact::ExactSolver;
@@ -110,7 +110,7 @@ fn max_abs(a: &[f64]) -> f64 {
     a.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
-/// Sphere: `F_ij = A_j / A_total` (math.md, "Exact results"): rank one, μ = ρ with the all-ones
+/// Sphere: `F_ij = A_j / A_total` (docs/math.md, "Exact results"): rank one, μ = ρ with the all-ones
 /// vector, and p = 1 gives `M_i = M0_i + ρ M0_avg / (1 − ρ)` (area-weighted average).
 #[test]
 fn eigen_sphere_rank_one_exact_with_one_mode() {
@@ -149,7 +149,7 @@ fn eigen_sphere_rank_one_exact_with_one_mode() {
     }
 }
 
-/// math.md "Exact results": any truncation p = n reproduces the dense solve; split identity
+/// docs/math.md "Exact results": any truncation p = n reproduces the dense solve; split identity
 /// `(I − R F)⁻¹ = I + V diag(μ/(1−μ)) Vᵀ B`, `Vᵀ B V = I`, `R F v = μ v`. Tolerance 1e-10
 /// relative to max |M|.
 #[test]
@@ -217,7 +217,7 @@ fn eigen_split_full_basis_matches_exact_solve() {
     assert!(err < 1e-10, "split p = n_r vs exact: {err:e}");
 }
 
-/// Seed (corrected, math.md "Seed errata"): `M = V diag(1/λ) Vᵀ (b ∘ M0)` with all modes equals
+/// Seed (corrected, docs/math.md "Seed errata"): `M = V diag(1/λ) Vᵀ (b ∘ M0)` with all modes equals
 /// the exact solve; λ increasing and positive (S is positive definite). Tolerance 1e-10.
 #[test]
 fn eigen_seed_full_basis_matches_exact_solve() {
@@ -262,7 +262,7 @@ fn eigen_seed_full_basis_matches_exact_solve() {
     ));
 }
 
-/// Black emitters (ρ = 0, M0 ≠ 0; math.md "Zero reflectance") at p = n_r, both formulations,
+/// Black emitters (ρ = 0, M0 ≠ 0; docs/math.md "Zero reflectance") at p = n_r, both formulations,
 /// against the exact solve to 1e-10: the light enters through the exact first bounce
 /// `G_rk M0_k` (formulas in [`Modes::exitance`]).
 #[test]
@@ -296,7 +296,7 @@ fn eigen_black_emitters_exact_both_formulations() {
     }
 }
 
-/// Truncation (math.md "Seed errata" 3 vs "Default formulation"): on a smooth closed room the
+/// Truncation (docs/math.md "Seed errata" 3 vs "Default formulation: split"): on a smooth closed room the
 /// split with p < n is far more accurate than the seed with the same p.
 #[test]
 fn eigen_truncation_split_beats_seed() {
