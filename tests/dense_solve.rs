@@ -108,6 +108,7 @@ fn full_basis_equals_the_dense_solve_for_both_formulations() {
             scene,
             prepared.g.clone(),
             prepared.output_rows.clone(),
+            prepared.lights.clone(),
             formulation,
             n,
             Solver::Dense,

@@ -68,7 +68,9 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
             .push(scene.channel_of_patch[i].map(|c| c as u16));
         for b in 0..bands {
             t.patch_reflectance.push(model.bands[b].reflectance[i]);
-            t.patch_emission.push(scene.emission[i][b]);
+            // The format gives a patch one channel: its emission is that channel's.
+            t.patch_emission
+                .push(scene.channel_of_patch[i].map_or(0.0, |c| model.emission(c, b)[i]));
         }
         for b in 0..bands {
             for k in 0..p {
@@ -98,7 +100,7 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         t.channel_bounce = vec![0.0; n * m * bands];
         for c in 0..m {
             for b in 0..bands {
-                let d = model.first_bounce(b, &model.emission[c][b]);
+                let d = model.channel_first_bounce(c, b);
                 for (i, x) in d.iter().enumerate() {
                     t.channel_bounce[i * m * bands + c * bands + b] = *x;
                 }
@@ -122,7 +124,7 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         t.zone_area
             .push(crate::formfactor::outputs::zone_area(scene, z));
     }
-    for row in &model.output_rows {
+    for (o, row) in model.output_rows.iter().enumerate() {
         for b in 0..bands {
             for k in 0..p {
                 t.output_modes
@@ -130,9 +132,14 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
             }
         }
         for b in 0..bands {
-            for identity in &identities {
-                t.output_channels
-                    .push(row.iter().zip(&identity[b]).map(|(r, x)| r * x).sum());
+            for (identity, external) in identities.iter().zip(&model.external) {
+                // What the channel's patches send to the output, plus the direct light from
+                // its sources beyond the patches.
+                let carried: f64 = row.iter().zip(&identity[b]).map(|(r, x)| r * x).sum();
+                t.output_channels.push(match &external.outputs[b] {
+                    Some(direct) => carried + direct[o],
+                    None => carried,
+                });
             }
         }
     }

@@ -8,6 +8,7 @@
 //! | [`geometry`] | points, polygons, patches |
 //! | [`scene`] | scene files, OBJ/MTL, meshing |
 //! | [`formfactor`] | form factors with occlusion, sensor and zone rows, their health |
+//! | [`sources`] | what emits light: per channel, its emission and direct irradiance |
 //! | [`radiosity`] | the model (`G`, `ρ`, `b`), exact solves, eigenmodes |
 //! | [`basis`] | a model and its modes as the runtime's tables |
 //! | [`accuracy`] | test cases, the error metric, the truncation sweep, evaluation through the runtime |
@@ -23,6 +24,7 @@ pub mod geometry;
 pub mod pipeline;
 pub mod radiosity;
 pub mod scene;
+pub mod sources;
 pub mod verify;
 
 pub use error::{Error, Result};

@@ -12,11 +12,12 @@ use crate::accuracy::runtime_eval;
 use crate::accuracy::{self, Case};
 use crate::basis;
 use crate::error::{Error, Result};
-use crate::formfactor::outputs;
 use crate::formfactor::{self, FormFactorHealth, FormFactorOptions, Occluders};
+use crate::formfactor::{exchange, outputs};
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::radiosity::model::Model;
 use crate::scene::{self, Scene};
+use crate::sources::{self, ChannelLight};
 
 /// Modes kept when neither a count nor a tolerance is given. On the example office (1101
 /// patches) it gives, for each channel alone, about 0.8 % error in patch exitance, 0.6 % in
@@ -121,6 +122,8 @@ pub struct Prepared {
     pub area: Vec<f64>,
     /// Sensor and zone rows.
     pub output_rows: Vec<Vec<f64>>,
+    /// The light of every channel at level 1, from its sources.
+    pub lights: Vec<ChannelLight>,
     /// Form-factor health.
     pub form_factor_health: FormFactorHealth,
     /// Stage timings so far.
@@ -165,21 +168,19 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     });
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
     let form_factor_health = FormFactorHealth::of(&ff, &area);
-    let mut g = ff.matrix;
-    // Column by column: contiguous in faer's layout.
-    for j in 0..n {
-        for i in 0..n {
-            g[(i, j)] *= area[i];
-        }
-    }
+    let g = exchange::exchange_areas(ff.matrix, &area);
     let output_rows = timed(&mut timings, "sensors and zones", || {
         outputs::output_rows(&scene, &g, &area, &occluders, opts)
+    });
+    let lights = timed(&mut timings, "light sources", || {
+        sources::surfaces::channel_lights(&scene, &g, &area, &output_rows)
     });
     Ok(Prepared {
         scene,
         g,
         area,
         output_rows,
+        lights,
         form_factor_health,
         timings,
     })
@@ -232,6 +233,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         g,
         area: _,
         output_rows,
+        lights,
         form_factor_health,
         mut timings,
     } = prepared;
@@ -241,7 +243,15 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         ModeSelection::Tolerance(_) => n.min(512),
     };
     let model = timed(&mut timings, "eigenbasis", || {
-        Model::new(&scene, g, output_rows, opts.formulation, p_max, opts.solver)
+        Model::new(
+            &scene,
+            g,
+            output_rows,
+            lights,
+            opts.formulation,
+            p_max,
+            opts.solver,
+        )
     })?;
     let bands = model.bands.len();
     // The reference the accuracy is measured against: LU for small scenes, conjugate
@@ -335,7 +345,7 @@ fn verify(
             if den > 0.0 {
                 patch_error = patch_error.max((num / den).sqrt());
             }
-            let exact_out = model.outputs(exact);
+            let exact_out = model.readings(b, exact, &case.levels);
             let readings: Vec<f64> = got.sensors.iter().chain(&got.zones).map(|r| r[b]).collect();
             let scale = exact_out.iter().fold(0.0f64, |a, v| a.max(v.abs()));
             if scale > 0.0 {

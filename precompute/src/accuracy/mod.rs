@@ -125,7 +125,7 @@ pub fn sweep(
 ) {
     for (b, solver) in solvers.iter().enumerate() {
         let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
-        let exact_outputs = model.outputs(&exact);
+        let exact_outputs = model.readings(b, &exact, &case.levels);
         let (mut m, amplitude) = model.expansion(b, &case.levels, &case.extra[b]);
         let v = &model.bands[b].modes.vectors;
         let mut done = 0;
@@ -137,7 +137,7 @@ pub fn sweep(
                 }
             }
             done = done.max(p);
-            let outputs = model.outputs(&m);
+            let outputs = model.readings(b, &m, &case.levels);
             visit(SweepPoint {
                 step: t,
                 exitance: &m,

@@ -248,6 +248,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
         &scene,
         prepared.g,
         prepared.output_rows,
+        prepared.lights,
         Formulation::Split,
         p_max,
         Solver::Auto,
@@ -264,22 +265,20 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
     let exact = ExactSolver::new(model.g.as_ref(), &area, &rho)?;
 
     // Exact responses: per channel (the superposition tables) and per accuracy case.
-    let responses: Vec<Vec<f64>> = (0..m).map(|c| exact.solve(&model.emission[c][0])).collect();
+    let responses: Vec<Vec<f64>> = (0..m)
+        .map(|c| {
+            let mut unit = vec![0.0; m];
+            unit[c] = 1.0;
+            exact.solve(&model.initial_exitance(0, &unit, &[]))
+        })
+        .collect();
     let cases: Vec<Vec<f64>> = (0..ACCURACY_CASES).map(|k| levels(1000 + k, m)).collect();
-    let m0_of = |l: &[f64]| -> Vec<f64> {
-        let mut m0 = vec![0.0; n];
-        for (c, &lc) in l.iter().enumerate() {
-            for (x, e) in m0.iter_mut().zip(&model.emission[c][0]) {
-                *x += lc * e;
-            }
-        }
-        m0
-    };
+    let m0_of = |l: &[f64]| -> Vec<f64> { model.initial_exitance(0, l, &[]) };
     let truth: Vec<(Vec<f64>, Vec<f64>)> = cases
         .iter()
         .map(|l| {
             let x = exact.solve(&m0_of(l));
-            let o = model.outputs(&x);
+            let o = model.readings(0, &x, l);
             (x, o)
         })
         .collect();
@@ -375,7 +374,13 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             .collect();
         let output_table: Vec<Vec<f32>> = responses
             .iter()
-            .map(|r| model.outputs(r).iter().map(|&x| x as f32).collect())
+            .enumerate()
+            .map(|(c, r)| {
+                let mut unit = vec![0.0; m];
+                unit[c] = 1.0;
+                let readings = model.readings(0, r, &unit);
+                readings.iter().map(|&x| x as f32).collect()
+            })
             .collect();
         let mut k = 0usize;
         let mut out_o = vec![0.0f32; outputs];
@@ -426,7 +431,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
         let mut k = 0usize;
         let solve_reused = |l: &[f64]| {
             let x = exact.solve(&m0_of(l));
-            let o = model.outputs(&x);
+            let o = model.readings(0, &x, l);
             (x, o)
         };
         let reused_s = per_call(|| {
@@ -438,8 +443,9 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             let per_update_s = per_call(|| {
                 k += 1;
                 if let Ok(lu) = ExactSolver::new(model.g.as_ref(), &area, &rho) {
-                    let x = lu.solve(&m0_of(&levels(k, m)));
-                    black_box(model.outputs(&x));
+                    let l = levels(k, m);
+                    let x = lu.solve(&m0_of(&l));
+                    black_box(model.readings(0, &x, &l));
                 }
             });
             rows.push(Row {
@@ -472,24 +478,26 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
         let mut counts = (0usize, 0usize);
         let sw_s = per_call(|| {
             k += 1;
-            let (x, shots) = sys.southwell(&m0_of(&levels(k, m)), ITERATIVE_TOLERANCE);
+            let l = levels(k, m);
+            let (x, shots) = sys.southwell(&m0_of(&l), ITERATIVE_TOLERANCE);
             counts.0 = shots;
-            black_box(model.outputs(&x));
+            black_box(model.readings(0, &x, &l));
         });
         let (sw_o, sw_p) = errors(&mut |l| {
             let (x, _) = sys.southwell(&m0_of(l), ITERATIVE_TOLERANCE);
-            let o = model.outputs(&x);
+            let o = model.readings(0, &x, l);
             (x, o)
         });
         let gs_s = per_call(|| {
             k += 1;
-            let (x, sweeps) = sys.gauss_seidel(&m0_of(&levels(k, m)), ITERATIVE_TOLERANCE);
+            let l = levels(k, m);
+            let (x, sweeps) = sys.gauss_seidel(&m0_of(&l), ITERATIVE_TOLERANCE);
             counts.1 = sweeps;
-            black_box(model.outputs(&x));
+            black_box(model.readings(0, &x, &l));
         });
         let (gs_o, gs_p) = errors(&mut |l| {
             let (x, _) = sys.gauss_seidel(&m0_of(l), ITERATIVE_TOLERANCE);
-            let o = model.outputs(&x);
+            let o = model.readings(0, &x, l);
             (x, o)
         });
         let (x, _) = sys.southwell(&m0_of(&levels(1, m)), ITERATIVE_TOLERANCE);

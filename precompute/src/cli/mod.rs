@@ -11,9 +11,11 @@ use serde::Serialize;
 
 use crate::accuracy::runtime_eval;
 use crate::error::{Error, Result};
+use crate::formfactor::exchange;
 use crate::formfactor::FormFactorOptions;
 use crate::pipeline::{self, BuildReport};
 use crate::radiosity::exact::ExactSolver;
+use crate::radiosity::model;
 use crate::verify::{self, VerifyReport};
 
 /// A channel level as applied.
@@ -121,21 +123,33 @@ pub fn solve(scene_path: &Path, level_args: &[String], patches: bool) -> Result<
     let mut exitance = vec![vec![0.0; bands]; n];
     let mut irradiance = vec![vec![0.0; bands]; n];
     let mut outputs = vec![vec![0.0; bands]; prepared.output_rows.len()];
+    let external: Vec<_> = prepared
+        .lights
+        .iter()
+        .map(|l| l.external(&prepared.g, &prepared.area, &prepared.output_rows))
+        .collect();
     for b in 0..bands {
         let rho: Vec<f64> = scene.reflectance.iter().map(|r| r[b]).collect();
         let solver = ExactSolver::new(prepared.g.as_ref(), &prepared.area, &rho)?;
-        let m0: Vec<f64> = (0..n)
-            .map(|i| scene.channel_of_patch[i].map_or(0.0, |c| levels[c] * scene.emission[i][b]))
-            .collect();
+        let m0 = model::initial_exitance(&prepared.lights, &external, &rho, b, &levels, &[]);
         let m = solver.solve(&m0);
+        // E = F M (exact for black patches too), plus the light from beyond the patches.
+        let mut e = exchange::patch_irradiance(&prepared.g, &prepared.area, &m);
+        for (c, &l) in levels.iter().enumerate() {
+            if let Some(e_ext) = &external[c].patches[b] {
+                for (x, d) in e.iter_mut().zip(e_ext) {
+                    *x += l * d;
+                }
+            }
+        }
+        let mut readings = exchange::output_irradiance(&prepared.output_rows, &m);
+        model::add_external_readings(&mut readings, &external, b, &levels);
         for i in 0..n {
             exitance[i][b] = m[i];
-            // E = F M, exact for black patches too.
-            irradiance[i][b] =
-                (0..n).map(|j| prepared.g[(i, j)] * m[j]).sum::<f64>() / prepared.area[i];
+            irradiance[i][b] = e[i];
         }
-        for (o, row) in prepared.output_rows.iter().enumerate() {
-            outputs[o][b] = row.iter().zip(&m).map(|(r, x)| r * x).sum();
+        for (o, r) in readings.iter().enumerate() {
+            outputs[o][b] = *r;
         }
     }
     let sensors = scene.sensors.len();

@@ -24,6 +24,7 @@
 //! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `docs/math.md`).
 
 mod bvh;
+pub mod exchange;
 mod health;
 mod kernel;
 pub mod outputs;

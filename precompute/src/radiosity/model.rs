@@ -8,9 +8,11 @@
 
 use faer::Mat;
 
+use crate::formfactor::exchange;
 use crate::radiosity::eigen::{self, Formulation, Modes, Solver};
 use crate::radiosity::exact::ExactSolver;
 use crate::scene::Scene;
+use crate::sources::{ChannelLight, ExternalLight};
 
 /// Per-band part of the model.
 pub struct BandModel {
@@ -32,8 +34,10 @@ pub struct Model {
     pub g: Mat<f64>,
     /// Per band.
     pub bands: Vec<BandModel>,
-    /// Channel emission at level 1: `emission[c][b][i]`, W/m² or lux.
-    pub emission: Vec<Vec<Vec<f64>>>,
+    /// The light of every channel at level 1, from its sources.
+    pub lights: Vec<ChannelLight>,
+    /// Per channel, the part of its direct light its emitting patches do not account for.
+    pub external: Vec<ExternalLight>,
     /// Output rows `R_o` (sensors, then zones): irradiance at output `o` is `Σ_j R_oj M_j`.
     pub output_rows: Vec<Vec<f64>>,
 }
@@ -68,18 +72,24 @@ impl BandModel {
 }
 
 impl Model {
-    /// Builds the model: modes of every band from `g` (already symmetrised).
+    /// Builds the model: modes of every band from `g` (already symmetrised), the channels'
+    /// light from `lights` (one per channel of the scene, from [`crate::sources`]).
     ///
     /// `modes` is the number of modes to keep per band (capped by the reflecting patches).
     pub fn new(
         scene: &Scene,
         g: Mat<f64>,
         output_rows: Vec<Vec<f64>>,
+        lights: Vec<ChannelLight>,
         formulation: Formulation,
         modes: usize,
         solver: Solver,
     ) -> Result<Model, eigen::EigenError> {
-        let n = scene.patches.len();
+        assert_eq!(
+            lights.len(),
+            scene.channels.len(),
+            "one channel light per channel of the scene"
+        );
         let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
         let band_count = scene.bands.count();
         let mut bands = Vec::with_capacity(band_count);
@@ -94,29 +104,17 @@ impl Model {
                 g_modes,
             });
         }
-        let emission = (0..scene.channels.len())
-            .map(|c| {
-                (0..band_count)
-                    .map(|b| {
-                        (0..n)
-                            .map(|i| {
-                                if scene.channel_of_patch[i] == Some(c) {
-                                    scene.emission[i][b]
-                                } else {
-                                    0.0
-                                }
-                            })
-                            .collect()
-                    })
-                    .collect()
-            })
+        let external = lights
+            .iter()
+            .map(|l| l.external(&g, &area, &output_rows))
             .collect();
         Ok(Model {
             formulation,
             area,
             g,
             bands,
-            emission,
+            lights,
+            external,
             output_rows,
         })
     }
@@ -128,9 +126,26 @@ impl Model {
 
     /// `F x` for a vector over patches: `(G x)_i / A_i`.
     pub fn apply_f(&self, x: &[f64]) -> Vec<f64> {
-        let gx = &self.g * faer::ColRef::from_slice(x);
-        (0..self.patch_count())
-            .map(|i| gx[i] / self.area[i])
+        exchange::patch_irradiance(&self.g, &self.area, x)
+    }
+
+    /// Number of channels.
+    pub fn channel_count(&self) -> usize {
+        self.lights.len()
+    }
+
+    /// Exitance the patches of channel `c` emit at level 1 in band `b`, W/m² or lux.
+    pub fn emission(&self, c: usize, b: usize) -> &[f64] {
+        &self.lights[c].emission[b]
+    }
+
+    /// First bounce of channel `c` at level 1 in band `b`: `ρ ∘ E_d`, its direct irradiance
+    /// reflected once (for emitting surfaces `R F e`), W/m² or lux.
+    pub fn channel_first_bounce(&self, c: usize, b: usize) -> Vec<f64> {
+        self.lights[c].patch_irradiance[b]
+            .iter()
+            .zip(&self.bands[b].reflectance)
+            .map(|(x, r)| x * r)
             .collect()
     }
 
@@ -146,11 +161,11 @@ impl Model {
     /// The part of a channel's response carried exactly, not by the modes: emission plus
     /// first bounce (split), emission of black patches (seed).
     pub fn channel_identity(&self, c: usize, b: usize) -> Vec<f64> {
-        let e = &self.emission[c][b];
+        let e = self.emission(c, b);
         let rho = &self.bands[b].reflectance;
         match self.formulation {
             Formulation::Split => {
-                let d = self.first_bounce(b, e);
+                let d = self.channel_first_bounce(c, b);
                 e.iter().zip(&d).map(|(x, y)| x + y).collect()
             }
             Formulation::Seed => e
@@ -163,10 +178,32 @@ impl Model {
 
     /// Mode-space response (coefficient included) of a channel at level 1, band `b`.
     ///
-    /// Split (exact first bounce, docs/math.md "Sharper still: exact first bounce"): `(I−RF)⁻¹ e = e + RF e +
-    /// V diag(μ/(1−μ)) Vᵀ G e`. Seed: `M_r = S⁻¹ (B e_r + G e_black)`.
+    /// Split (exact first bounce, docs/math.md "Sharper still: exact first bounce"):
+    /// `(I−RF)⁻¹ e = e + RF e + V diag(μ/(1−μ)) Vᵀ G e`. Seed: `M_r = S⁻¹ (B e_r + G e_black)`.
+    /// Light from beyond the patches adds its first reflection `x = ρ ∘ E_ext`, whose
+    /// projection is `Vᵀ B x = Vᵀ (A ∘ E_ext)`, with the coefficient `μ/(1−μ)` (split) or `1/λ`
+    /// (seed) (docs/math.md, "Light sources: emission and direct irradiance").
     pub fn channel_projection(&self, c: usize, b: usize) -> Vec<f64> {
-        let e = &self.emission[c][b];
+        let mut projection = self.emission_projection(c, b);
+        if let Some(external) = &self.external[c].patches[b] {
+            let band = &self.bands[b];
+            for (k, x) in projection.iter_mut().enumerate() {
+                let coefficient = match self.formulation {
+                    Formulation::Split => band.reflecting_coefficient(Formulation::Split, k),
+                    Formulation::Seed => 1.0 / band.eigen(k),
+                };
+                let ae: f64 = (0..external.len())
+                    .map(|j| band.modes.vectors[(j, k)] * self.area[j] * external[j])
+                    .sum();
+                *x += coefficient * ae;
+            }
+        }
+        projection
+    }
+
+    /// The part of [`Model::channel_projection`] due to the channel's emitting patches.
+    fn emission_projection(&self, c: usize, b: usize) -> Vec<f64> {
+        let e = self.emission(c, b);
         let band = &self.bands[b];
         let p = band.mode_count();
         (0..p)
@@ -257,21 +294,36 @@ impl Model {
 
     /// Exact exitance (dense LU) in band `b` for the same inputs as [`Model::truncated`].
     pub fn exact(&self, solver: &ExactSolver, b: usize, levels: &[f64], extra: &[f64]) -> Vec<f64> {
-        let mut m0 = extra.to_vec();
-        for (c, &l) in levels.iter().enumerate() {
-            for (x, e) in m0.iter_mut().zip(&self.emission[c][b]) {
-                *x += l * e;
-            }
-        }
-        solver.solve(&m0)
+        solver.solve(&self.initial_exitance(b, levels, extra))
     }
 
-    /// Irradiance at every output for the exitance `m` of one band.
+    /// `M0` of band `b` for channel levels `levels` and per-patch exitance `extra`: the
+    /// emission, plus the first reflection `ρ ∘ E_ext` of light from beyond the patches
+    /// (W/m² or lux).
+    pub fn initial_exitance(&self, b: usize, levels: &[f64], extra: &[f64]) -> Vec<f64> {
+        initial_exitance(
+            &self.lights,
+            &self.external,
+            &self.bands[b].reflectance,
+            b,
+            levels,
+            extra,
+        )
+    }
+
+    /// Readings of every output (sensors, then zones) in band `b` for patch exitance `m`
+    /// and the channel levels that produced it: `Σ_j R_oj M_j` plus the direct light from
+    /// beyond the patches (W/m² or lux).
+    pub fn readings(&self, b: usize, m: &[f64], levels: &[f64]) -> Vec<f64> {
+        let mut out = self.outputs(m);
+        add_external_readings(&mut out, &self.external, b, levels);
+        out
+    }
+
+    /// Irradiance at every output that the patch exitance `m` of one band gives,
+    /// `Σ_j R_oj M_j`; [`Model::readings`] adds the light from beyond the patches.
     pub fn outputs(&self, m: &[f64]) -> Vec<f64> {
-        self.output_rows
-            .iter()
-            .map(|r| r.iter().zip(m).map(|(a, b)| a * b).sum())
-            .collect()
+        exchange::output_irradiance(&self.output_rows, m)
     }
 
     /// The exact solver of band `b`: an LU factorisation of `I − R F` up to
@@ -291,19 +343,58 @@ impl Model {
         let n = self.patch_count();
         let mut m0 = Mat::<f64>::zeros(n, cases.len());
         for (k, (levels, extra)) in cases.iter().enumerate() {
-            for i in 0..n {
-                m0[(i, k)] = extra.get(i).copied().unwrap_or(0.0);
-            }
-            for (c, &l) in levels.iter().enumerate() {
-                for (i, e) in self.emission[c][b].iter().enumerate() {
-                    m0[(i, k)] += l * e;
-                }
+            for (i, x) in self.initial_exitance(b, levels, extra).iter().enumerate() {
+                m0[(i, k)] = *x;
             }
         }
         let m = solver.solve_many(m0.as_ref());
         (0..cases.len())
             .map(|k| (0..n).map(|i| m[(i, k)]).collect())
             .collect()
+    }
+}
+
+/// `M0` of band `b` (W/m² or lux): `extra` (empty or one value per patch), plus each
+/// channel's emission and the first reflection `ρ ∘ E_ext` of its light from beyond the
+/// patches, at its level.
+pub fn initial_exitance(
+    lights: &[ChannelLight],
+    external: &[ExternalLight],
+    reflectance: &[f64],
+    b: usize,
+    levels: &[f64],
+    extra: &[f64],
+) -> Vec<f64> {
+    let mut m0: Vec<f64> = (0..reflectance.len())
+        .map(|i| extra.get(i).copied().unwrap_or(0.0))
+        .collect();
+    for (c, &l) in levels.iter().enumerate() {
+        for (x, e) in m0.iter_mut().zip(&lights[c].emission[b]) {
+            *x += l * e;
+        }
+        if let Some(e_ext) = &external[c].patches[b] {
+            for ((x, e), r) in m0.iter_mut().zip(e_ext).zip(reflectance) {
+                *x += l * r * e;
+            }
+        }
+    }
+    m0
+}
+
+/// Adds to the readings `out` (sensors, then zones) of band `b` the direct light from beyond
+/// the patches of every channel at its level.
+pub fn add_external_readings(
+    out: &mut [f64],
+    external: &[ExternalLight],
+    b: usize,
+    levels: &[f64],
+) {
+    for (c, &l) in levels.iter().enumerate() {
+        if let Some(direct) = &external[c].outputs[b] {
+            for (o, d) in out.iter_mut().zip(direct) {
+                *o += l * d;
+            }
+        }
     }
 }
 

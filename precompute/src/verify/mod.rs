@@ -288,6 +288,7 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
             scene,
             prepared.g.clone(),
             prepared.output_rows.clone(),
+            prepared.lights.clone(),
             formulation,
             n,
             Solver::Dense,
@@ -349,11 +350,15 @@ fn superposition_error(
     cases: &[(CaseKind, Case)],
     sensors: usize,
 ) -> [f64; 3] {
-    let m = model.emission.len();
+    let m = model.channel_count();
     let mut worst = [0.0f64; 3];
     for (b, solver) in solvers.iter().enumerate() {
         let responses: Vec<Vec<f64>> = (0..m)
-            .map(|c| solver.solve(&model.emission[c][b]))
+            .map(|c| {
+                let mut unit = vec![0.0; m];
+                unit[c] = 1.0;
+                solver.solve(&model.initial_exitance(b, &unit, &[]))
+            })
             .collect();
         for (kind, case) in cases {
             if *kind == CaseKind::EmitterPattern {
@@ -369,7 +374,10 @@ fn superposition_error(
             let diff: Vec<f64> = sum.iter().zip(&exact).map(|(a, e)| a - e).collect();
             let norm = weighted_norm(&model.area, &exact).max(f64::MIN_POSITIVE);
             worst[0] = worst[0].max(weighted_norm(&model.area, &diff) / norm);
-            let (got, want) = (model.outputs(&sum), model.outputs(&exact));
+            let (got, want) = (
+                model.readings(b, &sum, &case.levels),
+                model.readings(b, &exact, &case.levels),
+            );
             let floor = 1e-12 * want.iter().fold(f64::MIN_POSITIVE, |a, v| a.max(v.abs()));
             for (o, (a, e)) in got.iter().zip(&want).enumerate() {
                 let slot = if o < sensors { 2 } else { 1 };

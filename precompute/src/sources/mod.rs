@@ -1,0 +1,86 @@
+//! What emits light into the room. Every kind of light source hands the radiosity model the
+//! same thing, a [`ChannelLight`] per channel: the exitance its patches emit and the
+//! irradiance it puts directly on every patch and output (docs/math.md, "Light sources:
+//! emission and direct irradiance").
+//!
+//! - [`surfaces`]: emitting surfaces of the scene (luminaire faces, windows as Lambertian
+//!   panels), grouped by the scene's channels.
+
+pub mod surfaces;
+
+/// The light of one channel at level 1, per band: what the model needs of a light source.
+///
+/// Units: exitance and irradiance in W/m² per band (radiometric scenes) or lux (photopic).
+/// The direct irradiance includes the scene's occlusion and counts all light that arrives
+/// straight from the channel's sources, from its own emitting patches too.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChannelLight {
+    /// Exitance emitted by each patch, `emission[band][patch]`; zero where the channel's
+    /// sources are not patches of the scene.
+    pub emission: Vec<Vec<f64>>,
+    /// Direct irradiance on each patch, `patch_irradiance[band][patch]`.
+    pub patch_irradiance: Vec<Vec<f64>>,
+    /// Direct irradiance at each output, `output_irradiance[band][output]`: sensors, then
+    /// zones (a zone's value is the area-weighted mean over its patches or work-plane
+    /// receivers).
+    pub output_irradiance: Vec<Vec<f64>>,
+}
+
+impl ChannelLight {
+    /// Number of bands.
+    pub fn bands(&self) -> usize {
+        self.emission.len()
+    }
+}
+
+/// The part of a channel's direct light that its own emitting patches do not account for:
+/// light from sources that are not patches of the scene (a luminaire's photometry, the sky).
+/// The radiosity model propagates patch emission itself (its first bounce is `R F e`, its
+/// reading at an output `Σ_j R_oj e_j`); this remainder enters as first-reflected exitance
+/// `ρ ∘ E_ext` and as direct irradiance at the outputs (docs/math.md, "Light sources: emission
+/// and direct irradiance").
+///
+/// Per band; `None` where the remainder is zero, as it is for emitting surfaces.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExternalLight {
+    /// `E_ext = E_d − F e` on every patch, W/m² or lux.
+    pub patches: Vec<Option<Vec<f64>>>,
+    /// `E_d,o − Σ_j R_oj e_j` at every output (sensors, then zones), W/m² or lux.
+    pub outputs: Vec<Option<Vec<f64>>>,
+}
+
+impl ChannelLight {
+    /// What remains of this light beyond its patches' emission, through the same exchange
+    /// functions a producer uses (so that emitting surfaces leave exactly nothing). `g` is
+    /// `G = A F` (m²), `area` the patch areas (m²), `output_rows` the sensor and zone rows.
+    pub fn external(
+        &self,
+        g: &faer::Mat<f64>,
+        area: &[f64],
+        output_rows: &[Vec<f64>],
+    ) -> ExternalLight {
+        use crate::formfactor::exchange;
+        let remainder = |direct: &[f64], carried: Vec<f64>| {
+            let rest: Vec<f64> = direct.iter().zip(&carried).map(|(d, c)| d - c).collect();
+            rest.iter().any(|x| *x != 0.0).then_some(rest)
+        };
+        ExternalLight {
+            patches: (0..self.bands())
+                .map(|b| {
+                    remainder(
+                        &self.patch_irradiance[b],
+                        exchange::patch_irradiance(g, area, &self.emission[b]),
+                    )
+                })
+                .collect(),
+            outputs: (0..self.bands())
+                .map(|b| {
+                    remainder(
+                        &self.output_irradiance[b],
+                        exchange::output_irradiance(output_rows, &self.emission[b]),
+                    )
+                })
+                .collect(),
+        }
+    }
+}
