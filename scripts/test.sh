@@ -20,6 +20,14 @@ step "firmware example: formatting and lints (its own workspace)"
 (cd examples/firmware && cargo fmt -- --check &&
     CARGO_TARGET_DIR=../../target/firmware cargo clippy --release -- -D warnings)
 
+step "documentation (warnings are errors)"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
+
+step "minimum supported Rust version (rust-version in Cargo.toml)"
+msrv=$(sed -n 's/^rust-version = "\(.*\)"/\1/p' Cargo.toml)
+rustup toolchain install "$msrv" --profile minimal >/dev/null
+CARGO_TARGET_DIR=target/msrv cargo "+$msrv" check --workspace --all-targets
+
 step "runtime for the microcontroller targets"
 cargo build -p eigenrad-runtime --release --target thumbv7em-none-eabihf
 cargo build -p eigenrad-runtime --release --target thumbv6m-none-eabi
