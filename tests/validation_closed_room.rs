@@ -1,7 +1,7 @@
 //! Exact results of a closed room of uniform reflectance (docs/math.md, "Exact results"
 //! implementation must reproduce"), through the exact solve (`cli::solve`, the code behind
 //! `eigenrad solve`) and through a basis with every mode kept (p = n) evaluated by the runtime
-//! (`host_eval`, the arithmetic firmware performs):
+//! (`accuracy::runtime_eval`, the arithmetic firmware performs):
 //!
 //! - CIE 171:2006, test case 5.8 (a 4 m cube, all surfaces of one reflectance ρ, total flux
 //!   Φ): the area-average irradiance over all surfaces is `Φ / (S (1 − ρ))`, S = 96 m²;
