@@ -1,132 +1,13 @@
 //! The `eigenrad` command and its files, run as a user runs it: bad `--level` arguments,
 //! unreadable bases, failed and interrupted builds (the previous basis survives, no temporary
 //! file is left that could pass for a basis), and open scenes.
-//!
-//! The binary is built once per test run (`cargo build -p eigenrad-precompute --bin
-//! eigenrad`, a no-op when it is up to date) next to this test's own profile folder.
 
-use std::path::{Path, PathBuf};
+mod common;
+
 use std::process::{Command, Output};
-use std::sync::OnceLock;
 use std::time::Duration;
 
-/// The `eigenrad` binary of this test's profile, built if needed.
-fn eigenrad() -> &'static Path {
-    static BINARY: OnceLock<PathBuf> = OnceLock::new();
-    BINARY.get_or_init(|| {
-        // target/<profile>/deps/cli_files-<hash> → target/<profile>/eigenrad
-        let exe = std::env::current_exe().expect("test executable path");
-        let profile_dir = exe
-            .parent()
-            .and_then(Path::parent)
-            .expect("target/<profile>/deps")
-            .to_path_buf();
-        let mut build = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
-        build
-            .args(["build", "-p", "eigenrad-precompute", "--bin", "eigenrad"])
-            .current_dir(env!("CARGO_MANIFEST_DIR"));
-        if profile_dir.file_name().is_some_and(|n| n == "release") {
-            build.arg("--release");
-        }
-        let status = build.status().expect("run cargo build");
-        assert!(status.success(), "cargo build of eigenrad failed");
-        let binary = profile_dir.join(format!("eigenrad{}", std::env::consts::EXE_SUFFIX));
-        assert!(binary.is_file(), "no binary at {}", binary.display());
-        binary
-    })
-}
-
-/// A fresh folder for one test.
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("eigenrad-cli-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("scratch folder");
-    dir
-}
-
-/// A closed 2 m cube with one flush ceiling luminaire (channel `lamp`) and a floor sensor;
-/// `max_edge` in metres sets its size (1 m: 28 patches).
-fn scene(max_edge: f64) -> String {
-    format!(
-        r#"[scene]
-name = "cube"
-bands = "photopic"
-unit = "m"
-max_edge = {max_edge}
-
-[materials]
-wall = {{ reflectance = 0.5 }}
-lamp = {{ reflectance = 0.0 }}
-
-[[room]]
-name = "room"
-min = [0, 0, 0]
-max = [2, 2, 2]
-material = "wall"
-openings = ["lamp"]
-
-[[quad]]
-name = "lamp"
-material = "lamp"
-corners = [[0.7, 0.7, 2], [0.7, 1.3, 2], [1.3, 1.3, 2], [1.3, 0.7, 2]]
-
-[[channel]]
-name = "lamp"
-surfaces = ["lamp"]
-flux = 1000
-
-[[sensor]]
-name = "floor"
-position = [1, 1, 0]
-normal = [0, 0, 1]
-"#
-    )
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(eigenrad())
-        .args(args)
-        .output()
-        .expect("run eigenrad")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Builds `scene` (text) in `dir` into `out`; returns the command's output.
-fn build(dir: &Path, scene_text: &str, out: &str, extra: &[&str]) -> Output {
-    let scene = dir.join("scene.toml");
-    std::fs::write(&scene, scene_text).expect("write scene");
-    let out = dir.join(out);
-    let mut args = vec![
-        "build",
-        scene.to_str().expect("utf-8 path"),
-        "-o",
-        out.to_str().expect("utf-8 path"),
-        "--modes",
-        "4",
-    ];
-    args.extend_from_slice(extra);
-    run(&args)
-}
-
-/// A good basis of the small cube, built in `dir` as `good.basis`.
-fn good_basis(dir: &Path) -> PathBuf {
-    let o = build(dir, &scene(1.0), "good.basis", &[]);
-    assert!(o.status.success(), "build failed: {}", stderr(&o));
-    dir.join("good.basis")
-}
-
-/// The names of the files in `dir`, sorted.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .expect("list folder")
-        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
+use common::{build, eigenrad, good_basis, listing, run, scene, scratch, stderr};
 
 #[test]
 fn cli_level_naming_an_unknown_channel_or_not_a_number_fails_and_says_so() {

@@ -34,6 +34,23 @@ pub enum Error {
         /// The operating system's error.
         reason: std::io::Error,
     },
+    /// A command was asked to write over a file it reads.
+    #[error("{}: refusing to write over {}, an input of this command; choose another output path", output.display(), input.display())]
+    OutputIsInput {
+        /// The output path as given.
+        output: PathBuf,
+        /// The input it names.
+        input: PathBuf,
+    },
+    /// Writing to standard output failed (a closed pipe is [`Error::ClosedPipe`]).
+    #[error("standard output: {0}")]
+    Stdout(std::io::Error),
+    /// A report could not be written as JSON.
+    #[error("JSON output: {0}")]
+    Json(serde_json::Error),
+    /// Standard output was closed by its reader (`| head`): the command stops quietly.
+    #[error("standard output closed")]
+    ClosedPipe,
     /// A `--level NAME=VALUE` argument is wrong.
     #[error("--level {argument}: {reason}")]
     Level {

@@ -1,17 +1,17 @@
 //! The `eigenrad` command: a thin layer over `eigenrad_precompute` that parses arguments and
 //! prints. Every number printed carries its unit.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write as _};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand, ValueEnum};
-use eigenrad_precompute::cli::{self, atomic};
+use eigenrad_precompute::cli::{self, atomic, guard};
 use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline::{self, BuildOptions, ModeSelection};
 use eigenrad_precompute::radiosity::eigen::{Formulation, Solver};
-use eigenrad_precompute::{verify, Error};
+use eigenrad_precompute::{scene, verify, Error};
 use eigenrad_runtime::Precision;
 
 /// Real-time radiosity for lighting controllers: precompute a room's eigenbasis, evaluate it
@@ -144,11 +144,22 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader went away (`| head`): stop quietly, with the status a shell reports for
+        // tools that SIGPIPE ends (128 + 13).
+        Err(e) if matches!(e.downcast_ref::<Error>(), Some(Error::ClosedPipe)) => {
+            ExitCode::from(141)
+        }
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // Nothing left to report to if standard error is closed too.
+            let _ = writeln!(std::io::stderr(), "error: {e:#}");
             ExitCode::FAILURE
         }
     }
+}
+
+/// Tells on standard error what was written; a closed standard error is no reason to fail.
+fn note_written(path: &Path) {
+    let _ = writeln!(std::io::stderr(), "wrote {}", path.display());
 }
 
 fn read(path: &Path) -> anyhow::Result<Vec<u8>> {
@@ -200,13 +211,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 },
                 ..BuildOptions::default()
             };
+            // Before any work: the basis must not replace the scene or a file it reads.
+            guard::check_outputs(std::slice::from_ref(&output), &scene::inputs(&scene)?.files)?;
             let (bytes, report) = pipeline::build(&scene, &opts)?;
             atomic::write(&output, &bytes)?;
-            if json {
-                println!("{}", serde_json::to_string_pretty(&report)?);
+            cli::print(&if json {
+                cli::json(&report)?
             } else {
-                print!("{}", cli::format_build_report(&report, &output));
-            }
+                cli::format_build_report(&report, &output)
+            })?;
         }
         Command::Solve {
             scene,
@@ -215,7 +228,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             json,
         } => {
             let readout = cli::solve(&scene, &levels, patches)?;
-            cli::print_readout(&readout, json)?;
+            cli::print(&if json {
+                cli::json(&readout)?
+            } else {
+                cli::format_readout(&readout)
+            })?;
         }
         Command::Eval {
             basis,
@@ -226,43 +243,45 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let bytes = read(&basis)?;
             let readout = cli::eval(&basis, &bytes, &levels, patches)
                 .with_context(|| format!("evaluating {}", basis.display()))?;
-            cli::print_readout(&readout, json)?;
+            cli::print(&if json {
+                cli::json(&readout)?
+            } else {
+                cli::format_readout(&readout)
+            })?;
         }
         Command::FormFactors { scene, json } => {
             let table = cli::surface_form_factors(&scene)?;
-            if json {
-                println!("{}", serde_json::to_string_pretty(&table)?);
+            cli::print(&if json {
+                cli::json(&table)?
             } else {
-                for row in &table {
-                    println!("{:>24} -> {:<24} {:.6}", row.from, row.to, row.value);
-                }
-            }
+                cli::format_surface_form_factors(&table)
+            })?;
         }
         Command::Inspect { basis, json } => {
             let bytes = read(&basis)?;
             let info = cli::inspect(&basis, &bytes)?;
-            if json {
-                println!("{}", serde_json::to_string_pretty(&info)?);
+            cli::print(&if json {
+                cli::json(&info)?
             } else {
-                print!("{}", cli::format_inspect(&info));
-            }
+                cli::format_inspect(&info)
+            })?;
         }
         Command::Verify { scene, out, json } => {
+            if let Some(dir) = &out {
+                let inputs = scene::inputs(&scene)?;
+                guard::check_outputs(&cli::verify_outputs(dir, &inputs.name), &inputs.files)?;
+            }
             let report = verify::verify(&scene, &verify::VerifyOptions::default())?;
             let tables = verify::markdown(&report);
             if let Some(dir) = out {
                 for path in cli::write_svgs(&report, &dir)? {
-                    eprintln!("wrote {}", path.display());
+                    note_written(&path);
                 }
                 let path = dir.join(format!("{}.md", report.scene));
                 atomic::write(&path, tables.as_bytes())?;
-                eprintln!("wrote {}", path.display());
+                note_written(&path);
             }
-            if json {
-                println!("{}", serde_json::to_string_pretty(&report)?);
-            } else {
-                print!("{tables}");
-            }
+            cli::print(&if json { cli::json(&report)? } else { tables })?;
         }
     }
     Ok(())

@@ -2,6 +2,7 @@
 //! it. `main.rs` only parses arguments.
 
 pub mod atomic;
+pub mod guard;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -275,20 +276,17 @@ fn unit(q: Quantity) -> &'static str {
     }
 }
 
-/// Prints a readout as JSON or as a table.
-pub fn print_readout(r: &Readout, json: bool) -> Result<()> {
-    if json {
-        let text = serde_json::to_string_pretty(r).map_err(|e| Error::TooLarge(e.to_string()))?;
-        println!("{text}");
-        return Ok(());
-    }
+/// A readout as a table, one line per sensor and zone (and per patch when it has them).
+pub fn format_readout(r: &Readout) -> String {
     let fmt = |v: &[f64]| {
         v.iter()
             .map(|x| format!("{x:.4}"))
             .collect::<Vec<_>>()
             .join(" ")
     };
-    println!(
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
         "levels: {}",
         r.levels
             .iter()
@@ -296,12 +294,13 @@ pub fn print_readout(r: &Readout, json: bool) -> Result<()> {
             .collect::<Vec<_>>()
             .join(", ")
     );
-    println!("bands: {} ({})", r.bands.join(" "), r.unit);
-    for s in &r.sensors {
-        println!("sensor {:<20} {} {}", s.name, fmt(&s.irradiance), r.unit);
+    let _ = writeln!(s, "bands: {} ({})", r.bands.join(" "), r.unit);
+    for x in &r.sensors {
+        let _ = writeln!(s, "sensor {:<20} {} {}", x.name, fmt(&x.irradiance), r.unit);
     }
     for z in &r.zones {
-        println!(
+        let _ = writeln!(
+            s,
             "zone   {:<20} {} {} (average)",
             z.name,
             fmt(&z.irradiance),
@@ -309,13 +308,15 @@ pub fn print_readout(r: &Readout, json: bool) -> Result<()> {
         );
     }
     if let Some(patches) = &r.patches {
-        println!(
+        let _ = writeln!(
+            s,
             "{:>6} {:<20} {:>10} {:>28} {:>28}",
             "patch", "surface", "area m²", "exitance", "irradiance"
         );
         for p in patches {
             let e = p.irradiance.as_deref().map_or("-".into(), fmt);
-            println!(
+            let _ = writeln!(
+                s,
                 "{:>6} {:<20} {:>10.5} {:>28} {:>28}",
                 p.id,
                 p.surface,
@@ -325,7 +326,39 @@ pub fn print_readout(r: &Readout, json: bool) -> Result<()> {
             );
         }
     }
-    Ok(())
+    s
+}
+
+/// `value` as one pretty-printed JSON document, with a final newline.
+pub fn json<T: Serialize>(value: &T) -> Result<String> {
+    serde_json::to_string_pretty(value)
+        .map(|mut text| {
+            text.push('\n');
+            text
+        })
+        .map_err(Error::Json)
+}
+
+/// Writes `text` to standard output and flushes it. A reader that went away (`| head`) is
+/// [`Error::ClosedPipe`]; any other failure (a full disk) is [`Error::Stdout`].
+pub fn print(text: &str) -> Result<()> {
+    use std::io::Write as _;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| match e.kind() {
+            std::io::ErrorKind::BrokenPipe => Error::ClosedPipe,
+            _ => Error::Stdout(e),
+        })
+}
+
+/// One line per non-zero surface-to-surface form factor.
+pub fn format_surface_form_factors(table: &[SurfaceFactor]) -> String {
+    let mut s = String::new();
+    for row in table {
+        let _ = writeln!(s, "{:>24} -> {:<24} {:.6}", row.from, row.to, row.value);
+    }
+    s
 }
 
 /// One surface-to-surface form factor.
@@ -533,6 +566,18 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         let _ = writeln!(s, "  {:<34} {:>8.3} s", t.stage, t.seconds);
     }
     s
+}
+
+/// Every file `eigenrad verify --out dir` may write for the scene named `scene`: the tables
+/// and one SVG per metric.
+pub fn verify_outputs(dir: &Path, scene: &str) -> Vec<PathBuf> {
+    let mut out = vec![dir.join(format!("{scene}.md"))];
+    out.extend(
+        verify::Metric::ALL
+            .iter()
+            .map(|m| dir.join(format!("{scene}-{}.svg", m.label()))),
+    );
+    out
 }
 
 /// Writes `eigenrad verify`'s curves into `dir` (created if missing), one SVG per metric

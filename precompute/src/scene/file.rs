@@ -9,6 +9,8 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 use toml::Spanned;
 
+use super::error::{Location, SceneError};
+
 /// The whole file.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -32,6 +34,19 @@ pub(crate) struct SceneFile {
     pub sensor: Vec<Spanned<SensorDef>>,
     #[serde(default)]
     pub zone: Vec<Spanned<ZoneDef>>,
+}
+
+impl SceneFile {
+    /// Parses a scene file's text; `origin` is the file it came from, for messages.
+    pub fn parse(text: &str, origin: &std::path::Path) -> Result<SceneFile, SceneError> {
+        toml::from_str(text).map_err(|e| SceneError::Syntax {
+            at: match e.span() {
+                Some(span) => Location::at_offset(origin, text, span.start),
+                None => Location::file(origin),
+            },
+            message: e.message().trim().to_string(),
+        })
+    }
 }
 
 /// `[scene]`: name, bands, unit and meshing defaults.

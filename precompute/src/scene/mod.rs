@@ -10,6 +10,7 @@ mod channels;
 mod context;
 mod error;
 mod file;
+mod inputs;
 mod limits;
 mod mesh;
 mod obj;
@@ -26,6 +27,7 @@ use std::path::Path;
 use crate::geometry::{Face, Patch, Vec3};
 
 pub use error::{Location, SceneError};
+pub use inputs::{inputs, SceneInputs};
 
 /// The spectral bands a scene is computed in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -161,12 +163,5 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 /// Validates and meshes a scene from its text; `origin` is the file it came from, used to find
 /// OBJ files (relative to its folder) and to name the file in errors.
 pub fn parse(text: &str, origin: &Path) -> Result<Scene, SceneError> {
-    let file: file::SceneFile = toml::from_str(text).map_err(|e| SceneError::Syntax {
-        at: match e.span() {
-            Some(span) => Location::at_offset(origin, text, span.start),
-            None => Location::file(origin),
-        },
-        message: e.message().trim().to_string(),
-    })?;
-    build::build(file, text, origin)
+    build::build(file::SceneFile::parse(text, origin)?, text, origin)
 }

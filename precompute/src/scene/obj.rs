@@ -277,7 +277,7 @@ fn mtl_problem(text: &str) -> Option<(usize, String)> {
 }
 
 /// The MTL files an OBJ file names, resolved against its folder.
-fn mtl_paths(obj: &Path, text: &str) -> Vec<PathBuf> {
+pub(crate) fn mtl_paths(obj: &Path, text: &str) -> Vec<PathBuf> {
     let dir = obj.parent().unwrap_or(Path::new(""));
     text.lines()
         .filter_map(|l| l.trim_start().strip_prefix("mtllib "))
