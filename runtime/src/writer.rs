@@ -13,22 +13,22 @@ use crate::format::{
     self, f32_to_f16, Formulation, MatrixBytes, Payload, Precision, Quantity, NO_CHANNEL,
 };
 
-/// Every table of a basis, owned, in `f64`, with the dimensions implied by the lengths.
+/// Every table of a basis, owned, in `f64`, with the counts implied by the lengths.
 ///
-/// Notation as in `docs/format.md`: `n` patches, `p` modes, `B` bands, `m` channels,
-/// `O` outputs (sensors, then zones). Matrices are row-major.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// Fields carry the names of `docs/format.md`'s payload. Notation as there: `n` patches, `p`
+/// modes, `B` bands, `m` channels, `O` outputs (sensors, then zones). Matrices are row-major.
+#[derive(Clone, Debug, PartialEq)]
 pub struct BasisTables {
-    /// W/m² or lux.
-    pub quantity: Option<Quantity>,
+    /// What the numbers measure: W/m² or lux.
+    pub quantity: Quantity,
     /// Expansion used.
-    pub formulation: Option<Formulation>,
-    /// Storage of the large tables.
-    pub precision: Option<Precision>,
-    /// `B`.
+    pub formulation: Formulation,
+    /// Storage of the three matrices (`modes`, `channel_bounce`, `output_view`).
+    pub precision: Precision,
+    /// `B`: 1 or 3.
     pub bands: usize,
-    /// `p`.
-    pub modes: usize,
+    /// `p`: modes per band.
+    pub mode_count: usize,
     /// Surface names.
     pub surface_names: Vec<String>,
     /// Channel names (`m`).
@@ -51,8 +51,8 @@ pub struct BasisTables {
     pub patch_reflectance: Vec<f64>,
     /// `n × B`, exitance at level 1.
     pub patch_emission: Vec<f64>,
-    /// `n × (B·p)`.
-    pub mode_vectors: Vec<f64>,
+    /// `n × (B·p)`: mode vectors, patch-major.
+    pub modes: Vec<f64>,
     /// `black × B × p`, black patches in ascending order (those with ρ = 0 in some band).
     pub black_projection: Vec<f64>,
     /// `m × B × p`.
@@ -117,23 +117,49 @@ fn quantise(values: &[f64], cols: usize, precision: Precision) -> (Vec<u8>, Vec<
 }
 
 impl BasisTables {
+    /// Tables for a basis of `bands` bands and `mode_count` modes with the given settings,
+    /// every table and name list empty; fill them in before [`to_bytes`](Self::to_bytes).
+    pub fn new(
+        quantity: Quantity,
+        formulation: Formulation,
+        precision: Precision,
+        bands: usize,
+        mode_count: usize,
+    ) -> Self {
+        BasisTables {
+            quantity,
+            formulation,
+            precision,
+            bands,
+            mode_count,
+            surface_names: Vec::new(),
+            channel_names: Vec::new(),
+            sensor_names: Vec::new(),
+            zone_names: Vec::new(),
+            eigenvalues: Vec::new(),
+            patch_area: Vec::new(),
+            patch_centroid: Vec::new(),
+            patch_surface: Vec::new(),
+            patch_channel: Vec::new(),
+            patch_reflectance: Vec::new(),
+            patch_emission: Vec::new(),
+            modes: Vec::new(),
+            black_projection: Vec::new(),
+            channel_projection: Vec::new(),
+            channel_bounce: Vec::new(),
+            sensor_geometry: Vec::new(),
+            zone_area: Vec::new(),
+            output_modes: Vec::new(),
+            output_channels: Vec::new(),
+            output_view: Vec::new(),
+        }
+    }
+
     /// Encodes the tables as a basis (header, checksum, payload).
     ///
-    /// Fails with [`Error::DimensionMismatch`] when a table's length disagrees with the
-    /// others, or [`Error::DecodeField`] when a setting is missing.
+    /// It does not check the tables' lengths against each other: the reader does.
     pub fn to_bytes(&self) -> Result<Vec<u8>> {
-        let quantity = self.quantity.ok_or(Error::DecodeField {
-            field: "quantity",
-            value: 0,
-        })?;
-        let formulation = self.formulation.ok_or(Error::DecodeField {
-            field: "formulation",
-            value: 0,
-        })?;
-        let precision = self.precision.ok_or(Error::DecodeField {
-            field: "precision",
-            value: 0,
-        })?;
+        let (quantity, formulation, precision) = (self.quantity, self.formulation, self.precision);
         let bands = self.bands;
         let n = self.patch_area.len();
         let m = self.channel_names.len();
@@ -177,7 +203,7 @@ impl BasisTables {
             .flat_map(|i| (i as u32).to_le_bytes())
             .collect();
         let geometry: Vec<f64> = self.sensor_geometry.iter().flatten().copied().collect();
-        let modes = quantise(&self.mode_vectors, bands * self.modes, precision);
+        let modes = quantise(&self.modes, bands * self.mode_count, precision);
         let bounce_cols = if self.channel_bounce.is_empty() {
             0
         } else {
@@ -209,7 +235,7 @@ impl BasisTables {
             formulation: formulation as u8,
             precision: precision as u8,
             patch_count: count(n)?,
-            mode_count: count(self.modes)?,
+            mode_count: count(self.mode_count)?,
             surface_count: count(self.surface_names.len())?,
             channel_count: count(m)?,
             sensor_count: count(self.sensor_names.len())?,
