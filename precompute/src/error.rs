@@ -55,4 +55,10 @@ pub enum Error {
     /// The scene is too large for this machine.
     #[error("{0}")]
     TooLarge(String),
+    /// A report could not be written as JSON.
+    #[error("JSON: {0}")]
+    Json(#[from] serde_json::Error),
+    /// The thread that runs the runtime's evaluator could not start, or panicked.
+    #[error("evaluator thread: {0}")]
+    Thread(String),
 }

@@ -98,7 +98,7 @@ fn check_len(field: &'static str, bytes: &[u8], count: usize, width: usize) -> R
     if bytes.len() == expected {
         Ok(())
     } else {
-        Err(Error::DimensionMismatch {
+        Err(Error::DecodeLength {
             field,
             expected,
             found: bytes.len(),
@@ -224,7 +224,7 @@ impl<'a> Basis<'a> {
             rest = tail;
         }
         if !rest.is_empty() {
-            return Err(Error::DimensionMismatch {
+            return Err(Error::DecodeLength {
                 field: "names",
                 expected: raw.names.len() - rest.len(),
                 found: raw.names.len(),
@@ -287,7 +287,7 @@ impl<'a> Basis<'a> {
 
         // Black patches: ascending, in range, and every patch with a zero reflectance listed.
         if raw.black_patches.len() % 4 != 0 {
-            return Err(Error::DimensionMismatch {
+            return Err(Error::DecodeLength {
                 field: "black_patches",
                 expected: raw.black_patches.len() / 4 * 4,
                 found: raw.black_patches.len(),

@@ -234,54 +234,40 @@ pub fn crc32(bytes: &[u8]) -> u32 {
 /// Bytes the encoding of `payload` takes, header included.
 pub fn encoded_len(payload: &Payload<'_>) -> Result<usize> {
     let body = postcard::serialize_with_flavor(payload, postcard::ser_flavors::Size::default())
-        .map_err(|_| Error::DecodePayload)?;
+        .map_err(|_| Error::EncodePayload)?;
     Ok(HEADER_LEN + body)
 }
 
 /// Encodes `payload` with its header into `out`, returning the bytes written.
 ///
-/// `out` must hold [`encoded_len`] bytes. Host tools allocate that; the runtime itself never
-/// encodes.
+/// `out` must hold [`encoded_len`] bytes ([`Error::EncodeBuffer`] otherwise). Host tools
+/// allocate that; the runtime itself never encodes.
 pub fn encode<'o>(payload: &Payload<'_>, out: &'o mut [u8]) -> Result<&'o mut [u8]> {
-    let (header, body) = match out.split_at_mut_checked(HEADER_LEN) {
-        Some(parts) => parts,
-        None => {
-            return Err(Error::DecodeTruncated {
-                needed: HEADER_LEN,
-                found: out.len(),
-            })
-        }
+    let total = encoded_len(payload)?;
+    let too_small = Error::EncodeBuffer {
+        needed: total,
+        found: out.len(),
     };
-    let written = postcard::to_slice(payload, body).map_err(|_| Error::DecodePayload)?;
-    let len = written.len();
-    let crc = crc32(written);
-    let len32 = u32::try_from(len).map_err(|_| Error::DecodeField {
+    let out = out.get_mut(..total).ok_or(too_small)?;
+    let (header, body) = out.split_at_mut_checked(HEADER_LEN).ok_or(too_small)?;
+    let len = postcard::to_slice(payload, body)
+        .map_err(|_| Error::EncodePayload)?
+        .len();
+    let crc = crc32(body.get(..len).unwrap_or(&[]));
+    let len32 = u32::try_from(len).map_err(|_| Error::EncodeOverflow {
         field: "payload length",
-        value: u32::MAX,
     })?;
-    let mut h = [0u8; HEADER_LEN];
-    let parts: [&[u8]; 5] = [
+    let fields: [&[u8]; 5] = [
         &MAGIC,
         &FORMAT_VERSION.to_le_bytes(),
         &0u16.to_le_bytes(),
         &len32.to_le_bytes(),
         &crc.to_le_bytes(),
     ];
-    let mut at = 0;
-    for part in parts {
-        for &b in part {
-            if let Some(slot) = h.get_mut(at) {
-                *slot = b;
-            }
-            at += 1;
-        }
+    for (slot, &b) in header.iter_mut().zip(fields.into_iter().flatten()) {
+        *slot = b;
     }
-    header.copy_from_slice(&h);
-    let total = HEADER_LEN + len;
-    out.get_mut(..total).ok_or(Error::DecodeTruncated {
-        needed: total,
-        found: 0,
-    })
+    Ok(out)
 }
 
 /// Checks the header and checksum of `bytes` and decodes the payload, borrowing from `bytes`.
@@ -335,7 +321,7 @@ pub fn decode(bytes: &[u8]) -> Result<Payload<'_>> {
     let (payload, rest) =
         postcard::take_from_bytes::<Payload<'_>>(body).map_err(|_| Error::DecodePayload)?;
     if !rest.is_empty() {
-        return Err(Error::DimensionMismatch {
+        return Err(Error::DecodeLength {
             field: "payload length",
             expected: body.len() - rest.len(),
             found: body.len(),

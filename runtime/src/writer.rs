@@ -157,18 +157,16 @@ impl BasisTables {
 
     /// Encodes the tables as a basis (header, checksum, payload).
     ///
-    /// It does not check the tables' lengths against each other: the reader does.
+    /// Fails with [`Error::EncodeOverflow`] when a count does not fit the format; it does
+    /// not check the tables' lengths against each other: the reader does.
     pub fn to_bytes(&self) -> Result<Vec<u8>> {
         let (quantity, formulation, precision) = (self.quantity, self.formulation, self.precision);
         let bands = self.bands;
         let n = self.patch_area.len();
         let m = self.channel_names.len();
         let outputs = self.sensor_names.len() + self.zone_names.len();
-        let count = |v: usize| {
-            u32::try_from(v).map_err(|_| Error::DecodeField {
-                field: "dimensions",
-                value: u32::MAX,
-            })
+        let count = |field: &'static str, v: usize| {
+            u32::try_from(v).map_err(|_| Error::EncodeOverflow { field })
         };
 
         let mut names = Vec::new();
@@ -181,7 +179,7 @@ impl BasisTables {
         {
             let mut buf = vec![0u8; name.len() + 8];
             let used = postcard::to_slice(name.as_str(), &mut buf)
-                .map_err(|_| Error::DecodePayload)?
+                .map_err(|_| Error::EncodePayload)?
                 .len();
             names.extend_from_slice(buf.get(..used).unwrap_or(&[]));
         }
@@ -227,19 +225,16 @@ impl BasisTables {
         ];
         let [eig, area, cen, refl, emis, bproj, cproj, geom, zarea, omodes, ochan] = &tables;
         let payload = Payload {
-            bands: u8::try_from(bands).map_err(|_| Error::DecodeField {
-                field: "bands",
-                value: u32::MAX,
-            })?,
+            bands: u8::try_from(bands).map_err(|_| Error::EncodeOverflow { field: "bands" })?,
             quantity: quantity as u8,
             formulation: formulation as u8,
             precision: precision as u8,
-            patch_count: count(n)?,
-            mode_count: count(self.mode_count)?,
-            surface_count: count(self.surface_names.len())?,
-            channel_count: count(m)?,
-            sensor_count: count(self.sensor_names.len())?,
-            zone_count: count(self.zone_names.len())?,
+            patch_count: count("patch_count", n)?,
+            mode_count: count("mode_count", self.mode_count)?,
+            surface_count: count("surface_count", self.surface_names.len())?,
+            channel_count: count("channel_count", m)?,
+            sensor_count: count("sensor_count", self.sensor_names.len())?,
+            zone_count: count("zone_count", self.zone_names.len())?,
             names: &names,
             eigenvalues: eig,
             patch_area: area,

@@ -314,7 +314,7 @@ fn table_length_mismatches() {
     for (field, edit) in cases {
         let r = decode_edited(|t| edit(t));
         assert!(
-            matches!(r, Err(Error::DimensionMismatch { field: f, .. }) if f == field),
+            matches!(r, Err(Error::DecodeLength { field: f, .. }) if f == field),
             "{field}: got {r:?}"
         );
     }
@@ -332,7 +332,7 @@ fn names_must_match_the_counts() {
     reseal(&mut bytes);
     assert!(matches!(
         Basis::from_bytes(&bytes),
-        Err(Error::DimensionMismatch { field: "names", .. })
+        Err(Error::DecodeLength { field: "names", .. })
     ));
 }
 
@@ -422,7 +422,7 @@ fn black_patch_list_must_match_reflectance() {
     let r = decode_edited(|t| t.patch_reflectance[0] = 0.0);
     assert!(matches!(
         r,
-        Err(Error::DimensionMismatch {
+        Err(Error::DecodeLength {
             field: "black_projection",
             ..
         })
@@ -431,7 +431,7 @@ fn black_patch_list_must_match_reflectance() {
     let r = decode_edited(|t| t.patch_reflectance[1] = 0.5);
     assert!(matches!(
         r,
-        Err(Error::DimensionMismatch {
+        Err(Error::DecodeLength {
             field: "black_projection",
             ..
         })

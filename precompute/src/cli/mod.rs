@@ -264,7 +264,7 @@ fn unit(q: Quantity) -> &'static str {
 /// Prints a readout as JSON or as a table.
 pub fn print_readout(r: &Readout, json: bool) -> Result<()> {
     if json {
-        let text = serde_json::to_string_pretty(r).map_err(|e| Error::TooLarge(e.to_string()))?;
+        let text = serde_json::to_string_pretty(r)?;
         println!("{text}");
         return Ok(());
     }
