@@ -80,6 +80,7 @@ pub struct BasisTables {
     pub output_view: Vec<f64>,
 }
 
+/// `values` rounded to `f32`, little-endian.
 fn f32_bytes(values: &[f64]) -> Vec<u8> {
     values
         .iter()
@@ -94,6 +95,7 @@ struct Quantised {
 }
 
 impl Quantised {
+    /// The table as the payload borrows it.
     fn bytes(&self) -> MatrixBytes<'_> {
         MatrixBytes {
             scales: &self.scales,
@@ -230,7 +232,7 @@ impl BasisTables {
             .chain(&self.sensor_names)
             .chain(&self.zone_names)
         {
-            // A varint length takes at most 5 bytes for a `u32`; 8 leaves room.
+            // Room for the name and its varint length.
             let mut buf = vec![0u8; name.len() + 8];
             let used = postcard::to_slice(name.as_str(), &mut buf)
                 .map_err(|_| Error::EncodePayload)?
@@ -262,7 +264,7 @@ impl BasisTables {
             Ok(quantise(values, self::cols(cols)?, precision))
         };
         // Temporaries live to the end of the statement: the payload borrows them while it is
-        // encoded, so every table is listed once, here.
+        // encoded, so each table is converted on the line that names its payload field.
         encode(&Payload {
             bands: u8::try_from(self.bands)
                 .map_err(|_| Error::EncodeOverflow { field: "bands" })?,
