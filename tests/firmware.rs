@@ -240,21 +240,17 @@ fn random_basis(seed: u64, d: Dims, precision: Precision) -> Vec<u8> {
     let mut rng = Rng(seed | 1);
     let (n, p, bands, m) = (d.patches, d.modes, d.bands, d.channels);
     let outputs = d.sensors + d.zones;
+    let quantity = if bands == 1 {
+        Quantity::Photometric
+    } else {
+        Quantity::Radiometric
+    };
     let mut t = BasisTables {
-        quantity: Some(if bands == 1 {
-            Quantity::Photometric
-        } else {
-            Quantity::Radiometric
-        }),
-        formulation: Some(Formulation::Split),
-        precision: Some(precision),
-        bands,
-        modes: p,
         surface_names: vec!["walls".into(), "luminaires".into()],
         channel_names: (0..m).map(|c| format!("ch{c}")).collect(),
         sensor_names: (0..d.sensors).map(|s| format!("desk{s}")).collect(),
         zone_names: (0..d.zones).map(|z| format!("plane{z}")).collect(),
-        ..Default::default()
+        ..BasisTables::new(quantity, Formulation::Split, precision, bands, p)
     };
     t.eigenvalues = (0..bands * p).map(|_| rng.range(-0.3, 0.9)).collect();
     for i in 0..n {
@@ -286,7 +282,7 @@ fn random_basis(seed: u64, d: Dims, precision: Precision) -> Vec<u8> {
         for b in 0..bands {
             let is_black = t.patch_reflectance[i * bands + b] == 0.0;
             for _ in 0..p {
-                t.mode_vectors
+                t.modes
                     .push(if is_black { 0.0 } else { rng.range(-1.0, 1.0) });
             }
         }

@@ -22,20 +22,16 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         .unwrap_or(0)
         .min(p);
 
+    let quantity = match scene.bands {
+        Bands::Photopic => Quantity::Photometric,
+        Bands::Rgb => Quantity::Radiometric,
+    };
     let mut t = BasisTables {
-        quantity: Some(match scene.bands {
-            Bands::Photopic => Quantity::Photometric,
-            Bands::Rgb => Quantity::Radiometric,
-        }),
-        formulation: Some(model.formulation),
-        precision: Some(precision),
-        bands,
-        modes: p,
         surface_names: scene.surfaces.iter().map(|s| s.name.clone()).collect(),
         channel_names: scene.channels.iter().map(|c| c.name.clone()).collect(),
         sensor_names: scene.sensors.iter().map(|s| s.name.clone()).collect(),
         zone_names: scene.zones.iter().map(|z| z.name.clone()).collect(),
-        ..Default::default()
+        ..BasisTables::new(quantity, model.formulation, precision, bands, p)
     };
 
     // A band with fewer reflecting patches than p is padded with null modes: zero vectors
@@ -74,7 +70,7 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         }
         for b in 0..bands {
             for k in 0..p {
-                t.mode_vectors.push(mode(b, i, k));
+                t.modes.push(mode(b, i, k));
             }
         }
     }

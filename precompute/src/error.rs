@@ -45,9 +45,6 @@ pub enum Error {
     /// Writing to standard output failed (a closed pipe is [`Error::ClosedPipe`]).
     #[error("standard output: {0}")]
     Stdout(std::io::Error),
-    /// A report could not be written as JSON.
-    #[error("JSON output: {0}")]
-    Json(serde_json::Error),
     /// Standard output was closed by its reader (`| head`): the command stops quietly.
     #[error("standard output closed")]
     ClosedPipe,
@@ -72,4 +69,10 @@ pub enum Error {
     /// The scene is too large for this machine.
     #[error("{0}")]
     TooLarge(String),
+    /// A report could not be written as JSON.
+    #[error("JSON: {0}")]
+    Json(#[from] serde_json::Error),
+    /// The thread that runs the runtime's evaluator could not start, or panicked.
+    #[error("evaluator thread: {0}")]
+    Thread(String),
 }

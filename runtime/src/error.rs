@@ -5,12 +5,15 @@ use core::fmt;
 /// Result with the runtime's [`Error`].
 pub type Result<T> = core::result::Result<T, Error>;
 
-/// Everything that can go wrong when decoding or evaluating a basis.
+/// Everything that can go wrong when encoding, decoding or evaluating a basis.
 ///
 /// Decoding errors (`Decode*`) come from [`Basis::from_bytes`](crate::Basis::from_bytes) and
-/// mean the byte string is not a valid basis; the others come from the
+/// mean the byte string is not a valid basis. Encoding errors (`Encode*`) come from the
+/// host-side writer ([`format::encode`](crate::format::encode) and `writer::BasisTables`) and
+/// mean the tables cannot be written in the format. The others come from the
 /// [`Evaluator`](crate::Evaluator) and mean the request does not fit the basis or the
-/// evaluator's capacities. No byte string and no request makes the runtime panic.
+/// evaluator's capacities; [`Error::UnknownName`] is for callers that look a name up. No
+/// byte string and no request makes the runtime panic.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Error {
@@ -39,15 +42,15 @@ pub enum Error {
     },
     /// The payload is not a valid postcard encoding of the basis layout.
     DecodePayload,
-    /// An enumerated header field holds a value outside its range.
+    /// A header field, setting or count holds a value outside its range.
     DecodeField {
         /// The field, as named in `docs/format.md`.
         field: &'static str,
         /// The value found.
         value: u32,
     },
-    /// A table's byte length does not match the dimensions in the header.
-    DimensionMismatch {
+    /// A table's byte length does not match the counts in the payload.
+    DecodeLength {
         /// The table, as named in `docs/format.md`.
         field: &'static str,
         /// Byte length the dimensions require.
@@ -62,6 +65,21 @@ pub enum Error {
         /// Element index within that table.
         index: usize,
     },
+    /// The buffer given to the encoder is shorter than the encoded basis.
+    EncodeBuffer {
+        /// Bytes the encoding takes, header included.
+        needed: usize,
+        /// Bytes the buffer has.
+        found: usize,
+    },
+    /// A number does not fit the field the format gives it: `bands` in a byte, a count or
+    /// the payload length in 32 bits.
+    EncodeOverflow {
+        /// The field, as named in `docs/format.md`.
+        field: &'static str,
+    },
+    /// The payload could not be serialised with postcard.
+    EncodePayload,
     /// The basis needs more room than the evaluator's compile-time capacities give.
     Capacity {
         /// Which capacity (`"patches"`, `"modes"`, `"channels"`, `"outputs"`, `"bands"`).
@@ -103,6 +121,13 @@ pub enum Error {
     },
     /// DALI arc power level 255 is "MASK" (no change), not a light level.
     DaliMask,
+    /// A name the caller needs is not in the basis. The runtime's lookups
+    /// ([`Basis::find_channel`](crate::Basis::find_channel) and the like) return `None`; a
+    /// controller that cannot run without the name reports it with this.
+    UnknownName {
+        /// Which kind of name (`"channel"`, `"sensor"`, `"zone"`).
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for Error {
@@ -124,14 +149,22 @@ impl fmt::Display for Error {
             Error::DecodeField { field, value } => {
                 write!(f, "basis field `{field}` has invalid value {value}")
             }
-            Error::DimensionMismatch { field, expected, found } => write!(
+            Error::DecodeLength { field, expected, found } => write!(
                 f,
-                "basis table `{field}` is {found} bytes, its dimensions need {expected}"
+                "basis table `{field}` is {found} bytes, its counts need {expected}"
             ),
             Error::DecodeValue { field, index } => write!(
                 f,
                 "basis table `{field}` element {index} is not finite or out of range"
             ),
+            Error::EncodeBuffer { needed, found } => write!(
+                f,
+                "encoding the basis takes {needed} bytes, the buffer has {found}"
+            ),
+            Error::EncodeOverflow { field } => {
+                write!(f, "basis field `{field}` is too large for the format")
+            }
+            Error::EncodePayload => f.write_str("basis payload could not be serialised"),
             Error::Capacity { what, needed, capacity } => write!(
                 f,
                 "basis needs {needed} {what} but the evaluator has room for {capacity}"
@@ -151,6 +184,7 @@ impl fmt::Display for Error {
                 "patch {patch} has zero reflectance: its irradiance is not defined by its exitance"
             ),
             Error::DaliMask => f.write_str("DALI arc power level 255 (MASK) is not a light level"),
+            Error::UnknownName { what } => write!(f, "the basis has no {what} of that name"),
         }
     }
 }

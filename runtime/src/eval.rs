@@ -117,7 +117,7 @@ impl<
     }
 
     fn p(&self) -> usize {
-        self.basis.modes
+        self.basis.counts.mode_count
     }
 
     fn check_level(level: f32) -> Result<()> {
@@ -131,8 +131,8 @@ impl<
     /// Bytes of channel `c`'s mode projection in band `b`.
     fn channel_projection(&self, c: usize, b: usize) -> &'a [u8] {
         f32_row(
-            self.basis.channel_projection,
-            c * self.basis.bands + b,
+            self.basis.tables.channel_projection,
+            c * self.basis.counts.bands + b,
             self.p(),
         )
     }
@@ -141,7 +141,7 @@ impl<
     /// amplitudes from scratch, which also clears rounding drift of incremental updates.
     /// O(m·p·bands).
     pub fn set_channel_levels(&mut self, levels: &[f32]) -> Result<()> {
-        let m = self.basis.channels;
+        let m = self.basis.counts.channel_count;
         if levels.len() != m {
             return Err(Error::LengthMismatch {
                 what: "levels",
@@ -177,8 +177,11 @@ impl<
             let amp = amp.get_mut(..p).unwrap_or(&mut []);
             amp.copy_from_slice(base.get(..p).unwrap_or(&[]));
             for (c, &l) in levels.iter().enumerate() {
-                let projection =
-                    f32_row(self.basis.channel_projection, c * self.basis.bands + b, p);
+                let projection = f32_row(
+                    self.basis.tables.channel_projection,
+                    c * self.basis.counts.bands + b,
+                    p,
+                );
                 axpy_f32(l, projection, amp);
             }
         }
@@ -194,7 +197,7 @@ impl<
     /// Changes one channel's level (relative, 1 = as built), updating the mode amplitudes
     /// incrementally in O(p·bands) without touching the other channels.
     pub fn set_channel_level(&mut self, channel: usize, level: f32) -> Result<()> {
-        check_index("channel", channel, self.basis.channels)?;
+        check_index("channel", channel, self.basis.counts.channel_count)?;
         Self::check_level(level)?;
         let old = self.levels.get(channel).copied().unwrap_or(0.0);
         let delta = level - old;
@@ -224,7 +227,7 @@ impl<
 
     /// Current level of `channel`.
     pub fn channel_level(&self, channel: usize) -> Result<f32> {
-        check_index("channel", channel, self.basis.channels)?;
+        check_index("channel", channel, self.basis.counts.channel_count)?;
         Ok(self.levels.get(channel).copied().unwrap_or(0.0))
     }
 
@@ -233,7 +236,10 @@ impl<
     }
 
     fn reflectance(&self, patch: usize, band: usize) -> f32 {
-        f32_at(self.basis.reflectance, patch * self.basis.bands + band)
+        f32_at(
+            self.basis.tables.patch_reflectance,
+            patch * self.basis.counts.bands + band,
+        )
     }
 
     /// Sets the exitance a patch emits on top of its channel (the general case of an
@@ -244,7 +250,7 @@ impl<
     /// light it sends into the room is carried by the modes, so its accuracy is that of the
     /// truncation (exact when `p = n`).
     pub fn set_patch_exitance(&mut self, patch: usize, exitance: [f32; BANDS]) -> Result<()> {
-        check_index("patch", patch, self.basis.patches)?;
+        check_index("patch", patch, self.basis.counts.patch_count)?;
         if exitance
             .iter()
             .any(|e| !e.is_finite() || !(0.0..=MAX_EXITANCE).contains(e))
@@ -285,7 +291,7 @@ impl<
                 if identity(basis, patch, b) {
                     let direct = &mut self.patch_direct;
                     basis
-                        .output_view
+                        .output_view()
                         .for_each(patch, 0, outputs.min(OUTPUTS), |o, f| {
                             if let Some(slot) = direct.get_mut(o).and_then(|r| r.get_mut(b)) {
                                 if apply {
@@ -320,7 +326,7 @@ impl<
     }
 
     fn outputs(&self) -> usize {
-        self.basis.sensors + self.basis.zones
+        self.basis.counts.sensor_count + self.basis.counts.zone_count
     }
 
     /// Exitance the patch emits itself in `band`: its channel's share plus its own.
@@ -331,12 +337,16 @@ impl<
             .and_then(|e| e.get(band))
             .copied()
             .unwrap_or(0.0);
-        let c = u16_at(self.basis.channel, patch);
+        let c = u16_at(self.basis.tables.patch_channel, patch);
         if c == NO_CHANNEL {
             return own;
         }
         let level = self.levels.get(usize::from(c)).copied().unwrap_or(0.0);
-        own + level * f32_at(self.basis.emission, patch * self.basis.bands + band)
+        own + level
+            * f32_at(
+                self.basis.tables.patch_emission,
+                patch * self.basis.counts.bands + band,
+            )
     }
 
     fn checked(values: [f32; BANDS]) -> Result<[f32; BANDS]> {
@@ -349,40 +359,38 @@ impl<
 
     /// Final exitance of `patch` per band, W/m² or lux (lm/m²). O(p + m) per band.
     pub fn exitance(&self, patch: usize) -> Result<[f32; BANDS]> {
-        check_index("patch", patch, self.basis.patches)?;
+        check_index("patch", patch, self.basis.counts.patch_count)?;
         let p = self.p();
-        let bands = self.basis.bands;
-        let m = self.basis.channels;
+        let bands = self.basis.counts.bands;
+        let m = self.basis.counts.channel_count;
         let mut out = [0.0f32; BANDS];
         for (b, slot) in out.iter_mut().enumerate() {
             if self.identity(patch, b) {
                 *slot = self.emitted(patch, b);
             }
         }
-        if self.basis.channel_bounce.cols != 0 {
+        let bounce = self.basis.channel_bounce();
+        if bounce.cols != 0 {
             // One pass over the row (channel-major, band-minor), no index arithmetic per value.
             let (mut channel, mut band) = (0, 0);
-            self.basis
-                .channel_bounce
-                .for_each(patch, 0, m * bands, |_, v| {
-                    if let (Some(slot), Some(&level)) =
-                        (out.get_mut(band), self.levels.get(channel))
-                    {
-                        *slot += v * level;
-                    }
-                    band += 1;
-                    if band == bands {
-                        band = 0;
-                        channel += 1;
-                    }
-                });
+            bounce.for_each(patch, 0, m * bands, |_, v| {
+                if let (Some(slot), Some(&level)) = (out.get_mut(band), self.levels.get(channel)) {
+                    *slot += v * level;
+                }
+                band += 1;
+                if band == bands {
+                    band = 0;
+                    channel += 1;
+                }
+            });
         }
+        let modes = self.basis.modes();
         for (b, slot) in out.iter_mut().enumerate() {
             let amp = self
                 .amplitude
                 .get(b)
                 .map_or(&[][..], |a| a.get(..p).unwrap_or(&[]));
-            *slot += self.basis.mode_vectors.row_dot(patch, b * p, amp);
+            *slot += modes.row_dot(patch, b * p, amp);
         }
         Self::checked(out)
     }
@@ -390,7 +398,7 @@ impl<
     /// Fills `out[i]` with the exitance of every patch `i` (W/m² or lux); `out` must have
     /// one entry per patch. O(n·(p + m)) per band.
     pub fn exitance_all(&self, out: &mut [[f32; BANDS]]) -> Result<()> {
-        let n = self.basis.patches;
+        let n = self.basis.counts.patch_count;
         if out.len() != n {
             return Err(Error::LengthMismatch {
                 what: "out",
@@ -434,16 +442,16 @@ impl<
     /// direct light from per-patch exitance. O(p + m) per band, independent of n.
     fn output(&self, o: usize) -> Result<[f32; BANDS]> {
         let p = self.p();
-        let m = self.basis.channels;
-        let bands = self.basis.bands;
+        let m = self.basis.counts.channel_count;
+        let bands = self.basis.counts.bands;
         let mut out = [0.0f32; BANDS];
         for (b, slot) in out.iter_mut().enumerate() {
-            let modes = f32_row(self.basis.output_modes, o * bands + b, p);
+            let modes = f32_row(self.basis.tables.output_modes, o * bands + b, p);
             let amp = self
                 .amplitude
                 .get(b)
                 .map_or(&[][..], |a| a.get(..p).unwrap_or(&[]));
-            let chans = f32_row(self.basis.output_channels, o * bands + b, m);
+            let chans = f32_row(self.basis.tables.output_channels, o * bands + b, m);
             let direct = self
                 .patch_direct
                 .get(o)
@@ -457,15 +465,15 @@ impl<
 
     /// Irradiance at sensor `sensor` (illuminance in lux for a photopic basis). O(p + m).
     pub fn sensor_irradiance(&self, sensor: usize) -> Result<[f32; BANDS]> {
-        check_index("sensor", sensor, self.basis.sensors)?;
+        check_index("sensor", sensor, self.basis.counts.sensor_count)?;
         self.output(sensor)
     }
 
     /// Area-average irradiance over zone `zone` (illuminance in lux for a photopic basis).
     /// O(p + m).
     pub fn zone_irradiance(&self, zone: usize) -> Result<[f32; BANDS]> {
-        check_index("zone", zone, self.basis.zones)?;
-        self.output(self.basis.sensors + zone)
+        check_index("zone", zone, self.basis.counts.zone_count)?;
+        self.output(self.basis.counts.sensor_count + zone)
     }
 }
 
@@ -473,7 +481,10 @@ impl<
 /// patches in the split formulation, black patches only in the seed formulation.
 fn identity(basis: &Basis<'_>, patch: usize, band: usize) -> bool {
     basis.formulation == Formulation::Split
-        || f32_at(basis.reflectance, patch * basis.bands + band) == 0.0
+        || f32_at(
+            basis.tables.patch_reflectance,
+            patch * basis.counts.bands + band,
+        ) == 0.0
 }
 
 /// Calls `f(k, response)` with the mode-space response to `delta` more exitance on `patch`
@@ -486,12 +497,19 @@ fn patch_response(
     delta: f32,
     mut f: impl FnMut(usize, f32),
 ) {
-    let p = basis.modes;
-    let rho = f32_at(basis.reflectance, patch * basis.bands + band);
-    let eigenvalues = f32_row(basis.eigenvalues, band, p);
+    let p = basis.counts.mode_count;
+    let rho = f32_at(
+        basis.tables.patch_reflectance,
+        patch * basis.counts.bands + band,
+    );
+    let eigenvalues = f32_row(basis.tables.eigenvalues, band, p);
     if rho == 0.0 {
         if let Some(j) = basis.black_index(patch) {
-            let row = f32_row(basis.black_projection, j * basis.bands + band, p);
+            let row = f32_row(
+                basis.tables.black_projection,
+                j * basis.counts.bands + band,
+                p,
+            );
             for (k, x) in f32s(row).enumerate() {
                 f(k, delta * x);
             }
@@ -499,9 +517,9 @@ fn patch_response(
         return;
     }
     // b_i = A_i / ρ_i is finite: ρ is 0 or at least MIN_REFLECTANCE.
-    let weight = delta * f32_at(basis.area, patch) / rho;
+    let weight = delta * f32_at(basis.tables.patch_area, patch) / rho;
     let mut mu = f32s(eigenvalues);
-    basis.mode_vectors.for_each(patch, band * p, p, |k, v| {
+    basis.modes().for_each(patch, band * p, p, |k, v| {
         let e = mu.next().unwrap_or(0.0);
         let coefficient = match basis.formulation {
             Formulation::Split => e / (1.0 - e),

@@ -1,5 +1,6 @@
 //! The serialized basis, format version 1: the wire types a writer fills and the reader
-//! decodes in place. `docs/format.md` is the normative description; this module is its code.
+//! decodes in place. `docs/format.md` is the normative description; this module is its
+//! layout and header, the checks of the payload's sections are in `decode.rs`.
 //!
 //! A basis is a 20-byte header followed by a postcard-encoded [`Payload`]:
 //!
@@ -104,11 +105,13 @@ pub struct MatrixBytes<'a> {
     pub data: &'a [u8],
 }
 
-/// The payload: dimensions, then tables of little-endian numbers.
+/// The payload: settings, counts, names, then tables of little-endian numbers, in the order
+/// and with the names of `docs/format.md`'s payload table.
 ///
 /// `n` patches, `p` modes, `B` bands (1 or 3), `m` channels, `S` sensors, `Z` zones, and
 /// `O = S + Z` outputs (sensors first, then zones). Lengths are in values; see
-/// `docs/format.md` for the byte layout and the meaning of every table.
+/// `docs/format.md` for the byte layout and the meaning of every table. A decoded payload is
+/// only parsed; [`Basis::from_bytes`](crate::Basis::from_bytes) is what checks its tables.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, Default, PartialEq)]
 pub struct Payload<'a> {
     /// `B`: 1 (photopic) or 3 (RGB).
@@ -193,6 +196,56 @@ pub struct Payload<'a> {
     pub output_view: MatrixBytes<'a>,
 }
 
+/// The dimensions every table's length follows from (`docs/format.md`, notation): the reader
+/// takes them from the payload's settings and counts, the writer from its tables' lengths.
+///
+/// The rules for the matrices' columns live here, once, for both. They return `None` when a
+/// product overflows `usize`, which only the untrusted counts of a corrupt basis can make
+/// happen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Counts {
+    /// `B`: the payload's `bands`.
+    pub bands: usize,
+    /// `n`: `patch_count`.
+    pub patch_count: usize,
+    /// `p`: `mode_count`.
+    pub mode_count: usize,
+    /// `surface_count`.
+    pub surface_count: usize,
+    /// `m`: `channel_count`.
+    pub channel_count: usize,
+    /// `S`: `sensor_count`.
+    pub sensor_count: usize,
+    /// `Z`: `zone_count`.
+    pub zone_count: usize,
+}
+
+impl Counts {
+    /// `O = S + Z`: outputs, sensors first.
+    pub fn output_count(&self) -> Option<usize> {
+        self.sensor_count.checked_add(self.zone_count)
+    }
+
+    /// Columns of `modes`: `B·p`.
+    pub fn modes_cols(&self) -> Option<usize> {
+        self.bands.checked_mul(self.mode_count)
+    }
+
+    /// Columns of `channel_bounce`: `m·B` in the split formulation, none in the seed one
+    /// (it carries the first bounce through its modes).
+    pub fn channel_bounce_cols(&self, formulation: Formulation) -> Option<usize> {
+        match formulation {
+            Formulation::Split => self.channel_count.checked_mul(self.bands),
+            Formulation::Seed => Some(0),
+        }
+    }
+
+    /// Columns of `output_view`: `O`.
+    pub fn output_view_cols(&self) -> Option<usize> {
+        self.output_count()
+    }
+}
+
 /// CRC-32/ISO-HDLC (the zlib/PNG CRC): reflected polynomial `0xEDB88320`, initial value and
 /// final XOR `0xFFFF_FFFF`. A nibble table keeps it small for flash and fast enough to check
 /// a basis at boot.
@@ -234,60 +287,53 @@ pub fn crc32(bytes: &[u8]) -> u32 {
 /// Bytes the encoding of `payload` takes, header included.
 pub fn encoded_len(payload: &Payload<'_>) -> Result<usize> {
     let body = postcard::serialize_with_flavor(payload, postcard::ser_flavors::Size::default())
-        .map_err(|_| Error::DecodePayload)?;
+        .map_err(|_| Error::EncodePayload)?;
     Ok(HEADER_LEN + body)
 }
 
 /// Encodes `payload` with its header into `out`, returning the bytes written.
 ///
-/// `out` must hold [`encoded_len`] bytes. Host tools allocate that; the runtime itself never
-/// encodes.
+/// `out` must hold [`encoded_len`] bytes ([`Error::EncodeBuffer`] otherwise). Host tools
+/// allocate that; the runtime itself never encodes.
 pub fn encode<'o>(payload: &Payload<'_>, out: &'o mut [u8]) -> Result<&'o mut [u8]> {
-    let (header, body) = match out.split_at_mut_checked(HEADER_LEN) {
-        Some(parts) => parts,
-        None => {
-            return Err(Error::DecodeTruncated {
-                needed: HEADER_LEN,
-                found: out.len(),
-            })
-        }
+    let total = encoded_len(payload)?;
+    let too_small = Error::EncodeBuffer {
+        needed: total,
+        found: out.len(),
     };
-    let written = postcard::to_slice(payload, body).map_err(|_| Error::DecodePayload)?;
-    let len = written.len();
-    let crc = crc32(written);
-    let len32 = u32::try_from(len).map_err(|_| Error::DecodeField {
+    let out = out.get_mut(..total).ok_or(too_small)?;
+    let (header, body) = out.split_at_mut_checked(HEADER_LEN).ok_or(too_small)?;
+    let len = postcard::to_slice(payload, body)
+        .map_err(|_| Error::EncodePayload)?
+        .len();
+    let crc = crc32(body.get(..len).unwrap_or(&[]));
+    let len32 = u32::try_from(len).map_err(|_| Error::EncodeOverflow {
         field: "payload length",
-        value: u32::MAX,
     })?;
-    let mut h = [0u8; HEADER_LEN];
-    let parts: [&[u8]; 5] = [
+    let fields: [&[u8]; 5] = [
         &MAGIC,
         &FORMAT_VERSION.to_le_bytes(),
         &0u16.to_le_bytes(),
         &len32.to_le_bytes(),
         &crc.to_le_bytes(),
     ];
-    let mut at = 0;
-    for part in parts {
-        for &b in part {
-            if let Some(slot) = h.get_mut(at) {
-                *slot = b;
-            }
-            at += 1;
-        }
+    for (slot, &b) in header.iter_mut().zip(fields.into_iter().flatten()) {
+        *slot = b;
     }
-    header.copy_from_slice(&h);
-    let total = HEADER_LEN + len;
-    out.get_mut(..total).ok_or(Error::DecodeTruncated {
-        needed: total,
-        found: 0,
-    })
+    Ok(out)
 }
 
 /// Checks the header and checksum of `bytes` and decodes the payload, borrowing from `bytes`.
 ///
-/// Trailing bytes after the payload (e.g. erased flash padding) are ignored.
+/// Trailing bytes after the payload (e.g. erased flash padding) are ignored. This checks the
+/// header section only; [`Basis::from_bytes`](crate::Basis::from_bytes) checks the rest.
 pub fn decode(bytes: &[u8]) -> Result<Payload<'_>> {
+    decode_payload(check_header(bytes)?)
+}
+
+/// The header section of `docs/format.md`: checks magic, version, reserved, that the
+/// payload is present, and the checksum, in that order, and returns the payload's bytes.
+pub(crate) fn check_header(bytes: &[u8]) -> Result<&[u8]> {
     let header = bytes.get(..HEADER_LEN).ok_or(Error::DecodeTruncated {
         needed: HEADER_LEN,
         found: bytes.len(),
@@ -332,10 +378,15 @@ pub fn decode(bytes: &[u8]) -> Result<Payload<'_>> {
     if found != expected {
         return Err(Error::DecodeChecksum { expected, found });
     }
+    Ok(body)
+}
+
+/// Decodes the postcard payload that fills `body` exactly, borrowing its tables.
+pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     let (payload, rest) =
         postcard::take_from_bytes::<Payload<'_>>(body).map_err(|_| Error::DecodePayload)?;
     if !rest.is_empty() {
-        return Err(Error::DimensionMismatch {
+        return Err(Error::DecodeLength {
             field: "payload length",
             expected: body.len() - rest.len(),
             found: body.len(),

@@ -6,6 +6,7 @@ extern crate alloc;
 
 mod basis;
 pub mod dali;
+mod decode;
 mod error;
 mod eval;
 pub mod format;

@@ -10,32 +10,40 @@ use alloc::vec::Vec;
 
 use crate::error::{Error, Result};
 use crate::format::{
-    self, f32_to_f16, Formulation, MatrixBytes, Payload, Precision, Quantity, NO_CHANNEL,
+    self, f32_to_f16, Counts, Formulation, MatrixBytes, Payload, Precision, Quantity, NO_CHANNEL,
 };
 
-/// Every table of a basis, owned, in `f64`, with the dimensions implied by the lengths.
+/// Every table of a basis, owned, in `f64`, with the counts implied by the lengths.
 ///
-/// Notation as in `docs/format.md`: `n` patches, `p` modes, `B` bands, `m` channels,
-/// `O` outputs (sensors, then zones). Matrices are row-major.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// Fields carry the names of `docs/format.md`'s payload. Notation as there: `n` patches, `p`
+/// modes, `B` bands, `m` channels, `O` outputs (sensors, then zones). Matrices are row-major.
+/// Three things of the payload have an owned form of their own: the counts are the lengths
+/// of the name lists and of `patch_area`, `names` is written from the four name lists, and
+/// `black_patches` is derived from `patch_reflectance`, so that they cannot disagree.
+///
+/// The writer does not check the tables against each other: [`Basis::from_bytes`] does, and
+/// tests rely on writing malformed bases.
+///
+/// [`Basis::from_bytes`]: crate::Basis::from_bytes
+#[derive(Clone, Debug, PartialEq)]
 pub struct BasisTables {
-    /// W/m² or lux.
-    pub quantity: Option<Quantity>,
+    /// What the numbers measure: W/m² or lux.
+    pub quantity: Quantity,
     /// Expansion used.
-    pub formulation: Option<Formulation>,
-    /// Storage of the large tables.
-    pub precision: Option<Precision>,
-    /// `B`.
+    pub formulation: Formulation,
+    /// Storage of the three matrices (`modes`, `channel_bounce`, `output_view`).
+    pub precision: Precision,
+    /// `B`: 1 or 3.
     pub bands: usize,
-    /// `p`.
-    pub modes: usize,
+    /// `p`: modes per band.
+    pub mode_count: usize,
     /// Surface names.
     pub surface_names: Vec<String>,
     /// Channel names (`m`).
     pub channel_names: Vec<String>,
-    /// Sensor names.
+    /// Sensor names (`S`).
     pub sensor_names: Vec<String>,
-    /// Zone names.
+    /// Zone names (`Z`).
     pub zone_names: Vec<String>,
     /// `B × p`: `μ` (split) or `λ` (seed).
     pub eigenvalues: Vec<f64>,
@@ -45,15 +53,16 @@ pub struct BasisTables {
     pub patch_centroid: Vec<[f64; 3]>,
     /// `n` surface indices.
     pub patch_surface: Vec<u16>,
-    /// `n` channel indices.
+    /// `n`: the channel driving the patch's emission, if any (written as [`NO_CHANNEL`]
+    /// when none).
     pub patch_channel: Vec<Option<u16>>,
-    /// `n × B`.
+    /// `n × B`: reflectance ρ, 0 (black) or in `[10⁻⁶, 1)`.
     pub patch_reflectance: Vec<f64>,
-    /// `n × B`, exitance at level 1.
+    /// `n × B`: exitance at channel level 1, W/m² or lux.
     pub patch_emission: Vec<f64>,
-    /// `n × (B·p)`.
-    pub mode_vectors: Vec<f64>,
-    /// `black × B × p`, black patches in ascending order (those with ρ = 0 in some band).
+    /// `n × (B·p)`: mode vectors, patch-major.
+    pub modes: Vec<f64>,
+    /// `K × B × p`, black patches in ascending order (those with ρ = 0 in some band).
     pub black_projection: Vec<f64>,
     /// `m × B × p`.
     pub channel_projection: Vec<f64>,
@@ -71,6 +80,7 @@ pub struct BasisTables {
     pub output_view: Vec<f64>,
 }
 
+/// `values` rounded to `f32`, little-endian.
 fn f32_bytes(values: &[f64]) -> Vec<u8> {
     values
         .iter()
@@ -78,10 +88,29 @@ fn f32_bytes(values: &[f64]) -> Vec<u8> {
         .collect()
 }
 
-/// A row-major `rows × cols` matrix in `precision`: `(scales, data)`.
-fn quantise(values: &[f64], cols: usize, precision: Precision) -> (Vec<u8>, Vec<u8>) {
+/// A matrix table's bytes, owned.
+struct Quantised {
+    scales: Vec<u8>,
+    data: Vec<u8>,
+}
+
+impl Quantised {
+    /// The table as the payload borrows it.
+    fn bytes(&self) -> MatrixBytes<'_> {
+        MatrixBytes {
+            scales: &self.scales,
+            data: &self.data,
+        }
+    }
+}
+
+/// A row-major `rows × cols` matrix in `precision` (`docs/format.md`, "Matrices").
+fn quantise(values: &[f64], cols: usize, precision: Precision) -> Quantised {
     if precision == Precision::F32 || cols == 0 {
-        return (Vec::new(), f32_bytes(values));
+        return Quantised {
+            scales: Vec::new(),
+            data: f32_bytes(values),
+        };
     }
     let mut max = vec![0.0f64; cols];
     for (i, &v) in values.iter().enumerate() {
@@ -113,38 +142,88 @@ fn quantise(values: &[f64], cols: usize, precision: Precision) -> (Vec<u8>, Vec<
         };
         data.extend_from_slice(&bits);
     }
-    (f32_bytes(&scales), data)
+    Quantised {
+        scales: f32_bytes(&scales),
+        data,
+    }
+}
+
+/// `values` as little-endian `u16`.
+fn u16_bytes(values: impl Iterator<Item = u16>) -> Vec<u8> {
+    values.flat_map(u16::to_le_bytes).collect()
+}
+
+/// Channel indices as `u16`, [`NO_CHANNEL`] for none.
+fn channel_bytes(channels: &[Option<u16>]) -> Vec<u8> {
+    u16_bytes(channels.iter().map(|c| c.unwrap_or(NO_CHANNEL)))
+}
+
+/// A count as the format's `u32`.
+fn count(field: &'static str, value: usize) -> Result<u32> {
+    u32::try_from(value).map_err(|_| Error::EncodeOverflow { field })
+}
+
+/// A column count of [`Counts`]; `None` means the tables are too large to address.
+fn cols(value: Option<usize>) -> Result<usize> {
+    value.ok_or(Error::EncodeOverflow {
+        field: "dimensions",
+    })
 }
 
 impl BasisTables {
-    /// Encodes the tables as a basis (header, checksum, payload).
-    ///
-    /// Fails with [`Error::DimensionMismatch`] when a table's length disagrees with the
-    /// others, or [`Error::DecodeField`] when a setting is missing.
-    pub fn to_bytes(&self) -> Result<Vec<u8>> {
-        let quantity = self.quantity.ok_or(Error::DecodeField {
-            field: "quantity",
-            value: 0,
-        })?;
-        let formulation = self.formulation.ok_or(Error::DecodeField {
-            field: "formulation",
-            value: 0,
-        })?;
-        let precision = self.precision.ok_or(Error::DecodeField {
-            field: "precision",
-            value: 0,
-        })?;
-        let bands = self.bands;
-        let n = self.patch_area.len();
-        let m = self.channel_names.len();
-        let outputs = self.sensor_names.len() + self.zone_names.len();
-        let count = |v: usize| {
-            u32::try_from(v).map_err(|_| Error::DecodeField {
-                field: "dimensions",
-                value: u32::MAX,
-            })
-        };
+    /// Tables for a basis of `bands` bands and `mode_count` modes with the given settings,
+    /// every table and name list empty; fill them in before [`to_bytes`](Self::to_bytes).
+    pub fn new(
+        quantity: Quantity,
+        formulation: Formulation,
+        precision: Precision,
+        bands: usize,
+        mode_count: usize,
+    ) -> Self {
+        BasisTables {
+            quantity,
+            formulation,
+            precision,
+            bands,
+            mode_count,
+            surface_names: Vec::new(),
+            channel_names: Vec::new(),
+            sensor_names: Vec::new(),
+            zone_names: Vec::new(),
+            eigenvalues: Vec::new(),
+            patch_area: Vec::new(),
+            patch_centroid: Vec::new(),
+            patch_surface: Vec::new(),
+            patch_channel: Vec::new(),
+            patch_reflectance: Vec::new(),
+            patch_emission: Vec::new(),
+            modes: Vec::new(),
+            black_projection: Vec::new(),
+            channel_projection: Vec::new(),
+            channel_bounce: Vec::new(),
+            sensor_geometry: Vec::new(),
+            zone_area: Vec::new(),
+            output_modes: Vec::new(),
+            output_channels: Vec::new(),
+            output_view: Vec::new(),
+        }
+    }
 
+    /// The counts the tables' lengths imply.
+    fn counts(&self) -> Counts {
+        Counts {
+            bands: self.bands,
+            patch_count: self.patch_area.len(),
+            mode_count: self.mode_count,
+            surface_count: self.surface_names.len(),
+            channel_count: self.channel_names.len(),
+            sensor_count: self.sensor_names.len(),
+            zone_count: self.zone_names.len(),
+        }
+    }
+
+    /// The `names` table: every name as a postcard string, surfaces, channels, sensors, zones.
+    fn names(&self) -> Result<Vec<u8>> {
         let mut names = Vec::new();
         for name in self
             .surface_names
@@ -153,98 +232,81 @@ impl BasisTables {
             .chain(&self.sensor_names)
             .chain(&self.zone_names)
         {
+            // Room for the name and its varint length.
             let mut buf = vec![0u8; name.len() + 8];
             let used = postcard::to_slice(name.as_str(), &mut buf)
-                .map_err(|_| Error::DecodePayload)?
+                .map_err(|_| Error::EncodePayload)?
                 .len();
             names.extend_from_slice(buf.get(..used).unwrap_or(&[]));
         }
-        let centroid: Vec<f64> = self.patch_centroid.iter().flatten().copied().collect();
-        let surface: Vec<u8> = self
-            .patch_surface
-            .iter()
-            .flat_map(|s| s.to_le_bytes())
-            .collect();
-        let channel: Vec<u8> = self
-            .patch_channel
-            .iter()
-            .flat_map(|c| c.unwrap_or(NO_CHANNEL).to_le_bytes())
-            .collect();
-        let black: Vec<u8> = (0..n)
+        Ok(names)
+    }
+
+    /// The `black_patches` table: ascending indices of the patches with ρ = 0 in some band.
+    fn black_patches(&self) -> Vec<u8> {
+        let bands = self.bands;
+        (0..self.patch_area.len())
             .filter(|&i| {
                 (0..bands).any(|b| self.patch_reflectance.get(i * bands + b) == Some(&0.0))
             })
             .flat_map(|i| (i as u32).to_le_bytes())
-            .collect();
-        let geometry: Vec<f64> = self.sensor_geometry.iter().flatten().copied().collect();
-        let modes = quantise(&self.mode_vectors, bands * self.modes, precision);
-        let bounce_cols = if self.channel_bounce.is_empty() {
-            0
-        } else {
-            m * bands
-        };
-        let bounce = quantise(&self.channel_bounce, bounce_cols, precision);
-        let view = quantise(&self.output_view, outputs, precision);
-
-        let tables = [
-            f32_bytes(&self.eigenvalues),
-            f32_bytes(&self.patch_area),
-            f32_bytes(&centroid),
-            f32_bytes(&self.patch_reflectance),
-            f32_bytes(&self.patch_emission),
-            f32_bytes(&self.black_projection),
-            f32_bytes(&self.channel_projection),
-            f32_bytes(&geometry),
-            f32_bytes(&self.zone_area),
-            f32_bytes(&self.output_modes),
-            f32_bytes(&self.output_channels),
-        ];
-        let [eig, area, cen, refl, emis, bproj, cproj, geom, zarea, omodes, ochan] = &tables;
-        let payload = Payload {
-            bands: u8::try_from(bands).map_err(|_| Error::DecodeField {
-                field: "bands",
-                value: u32::MAX,
-            })?,
-            quantity: quantity as u8,
-            formulation: formulation as u8,
-            precision: precision as u8,
-            patch_count: count(n)?,
-            mode_count: count(self.modes)?,
-            surface_count: count(self.surface_names.len())?,
-            channel_count: count(m)?,
-            sensor_count: count(self.sensor_names.len())?,
-            zone_count: count(self.zone_names.len())?,
-            names: &names,
-            eigenvalues: eig,
-            patch_area: area,
-            patch_centroid: cen,
-            patch_surface: &surface,
-            patch_channel: &channel,
-            patch_reflectance: refl,
-            patch_emission: emis,
-            modes: MatrixBytes {
-                scales: &modes.0,
-                data: &modes.1,
-            },
-            black_patches: &black,
-            black_projection: bproj,
-            channel_projection: cproj,
-            channel_bounce: MatrixBytes {
-                scales: &bounce.0,
-                data: &bounce.1,
-            },
-            sensor_geometry: geom,
-            zone_area: zarea,
-            output_modes: omodes,
-            output_channels: ochan,
-            output_view: MatrixBytes {
-                scales: &view.0,
-                data: &view.1,
-            },
-        };
-        let mut out = vec![0u8; format::encoded_len(&payload)?];
-        let used = format::encode(&payload, &mut out)?.len();
-        out.truncate(used);
-        Ok(out)
+            .collect()
     }
+
+    /// Encodes the tables as a basis (header, checksum, payload).
+    ///
+    /// Fails with [`Error::EncodeOverflow`] when a count does not fit the format; it does
+    /// not check the tables' lengths (see [`BasisTables`]).
+    pub fn to_bytes(&self) -> Result<Vec<u8>> {
+        let c = self.counts();
+        let precision = self.precision;
+        let matrix = |values: &[f64], cols: Option<usize>| -> Result<Quantised> {
+            Ok(quantise(values, self::cols(cols)?, precision))
+        };
+        // Temporaries live to the end of the statement: the payload borrows them while it is
+        // encoded, so each table is converted on the line that names its payload field.
+        encode(&Payload {
+            bands: u8::try_from(self.bands)
+                .map_err(|_| Error::EncodeOverflow { field: "bands" })?,
+            quantity: self.quantity as u8,
+            formulation: self.formulation as u8,
+            precision: precision as u8,
+            patch_count: count("patch_count", c.patch_count)?,
+            mode_count: count("mode_count", c.mode_count)?,
+            surface_count: count("surface_count", c.surface_count)?,
+            channel_count: count("channel_count", c.channel_count)?,
+            sensor_count: count("sensor_count", c.sensor_count)?,
+            zone_count: count("zone_count", c.zone_count)?,
+            names: &self.names()?,
+            eigenvalues: &f32_bytes(&self.eigenvalues),
+            patch_area: &f32_bytes(&self.patch_area),
+            patch_centroid: &f32_bytes(self.patch_centroid.as_flattened()),
+            patch_surface: &u16_bytes(self.patch_surface.iter().copied()),
+            patch_channel: &channel_bytes(&self.patch_channel),
+            patch_reflectance: &f32_bytes(&self.patch_reflectance),
+            patch_emission: &f32_bytes(&self.patch_emission),
+            modes: matrix(&self.modes, c.modes_cols())?.bytes(),
+            black_patches: &self.black_patches(),
+            black_projection: &f32_bytes(&self.black_projection),
+            channel_projection: &f32_bytes(&self.channel_projection),
+            channel_bounce: matrix(
+                &self.channel_bounce,
+                c.channel_bounce_cols(self.formulation),
+            )?
+            .bytes(),
+            sensor_geometry: &f32_bytes(self.sensor_geometry.as_flattened()),
+            zone_area: &f32_bytes(&self.zone_area),
+            output_modes: &f32_bytes(&self.output_modes),
+            output_channels: &f32_bytes(&self.output_channels),
+            output_view: matrix(&self.output_view, c.output_view_cols())?.bytes(),
+        })
+    }
+}
+
+/// `payload` encoded with its header, in a vector of exactly its length.
+fn encode(payload: &Payload<'_>) -> Result<Vec<u8>> {
+    let mut out = vec![0u8; format::encoded_len(payload)?];
+    let used = format::encode(payload, &mut out)?.len();
+    out.truncate(used);
+    Ok(out)
 }

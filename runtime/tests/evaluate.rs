@@ -39,13 +39,13 @@ impl Reference<'_> {
         self.t.patch_area.len()
     }
     fn split(&self) -> bool {
-        self.t.formulation == Some(Formulation::Split)
+        self.t.formulation == Formulation::Split
     }
     fn rho(&self, i: usize, b: usize) -> f64 {
         r(self.t.patch_reflectance[i * self.t.bands + b])
     }
     fn v(&self, i: usize, b: usize, k: usize) -> f64 {
-        r(self.t.mode_vectors[i * self.t.bands * self.t.modes + b * self.t.modes + k])
+        r(self.t.modes[i * self.t.bands * self.t.mode_count + b * self.t.mode_count + k])
     }
     fn black_rank(&self, i: usize) -> usize {
         let bands = self.t.bands;
@@ -57,7 +57,7 @@ impl Reference<'_> {
         self.split() || self.rho(i, b) == 0.0
     }
     fn amplitude(&self, b: usize, k: usize) -> f64 {
-        let (bands, p) = (self.t.bands, self.t.modes);
+        let (bands, p) = (self.t.bands, self.t.mode_count);
         let mut a = 0.0;
         for (c, l) in self.levels.iter().enumerate() {
             a += l * r(self.t.channel_projection[(c * bands + b) * p + k]);
@@ -82,7 +82,7 @@ impl Reference<'_> {
         self.extra[i][b] + ch * r(self.t.patch_emission[i * self.t.bands + b])
     }
     fn exitance(&self, i: usize, b: usize) -> f64 {
-        let (bands, p, m) = (self.t.bands, self.t.modes, self.levels.len());
+        let (bands, p, m) = (self.t.bands, self.t.mode_count, self.levels.len());
         let mut v = if self.identity(i, b) {
             self.emitted(i, b)
         } else {
@@ -99,7 +99,7 @@ impl Reference<'_> {
         v
     }
     fn output(&self, o: usize, b: usize) -> f64 {
-        let (bands, p, m) = (self.t.bands, self.t.modes, self.levels.len());
+        let (bands, p, m) = (self.t.bands, self.t.mode_count, self.levels.len());
         let outputs = self.t.sensor_names.len() + self.t.zone_names.len();
         let mut v = 0.0;
         for k in 0..p {

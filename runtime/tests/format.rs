@@ -263,7 +263,7 @@ fn invalid_enumerations() {
 fn photometric_needs_one_band() {
     let r = decode_edited(|t| {
         *t = common::random(3, Formulation::Split, Precision::F32, 3);
-        t.quantity = Some(Quantity::Photometric);
+        t.quantity = Quantity::Photometric;
     });
     assert!(matches!(
         r,
@@ -289,7 +289,7 @@ fn table_length_mismatches() {
             Box::new(|t| t.patch_reflectance.push(0.5)),
         ),
         ("patch_emission", Box::new(|t| t.patch_emission.push(0.0))),
-        ("modes.data", Box::new(|t| t.mode_vectors.push(0.0))),
+        ("modes.data", Box::new(|t| t.modes.push(0.0))),
         (
             "black_projection",
             Box::new(|t| t.black_projection.push(0.0)),
@@ -314,7 +314,7 @@ fn table_length_mismatches() {
     for (field, edit) in cases {
         let r = decode_edited(|t| edit(t));
         assert!(
-            matches!(r, Err(Error::DimensionMismatch { field: f, .. }) if f == field),
+            matches!(r, Err(Error::DecodeLength { field: f, .. }) if f == field),
             "{field}: got {r:?}"
         );
     }
@@ -332,7 +332,7 @@ fn names_must_match_the_counts() {
     reseal(&mut bytes);
     assert!(matches!(
         Basis::from_bytes(&bytes),
-        Err(Error::DimensionMismatch { field: "names", .. })
+        Err(Error::DecodeLength { field: "names", .. })
     ));
 }
 
@@ -363,7 +363,7 @@ fn values_out_of_range() {
         ("patch_emission", Box::new(|t| t.patch_emission[0] = 5.0)), // emits but in no channel
         ("patch_surface", Box::new(|t| t.patch_surface[0] = 7)),
         ("patch_channel", Box::new(|t| t.patch_channel[0] = Some(3))),
-        ("modes.data", Box::new(|t| t.mode_vectors[0] = f64::NAN)),
+        ("modes.data", Box::new(|t| t.modes[0] = f64::NAN)),
         (
             "black_projection",
             Box::new(|t| t.black_projection[0] = f64::INFINITY),
@@ -403,7 +403,7 @@ fn values_out_of_range() {
 #[test]
 fn seed_eigenvalues_must_be_positive() {
     let r = decode_edited(|t| {
-        t.formulation = Some(Formulation::Seed);
+        t.formulation = Formulation::Seed;
         t.channel_bounce.clear();
         t.eigenvalues[0] = -1.0;
     });
@@ -422,7 +422,7 @@ fn black_patch_list_must_match_reflectance() {
     let r = decode_edited(|t| t.patch_reflectance[0] = 0.0);
     assert!(matches!(
         r,
-        Err(Error::DimensionMismatch {
+        Err(Error::DecodeLength {
             field: "black_projection",
             ..
         })
@@ -431,7 +431,7 @@ fn black_patch_list_must_match_reflectance() {
     let r = decode_edited(|t| t.patch_reflectance[1] = 0.5);
     assert!(matches!(
         r,
-        Err(Error::DimensionMismatch {
+        Err(Error::DecodeLength {
             field: "black_projection",
             ..
         })
@@ -441,7 +441,7 @@ fn black_patch_list_must_match_reflectance() {
 #[test]
 fn quantised_scales_must_be_valid() {
     let mut t = common::random(5, Formulation::Split, Precision::I16, 1);
-    t.mode_vectors[0] = 1e30; // the column's scale overflows f32 and the reader rejects it
+    t.modes[0] = 1e30; // the column's scale overflows f32 and the reader rejects it
     let bytes = t.to_bytes().unwrap();
     assert!(matches!(
         Basis::from_bytes(&bytes),

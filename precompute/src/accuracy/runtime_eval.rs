@@ -44,9 +44,9 @@ pub fn evaluate(
                 1 => run::<1>(basis, levels, extra, patches),
                 _ => run::<3>(basis, levels, extra, patches),
             })
-            .map_err(|e| Error::TooLarge(format!("cannot start the evaluator thread: {e}")))?
+            .map_err(|e| Error::Thread(format!("cannot start: {e}")))?
             .join()
-            .unwrap_or_else(|_| Err(Error::TooLarge("the evaluator thread failed".into())))
+            .unwrap_or_else(|_| Err(Error::Thread("panicked".into())))
     })
 }
 

@@ -29,11 +29,11 @@ impl Rng {
 /// layout, not the physics.
 pub fn tiny() -> BasisTables {
     BasisTables {
-        quantity: Some(Quantity::Photometric),
-        formulation: Some(Formulation::Split),
-        precision: Some(Precision::F32),
+        quantity: Quantity::Photometric,
+        formulation: Formulation::Split,
+        precision: Precision::F32,
         bands: 1,
-        modes: 1,
+        mode_count: 1,
         surface_names: vec!["floor".into(), "lamp".into()],
         channel_names: vec!["main".into()],
         sensor_names: vec!["desk".into()],
@@ -45,7 +45,7 @@ pub fn tiny() -> BasisTables {
         patch_channel: vec![None, Some(0)],
         patch_reflectance: vec![0.5, 0.0],
         patch_emission: vec![0.0, 1000.0],
-        mode_vectors: vec![0.5, 0.0],
+        modes: vec![0.5, 0.0],
         black_projection: vec![25.0],
         channel_projection: vec![25000.0],
         channel_bounce: vec![50.0, 0.0],
@@ -67,21 +67,17 @@ pub fn random(
     let mut rng = Rng(seed | 1);
     let (n, p, m, sensors, zones) = (23, 7, 3, 2, 2);
     let outputs = sensors + zones;
+    let quantity = if bands == 1 {
+        Quantity::Photometric
+    } else {
+        Quantity::Radiometric
+    };
     let mut t = BasisTables {
-        quantity: Some(if bands == 1 {
-            Quantity::Photometric
-        } else {
-            Quantity::Radiometric
-        }),
-        formulation: Some(formulation),
-        precision: Some(precision),
-        bands,
-        modes: p,
         surface_names: vec!["walls".into(), "lamps".into()],
         channel_names: (0..m).map(|c| format!("ch{c}")).collect(),
         sensor_names: (0..sensors).map(|s| format!("s{s}")).collect(),
         zone_names: (0..zones).map(|z| format!("z{z}")).collect(),
-        ..Default::default()
+        ..BasisTables::new(quantity, formulation, precision, bands, p)
     };
     for _ in 0..bands * p {
         t.eigenvalues.push(match formulation {
@@ -116,8 +112,7 @@ pub fn random(
         for b in 0..bands {
             for _ in 0..p {
                 let black = t.patch_reflectance[i * bands + b] == 0.0;
-                t.mode_vectors
-                    .push(if black { 0.0 } else { rng.range(-1.0, 1.0) });
+                t.modes.push(if black { 0.0 } else { rng.range(-1.0, 1.0) });
             }
         }
     }

@@ -1,0 +1,390 @@
+//! Decoding a basis, one function per section of `docs/format.md`: header
+//! ([`format::check_header`]), settings, counts, names, eigenvalues, patch tables, modes,
+//! black patches, channel tables, outputs.
+//!
+//! Each section checks its tables' lengths against the counts and every stored value against
+//! its range, so that the evaluator reads the tables without checking them again. Sections
+//! run in payload order and the first failure is returned.
+
+use crate::basis::{Basis, MIN_REFLECTANCE};
+use crate::error::{Error, Result};
+use crate::format::{
+    self, Counts, Formulation, MatrixBytes, Payload, Precision, Quantity, NO_CHANNEL,
+};
+use crate::storage::{f32_at, f32s, u16_at, u32_at};
+
+/// Largest magnitude accepted for any stored number. Keeps every sum the evaluator forms
+/// far from `f32` overflow, while leaving room for any physical scene (10⁹ lux is 10⁴ suns).
+const VALUE_LIMIT: f32 = 1.0e9;
+/// Largest `|μ|` for the split formulation: `c = μ/(1−μ)` stays below 10⁶.
+const MAX_MU: f32 = 1.0 - 1.0e-6;
+/// Smallest seed eigenvalue `λ`: the evaluator divides by it.
+const MIN_LAMBDA: f32 = 1.0e-30;
+
+/// The settings section, typed.
+struct Settings {
+    bands: usize,
+    quantity: Quantity,
+    formulation: Formulation,
+    precision: Precision,
+}
+
+/// Decodes and checks `bytes`, section by section.
+pub(crate) fn basis(bytes: &[u8]) -> Result<Basis<'_>> {
+    let body = format::check_header(bytes)?;
+    let raw = format::decode_payload(body)?;
+    let Settings {
+        bands,
+        quantity,
+        formulation,
+        precision,
+    } = settings(&raw)?;
+    let counts = counts(&raw, bands)?;
+    names(&raw, &counts)?;
+    eigenvalues(&raw, &counts, formulation)?;
+    patch_tables(&raw, &counts)?;
+    modes(&raw, &counts, precision)?;
+    black_patches(&raw, &counts)?;
+    channel_tables(&raw, &counts, formulation, precision)?;
+    outputs(&raw, &counts, precision)?;
+    Ok(Basis {
+        quantity,
+        formulation,
+        precision,
+        counts,
+        byte_len: format::HEADER_LEN + body.len(),
+        tables: raw,
+    })
+}
+
+/// Settings: `bands`, `quantity`, `formulation`, `precision`.
+fn settings(raw: &Payload<'_>) -> Result<Settings> {
+    let bands = match raw.bands {
+        1 | 3 => usize::from(raw.bands),
+        other => return Err(field_value("bands", other)),
+    };
+    let quantity = match raw.quantity {
+        0 => Quantity::Radiometric,
+        1 => Quantity::Photometric,
+        other => return Err(field_value("quantity", other)),
+    };
+    if quantity == Quantity::Photometric && bands != 1 {
+        return Err(field_value("quantity", raw.quantity));
+    }
+    let formulation = match raw.formulation {
+        0 => Formulation::Split,
+        1 => Formulation::Seed,
+        other => return Err(field_value("formulation", other)),
+    };
+    let precision = match raw.precision {
+        0 => Precision::F32,
+        1 => Precision::F16,
+        2 => Precision::I16,
+        other => return Err(field_value("precision", other)),
+    };
+    Ok(Settings {
+        bands,
+        quantity,
+        formulation,
+        precision,
+    })
+}
+
+/// Counts: `patch_count` to `zone_count`. Surface and channel indices are stored in 16 bits,
+/// with `0xFFFF` meaning no channel.
+fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
+    let counts = Counts {
+        bands,
+        patch_count: raw.patch_count as usize,
+        mode_count: raw.mode_count as usize,
+        surface_count: raw.surface_count as usize,
+        channel_count: raw.channel_count as usize,
+        sensor_count: raw.sensor_count as usize,
+        zone_count: raw.zone_count as usize,
+    };
+    if counts.surface_count > usize::from(u16::MAX) {
+        return Err(Error::DecodeField {
+            field: "surface_count",
+            value: raw.surface_count,
+        });
+    }
+    if counts.channel_count >= usize::from(NO_CHANNEL) {
+        return Err(Error::DecodeField {
+            field: "channel_count",
+            value: raw.channel_count,
+        });
+    }
+    if counts.output_count().is_none() {
+        return Err(Error::DecodeField {
+            field: "zone_count",
+            value: raw.zone_count,
+        });
+    }
+    Ok(counts)
+}
+
+/// Names: the surfaces', channels', sensors' and zones' as consecutive postcard strings,
+/// nothing after them.
+fn names(raw: &Payload<'_>, c: &Counts) -> Result<()> {
+    let count = c
+        .surface_count
+        .checked_add(c.channel_count)
+        .and_then(|x| x.checked_add(c.output_count()?))
+        .ok_or(Error::DecodeField {
+            field: "names",
+            value: u32::MAX,
+        })?;
+    let mut rest = raw.names;
+    for _ in 0..count {
+        let (_, tail) =
+            postcard::take_from_bytes::<&str>(rest).map_err(|_| Error::DecodePayload)?;
+        rest = tail;
+    }
+    if !rest.is_empty() {
+        return Err(Error::DecodeLength {
+            field: "names",
+            expected: raw.names.len() - rest.len(),
+            found: raw.names.len(),
+        });
+    }
+    Ok(())
+}
+
+/// Eigenvalues: `μ` within `±MAX_MU` (split) or `λ` positive (seed).
+fn eigenvalues(raw: &Payload<'_>, c: &Counts, formulation: Formulation) -> Result<()> {
+    let count = cols(c.modes_cols())?;
+    match formulation {
+        Formulation::Split => f32_table("eigenvalues", raw.eigenvalues, count, |mu| {
+            mu.abs() <= MAX_MU
+        }),
+        Formulation::Seed => f32_table("eigenvalues", raw.eigenvalues, count, |l| {
+            bounded(l) && l >= MIN_LAMBDA
+        }),
+    }
+}
+
+/// Patch tables: `patch_area` to `patch_emission`.
+fn patch_tables(raw: &Payload<'_>, c: &Counts) -> Result<()> {
+    let n = c.patch_count;
+    let nb = mul(n, c.bands)?;
+    f32_table("patch_area", raw.patch_area, n, positive)?;
+    f32_table("patch_centroid", raw.patch_centroid, mul(n, 3)?, bounded)?;
+    u16_table("patch_surface", raw.patch_surface, n, |s| {
+        usize::from(s) < c.surface_count
+    })?;
+    u16_table("patch_channel", raw.patch_channel, n, |ch| {
+        ch == NO_CHANNEL || usize::from(ch) < c.channel_count
+    })?;
+    f32_table("patch_reflectance", raw.patch_reflectance, nb, |r| {
+        r == 0.0 || (MIN_REFLECTANCE..1.0).contains(&r)
+    })?;
+    f32_table("patch_emission", raw.patch_emission, nb, |e| {
+        bounded(e) && e >= 0.0
+    })?;
+    // Emission belongs to a channel: a patch outside every channel emits nothing.
+    if let Some(index) = (0..nb).position(|k| {
+        f32_at(raw.patch_emission, k) != 0.0 && u16_at(raw.patch_channel, k / c.bands) == NO_CHANNEL
+    }) {
+        return Err(Error::DecodeValue {
+            field: "patch_emission",
+            index,
+        });
+    }
+    Ok(())
+}
+
+/// Modes: the `n × (B·p)` matrix of mode vectors.
+fn modes(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
+    let cols = cols(c.modes_cols())?;
+    matrix(
+        "modes.data",
+        "modes.scales",
+        raw.modes,
+        precision,
+        c.patch_count,
+        cols,
+    )
+}
+
+/// Black patches: `black_patches` lists, ascending, exactly the patches with a zero
+/// reflectance in some band, and `black_projection` has a row per band for each.
+fn black_patches(raw: &Payload<'_>, c: &Counts) -> Result<()> {
+    if !raw.black_patches.len().is_multiple_of(4) {
+        return Err(Error::DecodeLength {
+            field: "black_patches",
+            expected: raw.black_patches.len() / 4 * 4,
+            found: raw.black_patches.len(),
+        });
+    }
+    let black = raw.black_patches.len() / 4;
+    let mut next = 0usize;
+    for i in 0..c.patch_count {
+        let is_black = (0..c.bands).any(|b| f32_at(raw.patch_reflectance, i * c.bands + b) == 0.0);
+        let listed = next < black && u32_at(raw.black_patches, next) as usize == i;
+        if is_black != listed {
+            return Err(Error::DecodeValue {
+                field: "black_patches",
+                index: next,
+            });
+        }
+        if listed {
+            next += 1;
+        }
+    }
+    if next != black {
+        return Err(Error::DecodeValue {
+            field: "black_patches",
+            index: next,
+        });
+    }
+    let count = mul(black, cols(c.modes_cols())?)?;
+    f32_table("black_projection", raw.black_projection, count, bounded)
+}
+
+/// Channel tables: `channel_projection` and the `channel_bounce` matrix.
+fn channel_tables(
+    raw: &Payload<'_>,
+    c: &Counts,
+    formulation: Formulation,
+    precision: Precision,
+) -> Result<()> {
+    let count = mul(c.channel_count, cols(c.modes_cols())?)?;
+    f32_table("channel_projection", raw.channel_projection, count, bounded)?;
+    matrix(
+        "channel_bounce.data",
+        "channel_bounce.scales",
+        raw.channel_bounce,
+        precision,
+        c.patch_count,
+        cols(c.channel_bounce_cols(formulation))?,
+    )
+}
+
+/// Outputs: `sensor_geometry` to the `output_view` matrix.
+fn outputs(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
+    let o = cols(c.output_count())?;
+    let bp = cols(c.modes_cols())?;
+    let sensors = mul(c.sensor_count, 7)?;
+    f32_table("sensor_geometry", raw.sensor_geometry, sensors, bounded)?;
+    f32_table("zone_area", raw.zone_area, c.zone_count, positive)?;
+    f32_table("output_modes", raw.output_modes, mul(o, bp)?, bounded)?;
+    let count = mul(mul(o, c.bands)?, c.channel_count)?;
+    f32_table("output_channels", raw.output_channels, count, bounded)?;
+    let cols = cols(c.output_view_cols())?;
+    matrix(
+        "output_view.data",
+        "output_view.scales",
+        raw.output_view,
+        precision,
+        c.patch_count,
+        cols,
+    )
+}
+
+fn field_value(field: &'static str, value: u8) -> Error {
+    Error::DecodeField {
+        field,
+        value: u32::from(value),
+    }
+}
+
+/// A product of counts, or an error when the counts of a corrupt basis overflow it.
+fn mul(a: usize, b: usize) -> Result<usize> {
+    cols(a.checked_mul(b))
+}
+
+/// A column count of [`Counts`], or the same error as [`mul`] on overflow.
+fn cols(count: Option<usize>) -> Result<usize> {
+    count.ok_or(Error::DecodeField {
+        field: "dimensions",
+        value: u32::MAX,
+    })
+}
+
+/// Checks that `bytes` holds exactly `count` values of `width` bytes.
+fn check_len(field: &'static str, bytes: &[u8], count: usize, width: usize) -> Result<()> {
+    let expected = mul(count, width)?;
+    if bytes.len() == expected {
+        Ok(())
+    } else {
+        Err(Error::DecodeLength {
+            field,
+            expected,
+            found: bytes.len(),
+        })
+    }
+}
+
+/// Checks every `f32` of a table against `ok`.
+fn check_f32(field: &'static str, bytes: &[u8], ok: impl Fn(f32) -> bool) -> Result<()> {
+    match f32s(bytes).position(|v| !ok(v)) {
+        Some(index) => Err(Error::DecodeValue { field, index }),
+        None => Ok(()),
+    }
+}
+
+/// A table of `count` little-endian `f32`, each satisfying `ok`.
+fn f32_table(
+    field: &'static str,
+    bytes: &[u8],
+    count: usize,
+    ok: impl Fn(f32) -> bool,
+) -> Result<()> {
+    check_len(field, bytes, count, 4)?;
+    check_f32(field, bytes, ok)
+}
+
+/// A table of `count` little-endian `u16`, each satisfying `ok`.
+fn u16_table(
+    field: &'static str,
+    bytes: &[u8],
+    count: usize,
+    ok: impl Fn(u16) -> bool,
+) -> Result<()> {
+    check_len(field, bytes, count, 2)?;
+    match (0..count).position(|i| !ok(u16_at(bytes, i))) {
+        Some(index) => Err(Error::DecodeValue { field, index }),
+        None => Ok(()),
+    }
+}
+
+fn bounded(v: f32) -> bool {
+    v.is_finite() && v.abs() <= VALUE_LIMIT
+}
+
+fn positive(v: f32) -> bool {
+    bounded(v) && v > 0.0
+}
+
+/// A `rows × cols` matrix in `precision` (`docs/format.md`, "Matrices"): data and scales of
+/// the right lengths, every value finite, every scale finite and non-negative.
+fn matrix(
+    field: &'static str,
+    scales_field: &'static str,
+    raw: MatrixBytes<'_>,
+    precision: Precision,
+    rows: usize,
+    cols: usize,
+) -> Result<()> {
+    check_len(field, raw.data, mul(rows, cols)?, precision.bytes())?;
+    let scale_count = match precision {
+        Precision::F32 => 0,
+        Precision::F16 | Precision::I16 => cols,
+    };
+    check_len(scales_field, raw.scales, scale_count, 4)?;
+    check_f32(scales_field, raw.scales, |s| bounded(s) && s >= 0.0)?;
+    match precision {
+        Precision::F32 => check_f32(field, raw.data, bounded),
+        // Exponent 31 is infinity or NaN.
+        Precision::F16 => match raw
+            .data
+            .chunks_exact(2)
+            .position(|c| matches!(*c, [_, hi] if hi & 0x7C == 0x7C))
+        {
+            Some(index) => Err(Error::DecodeValue { field, index }),
+            None => Ok(()),
+        },
+        // Every 16-bit integer is a value.
+        Precision::I16 => Ok(()),
+    }
+}
