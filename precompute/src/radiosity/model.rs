@@ -40,6 +40,9 @@ pub struct Model {
     pub external: Vec<ExternalLight>,
     /// Output rows `R_o` (sensors, then zones): irradiance at output `o` is `Σ_j R_oj M_j`.
     pub output_rows: Vec<Vec<f64>>,
+    /// Exact exitance of every patch for each channel alone at level 1,
+    /// `responses[c][b][i]` (W/m² or lux): `(I − R F)⁻¹ M0_c` by the exact solver.
+    pub responses: Vec<Vec<Vec<f64>>>,
 }
 
 impl BandModel {
@@ -108,7 +111,7 @@ impl Model {
             .iter()
             .map(|l| l.external(&g, &area, &output_rows))
             .collect();
-        Ok(Model {
+        let mut model = Model {
             formulation,
             area,
             g,
@@ -116,7 +119,10 @@ impl Model {
             lights,
             external,
             output_rows,
-        })
+            responses: Vec::new(),
+        };
+        model.responses = model.exact_channel_responses()?;
+        Ok(model)
     }
 
     /// Number of patches.
@@ -324,6 +330,38 @@ impl Model {
     /// `Σ_j R_oj M_j`; [`Model::readings`] adds the light from beyond the patches.
     pub fn outputs(&self, m: &[f64]) -> Vec<f64> {
         exchange::output_irradiance(&self.output_rows, m)
+    }
+
+    /// Every channel's exact response at level 1, per band: one solve with a right-hand side
+    /// per channel.
+    fn exact_channel_responses(&self) -> Result<Vec<Vec<Vec<f64>>>, eigen::EigenError> {
+        let m = self.channel_count();
+        let mut responses = vec![Vec::with_capacity(self.bands.len()); m];
+        for b in 0..self.bands.len() {
+            let solver = self.exact_solver(b)?;
+            let units: Vec<Vec<f64>> = (0..m)
+                .map(|c| (0..m).map(|d| if d == c { 1.0 } else { 0.0 }).collect())
+                .collect();
+            let cases: Vec<(&[f64], &[f64])> =
+                units.iter().map(|u| (u.as_slice(), &[][..])).collect();
+            for (c, m) in self.exact_many(&solver, b, &cases).into_iter().enumerate() {
+                responses[c].push(m);
+            }
+        }
+        Ok(responses)
+    }
+
+    /// Exact exitance of every patch for channel `c` alone at level 1 in band `b`, W/m² or lux.
+    pub fn channel_response(&self, c: usize, b: usize) -> &[f64] {
+        &self.responses[c][b]
+    }
+
+    /// Exact readings of every output (sensors, then zones) for channel `c` alone at level 1
+    /// in band `b`, W/m² or lux.
+    pub fn channel_readings(&self, c: usize, b: usize) -> Vec<f64> {
+        let mut unit = vec![0.0; self.channel_count()];
+        unit[c] = 1.0;
+        self.readings(b, self.channel_response(c, b), &unit)
     }
 
     /// The exact solver of band `b`: an LU factorisation of `I − R F` up to
