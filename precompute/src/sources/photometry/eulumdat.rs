@@ -143,6 +143,21 @@ fn read_header(lines: &mut Lines) -> Result<Header> {
     lines.integer("type indicator Ityp", 0, 3)?;
     let symmetry = lines.integer("symmetry indicator Isym (0 to 4)", 0, 4)?;
     let (mc_line, mc) = lines.integer("number Mc of C-planes", 1, i64::from(u32::MAX))?;
+    // Isym 2 stores half the planes, 3 and 4 a quarter plus a half or one more.
+    let divisor = match symmetry.1 {
+        2 => 2,
+        3 | 4 => 4,
+        _ => 1,
+    };
+    if !(mc as u64).is_multiple_of(divisor) {
+        return Err(lines.file.invalid(
+            mc_line,
+            format!(
+                "Isym {} (line {}) needs Mc divisible by {divisor}, found {mc}",
+                symmetry.1, symmetry.0
+            ),
+        ));
+    }
     lines.number("distance Dc between C-planes")?;
     let (_, ng) = lines.integer("number Ng of γ angles", 2, i64::from(u32::MAX))?;
     lines.number("distance Dg between γ angles")?;
@@ -301,7 +316,7 @@ fn read_distribution(
     let g = lines.numbers(header.gammas, "γ angles")?;
     let c_angles = increasing(lines, &c, "C angle", 0.0, 360.0 - 1e-9)?;
     let gamma = increasing(lines, &g, "γ angle", 0.0, 180.0)?;
-    let (symmetry, stored) = stored_planes(lines, header.symmetry, mc_line, &c, &c_angles)?;
+    let (symmetry, stored) = stored_planes(lines, header.symmetry, &c, &c_angles)?;
     let count = stored.len().saturating_mul(gamma.len());
     let values = lines.numbers(count, "luminous intensities")?;
     let scale = header.conversion * lamps.flux / 1000.0;
@@ -368,22 +383,10 @@ fn increasing(
 fn stored_planes(
     lines: &Lines,
     (isym_line, isym): (usize, i64),
-    mc_line: usize,
     c: &[(usize, f64)],
     angles: &[f64],
 ) -> Result<(Symmetry, Vec<f64>)> {
     let mc = angles.len();
-    let divisor = match isym {
-        2 => 2,
-        3 | 4 => 4,
-        _ => 1,
-    };
-    if !mc.is_multiple_of(divisor) {
-        return Err(lines.file.invalid(
-            mc_line,
-            format!("Isym {isym} (line {isym_line}) needs Mc divisible by {divisor}, found {mc}"),
-        ));
-    }
     let near = |a: f64, b: f64| (a - b).abs() < 1e-6;
     // Each symmetry stores the planes from index `from`, `count` of them (wrapping past Mc),
     // and needs the given angles at the given indices.

@@ -168,6 +168,9 @@ struct Value<'a> {
 enum Next {
     /// A record of this many values.
     Size(usize),
+    /// A record governed by the same count as this one (tilt angles, then their factors): if
+    /// the count is wrong, the next record is as long as this one really is.
+    Same,
     /// Nothing: the file's data ends.
     End,
     /// Not known yet.
@@ -221,7 +224,12 @@ impl<'a> Records<'a> {
             let before = found - self.lines[last].1.len();
             // The record ends inside a line: either that line holds too many values, or the
             // record ended on the line before and this line starts the next record.
-            if before > 0 && self.fits(last, next) {
+            let fits = match next {
+                Next::Same => self.fits(last, n) || self.fits(last, before),
+                Next::Size(size) => self.fits(last, size),
+                Next::End | Next::Unknown => false,
+            };
+            if before > 0 && fits {
                 return Err(self.file.count(self.lines[last - 1].0, what, n, before));
             }
             return Err(self.file.count(self.lines[last].0, what, n, found));
@@ -238,11 +246,8 @@ impl<'a> Records<'a> {
             .collect())
     }
 
-    /// Whether a record of the size `next` announces fills whole lines from line `from`.
-    fn fits(&self, from: usize, next: Next) -> bool {
-        let Next::Size(size) = next else {
-            return false;
-        };
+    /// Whether a record of `size` values fills whole lines from line `from`.
+    fn fits(&self, from: usize, size: usize) -> bool {
         let mut sum = 0;
         for (_, values) in &self.lines[from..] {
             sum += values.len();
@@ -287,7 +292,7 @@ fn read_tilt(records: &mut Records) -> Result<Tilt> {
     };
     let c = records.record(1, "number of tilt angles", Next::Unknown)?[0];
     let n = records.integer(c, "number of tilt angles", 1, i64::from(u32::MAX))? as usize;
-    let angle_values = records.record(n, "tilt angles", Next::Size(n))?;
+    let angle_values = records.record(n, "tilt angles", Next::Same)?;
     let factor_values = records.record(n, "tilt multiplying factors", Next::Size(10))?;
     let angles = increasing_angles(records, &angle_values, "tilt angle", -90.0, 180.0)?;
     let mut factors = Vec::with_capacity(n);
