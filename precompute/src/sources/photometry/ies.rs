@@ -129,16 +129,16 @@ fn label(lines: &[(usize, &str)], start: usize) -> (Identity, Option<usize>) {
             .strip_prefix('[')
             .and_then(|rest| rest.split_once(']'))
             .map(|(key, value)| (key.trim().to_ascii_uppercase(), value.trim().to_string()));
-        match keyword {
-            Some((key, value)) if key == "MORE" && !identity.keywords.is_empty() => {
-                let last = identity.keywords.last_mut().expect("not empty");
+        match (keyword, identity.keywords.last_mut()) {
+            // [MORE] continues the keyword before it.
+            (Some((key, value)), Some(last)) if key == "MORE" => {
                 last.1.push(' ');
                 last.1.push_str(&value);
             }
-            Some(pair) => identity.keywords.push(pair),
+            (Some(pair), _) => identity.keywords.push(pair),
             // LM-63-1986's free-form label, or a stray line: kept, under no keyword.
-            None if !line.is_empty() => identity.keywords.push((String::new(), line.into())),
-            None => {}
+            (None, _) if !line.is_empty() => identity.keywords.push((String::new(), line.into())),
+            (None, _) => {}
         }
     }
     let find = |key: &str| {
