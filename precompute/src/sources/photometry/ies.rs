@@ -337,12 +337,16 @@ fn read_header(records: &mut Records, version: Lm63Version) -> Result<Header> {
     if !absolute && lumens_per_lamp <= 0.0 {
         return Err(records.file.invalid(
             r[1].line,
-            format!("lumens per lamp {lumens_per_lamp}: must be positive, or −1 for absolute photometry"),
+            format!(
+                "lumens per lamp {lumens_per_lamp}: must be positive, or −1 for absolute \
+                 photometry"
+            ),
         ));
     }
     let multiplier = positive(records, r[2], "candela multiplier")?;
-    let count = |v| records.integer(v, "number of angles", 1, i64::from(u32::MAX));
-    let (vertical, horizontal) = (count(r[3])? as usize, count(r[4])? as usize);
+    let count = |v, what| records.integer(v, what, 1, i64::from(u32::MAX));
+    let vertical = count(r[3], "number of vertical angles")? as usize;
+    let horizontal = count(r[4], "number of horizontal angles")? as usize;
     if vertical < 2 {
         return Err(records
             .file
@@ -371,10 +375,13 @@ fn read_header(records: &mut Records, version: Lm63Version) -> Result<Header> {
             .map(|x| x * unit)
     };
     let (width, length, height) = (size(r[7])?, size(r[8])?, size(r[9])?);
-    let opening = opening(width, length, height)
-        .ok_or_else(|| records.file.invalid(r[7].line, format!(
-            "luminous opening width {width} m, length {length} m, height {height} m matches no LM-63 shape"
-        )))?;
+    let opening = opening(width, length, height).ok_or_else(|| {
+        let message = format!(
+            "luminous opening width {width} m, length {length} m, height {height} m matches no \
+             LM-63 shape"
+        );
+        records.file.invalid(r[7].line, message)
+    })?;
     let b = records.record(
         3,
         "values in the record of ballast factor, ballast-lamp factor and input watts",
@@ -439,7 +446,10 @@ fn read_distribution(records: &mut Records, header: &Header) -> Result<(Symmetry
             if x < 0.0 {
                 return Err(records.file.invalid(
                     v.line,
-                    format!("candela value {x} at horizontal angle {h}°, vertical angle {g}° is negative"),
+                    format!(
+                        "candela value {x} at horizontal angle {h}°, vertical angle {g}° is \
+                         negative"
+                    ),
                 ));
             }
             plane.push(x * header.scale);
@@ -473,7 +483,11 @@ fn increasing_angles(
             if a <= before {
                 return Err(records.file.invalid(
                     v.line,
-                    format!("{what} {} is {a}°, not above the one before ({before}°): angles must increase", i + 1),
+                    format!(
+                        "{what} {} is {a}°, not above the one before ({before}°): angles must \
+                         increase",
+                        i + 1
+                    ),
                 ));
             }
         }

@@ -4,16 +4,17 @@
 //!
 //! # Why a reader of our own
 //!
-//! `eulumdat` is AGPL-3.0, which an MIT/Apache-2.0 project cannot take. `lidrs` (0.2.3, MIT)
-//! was read in full and does not fit: it does not know the LM-63-2019 version tag (such a file
-//! is read as LM-63-1986 and its first line then fails as a keyword); it reads an included
-//! tilt table as exactly four lines, although LM-63 lets a record run over several; its errors
-//! carry a line but not the file, and hold an `Rc`, so they cannot travel in the precompute's
-//! `Send + Sync` errors; it accepts negative and non-finite candela; its keyword reader
-//! unwraps an absent value when `[MORE]` comes first (a panic on a malformed file); and
-//! `TILT=<file>` opens that name relative to the working directory. Its last release is from
-//! 2022. The two readers here are small: [`ies`] reads LM-63 record by record, tracking the
-//! line of every value, and [`eulumdat`] reads EULUMDAT's one field a line.
+//! `eulumdat` is AGPL-3.0, which an MIT/Apache-2.0 project cannot take. `lidrs` (0.2.3, MIT,
+//! one author) was read in full and tried on small files, and does not fit: an LM-63-2019 file
+//! fails (the version line is not known, so the file is read as LM-63-1986 and that line then
+//! fails as a keyword); a tilt table whose records run over several lines, as LM-63 allows,
+//! fails; a file whose first keyword is `[MORE]` panics (an `unwrap` of the absent keyword it
+//! continues); negative and NaN candela are accepted; errors name a line but not the file
+//! (inside a tilt table, a line counted from the table), and hold an `Rc`, so they cannot
+//! travel in the precompute's `Send + Sync` errors; and `TILT=<file>` opens that name relative
+//! to the working directory. The two readers here are small: [`ies`] reads LM-63 record by
+//! record, tracking the line of every value, and [`eulumdat`] reads EULUMDAT's one field a
+//! line.
 //!
 //! # Coordinates
 //!
