@@ -5,7 +5,10 @@
 //!
 //! - [`surfaces`]: emitting surfaces of the scene (luminaire faces, windows as Lambertian
 //!   panels), grouped by the scene's channels.
+//! - [`photometry`]: luminaire photometric files (IES LM-63, EULUMDAT) read into intensity
+//!   distributions in candela.
 
+pub mod photometry;
 pub mod surfaces;
 
 /// The light of one channel at level 1, per band: what the model needs of a light source.
