@@ -32,6 +32,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::{Arc, Mutex, OnceLock};
 
+use eigenrad::precompute::accuracy::rng::Rng;
 use eigenrad_runtime::dali::arc_power_to_level;
 use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Basis, Evaluator, Formulation, Precision, Quantity};
@@ -208,20 +209,6 @@ fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) 
 
 // ---------------------------------------------------------------------------------------
 // A random basis (three bands)
-
-/// xorshift64*: deterministic, dependency-free.
-struct Rng(u64);
-impl Rng {
-    fn next_f64(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-}
 
 /// Dimensions of a random basis.
 #[derive(Clone, Copy)]

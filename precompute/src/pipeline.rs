@@ -69,9 +69,9 @@ impl Default for BuildOptions {
 pub struct CaseAccuracy {
     /// Case name.
     pub case: String,
-    /// Area-weighted RMS error of per-patch exitance over its RMS (worst band).
+    /// [`accuracy::metric::patch_error`], worst band.
     pub patch_error: f64,
-    /// Worst sensor/zone error over the largest reading (worst band).
+    /// [`accuracy::metric::output_error`] over the sensors and zones, worst band.
     pub output_error: f64,
 }
 
@@ -326,25 +326,12 @@ fn verify(
         let mut output_error = 0.0f64;
         for b in 0..solvers.len() {
             let exact = &exact_all[b][index];
-            let num: f64 = (0..exact.len())
-                .map(|i| model.area[i] * (got.exitance[i][b] - exact[i]).powi(2))
-                .sum();
-            let den: f64 = (0..exact.len())
-                .map(|i| model.area[i] * exact[i].powi(2))
-                .sum();
-            if den > 0.0 {
-                patch_error = patch_error.max((num / den).sqrt());
-            }
-            let exact_out = model.outputs(exact);
+            let exitance: Vec<f64> = got.exitance.iter().map(|e| e[b]).collect();
+            let patches = accuracy::metric::patch_error(&model.area, &exitance, exact);
+            patch_error = patch_error.max(patches);
             let readings: Vec<f64> = got.sensors.iter().chain(&got.zones).map(|r| r[b]).collect();
-            let scale = exact_out.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            if scale > 0.0 {
-                let worst = readings
-                    .iter()
-                    .zip(&exact_out)
-                    .fold(0.0f64, |w, (a, e)| w.max((a - e).abs()));
-                output_error = output_error.max(worst / scale);
-            }
+            let outputs = accuracy::metric::output_error(&readings, &model.outputs(exact));
+            output_error = output_error.max(outputs);
         }
         out.push(CaseAccuracy {
             case: case.name.clone(),

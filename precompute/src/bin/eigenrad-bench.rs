@@ -17,6 +17,8 @@ use std::time::Instant;
 
 use anyhow::{bail, Context as _, Result};
 use clap::{Parser, Subcommand};
+use eigenrad_precompute::accuracy::metric::{output_error, patch_error};
+use eigenrad_precompute::accuracy::rng::level_vector;
 use eigenrad_precompute::basis;
 use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline::{self, BuildOptions};
@@ -178,41 +180,6 @@ fn bandwidth() {
     );
 }
 
-/// Level vector number `k` for `m` channels: deterministic, in [0.1, 1].
-fn levels(k: usize, m: usize) -> Vec<f64> {
-    (0..m)
-        .map(|c| {
-            let x = (k as f64 * 0.618_033_988_75 + c as f64 * 0.377_2).fract();
-            0.1 + 0.9 * x
-        })
-        .collect()
-}
-
-/// Area-weighted RMS of `a − b` over that of `b`.
-fn patch_error(area: &[f64], a: &[f64], b: &[f64]) -> f64 {
-    let num: f64 = area
-        .iter()
-        .zip(a.iter().zip(b))
-        .map(|(w, (x, y))| w * (x - y).powi(2))
-        .sum();
-    let den: f64 = area.iter().zip(b).map(|(w, y)| w * y * y).sum();
-    (num / den.max(f64::MIN_POSITIVE)).sqrt()
-}
-
-/// Worst |a − b| over the largest |b|.
-fn output_error(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-    let worst = a
-        .iter()
-        .zip(b)
-        .fold(0.0f64, |w, (x, y)| w.max((x - y).abs()));
-    if scale > 0.0 {
-        worst / scale
-    } else {
-        0.0
-    }
-}
-
 /// Patch exitances and sensor/zone readings for a level vector.
 type Solution<'s> = dyn FnMut(&[f64]) -> (Vec<f64>, Vec<f64>) + 's;
 
@@ -265,7 +232,9 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
 
     // Exact responses: per channel (the superposition tables) and per accuracy case.
     let responses: Vec<Vec<f64>> = (0..m).map(|c| exact.solve(&model.emission[c][0])).collect();
-    let cases: Vec<Vec<f64>> = (0..ACCURACY_CASES).map(|k| levels(1000 + k, m)).collect();
+    let cases: Vec<Vec<f64>> = (0..ACCURACY_CASES)
+        .map(|k| level_vector(1000 + k, m))
+        .collect();
     let m0_of = |l: &[f64]| -> Vec<f64> {
         let mut m0 = vec![0.0; n];
         for (c, &lc) in l.iter().enumerate() {
@@ -307,7 +276,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             let mut k = 0usize;
             let next = |k: &mut usize| -> Vec<f32> {
                 *k += 1;
-                levels(*k, m).iter().map(|&x| x as f32).collect()
+                level_vector(*k, m).iter().map(|&x| x as f32).collect()
             };
             let outputs_s = per_call(|| {
                 let l = next(&mut k);
@@ -390,13 +359,13 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
         };
         let outputs_s = per_call(|| {
             k += 1;
-            let l: Vec<f32> = levels(k, m).iter().map(|&x| x as f32).collect();
+            let l: Vec<f32> = level_vector(k, m).iter().map(|&x| x as f32).collect();
             superpose(&l, &output_table, &mut out_o);
             black_box(&out_o);
         });
         let patches_s = per_call(|| {
             k += 1;
-            let l: Vec<f32> = levels(k, m).iter().map(|&x| x as f32).collect();
+            let l: Vec<f32> = level_vector(k, m).iter().map(|&x| x as f32).collect();
             superpose(&l, &patch_table, &mut out_p);
             black_box(&out_p);
         });
@@ -431,14 +400,14 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
         };
         let reused_s = per_call(|| {
             k += 1;
-            black_box(solve_reused(&levels(k, m)));
+            black_box(solve_reused(&level_vector(k, m)));
         });
         let (outputs_err, patches_err) = errors(&mut |l| solve_reused(l));
         if !skip_lu {
             let per_update_s = per_call(|| {
                 k += 1;
                 if let Ok(lu) = ExactSolver::new(model.g.as_ref(), &area, &rho) {
-                    let x = lu.solve(&m0_of(&levels(k, m)));
+                    let x = lu.solve(&m0_of(&level_vector(k, m)));
                     black_box(model.outputs(&x));
                 }
             });
@@ -472,7 +441,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
         let mut counts = (0usize, 0usize);
         let sw_s = per_call(|| {
             k += 1;
-            let (x, shots) = sys.southwell(&m0_of(&levels(k, m)), ITERATIVE_TOLERANCE);
+            let (x, shots) = sys.southwell(&m0_of(&level_vector(k, m)), ITERATIVE_TOLERANCE);
             counts.0 = shots;
             black_box(model.outputs(&x));
         });
@@ -483,7 +452,7 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
         });
         let gs_s = per_call(|| {
             k += 1;
-            let (x, sweeps) = sys.gauss_seidel(&m0_of(&levels(k, m)), ITERATIVE_TOLERANCE);
+            let (x, sweeps) = sys.gauss_seidel(&m0_of(&level_vector(k, m)), ITERATIVE_TOLERANCE);
             counts.1 = sweeps;
             black_box(model.outputs(&x));
         });
@@ -492,8 +461,8 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             let o = model.outputs(&x);
             (x, o)
         });
-        let (x, _) = sys.southwell(&m0_of(&levels(1, m)), ITERATIVE_TOLERANCE);
-        let sw_residual = sys.residual(&m0_of(&levels(1, m)), &x);
+        let (x, _) = sys.southwell(&m0_of(&level_vector(1, m)), ITERATIVE_TOLERANCE);
+        let sw_residual = sys.residual(&m0_of(&level_vector(1, m)), &x);
         rows.push(Row {
             method: format!(
                 "Southwell shooting to 1e-3 unshot ({} shots, true residual {sw_residual:.1e})",

@@ -6,8 +6,10 @@
 //! level in [0, 1]); random emitter patterns (see [`accuracy::standard_cases`]). Metrics, each
 //! the worst spectral band:
 //!
-//! - patches: area-weighted RMS of the per-patch exitance error over the RMS exitance;
-//! - zones, sensors: `|E − E_exact| / |E_exact|` per zone or sensor (irradiance, W/m² or lux).
+//! - patches: area-weighted RMS of the per-patch exitance error over the RMS exitance
+//!   ([`metric::patch_error`]);
+//! - zones, sensors: `|E − E_exact| / |E_exact|` per zone or sensor (irradiance, W/m² or lux;
+//!   [`metric::reading_errors`]).
 //!
 //! The curves use the host model in f64 ([`Model::truncated`] arithmetic), so they show the
 //! truncation alone; `eigenrad build` reports the same cases through the runtime's f32.
@@ -19,7 +21,8 @@ use eigenrad_runtime::Precision;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use crate::accuracy::{self, weighted_norm, Case};
+use crate::accuracy::rng::Rng;
+use crate::accuracy::{self, metric, Case};
 use crate::basis;
 use crate::error::{Error, Result};
 use crate::formfactor::FormFactorOptions;
@@ -171,17 +174,6 @@ pub struct VerifyReport {
     pub baseline: Baseline,
 }
 
-/// Deterministic xorshift64* for the mixes: reports must not change from run to run.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
     let scene = &prepared.scene;
     let m = scene.channels.len();
@@ -203,7 +195,7 @@ fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
                 CaseKind::ChannelMix,
                 Case {
                     name: format!("channel mix {}", k + 1),
-                    levels: (0..m).map(|_| rng.next()).collect(),
+                    levels: (0..m).map(|_| rng.next_f64()).collect(),
                     extra: vec![vec![0.0; n]; scene.bands.count()],
                 },
             ));
@@ -211,16 +203,6 @@ fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
     }
     out.extend(patterns);
     out
-}
-
-/// `|a − e|` over `|e|`, with readings that are exactly 0 measured against `floor`.
-fn relative(a: f64, e: f64, floor: f64) -> f64 {
-    let d = (a - e).abs();
-    if d == 0.0 {
-        0.0
-    } else {
-        d / e.abs().max(floor)
-    }
 }
 
 /// Errors of every metric of `case` at each p of `modes` for `model`.
@@ -242,22 +224,10 @@ fn case_curve(
     };
     accuracy::sweep(model, solvers, case, modes, |pt| {
         let t = pt.step;
-        let norm = weighted_norm(&model.area, pt.exact).max(f64::MIN_POSITIVE);
-        let floor = 1e-12
-            * pt.exact_outputs
-                .iter()
-                .fold(0.0f64, |a, v| a.max(v.abs()))
-                .max(f64::MIN_POSITIVE);
-        let diff: Vec<f64> = pt
-            .exitance
-            .iter()
-            .zip(pt.exact)
-            .map(|(a, e)| a - e)
-            .collect();
-        let e = weighted_norm(&model.area, &diff) / norm;
+        let e = metric::patch_error(&model.area, pt.exitance, pt.exact);
         curve.patches[t] = curve.patches[t].max(e);
-        for (o, (a, e)) in pt.outputs.iter().zip(pt.exact_outputs).enumerate() {
-            let r = relative(*a, *e, floor);
+        let readings = metric::reading_errors(pt.outputs, pt.exact_outputs);
+        for (o, r) in readings.into_iter().enumerate() {
             let slot = if o < sensors {
                 &mut curve.sensors[o][t]
             } else {
@@ -366,14 +336,11 @@ fn superposition_error(
                     *s += l * r;
                 }
             }
-            let diff: Vec<f64> = sum.iter().zip(&exact).map(|(a, e)| a - e).collect();
-            let norm = weighted_norm(&model.area, &exact).max(f64::MIN_POSITIVE);
-            worst[0] = worst[0].max(weighted_norm(&model.area, &diff) / norm);
+            worst[0] = worst[0].max(metric::patch_error(&model.area, &sum, &exact));
             let (got, want) = (model.outputs(&sum), model.outputs(&exact));
-            let floor = 1e-12 * want.iter().fold(f64::MIN_POSITIVE, |a, v| a.max(v.abs()));
-            for (o, (a, e)) in got.iter().zip(&want).enumerate() {
+            for (o, r) in metric::reading_errors(&got, &want).into_iter().enumerate() {
                 let slot = if o < sensors { 2 } else { 1 };
-                worst[slot] = worst[slot].max(relative(*a, *e, floor));
+                worst[slot] = worst[slot].max(r);
             }
         }
     }
