@@ -6,6 +6,7 @@
 //! | module | stage |
 //! |---|---|
 //! | [`geometry`] | points, polygons, patches |
+//! | [`memory`] | what a build of n patches holds, the solvers' size thresholds, the machine's memory |
 //! | [`scene`] | scene files, OBJ/MTL, meshing |
 //! | [`formfactor`] | form factors with occlusion, sensor and zone rows, their health |
 //! | [`radiosity`] | the model (`G`, `ρ`, `b`), exact solves, eigenmodes |
@@ -20,6 +21,7 @@ pub mod cli;
 mod error;
 pub mod formfactor;
 pub mod geometry;
+pub mod memory;
 pub mod pipeline;
 pub mod radiosity;
 pub mod scene;

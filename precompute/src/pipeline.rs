@@ -14,6 +14,7 @@ use crate::basis;
 use crate::error::{Error, Result};
 use crate::formfactor::outputs;
 use crate::formfactor::{self, FormFactorHealth, FormFactorOptions, Occluders};
+use crate::memory;
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::radiosity::model::Model;
 use crate::scene::{self, Scene};
@@ -142,18 +143,15 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let mut timings = Vec::new();
     let scene = timed(&mut timings, "scene and meshing", || scene::load(path))?;
     let n = scene.patches.len();
-    // G (n×n f64) is the big allocation, plus the LU of the exact reference for small n
-    // (above `EXACT_LU_MAX` the reference uses conjugate gradients on G itself).
-    let copies = if n <= crate::radiosity::exact::EXACT_LU_MAX {
-        2.0
-    } else {
-        1.0
-    };
-    let needed = copies * (n as f64).powi(2) * 8.0;
-    let available = 0.8 * total_memory_bytes();
+    // Refused before the n×n form factors are allocated (`memory::build_bytes`).
+    let reflecting: Vec<f64> = (0..scene.bands.count())
+        .map(|b| scene.reflectance.iter().filter(|r| r[b] > 0.0).count() as f64)
+        .collect();
+    let needed = memory::build_bytes(n as f64, &reflecting);
+    let available = memory::budget_bytes();
     if needed > available {
         return Err(Error::TooLarge(format!(
-            "{}: {n} patches need about {:.1} GB for the form-factor matrix and its factorisation, more than the {:.1} GB this machine can spare; raise `max_edge` to mesh coarser",
+            "{}: {n} patches need about {:.1} GB for the form-factor matrix and the solvers' workspace, more than the {:.1} GB this machine can spare; raise `max_edge` to mesh coarser",
             path.display(),
             needed / 1e9,
             available / 1e9
@@ -183,22 +181,6 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         form_factor_health,
         timings,
     })
-}
-
-/// Total physical memory, bytes (Linux `/proc/meminfo`; 8 GB assumed elsewhere).
-fn total_memory_bytes() -> f64 {
-    std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("MemTotal:"))
-                .and_then(|l| {
-                    l.split_whitespace()
-                        .nth(1)
-                        .and_then(|kb| kb.parse::<f64>().ok())
-                })
-        })
-        .map_or(8e9, |kb| kb * 1024.0)
 }
 
 /// Mode counts tested for the tolerance search and reports: 1, 2, 3, 4, 6, 8, 12, 16, …

@@ -138,7 +138,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     for (r, faces) in file.room.iter().zip(room_faces) {
         openings::cut(&ctx, r, faces, &mut raw, &flip, &mut claimed, &standing)?;
     }
-    limits::check(&raw, max_edge, &ctx.at(&file.scene.max_edge))?;
+    limits::check(&raw, ctx.bands, max_edge, &ctx.at(&file.scene.max_edge))?;
 
     // Materials resolved, faces checked and meshed.
     let mut surfaces = Vec::with_capacity(raw.len());
