@@ -25,13 +25,20 @@ use crate::scene::{self, Scene};
 /// (`docs/accuracy.md`); use `--tolerance` for a stated bound.
 pub const DEFAULT_MODES: usize = 32;
 
+/// Most modes the tolerance search computes and tries: the eigensolve and the sweep grow with
+/// it, and a tolerance not reached by then is reported ([`Error::Tolerance`]) rather than
+/// searched further. At most [`runtime_eval::MAX_MODES`], so that the basis it picks can be
+/// verified through the runtime.
+pub const TOLERANCE_MAX_MODES: usize = 512;
+const _: () = assert!(TOLERANCE_MAX_MODES <= runtime_eval::MAX_MODES);
+
 /// How many modes to keep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ModeSelection {
     /// Exactly this many per band (fewer if a band has fewer reflecting patches).
     Count(usize),
-    /// The smallest count whose relative error against the exact solve is at most this for
-    /// every channel and every random emitter pattern.
+    /// The smallest count, up to [`TOLERANCE_MAX_MODES`], whose relative error against the
+    /// exact solve is at most this for every channel and every random emitter pattern.
     Tolerance(f64),
 }
 
@@ -183,29 +190,6 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     })
 }
 
-/// Mode counts tested for the tolerance search and reports: 1, 2, 3, 4, 6, 8, 12, 16, …
-/// (about √2 apart) up to and including `max`.
-pub fn mode_ladder(max: usize) -> Vec<usize> {
-    let mut out = Vec::new();
-    let mut p = 1usize;
-    let mut step_half = false;
-    while p < max {
-        out.push(p);
-        p = if p < 4 {
-            p + 1
-        } else if step_half {
-            step_half = false;
-            p / 3 * 4
-        } else {
-            step_half = true;
-            p / 2 * 3
-        };
-    }
-    out.push(max);
-    out.dedup();
-    out
-}
-
 /// Runs the whole build; returns the basis bytes and the report. Writes nothing.
 pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)> {
     let prepared = prepare(path, &opts.form_factors)?;
@@ -220,30 +204,25 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     let n = scene.patches.len();
     let p_max = match opts.modes {
         ModeSelection::Count(p) => p.min(n),
-        ModeSelection::Tolerance(_) => n.min(512),
+        ModeSelection::Tolerance(_) => n.min(TOLERANCE_MAX_MODES),
     };
     let model = timed(&mut timings, "eigenbasis", || {
         Model::new(&scene, g, output_rows, opts.formulation, p_max, opts.solver)
     })?;
     let bands = model.bands.len();
     // The reference the accuracy is measured against: LU for small scenes, conjugate
-    // gradients on G above `solve::EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation).
+    // gradients on G above `EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation).
     let solvers = timed(&mut timings, "exact reference (LU or CG)", || {
         (0..bands)
             .map(|b| model.exact_solver(b))
             .collect::<std::result::Result<Vec<_>, _>>()
     })?;
     let cases = accuracy::standard_cases(&scene, opts.random_patterns);
-    let available = model
-        .bands
-        .iter()
-        .map(|b| b.mode_count())
-        .max()
-        .unwrap_or(0);
+    let available = accuracy::modes_held(&model);
     let p = match opts.modes {
         ModeSelection::Count(p) => p.min(available),
         ModeSelection::Tolerance(t) => timed(&mut timings, "mode count search", || {
-            let ladder = mode_ladder(available.max(1));
+            let ladder = accuracy::mode_ladder(available.max(1));
             let curves: Vec<_> = cases
                 .iter()
                 .map(|c| accuracy::curve(&model, &solvers, c, &ladder))
@@ -322,18 +301,4 @@ fn verify(
         });
     }
     Ok(out)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::mode_ladder;
-
-    #[test]
-    fn ladder_is_ascending_and_ends_at_max() {
-        assert_eq!(mode_ladder(1), vec![1]);
-        assert_eq!(mode_ladder(20), vec![1, 2, 3, 4, 6, 8, 12, 16, 20]);
-        let l = mode_ladder(600);
-        assert!(l.windows(2).all(|w| w[0] < w[1]));
-        assert_eq!(*l.last().unwrap_or(&0), 600);
-    }
 }

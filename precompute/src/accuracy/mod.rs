@@ -82,6 +82,39 @@ pub fn standard_cases(scene: &Scene, random: usize) -> Vec<Case> {
     cases
 }
 
+/// Mode counts tested for the tolerance search and reports: 1, 2, 3, 4, 6, 8, 12, 16, …
+/// (about √2 apart) up to and including `max`.
+pub fn mode_ladder(max: usize) -> Vec<usize> {
+    let mut out = Vec::new();
+    let mut p = 1usize;
+    let mut step_half = false;
+    while p < max {
+        out.push(p);
+        p = if p < 4 {
+            p + 1
+        } else if step_half {
+            step_half = false;
+            p / 3 * 4
+        } else {
+            step_half = true;
+            p / 2 * 3
+        };
+    }
+    out.push(max);
+    out.dedup();
+    out
+}
+
+/// Modes `model` holds: the most of any band (a band with fewer reflecting patches has fewer).
+pub fn modes_held(model: &Model) -> usize {
+    model
+        .bands
+        .iter()
+        .map(|b| b.mode_count())
+        .max()
+        .unwrap_or(0)
+}
+
 /// One point of a truncation sweep (one band, one mode count): the index into the mode
 /// ladder, and the truncated and exact solutions (patch exitance and output readings) there.
 pub struct SweepPoint<'s> {
@@ -158,4 +191,18 @@ pub fn smallest_p(curves: &[Curve], tolerance: f64) -> Option<usize> {
     (0..modes.len())
         .find(|&t| curves.iter().all(|c| c.patch_error[t] <= tolerance))
         .map(|t| modes[t])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mode_ladder;
+
+    #[test]
+    fn ladder_is_ascending_and_ends_at_max() {
+        assert_eq!(mode_ladder(1), vec![1]);
+        assert_eq!(mode_ladder(20), vec![1, 2, 3, 4, 6, 8, 12, 16, 20]);
+        let l = mode_ladder(600);
+        assert!(l.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(*l.last().unwrap_or(&0), 600);
+    }
 }

@@ -28,17 +28,17 @@ use eigenrad_precompute::radiosity::iterative::System;
 use eigenrad_precompute::radiosity::model::Model;
 use eigenrad_runtime::{Basis, Evaluator, Precision};
 
-/// Capacities of the benchmark's evaluator (one band).
+/// Mode counts of the eigenbasis rows, ascending.
+const MODE_COUNTS: [usize; 4] = [16, 32, 64, 128];
+/// The eigenbasis row every ratio is relative to: the default build (p = 32, f32).
+const REFERENCE_MODES: usize = pipeline::DEFAULT_MODES;
+
+/// Capacities of the benchmark's evaluator (one band); modes: the largest row.
 const PATCHES: usize = 16_384;
-const MODES: usize = 128;
+const MODES: usize = MODE_COUNTS[MODE_COUNTS.len() - 1];
 const CHANNELS: usize = 64;
 const OUTPUTS: usize = 64;
 type Eval<'a> = Evaluator<'a, 1, PATCHES, MODES, CHANNELS, OUTPUTS>;
-
-/// Mode counts of the eigenbasis rows.
-const MODE_COUNTS: [usize; 4] = [16, 32, 64, 128];
-/// The eigenbasis row every ratio is relative to: the default build (p = 32, f32).
-const REFERENCE_MODES: usize = 32;
 /// Relative residual the iterative solvers stop at (the figure).
 const ITERATIVE_TOLERANCE: f64 = 1e-3;
 /// Wall-clock seconds each timing loop runs at least.
@@ -210,13 +210,12 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             path.display()
         );
     }
-    let p_max = *MODE_COUNTS.iter().max().unwrap_or(&128);
     let model = Model::new(
         &scene,
         prepared.g,
         prepared.output_rows,
         Formulation::Split,
-        p_max,
+        MODES,
         Solver::Auto,
     )?;
     let m = scene.channels.len();

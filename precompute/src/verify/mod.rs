@@ -166,7 +166,7 @@ pub struct VerifyReport {
     pub sensors: Vec<String>,
     /// Zone names.
     pub zones: Vec<String>,
-    /// Tested mode counts, ascending (`pipeline::mode_ladder` up to every mode).
+    /// Tested mode counts, ascending ([`accuracy::mode_ladder`] up to every mode).
     pub modes: Vec<usize>,
     /// `split`, then `seed`.
     pub formulations: Vec<FormulationReport>,
@@ -266,13 +266,7 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
             .map(|b| model.exact_solver(b))
             .collect::<std::result::Result<Vec<_>, _>>()?;
         if modes.is_empty() {
-            let available = model
-                .bands
-                .iter()
-                .map(|b| b.mode_count())
-                .max()
-                .unwrap_or(0);
-            modes = pipeline::mode_ladder(available.max(1));
+            modes = accuracy::mode_ladder(accuracy::modes_held(&model).max(1));
             if m > 0 {
                 baseline_error = Some(superposition_error(&model, &solvers, &cases, sensors));
             }
