@@ -11,7 +11,7 @@
 //! | [`formfactor`] | form factors with occlusion, sensor and zone rows, their health |
 //! | [`radiosity`] | the model (`G`, `ρ`, `b`), exact solves, eigenmodes |
 //! | [`basis`] | a model and its modes as the runtime's tables |
-//! | [`accuracy`] | test cases, the error metric, the truncation sweep, evaluation through the runtime |
+//! | [`accuracy`] | test cases, the error figures, the truncation sweep, evaluation through the runtime |
 //! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
 //! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
 //! | [`cli`] | what the commands compute and print, atomic file writes |
