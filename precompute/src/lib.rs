@@ -6,12 +6,13 @@
 //! | module | stage |
 //! |---|---|
 //! | [`geometry`] | points, polygons, patches |
+//! | [`memory`] | what a build of n patches holds, the solvers' size thresholds, the machine's memory |
 //! | [`scene`] | scene files, OBJ/MTL, meshing |
 //! | [`formfactor`] | form factors with occlusion, sensor and zone rows, their health |
 //! | [`sources`] | what emits light: per channel, its emission and direct irradiance |
 //! | [`radiosity`] | the model (`G`, `ρ`, `b`), exact solves, eigenmodes |
 //! | [`basis`] | a model and its modes as the runtime's tables |
-//! | [`accuracy`] | test cases, the error metric, the truncation sweep, evaluation through the runtime |
+//! | [`accuracy`] | test cases, the error figures, the truncation sweep, evaluation through the runtime |
 //! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
 //! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
 //! | [`cli`] | what the commands compute and print, atomic file writes |
@@ -21,6 +22,7 @@ pub mod cli;
 mod error;
 pub mod formfactor;
 pub mod geometry;
+pub mod memory;
 pub mod pipeline;
 pub mod radiosity;
 pub mod scene;

@@ -14,6 +14,7 @@ use crate::basis;
 use crate::error::{Error, Result};
 use crate::formfactor::{self, FormFactorHealth, FormFactorOptions, Occluders};
 use crate::formfactor::{exchange, outputs};
+use crate::memory;
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::radiosity::model::Model;
 use crate::scene::{self, Scene};
@@ -25,13 +26,20 @@ use crate::sources::{self, ChannelLight};
 /// (`docs/accuracy.md`); use `--tolerance` for a stated bound.
 pub const DEFAULT_MODES: usize = 32;
 
+/// Most modes the tolerance search computes and tries: the eigensolve and the sweep grow with
+/// it, and a tolerance not reached by then is reported ([`Error::Tolerance`]) rather than
+/// searched further. At most [`runtime_eval::MAX_MODES`], so that the basis it picks can be
+/// verified through the runtime.
+pub const TOLERANCE_MAX_MODES: usize = 512;
+const _: () = assert!(TOLERANCE_MAX_MODES <= runtime_eval::MAX_MODES);
+
 /// How many modes to keep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ModeSelection {
     /// Exactly this many per band (fewer if a band has fewer reflecting patches).
     Count(usize),
-    /// The smallest count whose relative error against the exact solve is at most this for
-    /// every channel and every random emitter pattern.
+    /// The smallest count, up to [`TOLERANCE_MAX_MODES`], whose relative error against the
+    /// exact solve is at most this for every channel and every random emitter pattern.
     Tolerance(f64),
 }
 
@@ -70,9 +78,9 @@ impl Default for BuildOptions {
 pub struct CaseAccuracy {
     /// Case name.
     pub case: String,
-    /// Area-weighted RMS error of per-patch exitance over its RMS (worst band).
+    /// [`accuracy::metric::patch_error`], worst band.
     pub patch_error: f64,
-    /// Worst sensor/zone error over the largest reading (worst band).
+    /// [`accuracy::metric::output_error`] over the sensors and zones, worst band.
     pub output_error: f64,
 }
 
@@ -145,18 +153,15 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let mut timings = Vec::new();
     let scene = timed(&mut timings, "scene and meshing", || scene::load(path))?;
     let n = scene.patches.len();
-    // G (n×n f64) is the big allocation, plus the LU of the exact reference for small n
-    // (above `EXACT_LU_MAX` the reference uses conjugate gradients on G itself).
-    let copies = if n <= crate::radiosity::exact::EXACT_LU_MAX {
-        2.0
-    } else {
-        1.0
-    };
-    let needed = copies * (n as f64).powi(2) * 8.0;
-    let available = 0.8 * total_memory_bytes();
+    // Refused before the n×n form factors are allocated (`memory::build_bytes`).
+    let reflecting: Vec<f64> = (0..scene.bands.count())
+        .map(|b| scene.reflectance.iter().filter(|r| r[b] > 0.0).count() as f64)
+        .collect();
+    let needed = memory::build_bytes(n as f64, &reflecting);
+    let available = memory::budget_bytes();
     if needed > available {
         return Err(Error::TooLarge(format!(
-            "{}: {n} patches need about {:.1} GB for the form-factor matrix and its factorisation, more than the {:.1} GB this machine can spare; raise `max_edge` to mesh coarser",
+            "{}: {n} patches need about {:.1} GB for the form-factor matrix and the solvers' workspace, more than the {:.1} GB this machine can spare; raise `max_edge` to mesh coarser",
             path.display(),
             needed / 1e9,
             available / 1e9
@@ -186,45 +191,6 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     })
 }
 
-/// Total physical memory, bytes (Linux `/proc/meminfo`; 8 GB assumed elsewhere).
-fn total_memory_bytes() -> f64 {
-    std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("MemTotal:"))
-                .and_then(|l| {
-                    l.split_whitespace()
-                        .nth(1)
-                        .and_then(|kb| kb.parse::<f64>().ok())
-                })
-        })
-        .map_or(8e9, |kb| kb * 1024.0)
-}
-
-/// Mode counts tested for the tolerance search and reports: 1, 2, 3, 4, 6, 8, 12, 16, …
-/// (about √2 apart) up to and including `max`.
-pub fn mode_ladder(max: usize) -> Vec<usize> {
-    let mut out = Vec::new();
-    let mut p = 1usize;
-    let mut step_half = false;
-    while p < max {
-        out.push(p);
-        p = if p < 4 {
-            p + 1
-        } else if step_half {
-            step_half = false;
-            p / 3 * 4
-        } else {
-            step_half = true;
-            p / 2 * 3
-        };
-    }
-    out.push(max);
-    out.dedup();
-    out
-}
-
 /// Runs the whole build; returns the basis bytes and the report. Writes nothing.
 pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)> {
     let prepared = prepare(path, &opts.form_factors)?;
@@ -240,7 +206,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     let n = scene.patches.len();
     let p_max = match opts.modes {
         ModeSelection::Count(p) => p.min(n),
-        ModeSelection::Tolerance(_) => n.min(512),
+        ModeSelection::Tolerance(_) => n.min(TOLERANCE_MAX_MODES),
     };
     let model = timed(&mut timings, "eigenbasis", || {
         Model::new(
@@ -255,23 +221,18 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     })?;
     let bands = model.bands.len();
     // The reference the accuracy is measured against: LU for small scenes, conjugate
-    // gradients on G above `solve::EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation).
+    // gradients on G above `EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation).
     let solvers = timed(&mut timings, "exact reference (LU or CG)", || {
         (0..bands)
             .map(|b| model.exact_solver(b))
             .collect::<std::result::Result<Vec<_>, _>>()
     })?;
     let cases = accuracy::standard_cases(&scene, opts.random_patterns);
-    let available = model
-        .bands
-        .iter()
-        .map(|b| b.mode_count())
-        .max()
-        .unwrap_or(0);
+    let available = accuracy::modes_held(&model);
     let p = match opts.modes {
         ModeSelection::Count(p) => p.min(available),
         ModeSelection::Tolerance(t) => timed(&mut timings, "mode count search", || {
-            let ladder = mode_ladder(available.max(1));
+            let ladder = accuracy::mode_ladder(available.max(1));
             let curves: Vec<_> = cases
                 .iter()
                 .map(|c| accuracy::curve(&model, &solvers, c, &ladder))
@@ -336,25 +297,13 @@ fn verify(
         let mut output_error = 0.0f64;
         for b in 0..solvers.len() {
             let exact = &exact_all[b][index];
-            let num: f64 = (0..exact.len())
-                .map(|i| model.area[i] * (got.exitance[i][b] - exact[i]).powi(2))
-                .sum();
-            let den: f64 = (0..exact.len())
-                .map(|i| model.area[i] * exact[i].powi(2))
-                .sum();
-            if den > 0.0 {
-                patch_error = patch_error.max((num / den).sqrt());
-            }
-            let exact_out = model.readings(b, exact, &case.levels);
+            let exitance: Vec<f64> = got.exitance.iter().map(|e| e[b]).collect();
+            let patches = accuracy::metric::patch_error(&model.area, &exitance, exact);
+            patch_error = patch_error.max(patches);
             let readings: Vec<f64> = got.sensors.iter().chain(&got.zones).map(|r| r[b]).collect();
-            let scale = exact_out.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            if scale > 0.0 {
-                let worst = readings
-                    .iter()
-                    .zip(&exact_out)
-                    .fold(0.0f64, |w, (a, e)| w.max((a - e).abs()));
-                output_error = output_error.max(worst / scale);
-            }
+            let outputs =
+                accuracy::metric::output_error(&readings, &model.readings(b, exact, &case.levels));
+            output_error = output_error.max(outputs);
         }
         out.push(CaseAccuracy {
             case: case.name.clone(),
@@ -363,18 +312,4 @@ fn verify(
         });
     }
     Ok(out)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::mode_ladder;
-
-    #[test]
-    fn ladder_is_ascending_and_ends_at_max() {
-        assert_eq!(mode_ladder(1), vec![1]);
-        assert_eq!(mode_ladder(20), vec![1, 2, 3, 4, 6, 8, 12, 16, 20]);
-        let l = mode_ladder(600);
-        assert!(l.windows(2).all(|w| w[0] < w[1]));
-        assert_eq!(*l.last().unwrap_or(&0), 600);
-    }
 }

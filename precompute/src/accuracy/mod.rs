@@ -3,11 +3,14 @@
 
 use serde::Serialize;
 
+pub mod metric;
+pub mod rng;
 pub mod runtime_eval;
 
 use crate::radiosity::exact::ExactSolver;
 use crate::radiosity::model::Model;
 use crate::scene::Scene;
+use rng::Rng;
 
 /// An emitter state to test: channel levels and per-patch exitance per band.
 #[derive(Clone, Debug)]
@@ -27,26 +30,16 @@ pub struct Curve {
     pub case: String,
     /// Mode counts tested.
     pub modes: Vec<usize>,
-    /// Area-weighted RMS error of per-patch exitance over its RMS, worst band.
+    /// [`metric::patch_error`] at each p, worst band.
     pub patch_error: Vec<f64>,
-    /// Worst |error| over sensors and zones divided by the largest reading, worst band.
+    /// [`metric::output_error`] at each p, worst band.
     pub output_error: Vec<f64>,
 }
 
-/// Deterministic xorshift64* generator: reports must not change from run to run.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// Every channel alone at level 1, then `random` emitter patterns: a random fifth of the
-/// patches each emitting a random exitance up to the scene's brightest channel exitance
-/// (or 1 when there is none), same in every band.
+/// patches each emitting a random exitance up to the largest exitance a patch of the scene
+/// emits at level 1, in any band (the brightest channel's when its surfaces emit alike; 1
+/// when nothing emits), same in every band.
 pub fn standard_cases(scene: &Scene, random: usize) -> Vec<Case> {
     let n = scene.patches.len();
     let bands = scene.bands.count();
@@ -73,8 +66,8 @@ pub fn standard_cases(scene: &Scene, random: usize) -> Vec<Case> {
     for k in 0..random {
         let pattern: Vec<f64> = (0..n)
             .map(|_| {
-                if rng.next() < 0.2 {
-                    peak * rng.next()
+                if rng.next_f64() < 0.2 {
+                    peak * rng.next_f64()
                 } else {
                     0.0
                 }
@@ -89,13 +82,37 @@ pub fn standard_cases(scene: &Scene, random: usize) -> Vec<Case> {
     cases
 }
 
-/// Area-weighted 2-norm `sqrt(Σ A_i x_i²)`.
-pub fn weighted_norm(area: &[f64], x: &[f64]) -> f64 {
-    area.iter()
-        .zip(x)
-        .map(|(a, v)| a * v * v)
-        .sum::<f64>()
-        .sqrt()
+/// Mode counts tested for the tolerance search and reports: 1, 2, 3, 4, 6, 8, 12, 16, …
+/// (about √2 apart) up to and including `max`.
+pub fn mode_ladder(max: usize) -> Vec<usize> {
+    let mut out = Vec::new();
+    let mut p = 1usize;
+    let mut step_half = false;
+    while p < max {
+        out.push(p);
+        p = if p < 4 {
+            p + 1
+        } else if step_half {
+            step_half = false;
+            p / 3 * 4
+        } else {
+            step_half = true;
+            p / 2 * 3
+        };
+    }
+    out.push(max);
+    out.dedup();
+    out
+}
+
+/// Modes `model` holds: the most of any band (a band with fewer reflecting patches has fewer).
+pub fn modes_held(model: &Model) -> usize {
+    model
+        .bands
+        .iter()
+        .map(|b| b.mode_count())
+        .max()
+        .unwrap_or(0)
 }
 
 /// One point of a truncation sweep (one band, one mode count): the index into the mode
@@ -154,24 +171,11 @@ pub fn curve(model: &Model, solvers: &[ExactSolver], case: &Case, modes: &[usize
     let mut patch_error = vec![0.0f64; modes.len()];
     let mut output_error = vec![0.0f64; modes.len()];
     sweep(model, solvers, case, modes, |pt| {
-        let norm = weighted_norm(&model.area, pt.exact).max(f64::MIN_POSITIVE);
-        let diff: Vec<f64> = pt
-            .exitance
-            .iter()
-            .zip(pt.exact)
-            .map(|(a, e)| a - e)
-            .collect();
         let t = pt.step;
-        patch_error[t] = patch_error[t].max(weighted_norm(&model.area, &diff) / norm);
-        let out_scale = pt.exact_outputs.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        if out_scale > 0.0 {
-            let worst = pt
-                .outputs
-                .iter()
-                .zip(pt.exact_outputs)
-                .fold(0.0f64, |w, (a, e)| w.max((a - e).abs()));
-            output_error[t] = output_error[t].max(worst / out_scale);
-        }
+        let patches = metric::patch_error(&model.area, pt.exitance, pt.exact);
+        patch_error[t] = patch_error[t].max(patches);
+        let outputs = metric::output_error(pt.outputs, pt.exact_outputs);
+        output_error[t] = output_error[t].max(outputs);
     });
     Curve {
         case: case.name.clone(),
@@ -187,4 +191,18 @@ pub fn smallest_p(curves: &[Curve], tolerance: f64) -> Option<usize> {
     (0..modes.len())
         .find(|&t| curves.iter().all(|c| c.patch_error[t] <= tolerance))
         .map(|t| modes[t])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mode_ladder;
+
+    #[test]
+    fn ladder_is_ascending_and_ends_at_max() {
+        assert_eq!(mode_ladder(1), vec![1]);
+        assert_eq!(mode_ladder(20), vec![1, 2, 3, 4, 6, 8, 12, 16, 20]);
+        let l = mode_ladder(600);
+        assert!(l.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(*l.last().unwrap_or(&0), 600);
+    }
 }

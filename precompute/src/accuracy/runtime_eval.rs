@@ -7,7 +7,8 @@ use crate::error::{Error, Result};
 
 /// Patch capacity of the host evaluator.
 pub const MAX_PATCHES: usize = 1 << 17;
-const MAX_MODES: usize = 2048;
+/// Mode capacity of the host evaluator: the most modes a basis the build verifies may have.
+pub const MAX_MODES: usize = 2048;
 const MAX_CHANNELS: usize = 1024;
 const MAX_OUTPUTS: usize = 1024;
 

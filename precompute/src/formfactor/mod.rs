@@ -9,11 +9,11 @@
 //!
 //! - `F_{dA→A_j}` is exact: Lambert's contour integral over j clipped to the front half-space of
 //!   `x` (module `kernel`; Howell's catalogue, Modest eq. 4.36);
-//! - the outer integral is a Gauss–Legendre rule on patch i (bilinear map for quadrilaterals,
-//!   collapsed map for triangles) whose order falls with the distance between the patches
-//!   ([`FormFactorOptions::quadrature_tolerance`]), rises for touching patches, is one common
-//!   rule for all pairs a blocker may cut, and covers only the front part of i when j's plane
-//!   cuts i;
+//! - the outer integral (module `pair`) is a Gauss–Legendre rule on patch i (bilinear map for
+//!   quadrilaterals, collapsed map for triangles) whose order falls with the distance between
+//!   the patches ([`FormFactorOptions::quadrature_tolerance`]), rises for touching patches, is
+//!   one common rule for all pairs a blocker may cut, and covers only the front part of i when
+//!   j's plane cuts i;
 //! - `V_ij(x)` restricts the kernel to the part of j that no blocker hides from `x`. It is exact:
 //!   the shadows of the blockers that can cut the pair (shaft culling, [`Occluders`]) are cut
 //!   out of j, and the contour integral runs over the visible pieces (module `shadow`). Only when
@@ -28,6 +28,7 @@ pub mod exchange;
 mod health;
 mod kernel;
 pub mod outputs;
+mod pair;
 mod quadrature;
 mod shadow;
 #[cfg(test)]
@@ -35,14 +36,13 @@ mod tests;
 mod visibility;
 
 pub use bvh::Occluders;
-use bvh::Shaft;
 pub use health::{FormFactorHealth, CLOSED_TOLERANCE};
 
 use crate::geometry::{Patch, Vec3};
 use faer::Mat;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use kernel::Cone;
-use quadrature::SampleTable;
+use pair::{gauss_rules, max_order, Context, Prepared, Viewer};
 use rayon::prelude::*;
 
 /// Options; `Default` gives the accurate defaults.
@@ -94,14 +94,6 @@ impl Default for FormFactorOptions {
     }
 }
 
-/// Scale in the error model of the outer quadrature (see
-/// [`FormFactorOptions::quadrature_tolerance`]). A conservative choice, not a fit: the empty
-/// 412-patch test room keeps its row sums within 1e-5 with it.
-const ORDER_SCALE: f64 = 0.5;
-
-/// Splits of a source cell toward a target it touches (`Context::integrate_toward`).
-const TOUCHING_DEPTH: u32 = 4;
-
 /// Share of the smaller patch's output below which a pair's reciprocity mismatch is measured
 /// against that share instead of the pair's own exchange.
 const RECIPROCITY_FLOOR: f64 = 1e-3;
@@ -126,315 +118,6 @@ pub struct FormFactors {
     pub reciprocity_share: f64,
     /// Row sums of the symmetrised matrix (1 for every patch of a closed scene).
     pub row_sums: Vec<f64>,
-}
-
-/// Per-patch data the pair loop needs, computed once.
-#[derive(Clone, Copy, Debug)]
-struct Bound {
-    /// Centroid, metres.
-    centre: Vec3,
-    /// Largest distance from the centroid to a corner, metres.
-    radius: f64,
-}
-
-impl Bound {
-    fn of(p: &Patch) -> Bound {
-        let radius = p
-            .polygon
-            .vertices
-            .iter()
-            .map(|&v| (v - p.centroid).length())
-            .fold(0.0, f64::max);
-        Bound {
-            centre: p.centroid,
-            radius,
-        }
-    }
-}
-
-/// A set of patches with their quadrature rules: sources (outer integral) or targets (ray ends).
-struct Prepared<'a> {
-    patches: &'a [Patch],
-    bounds: Vec<Bound>,
-    samples: SampleTable,
-}
-
-impl<'a> Prepared<'a> {
-    fn new(patches: &'a [Patch], max_order: usize) -> Self {
-        Prepared {
-            patches,
-            bounds: patches.iter().map(Bound::of).collect(),
-            samples: SampleTable::new(patches, max_order),
-        }
-    }
-}
-
-/// Gauss–Legendre rules of orders 1 to `max` on [0, 1].
-fn gauss_rules(max: usize) -> Vec<Vec<(f64, f64)>> {
-    (1..=max.max(1)).map(quadrature::gauss_legendre).collect()
-}
-
-/// The largest order any rule on a set of patches needs.
-fn max_order(opts: &FormFactorOptions) -> usize {
-    opts.gauss_order
-        .max(opts.touching_order)
-        .max(opts.occluded_order)
-        .max(1)
-}
-
-/// Everything needed to evaluate form factors towards the scene patches.
-struct Context<'a> {
-    targets: &'a Prepared<'a>,
-    /// Gauss–Legendre rules on [0, 1] of orders 1, 2, … (index = order − 1).
-    gauss: Vec<Vec<(f64, f64)>>,
-    occluders: &'a Occluders,
-    opts: &'a FormFactorOptions,
-}
-
-/// A point (or differential area) that looks at the targets.
-#[derive(Clone, Copy)]
-struct Viewer<'c> {
-    point: Vec3,
-    normal: Vec3,
-    cone: Option<&'c Cone>,
-}
-
-impl Context<'_> {
-    /// Does source patch `src` touch target `j` (share an edge, part of one, or a corner)?
-    fn touches(&self, src: &Patch, bound: Bound, j: usize) -> bool {
-        let tgt = self.targets.bounds[j];
-        let gap = (bound.centre - tgt.centre).length() - tgt.radius;
-        let tol = 1e-9 * (bound.radius + tgt.radius);
-        gap <= bound.radius + tol
-            && touching(
-                &src.polygon.vertices,
-                &self.targets.patches[j].polygon.vertices,
-                tol,
-            )
-    }
-
-    /// Integrates `f(point, weight in m²)` over the convex `cell` of a source, splitting cells
-    /// that touch `target` (within `tol` metres) `depth` more times; cells clear of it take the
-    /// near-pair rule (`gauss_order`), the finest touching cells `touching_order`.
-    fn integrate_toward(
-        &self,
-        cell: &[Vec3],
-        target: &[Vec3],
-        tol: f64,
-        depth: u32,
-        f: &mut dyn FnMut(Vec3, f64),
-    ) {
-        let touching_cell = touching(cell, target, tol);
-        if depth == 0 || !touching_cell {
-            let order = if touching_cell {
-                self.opts.touching_order
-            } else {
-                self.opts.gauss_order
-            };
-            quadrature::for_each_on_cell(cell, self.gauss_rule(order), &mut *f);
-            return;
-        }
-        for sub in quadrature::split_cell(cell) {
-            self.integrate_toward(&sub, target, tol, depth - 1, f);
-        }
-    }
-
-    /// Outer-quadrature order for a source patch (`bound`) towards target `j` (module docs).
-    /// `touches`: [`Context::touches`] for the pair.
-    fn source_order(&self, bound: Bound, j: usize, touches: bool) -> usize {
-        let max = self.opts.gauss_order.max(1);
-        let tgt = self.targets.bounds[j];
-        let gap = (bound.centre - tgt.centre).length() - tgt.radius;
-        if bound.radius <= 0.0 {
-            return 1;
-        }
-        if touches {
-            return max.max(self.opts.touching_order);
-        }
-        if gap <= 0.0 {
-            return max;
-        }
-        let src = bound;
-        let ratio = ORDER_SCALE * src.radius / gap;
-        if ratio >= 1.0 {
-            return max;
-        }
-        let tol = self.opts.quadrature_tolerance.clamp(1e-300, 1.0);
-        // Smallest m with ratio^(2m) ≤ tol.
-        let m = (tol.ln() / (2.0 * ratio.ln())).ceil();
-        if m.is_finite() && m >= 1.0 {
-            (m as usize).min(max)
-        } else {
-            1
-        }
-    }
-
-    /// Form factor (dimensionless, fraction of the source's output) from source patch `i` of
-    /// `sources` to target `j`. `ignore` lists scene patches that must not block (the source
-    /// and target themselves).
-    fn pair(&self, sources: &Prepared, i: usize, j: usize, ignore: &[usize]) -> f64 {
-        let src = &sources.patches[i];
-        let tgt = &self.targets.patches[j];
-        let (sv, tv) = (&src.polygon.vertices, &tgt.polygon.vertices);
-        let (Some(&s0), Some(&t0)) = (sv.first(), tv.first()) else {
-            return 0.0;
-        };
-        // One-sided patches: nothing to do unless each is partly in front of the other.
-        let tol = 1e-9 * (sources.bounds[i].radius + self.targets.bounds[j].radius);
-        if !any_in_front(tv, src.normal, s0, tol) || !any_in_front(sv, tgt.normal, t0, tol) {
-            return 0.0;
-        }
-        let shaft = self.occluders.shaft(sv, src.normal, tv, tgt.normal, ignore);
-        let occluded = !shaft.is_clear();
-        let touches = self.touches(src, sources.bounds[i], j);
-        let mut order = self.source_order(sources.bounds[i], j, touches);
-        if occluded && order <= self.opts.gauss_order {
-            // One rule for every pair a blocker may cut (touching pairs keep their own).
-            order = self.opts.occluded_order;
-        }
-        let mut sum = 0.0;
-        let mut add = |point: Vec3, weight: f64| {
-            let viewer = Viewer {
-                point,
-                normal: src.normal,
-                cone: None,
-            };
-            sum += weight
-                * if occluded {
-                    self.visible_kernel(viewer, j, &shaft, ignore)
-                } else {
-                    self.kernel(viewer, j)
-                };
-        };
-        let cut = any_in_front(sv, -tgt.normal, t0, tol) && src.area > 0.0;
-        // The target's plane cuts the source: only the part in front sees the target, and the
-        // integrand has a kink on the cut, so integrate over that part alone.
-        let front = cut.then(|| {
-            kernel::SmallPolygon::<{ kernel::PATCH_CLIPPED }>::from_slice(sv).clip(t0, tgt.normal)
-        });
-        let region = front.as_ref().map_or(sv.as_slice(), |f| f.corners());
-        if src.area > 0.0 && touches {
-            // The kernel is singular along the contact: cells that touch the target are split
-            // down to 1/2^TOUCHING_DEPTH of the source's side, so that a contact along part of
-            // an edge (a T-junction of the mesh) or at a corner is resolved as well as one
-            // along a whole edge.
-            self.integrate_toward(region, tv, tol, TOUCHING_DEPTH, &mut |p, w| {
-                add(p, w / src.area)
-            });
-        } else if let Some(front) = front {
-            let gl = self.gauss_rule(order);
-            quadrature::for_each_on_polygon(front.corners(), gl, |p, w| add(p, w / src.area));
-        } else {
-            for s in sources.samples.rule(i, order) {
-                add(s.point, s.weight);
-            }
-        }
-        sum
-    }
-
-    /// The Gauss–Legendre rule of `order` on [0, 1] (clamped to the orders prepared).
-    fn gauss_rule(&self, order: usize) -> &[(f64, f64)] {
-        let k = order.clamp(1, self.gauss.len().max(1)) - 1;
-        self.gauss.get(k).map_or(&[], Vec::as_slice)
-    }
-
-    /// Unoccluded differential form factor from the viewer to target `j` (exact).
-    fn kernel(&self, v: Viewer, j: usize) -> f64 {
-        let tgt = &self.targets.patches[j];
-        self.kernel_on(v, &tgt.polygon.vertices, tgt.normal)
-    }
-
-    /// Differential form factor from the viewer to the part of target `j` that the shaft's
-    /// occluders leave visible: exact ([`shadow`]), or the exact unoccluded kernel times a
-    /// visible fraction estimated with rays when the shaft overflowed or the visible part is too
-    /// fragmented for the fixed capacities.
-    fn visible_kernel(&self, v: Viewer, j: usize, shaft: &Shaft, ignore: &[usize]) -> f64 {
-        let tgt = &self.targets.patches[j];
-        let exact = self.occluders.shaft_outlines(shaft).and_then(|outlines| {
-            shadow::visible_sum(
-                v.point,
-                &tgt.polygon.vertices,
-                tgt.normal,
-                outlines,
-                |piece| self.kernel_on(v, piece, tgt.normal),
-            )
-        });
-        if let Some(k) = exact {
-            return k;
-        }
-        let k = self.kernel(v, j);
-        if k > 0.0 {
-            k * self.visible_fraction(v, j, shaft, ignore)
-        } else {
-            0.0
-        }
-    }
-
-    /// Unoccluded differential form factor from the viewer to a polygon (exact).
-    fn kernel_on(&self, v: Viewer, corners: &[Vec3], normal: Vec3) -> f64 {
-        match v.cone {
-            None => kernel::point_to_polygon(v.point, v.normal, corners, normal),
-            Some(cone) => {
-                kernel::point_to_polygon_in_cone(v.point, v.normal, cone, corners, normal)
-            }
-        }
-    }
-
-    /// Fraction of target `j`'s contribution seen from the viewer that is not blocked, by rays
-    /// refined at silhouettes ([`visibility`]).
-    fn visible_fraction(&self, v: Viewer, j: usize, shaft: &Shaft, ignore: &[usize]) -> f64 {
-        let tgt = &self.targets.patches[j];
-        let fraction = visibility::Param::of(tgt).and_then(|target| {
-            visibility::Query {
-                occluders: self.occluders,
-                shaft,
-                point: v.point,
-                normal: v.normal,
-                cone: v.cone,
-                target,
-                target_normal: tgt.normal,
-                ignore,
-                depth: self.opts.visibility_depth,
-                max_cell_share: self.opts.visibility_cell_share,
-            }
-            .visible_fraction()
-        });
-        // Other polygons, or only a grazing sliver in view: one ray to the centroid.
-        fraction.unwrap_or_else(|| {
-            if self
-                .occluders
-                .visible_in(shaft, v.point, tgt.centroid, ignore)
-            {
-                1.0
-            } else {
-                0.0
-            }
-        })
-    }
-}
-
-/// Do the polygons touch: a corner of one within `tol` metres of an edge of the other?
-fn touching(a: &[Vec3], b: &[Vec3], tol: f64) -> bool {
-    let near_edge = |p: Vec3, poly: &[Vec3]| {
-        (0..poly.len()).any(|k| {
-            let (s, e) = (poly[k], poly[(k + 1) % poly.len()]);
-            let d = e - s;
-            let len2 = d.dot(d);
-            let t = if len2 > 0.0 {
-                ((p - s).dot(d) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (p - (s + d * t)).length() <= tol
-        })
-    };
-    a.iter().any(|&p| near_edge(p, b)) || b.iter().any(|&p| near_edge(p, a))
-}
-
-/// Is some corner strictly (more than `tol` metres) in front of the plane through `origin` with
-/// unit normal `normal`?
-fn any_in_front(corners: &[Vec3], normal: Vec3, origin: Vec3, tol: f64) -> bool {
-    corners.iter().any(|&c| normal.dot(c - origin) > tol)
 }
 
 /// A progress bar on stderr, or a hidden one.

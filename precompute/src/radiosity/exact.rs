@@ -10,9 +10,9 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::{Accum, Mat, MatRef};
 
-/// Largest patch count [`ExactSolver::auto`] factorises by LU (`n²` f64 copy, `n³/3` flops):
-/// above it the reference comes from conjugate gradients on `G` itself.
-pub const EXACT_LU_MAX: usize = 3000;
+/// Largest patch count [`ExactSolver::auto`] factorises by LU: defined with the memory model
+/// of a build, which depends on it.
+pub use crate::memory::EXACT_LU_MAX;
 
 /// Relative residual the conjugate-gradient reference stops at: `‖r‖₂ ≤ CG_TOLERANCE ‖b‖₂` on
 /// the symmetric system `(B − G) M = B M0` (Jacobi-preconditioned, condition number at most

@@ -2,6 +2,7 @@
 //! channels, sensors and zones.
 
 use std::collections::BTreeMap;
+use std::ops::Range;
 use std::path::Path;
 
 use super::context::{unique, Ctx, MaterialInfo, RawSurface};
@@ -28,7 +29,87 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         unit: file.scene.unit.get_ref().metres(),
     };
     let max_edge = ctx.length(&file.scene.max_edge, "scene.max_edge")?;
-    let planarity = match &file.scene.planarity_tolerance {
+    let planarity = planarity(&ctx, &file)?;
+    let mut materials = scene_materials(&ctx, &file)?;
+    let mut geometry = geometry(&ctx, &file, &mut materials)?;
+    let (flip, split) = surface_settings(&ctx, &file, &mut geometry.raw)?;
+
+    // Faces wound against their neighbours, openings cut out of room faces, and the patch
+    // count checked against memory: all before meshing.
+    for range in &geometry.obj_surfaces {
+        winding::check(&geometry.raw[range.clone()], &flip[range.clone()])?;
+    }
+    let mut claimed = vec![false; geometry.raw.len()];
+    let standing: Vec<(String, Vec3, Vec3)> = geometry
+        .blocks
+        .iter()
+        .zip(&file.block)
+        .filter(|(_, def)| !def.get_ref().bottom)
+        .map(|(b, _)| b.clone())
+        .collect();
+    for (r, faces) in file.room.iter().zip(geometry.room_faces.clone()) {
+        openings::cut(
+            &ctx,
+            r,
+            faces,
+            &mut geometry.raw,
+            &flip,
+            &mut claimed,
+            &standing,
+        )?;
+    }
+    limits::check(
+        &geometry.raw,
+        ctx.bands,
+        max_edge,
+        &ctx.at(&file.scene.max_edge),
+    )?;
+
+    let raw = &geometry.raw;
+    let meshed = mesh(raw, &materials, &flip, &split, max_edge, planarity)?;
+    let emitters = channels::resolve(
+        &ctx,
+        &file.channel,
+        &meshed.surfaces,
+        &meshed.patches,
+        raw,
+        &meshed.material_emission,
+    )?;
+    let mut emission = Vec::with_capacity(meshed.patches.len());
+    let mut channel_of_patch = Vec::with_capacity(meshed.patches.len());
+    for p in &meshed.patches {
+        emission.push(emitters.surface_emission[p.surface].clone());
+        channel_of_patch.push(emitters.channel_of_surface[p.surface]);
+    }
+
+    let sensors = observers::sensors(&ctx, &file.sensor, &geometry.rooms, &geometry.blocks)?;
+    let zones = observers::zones(
+        &ctx,
+        &file.zone,
+        &geometry.rooms,
+        &meshed.surfaces,
+        max_edge,
+    )?;
+
+    Ok(Scene {
+        name: file.scene.name,
+        bands,
+        surfaces: meshed.surfaces,
+        patches: meshed.patches,
+        faces: meshed.faces,
+        reflectance: meshed.reflectance,
+        emission,
+        channel_of_patch,
+        channels: emitters.channels,
+        sensors,
+        zones,
+    })
+}
+
+/// The scene's planarity tolerance (a share of each face's diagonal), [`PLANARITY`] unless
+/// the file sets one.
+fn planarity(ctx: &Ctx, file: &SceneFile) -> Result<f64, SceneError> {
+    Ok(match &file.scene.planarity_tolerance {
         Some(p) if !(p.get_ref().is_finite() && *p.get_ref() >= 0.0) => {
             return Err(SceneError::OutOfRange {
                 at: ctx.at(p),
@@ -38,9 +119,15 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         }
         Some(p) => *p.get_ref(),
         None => PLANARITY,
-    };
+    })
+}
 
-    // Materials: the scene's own first; an MTL material of the same name does not replace it.
+/// The scene's own materials, checked, by name. They come first: an MTL material of the same
+/// name does not replace them.
+fn scene_materials(
+    ctx: &Ctx,
+    file: &SceneFile,
+) -> Result<BTreeMap<String, MaterialInfo>, SceneError> {
     let mut materials: BTreeMap<String, MaterialInfo> = BTreeMap::new();
     for (name, def) in &file.materials {
         let m = def.get_ref();
@@ -62,31 +149,53 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
             },
         );
     }
+    Ok(materials)
+}
 
-    // Geometry, in file order by kind.
+/// Every surface of the file before meshing, with the boxes the later checks need.
+struct Geometry {
+    /// Rooms, blocks, quads and OBJ groups, in that order.
+    raw: Vec<RawSurface>,
+    /// Each room's name and corners (m).
+    rooms: Vec<(String, Vec3, Vec3)>,
+    /// Each room's faces in `raw`.
+    room_faces: Vec<Range<usize>>,
+    /// Each block's name and corners (m).
+    blocks: Vec<(String, Vec3, Vec3)>,
+    /// Each OBJ file's surfaces in `raw`.
+    obj_surfaces: Vec<Range<usize>>,
+}
+
+/// The surfaces of the file, in file order by kind, with unique names; the OBJ files'
+/// materials are added to `materials` where the scene does not name them.
+fn geometry(
+    ctx: &Ctx,
+    file: &SceneFile,
+    materials: &mut BTreeMap<String, MaterialInfo>,
+) -> Result<Geometry, SceneError> {
     let mut raw: Vec<RawSurface> = Vec::new();
     let mut rooms: Vec<(String, Vec3, Vec3)> = Vec::new();
     let mut room_faces = Vec::new();
     for r in &file.room {
         let start = raw.len();
-        raw.extend(primitives::room(&ctx, r)?);
+        raw.extend(primitives::room(ctx, r)?);
         room_faces.push(start..raw.len());
-        let (lo, hi) = primitives::box_corners(&ctx, "room", &r.get_ref().min, &r.get_ref().max)?;
+        let (lo, hi) = primitives::box_corners(ctx, "room", &r.get_ref().min, &r.get_ref().max)?;
         rooms.push((r.get_ref().name.clone(), lo, hi));
     }
     let mut blocks: Vec<(String, Vec3, Vec3)> = Vec::new();
     for b in &file.block {
-        raw.extend(primitives::block(&ctx, b)?);
-        let (lo, hi) = primitives::box_corners(&ctx, "block", &b.get_ref().min, &b.get_ref().max)?;
-        primitives::check_inside_rooms(&ctx, b, lo, hi, &rooms)?;
+        raw.extend(primitives::block(ctx, b)?);
+        let (lo, hi) = primitives::box_corners(ctx, "block", &b.get_ref().min, &b.get_ref().max)?;
+        primitives::check_inside_rooms(ctx, b, lo, hi, &rooms)?;
         blocks.push((b.get_ref().name.clone(), lo, hi));
     }
     for q in &file.quad {
-        raw.push(primitives::quad(&ctx, q)?);
+        raw.push(primitives::quad(ctx, q)?);
     }
     let mut obj_surfaces = Vec::new();
     for o in &file.obj {
-        let content = obj::load(&ctx, o)?;
+        let content = obj::load(ctx, o)?;
         let start = raw.len();
         raw.extend(content.surfaces);
         obj_surfaces.push(start..raw.len());
@@ -98,8 +207,22 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         "surface",
         raw.iter().map(|s| (s.name.as_str(), s.at.clone())),
     )?;
+    Ok(Geometry {
+        raw,
+        rooms,
+        room_faces,
+        blocks,
+        obj_surfaces,
+    })
+}
 
-    // Per-surface settings.
+/// Applies the `[surfaces.NAME]` tables to `raw` (material, `max_edge`); returns which
+/// surfaces to flip and which to triangulate.
+fn surface_settings(
+    ctx: &Ctx,
+    file: &SceneFile,
+    raw: &mut [RawSurface],
+) -> Result<(Vec<bool>, Vec<bool>), SceneError> {
     let mut flip = vec![false; raw.len()];
     let mut split = vec![false; raw.len()];
     for (name, o) in &file.surfaces {
@@ -122,25 +245,30 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         flip[i] = o.flip;
         split[i] = o.triangulate;
     }
+    Ok((flip, split))
+}
 
-    // Faces wound against their neighbours, openings cut out of room faces, and the patch
-    // count checked against memory: all before meshing.
-    for range in obj_surfaces {
-        winding::check(&raw[range.clone()], &flip[range])?;
-    }
-    let mut claimed = vec![false; raw.len()];
-    let standing: Vec<(String, Vec3, Vec3)> = blocks
-        .iter()
-        .zip(&file.block)
-        .filter(|(_, def)| !def.get_ref().bottom)
-        .map(|(b, _)| b.clone())
-        .collect();
-    for (r, faces) in file.room.iter().zip(room_faces) {
-        openings::cut(&ctx, r, faces, &mut raw, &flip, &mut claimed, &standing)?;
-    }
-    limits::check(&raw, max_edge, &ctx.at(&file.scene.max_edge))?;
+/// The surfaces meshed into patches, with what each patch takes from its material.
+struct Meshed {
+    surfaces: Vec<Surface>,
+    patches: Vec<Patch>,
+    faces: Vec<Face>,
+    /// Per patch, per band.
+    reflectance: Vec<Vec<f64>>,
+    /// Per surface, its material's exitance per band (lux or W/m²).
+    material_emission: Vec<Vec<f64>>,
+}
 
-    // Materials resolved, faces checked and meshed.
+/// Resolves each surface's material, checks its faces (flat within `planarity`) and meshes
+/// them into patches no longer than `max_edge` (m) or the surface's own.
+fn mesh(
+    raw: &[RawSurface],
+    materials: &BTreeMap<String, MaterialInfo>,
+    flip: &[bool],
+    split: &[bool],
+    max_edge: f64,
+    planarity: f64,
+) -> Result<Meshed, SceneError> {
     let mut surfaces = Vec::with_capacity(raw.len());
     let mut patches = Vec::new();
     let mut faces = Vec::new();
@@ -204,35 +332,11 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         });
         material_emission.push(material.emission.clone());
     }
-    let emitters = channels::resolve(
-        &ctx,
-        &file.channel,
-        &surfaces,
-        &patches,
-        &raw,
-        &material_emission,
-    )?;
-    let mut emission = Vec::with_capacity(patches.len());
-    let mut channel_of_patch = Vec::with_capacity(patches.len());
-    for p in &patches {
-        emission.push(emitters.surface_emission[p.surface].clone());
-        channel_of_patch.push(emitters.channel_of_surface[p.surface]);
-    }
-
-    let sensors = observers::sensors(&ctx, &file.sensor, &rooms, &blocks)?;
-    let zones = observers::zones(&ctx, &file.zone, &rooms, &surfaces, max_edge)?;
-
-    Ok(Scene {
-        name: file.scene.name,
-        bands,
+    Ok(Meshed {
         surfaces,
         patches,
         faces,
         reflectance,
-        emission,
-        channel_of_patch,
-        channels: emitters.channels,
-        sensors,
-        zones,
+        material_emission,
     })
 }

@@ -42,58 +42,9 @@ pub(crate) fn resolve(
     let mut channels = Vec::with_capacity(defs.len());
     for (k, def) in defs.iter().enumerate() {
         let c = def.get_ref();
-        let what = format!("channel `{}`", c.name);
-        let mut members = match &c.surfaces {
-            Some(refs) => resolve_surfaces(ctx, surfaces, refs, &format!("{what}.surfaces"))?,
-            None => Vec::new(),
-        };
-        if let Some(mats) = &c.materials {
-            for m in mats.get_ref() {
-                let found: Vec<usize> = (0..surfaces.len())
-                    .filter(|&i| &surfaces[i].material == m)
-                    .collect();
-                if found.is_empty() {
-                    return Err(SceneError::Unknown {
-                        at: ctx.at(mats),
-                        field: format!("{what}.materials"),
-                        kind: "material (on any surface)",
-                        name: m.clone(),
-                    });
-                }
-                for i in found {
-                    if !members.contains(&i) {
-                        members.push(i);
-                    }
-                }
-            }
-        }
-        if members.is_empty() {
-            return Err(SceneError::EmptyChannel {
-                at: ctx.at(def),
-                channel: c.name.clone(),
-                message: "names no surface: give `surfaces` or `materials`".into(),
-            });
-        }
-        let exitance = match (&c.exitance, &c.flux) {
-            (Some(e), Some(_)) => {
-                return Err(SceneError::Invalid {
-                    at: ctx.at(e),
-                    field: format!("{what}.exitance"),
-                    message: "give `exitance` or `flux`, not both".into(),
-                })
-            }
-            (Some(e), None) => {
-                let field = format!("{what}.exitance");
-                Some(ctx.check_exitance(ctx.per_band(e, &field)?, &ctx.at(e), &field)?)
-            }
-            (None, Some(f)) => {
-                let field = format!("{what}.flux");
-                let flux = ctx.check_exitance(ctx.per_band(f, &field)?, &ctx.at(f), &field)?;
-                let area: f64 = members.iter().map(|&i| area_of(i)).sum();
-                Some(flux.iter().map(|f| f / area).collect())
-            }
-            (None, None) => None,
-        };
+        let members = members(ctx, def, surfaces)?;
+        let area: f64 = members.iter().map(|&i| area_of(i)).sum();
+        let exitance = exitance(ctx, c, area)?;
         for &i in &members {
             if let Some(previous) = channel_of_surface[i] {
                 return Err(SceneError::Emitter {
@@ -112,7 +63,6 @@ pub(crate) fn resolve(
                 .clone()
                 .unwrap_or_else(|| material_emission[i].clone());
         }
-        let area: f64 = members.iter().map(|&i| area_of(i)).sum();
         let mean: Vec<f64> = (0..ctx.bands)
             .map(|b| {
                 members
@@ -137,6 +87,89 @@ pub(crate) fn resolve(
             exitance: mean,
         });
     }
+    check_driven(surfaces, raw, &channel_of_surface, material_emission)?;
+    Ok(Emitters {
+        channels,
+        channel_of_surface,
+        surface_emission,
+    })
+}
+
+/// The surfaces channel `def` drives: those it names, then those of the materials it names;
+/// an error if that is none.
+fn members(
+    ctx: &Ctx,
+    def: &Spanned<ChannelDef>,
+    surfaces: &[Surface],
+) -> Result<Vec<usize>, SceneError> {
+    let c = def.get_ref();
+    let what = format!("channel `{}`", c.name);
+    let mut members = match &c.surfaces {
+        Some(refs) => resolve_surfaces(ctx, surfaces, refs, &format!("{what}.surfaces"))?,
+        None => Vec::new(),
+    };
+    if let Some(mats) = &c.materials {
+        for m in mats.get_ref() {
+            let found: Vec<usize> = (0..surfaces.len())
+                .filter(|&i| &surfaces[i].material == m)
+                .collect();
+            if found.is_empty() {
+                return Err(SceneError::Unknown {
+                    at: ctx.at(mats),
+                    field: format!("{what}.materials"),
+                    kind: "material (on any surface)",
+                    name: m.clone(),
+                });
+            }
+            for i in found {
+                if !members.contains(&i) {
+                    members.push(i);
+                }
+            }
+        }
+    }
+    if members.is_empty() {
+        return Err(SceneError::EmptyChannel {
+            at: ctx.at(def),
+            channel: c.name.clone(),
+            message: "names no surface: give `surfaces` or `materials`".into(),
+        });
+    }
+    Ok(members)
+}
+
+/// The exitance channel `c` gives its surfaces at level 1 (lux or W/m² per band): as written,
+/// or its flux over their `area` (m²); `None` when it leaves them their materials'.
+fn exitance(ctx: &Ctx, c: &ChannelDef, area: f64) -> Result<Option<Vec<f64>>, SceneError> {
+    let what = format!("channel `{}`", c.name);
+    Ok(match (&c.exitance, &c.flux) {
+        (Some(e), Some(_)) => {
+            return Err(SceneError::Invalid {
+                at: ctx.at(e),
+                field: format!("{what}.exitance"),
+                message: "give `exitance` or `flux`, not both".into(),
+            })
+        }
+        (Some(e), None) => {
+            let field = format!("{what}.exitance");
+            Some(ctx.check_exitance(ctx.per_band(e, &field)?, &ctx.at(e), &field)?)
+        }
+        (None, Some(f)) => {
+            let field = format!("{what}.flux");
+            let flux = ctx.check_exitance(ctx.per_band(f, &field)?, &ctx.at(f), &field)?;
+            Some(flux.iter().map(|f| f / area).collect())
+        }
+        (None, None) => None,
+    })
+}
+
+/// Every surface whose material emits is driven by a channel.
+fn check_driven(
+    surfaces: &[Surface],
+    raw: &[RawSurface],
+    channel_of_surface: &[Option<usize>],
+    material_emission: &[Vec<f64>],
+) -> Result<(), SceneError> {
     for (i, s) in surfaces.iter().enumerate() {
         if channel_of_surface[i].is_none() && material_emission[i].iter().any(|&x| x > 0.0) {
             return Err(SceneError::Emitter {
@@ -149,9 +182,5 @@ pub(crate) fn resolve(
             });
         }
     }
-    Ok(Emitters {
-        channels,
-        channel_of_surface,
-        surface_emission,
-    })
+    Ok(())
 }

@@ -177,12 +177,13 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
-    /// Meshing would make more patches than this machine's memory can hold; refused before
-    /// meshing.
+    /// Meshing would make more patches than a build on this machine can hold
+    /// ([`crate::memory::build_bytes`]); refused before meshing.
     #[error(
         "{at}: {field}: meshing would make about {patches:.3e} patches; the form factors and \
-         the solve need about {needed:.3e} bytes ({patches:.3e}² × 8 bytes × 3 matrices), more \
-         than this machine's {available:.3e} bytes of memory; raise `max_edge`"
+         the solve need about {needed:.3e} bytes (dense {patches:.3e} × {patches:.3e} matrices \
+         of 8-byte numbers), more than the {available:.3e} bytes a build may use on this \
+         machine; raise `max_edge`"
     )]
     TooManyPatches {
         /// Where the scene's `max_edge` was written.
@@ -193,7 +194,7 @@ pub enum SceneError {
         patches: f64,
         /// Estimated memory, bytes.
         needed: f64,
-        /// Physical memory, bytes.
+        /// Memory a build may use ([`crate::memory::budget_bytes`]), bytes.
         available: f64,
     },
 }

@@ -1,31 +1,24 @@
 //! Refusing scenes too large for the machine before meshing them.
 //!
-//! The radiosity system is dense: the form factors `G` (n × n f64), the exact solve's LU
-//! factors and the eigensolver's workspace are each about n² × 8 bytes. A scene whose
-//! estimated patch count needs more than the machine's physical memory for three such
-//! matrices is refused with the estimate, in milliseconds, instead of running out of memory
-//! while meshing or computing form factors.
+//! A scene whose estimated patch count would make a build hold more than the machine can
+//! spare ([`crate::memory::build_bytes`] against [`crate::memory::budget_bytes`], taking
+//! every patch as reflecting: reflectance is resolved only while meshing) is refused with
+//! the estimate, in milliseconds, instead of running out of memory while meshing or
+//! computing form factors.
 
 use super::context::RawSurface;
 use super::error::{Location, SceneError};
 use super::mesh::estimate;
+use crate::memory;
 
-/// Dense n × n matrices of f64 that a build holds at once (form factors, LU or eigenvector
-/// workspace, and a copy while symmetrising).
-pub(crate) const DENSE_MATRICES: f64 = 3.0;
-
-/// Bytes per matrix entry (f64).
-const ENTRY_BYTES: f64 = 8.0;
-
-/// Memory assumed when the platform does not tell (bytes).
-const ASSUMED_MEMORY: f64 = 8e9;
-
-/// Checks the patch count `surfaces` would mesh to against physical memory.
+/// Checks the patch count `surfaces` would mesh to, in `bands` bands, against the memory a
+/// build may use.
 ///
 /// `default_edge` is the scene's `max_edge` (m) and `default_at` where it was written; the
 /// error names the setting behind the largest share of the patches.
 pub(crate) fn check(
     surfaces: &[RawSurface],
+    bands: usize,
     default_edge: f64,
     default_at: &Location,
 ) -> Result<(), SceneError> {
@@ -39,8 +32,8 @@ pub(crate) fn check(
             largest = Some((count, s));
         }
     }
-    let needed = total * total * ENTRY_BYTES * DENSE_MATRICES;
-    let available = physical_memory_bytes();
+    let needed = memory::build_bytes(total, &vec![total; bands]);
+    let available = memory::budget_bytes();
     if needed <= available {
         return Ok(());
     }
@@ -57,17 +50,4 @@ pub(crate) fn check(
         needed,
         available,
     })
-}
-
-/// Physical memory in bytes (Linux `/proc/meminfo`; [`ASSUMED_MEMORY`] elsewhere).
-fn physical_memory_bytes() -> f64 {
-    std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("MemTotal:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<f64>().ok())
-        })
-        .map_or(ASSUMED_MEMORY, |kb| kb * 1024.0)
 }

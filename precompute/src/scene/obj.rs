@@ -30,19 +30,57 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         .parent()
         .unwrap_or(Path::new(""))
         .join(o.file.get_ref());
-    let text = std::fs::read_to_string(&path).map_err(|source| match source.kind() {
+    let Loaded {
+        models,
+        materials,
+        mtls,
+    } = read(o, &at, &path)?;
+    // Materials are located in their MTL file when there is one; tobj does not say which
+    // file a material came from when there are several.
+    let obj_at = Location::file(&path);
+    let mtl_at = match mtls.as_slice() {
+        [one] => Location::file(one),
+        _ => obj_at.clone(),
+    };
+    let infos = material_infos(ctx, &materials, &mtl_at)?;
+    let transform = Transform::new(ctx, o)?;
+    let max_edge = ctx.optional_length(o.max_edge.as_ref(), "obj.max_edge")?;
+    let placed = Placement {
+        transform,
+        max_edge,
+        material_at: at,
+        at: obj_at,
+    };
+    Ok(ObjContent {
+        surfaces: surfaces(o, &models, &materials, &placed),
+        materials: infos,
+    })
+}
+
+/// An OBJ file as tobj reads it.
+struct Loaded {
+    models: Vec<tobj::Model>,
+    materials: Vec<tobj::Material>,
+    /// Its MTL files.
+    mtls: Vec<PathBuf>,
+}
+
+/// The OBJ file at `path` (named by `o`, written at `at`) and its MTL files, every file
+/// checked first so that an error names its line.
+fn read(o: &ObjDef, at: &Location, path: &Path) -> Result<Loaded, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|source| match source.kind() {
         std::io::ErrorKind::NotFound => SceneError::MissingFile {
             at: at.clone(),
             field: "obj.file".into(),
-            path: path.clone(),
+            path: path.to_path_buf(),
         },
         _ => SceneError::Read {
-            path: path.clone(),
+            path: path.to_path_buf(),
             reason: source,
         },
     })?;
     // tobj reports a missing MTL without its name: look for it first, so the error can say.
-    let mtls = mtl_paths(&path, &text);
+    let mtls = mtl_paths(path, &text);
     for mtl in mtls.iter().cloned() {
         if !mtl.is_file() {
             return Err(SceneError::MissingFile {
@@ -72,7 +110,7 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         message,
     };
     if let Some(problem) = obj_problem(&text) {
-        return Err(located(&path, problem));
+        return Err(located(path, problem));
     }
     for mtl in &mtls {
         if let Some(problem) = std::fs::read_to_string(mtl)
@@ -82,24 +120,30 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
             return Err(located(mtl, problem));
         }
     }
-    let (models, materials) = tobj::load_obj(&path, &options).map_err(|e| obj_error("OBJ", e))?;
+    let (models, materials) = tobj::load_obj(path, &options).map_err(|e| obj_error("OBJ", e))?;
     let materials = materials.map_err(|e| obj_error("MTL", e))?;
+    Ok(Loaded {
+        models,
+        materials,
+        mtls,
+    })
+}
 
-    // Materials are located in their MTL file when there is one; tobj does not say which
-    // file a material came from when there are several.
-    let obj_at = Location::file(&path);
-    let mtl_at = match mtls.as_slice() {
-        [one] => Location::file(one),
-        _ => obj_at.clone(),
-    };
+/// The MTL materials in the scene's bands: `Kd` as reflectance, `Ke` as exitance, checked as
+/// written (RGB) and located at `mtl_at`.
+fn material_infos(
+    ctx: &Ctx,
+    materials: &[tobj::Material],
+    mtl_at: &Location,
+) -> Result<Vec<(String, MaterialInfo)>, SceneError> {
     let mut infos = Vec::with_capacity(materials.len());
-    for m in &materials {
+    for m in materials {
         let field = format!("MTL material `{}`", m.name);
         let kd = m.diffuse.unwrap_or([0.0; 3]);
         let ke = m.emissive.unwrap_or([0.0; 3]);
         // Checked as written (RGB), before a photopic scene reduces them to one band.
-        let kd = ctx.check_reflectance(kd.to_vec(), &mtl_at, &format!("{field} Kd"))?;
-        let ke = ctx.check_exitance(ke.to_vec(), &mtl_at, &format!("{field} Ke"))?;
+        let kd = ctx.check_reflectance(kd.to_vec(), mtl_at, &format!("{field} Kd"))?;
+        let ke = ctx.check_exitance(ke.to_vec(), mtl_at, &format!("{field} Ke"))?;
         let reflectance = ctx.bands_of_rgb([kd[0], kd[1], kd[2]]);
         let emission = ctx.bands_of_rgb([ke[0], ke[1], ke[2]]);
         infos.push((
@@ -110,12 +154,33 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
             },
         ));
     }
+    Ok(infos)
+}
 
-    let transform = Transform::new(ctx, o)?;
+/// What every surface of one OBJ file shares.
+struct Placement {
+    /// File coordinates to the scene's, metres.
+    transform: Transform,
+    /// `obj.max_edge`, metres.
+    max_edge: Option<f64>,
+    /// Where the `[[obj]]` entry names the file (for unknown-material errors).
+    material_at: Location,
+    /// The OBJ file itself.
+    at: Location,
+}
+
+/// The surfaces of the models, in the order they first appear: one per group (or material,
+/// with `name_by = "material"`); a group holding several materials gets one surface per
+/// material, named `<group>.<material>`.
+fn surfaces(
+    o: &ObjDef,
+    models: &[tobj::Model],
+    materials: &[tobj::Material],
+    placed: &Placement,
+) -> Vec<RawSurface> {
     let material_name =
         |id: Option<usize>| id.and_then(|i| materials.get(i)).map(|m| m.name.clone());
-    // (key, material) per model; a group holding several materials gets one surface per
-    // material, named `<group>.<material>`.
+    // (key, material) per model.
     let keys: Vec<(String, Option<String>)> = models
         .iter()
         .map(|m| {
@@ -127,7 +192,6 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
             (key, mat)
         })
         .collect();
-    let max_edge = ctx.optional_length(o.max_edge.as_ref(), "obj.max_edge")?;
     let mut surfaces: Vec<RawSurface> = Vec::new();
     let mut seen: Vec<HashSet<Vec<[u64; 3]>>> = Vec::new();
     for (model, (key, mat)) in models.iter().zip(&keys) {
@@ -145,35 +209,16 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
                 surfaces.push(RawSurface {
                     name,
                     material: mat.clone().unwrap_or_default(),
-                    material_at: at.clone(),
+                    material_at: placed.material_at.clone(),
                     faces: Vec::new(),
-                    max_edge,
-                    at: obj_at.clone(),
+                    max_edge: placed.max_edge,
+                    at: placed.at.clone(),
                 });
                 seen.push(HashSet::new());
                 surfaces.len() - 1
             }
         };
-        let mesh = &model.mesh;
-        let mut start = 0usize;
-        let arities: Vec<usize> = if mesh.face_arities.is_empty() {
-            vec![3; mesh.indices.len() / 3]
-        } else {
-            mesh.face_arities.iter().map(|&a| a as usize).collect()
-        };
-        for arity in arities {
-            let corners: Vec<Vec3> = mesh
-                .indices
-                .get(start..start + arity)
-                .unwrap_or(&[])
-                .iter()
-                .map(|&i| {
-                    let i = i as usize * 3;
-                    let c = mesh.positions.get(i..i + 3).unwrap_or(&[f64::NAN; 3]);
-                    transform.apply(Vec3::new(c[0], c[1], c[2]))
-                })
-                .collect();
-            start += arity;
+        for corners in faces(&model.mesh, &placed.transform) {
             if o.drop_duplicate_faces {
                 let mut key: Vec<[u64; 3]> = corners
                     .iter()
@@ -187,10 +232,34 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
             surfaces[index].faces.push(corners);
         }
     }
-    Ok(ObjContent {
-        surfaces,
-        materials: infos,
-    })
+    surfaces
+}
+
+/// The faces of one mesh, corners in scene coordinates (metres).
+fn faces(mesh: &tobj::Mesh, transform: &Transform) -> Vec<Vec<Vec3>> {
+    let mut start = 0usize;
+    let arities: Vec<usize> = if mesh.face_arities.is_empty() {
+        vec![3; mesh.indices.len() / 3]
+    } else {
+        mesh.face_arities.iter().map(|&a| a as usize).collect()
+    };
+    let mut out = Vec::with_capacity(arities.len());
+    for arity in arities {
+        let corners: Vec<Vec3> = mesh
+            .indices
+            .get(start..start + arity)
+            .unwrap_or(&[])
+            .iter()
+            .map(|&i| {
+                let i = i as usize * 3;
+                let c = mesh.positions.get(i..i + 3).unwrap_or(&[f64::NAN; 3]);
+                transform.apply(Vec3::new(c[0], c[1], c[2]))
+            })
+            .collect();
+        start += arity;
+        out.push(corners);
+    }
+    out
 }
 
 /// The first malformed line of an OBJ file (1-based) and what is wrong with it: a vertex

@@ -14,7 +14,7 @@ use std::ops::Range;
 use toml::Spanned;
 
 use super::context::{Ctx, RawSurface};
-use super::error::SceneError;
+use super::error::{Location, SceneError};
 use super::file::RoomDef;
 use crate::geometry::{Polygon, Vec3};
 
@@ -89,35 +89,93 @@ pub(crate) fn cut(
     let r = def.get_ref();
     let empty = Vec::new();
     let list = r.openings.as_ref().map_or(&empty, |l| l.get_ref());
-    let field = format!("room `{}`.openings", r.name);
-    let at = r
-        .openings
-        .as_ref()
-        .map_or_else(|| ctx.at(def), |l| ctx.at(l));
-    let invalid = |message: String| SceneError::Invalid {
-        at: at.clone(),
-        field: field.clone(),
-        message,
-    };
     let frames: Vec<Frame> = faces
         .clone()
         .map(|f| Frame::new(&raw[f].faces[0]))
         .collect();
     let diagonal = (frames[0].ab + frames[0].ad + frames[2].ad).length();
-    let tol = CONTACT_TOLERANCE * diagonal;
-
+    let room = Room {
+        at: r
+            .openings
+            .as_ref()
+            .map_or_else(|| ctx.at(def), |l| ctx.at(l)),
+        field: format!("room `{}`.openings", r.name),
+        faces,
+        frames,
+        tol: CONTACT_TOLERANCE * diagonal,
+    };
     let mut placed: Vec<Placed> = Vec::new();
     for name in list {
-        let Some(index) = raw.iter().position(|s| &s.name == name) else {
+        let opening = room.place(name, raw, flip, claimed, &placed)?;
+        placed.push(opening);
+    }
+    room.place_footprints(standing, raw, &mut placed)?;
+    for k in 0..room.frames.len() {
+        room.cut_face(k, raw, &mut placed)?;
+    }
+    Ok(())
+}
+
+/// One room's faces and where its `openings` list was written, for the messages.
+struct Room {
+    at: Location,
+    field: String,
+    /// The room's six surfaces in the raw surfaces.
+    faces: Range<usize>,
+    /// Their rectangles.
+    frames: Vec<Frame>,
+    /// [`CONTACT_TOLERANCE`] of the room's diagonal, metres.
+    tol: f64,
+}
+
+impl Room {
+    /// An error about the room's `openings`.
+    fn invalid(&self, message: String) -> SceneError {
+        SceneError::Invalid {
+            at: self.at.clone(),
+            field: self.field.clone(),
+            message,
+        }
+    }
+
+    /// The face whose plane holds every corner of `quad` most nearly, and the farthest
+    /// corner's distance from it (m).
+    fn nearest_face(&self, quad: &[Vec3]) -> (usize, f64) {
+        let distance = |f: &Frame| {
+            quad.iter()
+                .map(|&p| (p - f.a).dot(f.normal).abs())
+                .fold(0.0, f64::max)
+        };
+        self.frames
+            .iter()
+            .enumerate()
+            .map(|(k, f)| (k, distance(f)))
+            .fold(
+                (0, f64::INFINITY),
+                |best, x| if x.1 < best.1 { x } else { best },
+            )
+    }
+
+    /// Places the opening `name` (a surface of `raw`, marked in `claimed`) in the face it lies
+    /// in, checked against the openings `placed` before it.
+    fn place(
+        &self,
+        name: &str,
+        raw: &[RawSurface],
+        flip: &[bool],
+        claimed: &mut [bool],
+        placed: &[Placed],
+    ) -> Result<Placed, SceneError> {
+        let Some(index) = raw.iter().position(|s| s.name == name) else {
             return Err(SceneError::Unknown {
-                at: at.clone(),
-                field: field.clone(),
+                at: self.at.clone(),
+                field: self.field.clone(),
                 kind: "surface",
-                name: name.clone(),
+                name: name.to_owned(),
             });
         };
-        if faces.contains(&index) || claimed[index] {
-            return Err(invalid(format!(
+        if self.faces.contains(&index) || claimed[index] {
+            return Err(self.invalid(format!(
                 "`{name}` cannot be an opening here: it is a face of a room or already an opening"
             )));
         }
@@ -125,38 +183,67 @@ pub(crate) fn cut(
         let quad = match raw[index].faces.as_slice() {
             [q] if q.len() == 4 => q.clone(),
             _ => {
-                return Err(invalid(format!(
+                return Err(self.invalid(format!(
                     "opening `{name}` must be one quadrilateral (a [[quad]]), found {} face(s)",
                     raw[index].faces.len()
                 )))
             }
         };
-        // The face whose plane holds every corner.
-        let distance = |f: &Frame| {
-            quad.iter()
-                .map(|&p| (p - f.a).dot(f.normal).abs())
-                .fold(0.0, f64::max)
-        };
-        let (face, nearest) = frames
-            .iter()
-            .enumerate()
-            .map(|(k, f)| (k, distance(f)))
-            .fold(
-                (0, f64::INFINITY),
-                |best, x| if x.1 < best.1 { x } else { best },
-            );
-        let face_name = &raw[faces.start + face].name;
+        let (face, nearest) = self.nearest_face(&quad);
+        let face_name = &raw[self.faces.start + face].name;
+        let tol = self.tol;
         if nearest > tol {
-            return Err(invalid(format!(
+            return Err(self.invalid(format!(
                 "opening `{name}` is not in a face of the room: its corners are up to \
                  {nearest:.3e} m from the plane of the nearest face `{face_name}` (tolerance \
                  {tol:.1e} m)"
             )));
         }
-        let frame = &frames[face];
+        let frame = &self.frames[face];
+        let mut opening = self.rectangle(name, index, face, face_name, &quad)?;
+        let mut winding = quad.clone();
+        if flip[index] {
+            winding.reverse();
+        }
+        let facing = Polygon::new(winding).normal().dot(frame.normal);
+        if facing <= 0.0 {
+            return Err(self.invalid(format!(
+                "opening `{name}` faces out of the room (its normal is opposite to the inward \
+                 normal of face `{face_name}`): list its corners in the opposite order"
+            )));
+        }
+        opening.s = [opening.s[0].max(0.0), opening.s[1].min(1.0)];
+        opening.t = [opening.t[0].max(0.0), opening.t[1].min(1.0)];
+        let (s, t) = (opening.s, opening.t);
+        let (tol_s, tol_t) = (tol / frame.ab.length(), tol / frame.ad.length());
+        for other in placed.iter().filter(|o| o.face == face) {
+            let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
+            let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
+            if overlap_s > tol_s && overlap_t > tol_t {
+                return Err(self.invalid(format!(
+                    "openings `{}` and `{name}` overlap in face `{face_name}`",
+                    other.surface.map_or("?", |o| raw[o].name.as_str())
+                )));
+            }
+        }
+        Ok(opening)
+    }
+
+    /// The opening `name` (surface `index` of the raw surfaces, corners `quad`) in face `face`
+    /// (named `face_name`), before clamping to the face: an error unless it is a rectangle of
+    /// non-zero width, with sides along the face's edges, inside the face.
+    fn rectangle(
+        &self,
+        name: &str,
+        index: usize,
+        face: usize,
+        face_name: &str,
+        quad: &[Vec3],
+    ) -> Result<Placed, SceneError> {
+        let frame = &self.frames[face];
         let st: Vec<(f64, f64)> = quad.iter().map(|&p| frame.params(p)).collect();
-        let tol_s = tol / frame.ab.length();
-        let tol_t = tol / frame.ad.length();
+        let tol_s = self.tol / frame.ab.length();
+        let tol_t = self.tol / frame.ad.length();
         let s = [
             st.iter().map(|p| p.0).fold(f64::INFINITY, f64::min),
             st.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max),
@@ -172,7 +259,7 @@ pub(crate) fn cut(
             let on_s = us || (cs - s[0]).abs() <= tol_s;
             let on_t = ut || (ct - t[0]).abs() <= tol_t;
             if !(on_s && on_t) {
-                return Err(invalid(format!(
+                return Err(self.invalid(format!(
                     "opening `{name}` is not a rectangle with sides along the edges of face \
                      `{face_name}`"
                 )));
@@ -183,90 +270,84 @@ pub(crate) fn cut(
         kinds.sort_unstable();
         kinds.dedup();
         if kinds.len() != 4 || s[1] - s[0] <= tol_s || t[1] - t[0] <= tol_t {
-            return Err(invalid(format!(
+            return Err(self.invalid(format!(
                 "opening `{name}` is not a rectangle with sides along the edges of face \
                  `{face_name}` (or has zero width)"
             )));
         }
         if s[0] < -tol_s || t[0] < -tol_t || s[1] > 1.0 + tol_s || t[1] > 1.0 + tol_t {
-            return Err(invalid(format!(
+            return Err(self.invalid(format!(
                 "opening `{name}` reaches outside face `{face_name}`"
             )));
         }
-        let mut winding = quad.clone();
-        if flip[index] {
-            winding.reverse();
-        }
-        let facing = Polygon::new(winding).normal().dot(frame.normal);
-        if facing <= 0.0 {
-            return Err(invalid(format!(
-                "opening `{name}` faces out of the room (its normal is opposite to the inward \
-                 normal of face `{face_name}`): list its corners in the opposite order"
-            )));
-        }
-        let s = [s[0].max(0.0), s[1].min(1.0)];
-        let t = [t[0].max(0.0), t[1].min(1.0)];
-        for other in placed.iter().filter(|o| o.face == face) {
-            let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
-            let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
-            if overlap_s > tol_s && overlap_t > tol_t {
-                return Err(invalid(format!(
-                    "openings `{}` and `{name}` overlap in face `{face_name}`",
-                    other.surface.map_or("?", |o| raw[o].name.as_str())
-                )));
-            }
-        }
-        placed.push(Placed {
+        Ok(Placed {
             surface: Some(index),
             face,
             s,
             t,
             upper,
-        });
+        })
     }
 
-    // Blocks standing on the floor without a bottom face hide the floor under them: cut their
-    // footprints out too (they may overlap each other, not an opening).
-    let floor = &frames[0];
-    for (name, lo, hi) in standing {
-        if (lo.z - floor.a.z).abs() > tol {
-            continue;
-        }
-        let (s0, t0) = floor.params(*lo);
-        let (s1, t1) = floor.params(*hi);
-        let s = [s0.min(s1).max(0.0), s0.max(s1).min(1.0)];
-        let t = [t0.min(t1).max(0.0), t0.max(t1).min(1.0)];
-        if s[1] <= s[0] || t[1] <= t[0] {
-            continue;
-        }
-        let (tol_s, tol_t) = (tol / floor.ab.length(), tol / floor.ad.length());
-        for other in placed.iter().filter(|o| o.face == 0) {
-            let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
-            let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
-            if let (Some(o), true) = (other.surface, overlap_s > tol_s && overlap_t > tol_t) {
-                return Err(invalid(format!(
-                    "opening `{}` lies under block `{name}`, which stands on the floor",
-                    raw[o].name
-                )));
+    /// Blocks standing on the floor without a bottom face hide the floor under them: their
+    /// footprints are cut out too (they may overlap each other, not an opening).
+    fn place_footprints(
+        &self,
+        standing: &[(String, Vec3, Vec3)],
+        raw: &[RawSurface],
+        placed: &mut Vec<Placed>,
+    ) -> Result<(), SceneError> {
+        let tol = self.tol;
+        let floor = &self.frames[0];
+        for (name, lo, hi) in standing {
+            if (lo.z - floor.a.z).abs() > tol {
+                continue;
             }
+            let (s0, t0) = floor.params(*lo);
+            let (s1, t1) = floor.params(*hi);
+            let s = [s0.min(s1).max(0.0), s0.max(s1).min(1.0)];
+            let t = [t0.min(t1).max(0.0), t0.max(t1).min(1.0)];
+            if s[1] <= s[0] || t[1] <= t[0] {
+                continue;
+            }
+            let (tol_s, tol_t) = (tol / floor.ab.length(), tol / floor.ad.length());
+            for other in placed.iter().filter(|o| o.face == 0) {
+                let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
+                let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
+                if let (Some(o), true) = (other.surface, overlap_s > tol_s && overlap_t > tol_t) {
+                    return Err(self.invalid(format!(
+                        "opening `{}` lies under block `{name}`, which stands on the floor",
+                        raw[o].name
+                    )));
+                }
+            }
+            placed.push(Placed {
+                surface: None,
+                face: 0,
+                s,
+                t,
+                upper: Vec::new(),
+            });
         }
-        placed.push(Placed {
-            surface: None,
-            face: 0,
-            s,
-            t,
-            upper: Vec::new(),
-        });
+        Ok(())
     }
 
-    for (k, frame) in frames.iter().enumerate() {
+    /// Cuts face `k` into the grid of its openings' edges, snaps the openings onto it and
+    /// keeps the cells no opening covers as the face's new faces.
+    fn cut_face(
+        &self,
+        k: usize,
+        raw: &mut [RawSurface],
+        placed: &mut [Placed],
+    ) -> Result<(), SceneError> {
+        let frame = &self.frames[k];
         let mine: Vec<&mut Placed> = placed.iter_mut().filter(|p| p.face == k).collect();
         if mine.is_empty() {
-            continue;
+            return Ok(());
         }
-        let face = faces.start + k;
-        let tol_s = tol / frame.ab.length();
-        let tol_t = tol / frame.ad.length();
+        let face = self.faces.start + k;
+        let tol_s = self.tol / frame.ab.length();
+        let tol_t = self.tol / frame.ad.length();
         let grid_s = grid(mine.iter().flat_map(|p| p.s), tol_s);
         let grid_t = grid(mine.iter().flat_map(|p| p.t), tol_t);
         let mut mine = mine;
@@ -301,15 +382,15 @@ pub(crate) fn cut(
             }
         }
         if cells.is_empty() {
-            return Err(invalid(format!(
+            return Err(self.invalid(format!(
                 "the openings (or blocks standing on it) cover the whole face `{}`; leave them \
                  out and give the face their material in [surfaces] instead",
                 raw[face].name
             )));
         }
         raw[face].faces = cells;
+        Ok(())
     }
-    Ok(())
 }
 
 /// The sorted cut positions in [0, 1]: both ends and every opening edge, positions closer

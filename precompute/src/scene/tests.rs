@@ -1,9 +1,14 @@
-//! Scene tests: the two example scenes, and one test per validation error checking that the
-//! message names the file and the field or line.
+//! Scene tests: the two example scenes and the documentation's example here; one test per
+//! validation error checking that the message names the file and the field or line
+//! (`errors`, `obj`); openings cut out of room faces (`openings`).
 
 use std::path::{Path, PathBuf};
 
 use super::*;
+
+mod errors;
+mod obj;
+mod openings;
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -269,7 +274,28 @@ fn scene_meshing_is_deterministic() {
     assert_eq!(a, b);
 }
 
-// ---- validation errors ----------------------------------------------------------------------
+#[test]
+fn scene_docs_example_loads() {
+    let docs = include_str!("../../../docs/scene.md");
+    let start = docs.find("```toml\n").map_or(0, |i| i + 8);
+    let end = docs[start..].find("```").map_or(docs.len(), |i| start + i);
+    let example = &docs[start..end];
+    // The OBJ part names a file that is not in the repository: it must be reported as missing,
+    // and the rest must load.
+    let m = match parse(example, Path::new("docs/scene.toml")) {
+        Ok(_) => panic!("chair.obj does not exist"),
+        Err(e) => e.to_string(),
+    };
+    assert!(m.contains("chair.obj") && m.contains("not found"), "{m}");
+    let obj = example.find("[[obj]]").unwrap_or(0);
+    let channel = example.find("[[channel]]").unwrap_or(0);
+    let without_obj = format!("{}{}", &example[..obj], &example[channel..]);
+    let scene = parse(&without_obj, Path::new("docs/scene.toml")).expect("docs example loads");
+    assert_eq!(scene.channels.len(), 2);
+    assert_eq!(scene.zones.len(), 2);
+}
+
+// ---- scene texts and helpers of the validation tests -------------------------------------
 
 const BASE: &str = r#"[scene]
 name = "t"
@@ -317,221 +343,6 @@ fn assert_names(message: &str, parts: &[&str]) {
     }
 }
 
-#[test]
-fn scene_base_is_valid() {
-    let scene = parse(BASE, Path::new(FILE)).expect("base scene is valid");
-    assert_eq!(scene.patches.len(), 4);
-}
-
-#[test]
-fn scene_error_unknown_field_names_line() {
-    let extra =
-        "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 1]\nhalf_angel = 30\n";
-    let m = error(extra);
-    assert_names(
-        &m,
-        &[&format!(":{}:", line_of(extra, "half_angel")), "half_angel"],
-    );
-}
-
-#[test]
-fn scene_error_reflectance_out_of_range() {
-    let m = error_in(&BASE.replace(
-        "white = { reflectance = 0.5 }",
-        "white = { reflectance = 1.0 }",
-    ));
-    assert_names(&m, &["materials.white.reflectance", ":8:"]);
-    let m = error_in(&BASE.replace(
-        "white = { reflectance = 0.5 }",
-        "white = { reflectance = -0.1 }",
-    ));
-    assert_names(&m, &["materials.white.reflectance"]);
-}
-
-#[test]
-fn scene_error_band_count() {
-    let m = error_in(&BASE.replace("reflectance = 0.5", "reflectance = [0.5, 0.5, 0.5]"));
-    assert_names(
-        &m,
-        &[
-            "materials.white.reflectance",
-            "expected 1 value(s), found 3",
-        ],
-    );
-}
-
-#[test]
-fn scene_error_negative_or_nonfinite_exitance() {
-    let m = error_in(&BASE.replace("emission = 100", "emission = -5"));
-    assert_names(&m, &["materials.lamp.emission", ":9:"]);
-    let extra = "\n[[channel]]\nname = \"c\"\nsurfaces = [\"a\"]\nexitance = nan\n";
-    let m = error(extra);
-    assert_names(
-        &m,
-        &[
-            "channel `c`.exitance",
-            &format!(":{}:", line_of(extra, "nan")),
-        ],
-    );
-    let extra = "\n[[channel]]\nname = \"c\"\nsurfaces = [\"a\"]\nflux = -3\n";
-    assert_names(&error(extra), &["channel `c`.flux"]);
-}
-
-#[test]
-fn scene_error_nonfinite_coordinates() {
-    let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"white\"\ncorners = [[0, 0, 0], [inf, 0, 0], [1, 1, 0], [0, 1, 0]]\n";
-    let m = error(extra);
-    assert_names(
-        &m,
-        &["quad `b`.corners", &format!(":{}:", line_of(extra, "inf"))],
-    );
-}
-
-#[test]
-fn scene_error_degenerate_face() {
-    let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"white\"\ncorners = [[0, 0, 0], [1, 0, 0], [1, 0, 0], [0, 1, 0]]\n";
-    let m = error(extra);
-    assert_names(
-        &m,
-        &[
-            "surface `b`",
-            "degenerate",
-            &format!(":{}:", line_of(extra, "corners")),
-        ],
-    );
-    let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"white\"\ncorners = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0]]\n";
-    assert_names(&error(extra), &["surface `b`", "degenerate"]);
-}
-
-#[test]
-fn scene_error_nonplanar_quad() {
-    let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"white\"\ncorners = [[0, 0, 0], [1, 0, 0], [1, 1, 0.1], [0, 1, 0]]\n";
-    let m = error(extra);
-    assert_names(
-        &m,
-        &[
-            "surface `b`",
-            "non-planar",
-            &format!(":{}:", line_of(extra, "corners")),
-        ],
-    );
-    // Within a looser tolerance, or triangulated, it is accepted.
-    let loose = format!("{BASE}{extra}").replace(
-        "max_edge = 0.5",
-        "max_edge = 0.5\nplanarity_tolerance = 0.1",
-    );
-    assert!(parse(&loose, Path::new(FILE)).is_ok());
-    let split = format!("{BASE}{extra}\n[surfaces.b]\ntriangulate = true\n");
-    assert!(parse(&split, Path::new(FILE)).is_ok());
-}
-
-#[test]
-fn scene_error_duplicate_names() {
-    let extra = "\n[[quad]]\nname = \"a\"\nmaterial = \"white\"\ncorners = [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]\n";
-    assert_names(
-        &error(extra),
-        &[
-            "duplicate surface name `a`",
-            &format!(":{}:", line_of(extra, "corners")),
-        ],
-    );
-    let lamp = "\n[[quad]]\nname = \"l\"\nmaterial = \"lamp\"\ncorners = [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]]\n";
-    let extra = format!("{lamp}\n[[channel]]\nname = \"c\"\nsurfaces = [\"l\"]\n\n[[channel]]\nname = \"c\"\nsurfaces = [\"l\"]\n");
-    assert_names(&error(&extra), &["duplicate channel name `c`"]);
-    let sensor = "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 1]\n";
-    assert_names(
-        &error(&format!("{sensor}{sensor}")),
-        &["duplicate sensor name `s`"],
-    );
-    let zone = "\n[[zone]]\nname = \"z\"\nsurfaces = [\"a\"]\n";
-    assert_names(
-        &error(&format!("{zone}{zone}")),
-        &["duplicate zone name `z`"],
-    );
-    // A duplicate key in TOML itself: the parser names the line.
-    let extra = "\n[materials.white]\nreflectance = 0.3\n";
-    assert_names(
-        &error(extra),
-        &["duplicate key", &format!(":{}:", line_of(extra, "white"))],
-    );
-}
-
-#[test]
-fn scene_error_channel_without_emitter() {
-    let extra = "\n[[channel]]\nname = \"c\"\nsurfaces = [\"a\"]\n";
-    assert_names(
-        &error(extra),
-        &[
-            "channel `c`",
-            "none of its surfaces emits",
-            &format!(":{}:", line_of(extra, "[[channel]]")),
-        ],
-    );
-    let extra = "\n[[channel]]\nname = \"c\"\n";
-    assert_names(&error(extra), &["channel `c`", "names no surface"]);
-}
-
-#[test]
-fn scene_error_emitter_outside_channels() {
-    let extra = "\n[[quad]]\nname = \"l\"\nmaterial = \"lamp\"\ncorners = [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]]\n";
-    assert_names(
-        &error(extra),
-        &[
-            "surface `l`",
-            "no channel drives it",
-            &format!(":{}:", line_of(extra, "\"lamp\"")),
-        ],
-    );
-}
-
-#[test]
-fn scene_error_unknown_references() {
-    let extra = "\n[[channel]]\nname = \"c\"\nsurfaces = [\"nope\"]\nexitance = 10\n";
-    assert_names(
-        &error(extra),
-        &[
-            "channel `c`.surfaces",
-            "unknown surface `nope`",
-            &format!(":{}:", line_of(extra, "nope")),
-        ],
-    );
-    let extra = "\n[[quad]]\nname = \"b\"\nmaterial = \"whit\"\ncorners = [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]\n";
-    assert_names(
-        &error(extra),
-        &[
-            "unknown material `whit`",
-            &format!(":{}:", line_of(extra, "whit")),
-        ],
-    );
-    let extra = "\n[surfaces.nope]\nflip = true\n";
-    assert_names(&error(extra), &["unknown surface `nope`"]);
-    let extra = "\n[[zone]]\nname = \"z\"\nwork_plane = { room = \"hall\", height = 0.8 }\n";
-    assert_names(
-        &error(extra),
-        &[
-            "unknown room `hall`",
-            &format!(":{}:", line_of(extra, "hall")),
-        ],
-    );
-    let extra = "\n[[channel]]\nname = \"c\"\nmaterials = [\"neon\"]\n";
-    assert_names(&error(extra), &["channel `c`.materials", "`neon`"]);
-}
-
-#[test]
-fn scene_error_sensor_zero_normal() {
-    let extra = "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 0]\n";
-    assert_names(
-        &error(extra),
-        &[
-            "sensor `s`.normal",
-            &format!(":{}:", line_of(extra, "normal")),
-        ],
-    );
-    let extra =
-        "\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\nnormal = [0, 0, 1]\nhalf_angle = 120\n";
-    assert_names(&error(extra), &["sensor `s`.half_angle"]);
-}
-
 /// A scratch folder for OBJ tests, unique to this process and test.
 fn scratch(test: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("eigenrad-scene-{}-{test}", std::process::id()));
@@ -539,79 +350,10 @@ fn scratch(test: &str) -> PathBuf {
     dir
 }
 
-const OBJ_SCENE: &str = "[scene]\nname = \"o\"\nbands = \"rgb\"\nunit = \"cm\"\nmax_edge = 50\n\n[[obj]]\nfile = \"model.obj\"\n";
-
 #[test]
-fn scene_error_missing_obj_names_path() {
-    let dir = scratch("missing-obj");
-    let m = match parse(OBJ_SCENE, &dir.join("test-scene.toml")) {
-        Ok(_) => panic!("missing OBJ accepted"),
-        Err(e) => e.to_string(),
-    };
-    assert_names(&m, &["obj.file", "model.obj", ":8:", "not found"]);
-}
-
-#[test]
-fn scene_error_missing_mtl_names_path() {
-    let dir = scratch("missing-mtl");
-    std::fs::write(
-        dir.join("model.obj"),
-        "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\ng t\nusemtl x\nf 1 2 3\n",
-    )
-    .expect("write obj");
-    let m = match parse(OBJ_SCENE, &dir.join("test-scene.toml")) {
-        Ok(_) => panic!("missing MTL accepted"),
-        Err(e) => e.to_string(),
-    };
-    assert_names(&m, &["gone.mtl", "not found"]);
-}
-
-#[test]
-fn scene_obj_units_transform_and_photopic_reduction() {
-    let dir = scratch("obj-ok");
-    std::fs::write(
-        dir.join("model.obj"),
-        "mtllib m.mtl\nv 0 0 0\nv 100 0 0\nv 100 100 0\nv 0 100 0\ng sheet\nusemtl grey\nf 1 2 3 4\n",
-    )
-    .expect("write obj");
-    std::fs::write(dir.join("m.mtl"), "newmtl grey\nKd 0.2 0.4 0.6\nKe 0 0 0\n")
-        .expect("write mtl");
-    let text = format!("{OBJ_SCENE}translate = [0, 0, 250]\n").replace("\"rgb\"", "\"photopic\"");
-    let scene = parse(&text, &dir.join("test-scene.toml")).expect("OBJ scene loads");
-    assert_eq!(scene.surfaces[0].name, "sheet");
-    assert_eq!(scene.patches.len(), 4); // 1 m square at 0.5 m edges
-    let total: f64 = scene.patches.iter().map(|p| p.area).sum();
-    assert!((total - 1.0).abs() < 1e-12);
-    assert!(scene
-        .patches
-        .iter()
-        .all(|p| (p.centroid.z - 2.5).abs() < 1e-12));
-    let y = 0.2126 * 0.2 + 0.7152 * 0.4 + 0.0722 * 0.6;
-    assert!((scene.reflectance[0][0] - y).abs() < 1e-15);
-
-    // A bad Kd names the MTL file and the material.
-    std::fs::write(dir.join("m.mtl"), "newmtl grey\nKd 1.2 0.4 0.6\n").expect("write mtl");
-    let m = match parse(&text, &dir.join("test-scene.toml")) {
-        Ok(_) => panic!("Kd above 1 accepted"),
-        Err(e) => e.to_string(),
-    };
-    assert!(m.contains("m.mtl") && m.contains("`grey` Kd"), "{m}");
-    std::fs::write(dir.join("m.mtl"), "newmtl grey\nKd 0.2 0.4 0.6\n").expect("write mtl");
-
-    // A bad face in the OBJ names the OBJ file and the surface.
-    std::fs::write(
-        dir.join("model.obj"),
-        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 2 0 0\ng line\nusemtl grey\nf 1 2 3\n",
-    )
-    .expect("write obj");
-    let m = match parse(&text, &dir.join("test-scene.toml")) {
-        Ok(_) => panic!("degenerate OBJ face accepted"),
-        Err(e) => e.to_string(),
-    };
-    assert!(
-        m.contains("model.obj") && m.contains("surface `line`") && m.contains("face 1"),
-        "{m}"
-    );
+fn scene_base_is_valid() {
+    let scene = parse(BASE, Path::new(FILE)).expect("base scene is valid");
+    assert_eq!(scene.patches.len(), 4);
 }
 
 #[test]
@@ -622,183 +364,4 @@ fn scene_flip_reverses_normals() {
         .patches
         .iter()
         .all(|p| (p.normal - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-15));
-}
-
-#[test]
-fn scene_docs_example_loads() {
-    let docs = include_str!("../../../docs/scene.md");
-    let start = docs.find("```toml\n").map_or(0, |i| i + 8);
-    let end = docs[start..].find("```").map_or(docs.len(), |i| start + i);
-    let example = &docs[start..end];
-    // The OBJ part names a file that is not in the repository: it must be reported as missing,
-    // and the rest must load.
-    let m = match parse(example, Path::new("docs/scene.toml")) {
-        Ok(_) => panic!("chair.obj does not exist"),
-        Err(e) => e.to_string(),
-    };
-    assert!(m.contains("chair.obj") && m.contains("not found"), "{m}");
-    let obj = example.find("[[obj]]").unwrap_or(0);
-    let channel = example.find("[[channel]]").unwrap_or(0);
-    let without_obj = format!("{}{}", &example[..obj], &example[channel..]);
-    let scene = parse(&without_obj, Path::new("docs/scene.toml")).expect("docs example loads");
-    assert_eq!(scene.channels.len(), 2);
-    assert_eq!(scene.zones.len(), 2);
-}
-
-#[test]
-fn scene_error_wrong_type_or_variant_names_line() {
-    let m = error_in(&BASE.replace("reflectance = 0.5", "reflectance = \"high\""));
-    assert_names(&m, &[":8:", "expected a number, or a list of numbers"]);
-    let m = error_in(&BASE.replace("unit = \"m\"", "unit = \"yd\""));
-    assert_names(&m, &[":4:", "unknown variant `yd`"]);
-    let m = error("\n[[sensor]]\nname = \"s\"\nposition = [0, 0, 1]\n");
-    assert_names(&m, &["missing field `normal`"]);
-}
-
-#[test]
-fn scene_error_surface_in_two_channels() {
-    let lamp = "\n[[quad]]\nname = \"l\"\nmaterial = \"lamp\"\ncorners = [[0, 0, 1], [0, 1, 1], [1, 1, 1], [1, 0, 1]]\n";
-    let extra = format!(
-        "{lamp}\n[[channel]]\nname = \"c1\"\nsurfaces = [\"l\"]\n\n[[channel]]\nname = \"c2\"\nmaterials = [\"lamp\"]\n"
-    );
-    assert_names(
-        &error(&extra),
-        &[
-            "surface `l`",
-            "`c1`",
-            "`c2`",
-            &format!(":{}:", line_of(&extra, "c2") - 1),
-        ],
-    );
-}
-
-#[test]
-fn scene_error_missing_scene_file_names_path() {
-    let path = scratch("missing-scene").join("nothing-here.toml");
-    let m = match load(&path) {
-        Ok(_) => panic!("missing scene accepted"),
-        Err(e) => e.to_string(),
-    };
-    assert!(
-        m.contains("nothing-here.toml") && m.contains("cannot read"),
-        "{m}"
-    );
-}
-
-// ---- openings -------------------------------------------------------------------------------
-
-/// A closed 3 m × 2 m × 2.5 m room with four openings: one in the ceiling, two sharing an edge
-/// in the wall y = 0 (one touching the floor), one covering a corner of the wall x = 3.
-const OPENINGS: &str = r#"[scene]
-name = "openings"
-bands = "photopic"
-unit = "m"
-max_edge = 0.4
-
-[materials]
-white = { reflectance = 0.5 }
-black = { reflectance = 0.0 }
-
-[[room]]
-name = "room"
-min = [0, 0, 0]
-max = [3, 2, 2.5]
-material = "white"
-openings = ["lamp", "left", "right", "corner"]
-
-[[quad]]
-name = "lamp"
-material = "black"
-corners = [[1.0, 0.7, 2.5], [1.0, 1.3, 2.5], [1.6, 1.3, 2.5], [1.6, 0.7, 2.5]]
-
-[[quad]]
-name = "left"
-material = "black"
-corners = [[0.5, 0, 0], [0.5, 0, 1.2], [1.5, 0, 1.2], [1.5, 0, 0]]
-
-[[quad]]
-name = "right"
-material = "black"
-corners = [[1.5, 0, 0.3], [1.5, 0, 1.0], [2.25, 0, 1.0], [2.25, 0, 0.3]]
-
-[[quad]]
-name = "corner"
-material = "black"
-corners = [[3, 1.5, 2.0], [3, 1.5, 2.5], [3, 2, 2.5], [3, 2, 2.0]]
-"#;
-
-/// The part of a patch's bounding box shared with an opening's, in the plane they share
-/// (m²); zero when they only touch along an edge.
-fn shared_area(a: &Patch, b: &Patch) -> f64 {
-    let bounds = |p: &Patch, k: usize| {
-        let v = p.polygon.vertices.iter().map(|c| c.axis(k));
-        (
-            v.clone().fold(f64::INFINITY, f64::min),
-            v.fold(f64::NEG_INFINITY, f64::max),
-        )
-    };
-    let mut area = 1.0;
-    for k in 0..3 {
-        let (a0, a1) = bounds(a, k);
-        let (b0, b1) = bounds(b, k);
-        if a1 - a0 < 1e-12 && b1 - b0 < 1e-12 {
-            // The axis normal to both: they must share the plane.
-            if (a0 - b0).abs() > 1e-12 {
-                return 0.0;
-            }
-            continue;
-        }
-        area *= (a1.min(b1) - a0.max(b0)).max(0.0);
-    }
-    area
-}
-
-#[test]
-fn scene_openings_account_for_every_area_and_leave_no_patch_behind() {
-    let scene = parse(OPENINGS, Path::new(FILE)).expect("room with openings loads");
-    // Every patch is a room face or an opening: the box's surface area exactly (to rounding).
-    let total: f64 = scene.patches.iter().map(|p| p.area).sum();
-    let box_area = 2.0 * (3.0 * 2.0 + 3.0 * 2.5 + 2.0 * 2.5);
-    assert!(
-        (total - box_area).abs() < 1e-12 * box_area,
-        "{total} m² vs {box_area} m²"
-    );
-    assert!((area(&scene, "room.ceiling") - (6.0 - 0.36)).abs() < 1e-12);
-    assert!((area(&scene, "room.wall_ymin") - (7.5 - 1.2 - 0.525)).abs() < 1e-12);
-    assert!((area(&scene, "room.wall_xmax") - (5.0 - 0.25)).abs() < 1e-12);
-    // No room patch overlaps an opening's patch, and every opening faces into the room.
-    let centre = Vec3::new(1.5, 1.0, 1.25);
-    for opening in ["lamp", "left", "right", "corner"] {
-        for o in patches(&scene, opening) {
-            assert!(
-                o.normal.dot(centre - o.centroid) > 0.0,
-                "{opening} faces out"
-            );
-            for face in [
-                "floor",
-                "ceiling",
-                "wall_xmin",
-                "wall_xmax",
-                "wall_ymin",
-                "wall_ymax",
-            ] {
-                for p in patches(&scene, &format!("room.{face}")) {
-                    let shared = shared_area(p, o);
-                    assert!(
-                        shared < 1e-12,
-                        "room.{face} overlaps {opening} by {shared} m²"
-                    );
-                }
-            }
-        }
-    }
-    // Patches keep within max_edge (cells are meshed at the face's max_edge).
-    for p in &scene.patches {
-        let v = &p.polygon.vertices;
-        for i in 0..v.len() {
-            assert!((v[(i + 1) % v.len()] - v[i]).length() <= 0.4 + 1e-12);
-        }
-    }
-    let again = parse(OPENINGS, Path::new(FILE)).expect("loads again");
-    assert_eq!(scene.patches, again.patches);
 }

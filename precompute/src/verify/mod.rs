@@ -6,27 +6,34 @@
 //! level in [0, 1]); random emitter patterns (see [`accuracy::standard_cases`]). Metrics, each
 //! the worst spectral band:
 //!
-//! - patches: area-weighted RMS of the per-patch exitance error over the RMS exitance;
-//! - zones, sensors: `|E − E_exact| / |E_exact|` per zone or sensor (irradiance, W/m² or lux).
+//! - patches: area-weighted RMS of the per-patch exitance error over the RMS exitance
+//!   ([`metric::patch_error`]);
+//! - zones, sensors: `|E − E_exact| / |E_exact|` per zone or sensor (irradiance, W/m² or lux;
+//!   [`metric::reading_errors`]).
 //!
 //! The curves use the host model in f64 ([`Model::truncated`] arithmetic), so they show the
 //! truncation alone; `eigenrad build` reports the same cases through the runtime's f32.
 
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+mod markdown;
+mod plot;
+
+use std::path::Path;
 
 use eigenrad_runtime::Precision;
-use plotters::prelude::*;
 use serde::Serialize;
 
-use crate::accuracy::{self, weighted_norm, Case};
+use crate::accuracy::rng::Rng;
+use crate::accuracy::{self, metric, Case};
 use crate::basis;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::formfactor::FormFactorOptions;
 use crate::pipeline::{self, Prepared};
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::radiosity::exact::ExactSolver;
 use crate::radiosity::model::Model;
+
+pub use markdown::markdown;
+pub use plot::{svgs, PLOT_FLOOR};
 
 /// Options of `eigenrad verify`.
 #[derive(Clone, Debug)]
@@ -163,23 +170,12 @@ pub struct VerifyReport {
     pub sensors: Vec<String>,
     /// Zone names.
     pub zones: Vec<String>,
-    /// Tested mode counts, ascending (`pipeline::mode_ladder` up to every mode).
+    /// Tested mode counts, ascending ([`accuracy::mode_ladder`] up to every mode).
     pub modes: Vec<usize>,
     /// `split`, then `seed`.
     pub formulations: Vec<FormulationReport>,
     /// The per-channel baseline.
     pub baseline: Baseline,
-}
-
-/// Deterministic xorshift64* for the mixes: reports must not change from run to run.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
@@ -203,7 +199,7 @@ fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
                 CaseKind::ChannelMix,
                 Case {
                     name: format!("channel mix {}", k + 1),
-                    levels: (0..m).map(|_| rng.next()).collect(),
+                    levels: (0..m).map(|_| rng.next_f64()).collect(),
                     extra: vec![vec![0.0; n]; scene.bands.count()],
                 },
             ));
@@ -211,16 +207,6 @@ fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
     }
     out.extend(patterns);
     out
-}
-
-/// `|a − e|` over `|e|`, with readings that are exactly 0 measured against `floor`.
-fn relative(a: f64, e: f64, floor: f64) -> f64 {
-    let d = (a - e).abs();
-    if d == 0.0 {
-        0.0
-    } else {
-        d / e.abs().max(floor)
-    }
 }
 
 /// Errors of every metric of `case` at each p of `modes` for `model`.
@@ -242,22 +228,10 @@ fn case_curve(
     };
     accuracy::sweep(model, solvers, case, modes, |pt| {
         let t = pt.step;
-        let norm = weighted_norm(&model.area, pt.exact).max(f64::MIN_POSITIVE);
-        let floor = 1e-12
-            * pt.exact_outputs
-                .iter()
-                .fold(0.0f64, |a, v| a.max(v.abs()))
-                .max(f64::MIN_POSITIVE);
-        let diff: Vec<f64> = pt
-            .exitance
-            .iter()
-            .zip(pt.exact)
-            .map(|(a, e)| a - e)
-            .collect();
-        let e = weighted_norm(&model.area, &diff) / norm;
+        let e = metric::patch_error(&model.area, pt.exitance, pt.exact);
         curve.patches[t] = curve.patches[t].max(e);
-        for (o, (a, e)) in pt.outputs.iter().zip(pt.exact_outputs).enumerate() {
-            let r = relative(*a, *e, floor);
+        let readings = metric::reading_errors(pt.outputs, pt.exact_outputs);
+        for (o, r) in readings.into_iter().enumerate() {
             let slot = if o < sensors {
                 &mut curve.sensors[o][t]
             } else {
@@ -297,13 +271,7 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
             .map(|b| model.exact_solver(b))
             .collect::<std::result::Result<Vec<_>, _>>()?;
         if modes.is_empty() {
-            let available = model
-                .bands
-                .iter()
-                .map(|b| b.mode_count())
-                .max()
-                .unwrap_or(0);
-            modes = pipeline::mode_ladder(available.max(1));
+            modes = accuracy::mode_ladder(accuracy::modes_held(&model).max(1));
             if m > 0 {
                 baseline_error = Some(superposition_error(&model, &solvers, &cases, sensors));
             }
@@ -371,17 +339,14 @@ fn superposition_error(
                     *s += l * r;
                 }
             }
-            let diff: Vec<f64> = sum.iter().zip(&exact).map(|(a, e)| a - e).collect();
-            let norm = weighted_norm(&model.area, &exact).max(f64::MIN_POSITIVE);
-            worst[0] = worst[0].max(weighted_norm(&model.area, &diff) / norm);
+            worst[0] = worst[0].max(metric::patch_error(&model.area, &sum, &exact));
             let (got, want) = (
                 model.readings(b, &sum, &case.levels),
                 model.readings(b, &exact, &case.levels),
             );
-            let floor = 1e-12 * want.iter().fold(f64::MIN_POSITIVE, |a, v| a.max(v.abs()));
-            for (o, (a, e)) in got.iter().zip(&want).enumerate() {
+            for (o, r) in metric::reading_errors(&got, &want).into_iter().enumerate() {
                 let slot = if o < sensors { 2 } else { 1 };
-                worst[slot] = worst[slot].max(relative(*a, *e, floor));
+                worst[slot] = worst[slot].max(r);
             }
         }
     }
@@ -453,343 +418,4 @@ impl VerifyReport {
             })
             .collect()
     }
-}
-
-fn sci(x: Option<f64>) -> String {
-    x.map_or("—".into(), |v| format!("{v:.1e}"))
-}
-
-fn p_text(p: Option<usize>) -> String {
-    p.map_or("not reached".into(), |p| p.to_string())
-}
-
-/// The report as markdown tables.
-pub fn markdown(r: &VerifyReport) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "# Accuracy of the eigenbasis: {}\n", r.scene);
-    let _ = writeln!(
-        s,
-        "Scene `{}`: {} patches, {} band(s) in {}; {} channel(s), {} sensor(s), {} zone(s). \
-         Modes available: {}.\n",
-        r.path,
-        r.patches,
-        r.bands,
-        r.unit,
-        r.channels.len(),
-        r.sensors.len(),
-        r.zones.len(),
-        r.modes.last().copied().unwrap_or(0)
-    );
-    let count = |k: CaseKind| {
-        r.formulations
-            .first()
-            .map_or(0, |f| f.cases.iter().filter(|c| c.kind == k).count())
-    };
-    let _ = writeln!(
-        s,
-        "Cases: {} channel(s) alone at level 1; {} random channel mix(es) (every channel at a \
-         random level in [0, 1]); {} random emitter pattern(s) (a random fifth of the patches, \
-         each at a random exitance up to the brightest channel's, no channel). Every error is \
-         relative to the exact dense solve (LU) of the same scene and form factors, worst \
-         spectral band, worst case of its kind: **patches** = area-weighted RMS of the \
-         per-patch exitance error over the RMS exitance; **zones**, **sensors** = worst \
-         |E − E_exact| / E_exact over the zones or sensors. Computed in f64 (truncation alone; \
-         `eigenrad build` reports the runtime's f32 on top).\n",
-        count(CaseKind::Channel),
-        count(CaseKind::ChannelMix),
-        count(CaseKind::EmitterPattern)
-    );
-
-    let _ = writeln!(s, "## Smallest p within 1 %, every case\n");
-    let _ = write!(s, "| reading |");
-    for f in &r.formulations {
-        let _ = write!(s, " {} |", f.formulation);
-    }
-    let _ = writeln!(s);
-    let _ = writeln!(s, "|---|{}", "---:|".repeat(r.formulations.len()));
-    let mut rows: Vec<(String, Vec<Option<usize>>)> = vec![(
-        "patch exitance".into(),
-        r.formulations
-            .iter()
-            .map(|f| r.smallest_p(0.01, |t| f.worst(None, Metric::Patches, t).unwrap_or(0.0)))
-            .collect(),
-    )];
-    for (z, name) in r.zones.iter().enumerate() {
-        rows.push((
-            format!("zone `{name}`"),
-            r.formulations
-                .iter()
-                .map(|f| r.smallest_p(0.01, |t| f.worst_output(true, z, t)))
-                .collect(),
-        ));
-    }
-    for (i, name) in r.sensors.iter().enumerate() {
-        rows.push((
-            format!("sensor `{name}`"),
-            r.formulations
-                .iter()
-                .map(|f| r.smallest_p(0.01, |t| f.worst_output(false, i, t)))
-                .collect(),
-        ));
-    }
-    for (name, ps) in rows {
-        let _ = write!(s, "| {name} |");
-        for p in ps {
-            let _ = write!(s, " {} |", p_text(p));
-        }
-        let _ = writeln!(s);
-    }
-    let _ = writeln!(s);
-
-    for f in &r.formulations {
-        let _ = writeln!(
-            s,
-            "## `{}`: worst relative error by case kind\n",
-            f.formulation
-        );
-        let _ = write!(s, "| p | basis bytes (f32) |");
-        for k in CaseKind::ALL {
-            for m in Metric::ALL {
-                let _ = write!(s, " {}: {} |", k.label(), m.label());
-            }
-        }
-        let _ = writeln!(s);
-        let _ = writeln!(s, "|---:|---:|{}", "---:|".repeat(9));
-        for (t, p) in r.modes.iter().enumerate() {
-            let _ = write!(s, "| {p} | {} |", f.basis_bytes[t]);
-            for k in CaseKind::ALL {
-                for m in Metric::ALL {
-                    let _ = write!(s, " {} |", sci(f.worst(Some(k), m, t)));
-                }
-            }
-            let _ = writeln!(s);
-        }
-        let _ = writeln!(s);
-    }
-
-    if !r.zones.is_empty() || !r.sensors.is_empty() {
-        let _ = writeln!(s, "## Each zone and sensor, worst over every case\n");
-        let _ = write!(s, "| p |");
-        let mut columns: Vec<(bool, usize, &str)> = Vec::new();
-        for (z, name) in r.zones.iter().enumerate() {
-            columns.push((true, z, name));
-        }
-        for (i, name) in r.sensors.iter().enumerate() {
-            columns.push((false, i, name));
-        }
-        for (zone, _, name) in &columns {
-            for f in &r.formulations {
-                let what = if *zone { "zone" } else { "sensor" };
-                let _ = write!(s, " {what} `{name}` {} |", f.formulation);
-            }
-        }
-        let _ = writeln!(s);
-        let _ = writeln!(
-            s,
-            "|---:|{}",
-            "---:|".repeat(columns.len() * r.formulations.len())
-        );
-        for (t, p) in r.modes.iter().enumerate() {
-            let _ = write!(s, "| {p} |");
-            for (zone, index, _) in &columns {
-                for f in &r.formulations {
-                    let _ = write!(s, " {:.1e} |", f.worst_output(*zone, *index, t));
-                }
-            }
-            let _ = writeln!(s);
-        }
-        let _ = writeln!(s);
-    }
-
-    let _ = writeln!(s, "## Baseline: exact per-channel superposition\n");
-    let _ = writeln!(
-        s,
-        "The exact response `(I − R F)⁻¹ e_c` of each of the {} channel(s), scaled by the \
-         levels and added: exact for any channel state by construction (the figures below are \
-         the measured rounding), but it cannot represent an emitter pattern that is not a \
-         combination of the fixed channels.\n",
-        r.channels.len()
-    );
-    let _ = writeln!(s, "| case kind | patches | zones | sensors |");
-    let _ = writeln!(s, "|---|---:|---:|---:|");
-    for k in CaseKind::ALL {
-        let cells: Vec<String> = match (k, r.baseline.channel_error) {
-            (CaseKind::EmitterPattern, _) | (_, None) => {
-                vec!["not representable".into(); 3]
-            }
-            (_, Some(e)) => {
-                let has = |m: Metric| match m {
-                    Metric::Patches => true,
-                    Metric::Zones => !r.zones.is_empty(),
-                    Metric::Sensors => !r.sensors.is_empty(),
-                };
-                Metric::ALL
-                    .iter()
-                    .zip(e)
-                    .map(|(m, v)| {
-                        if has(*m) {
-                            format!("{v:.1e}")
-                        } else {
-                            "—".into()
-                        }
-                    })
-                    .collect()
-            }
-        };
-        let _ = writeln!(s, "| {} | {} |", k.label(), cells.join(" | "));
-    }
-    let split_bytes = r
-        .formulations
-        .first()
-        .map(|f| {
-            r.modes
-                .iter()
-                .zip(&f.basis_bytes)
-                .map(|(p, b)| format!("{b} at p = {p}"))
-                .collect::<Vec<_>>()
-        })
-        .unwrap_or_default();
-    let _ = writeln!(
-        s,
-        "\nStorage in f32: {} bytes for per-patch exitance and every sensor and zone \
-         (`4 (n + outputs) m bands`, n × m = {} × {}), {} bytes for the sensors and zones \
-         alone. The split basis, which also takes any emitter pattern: {}.\n",
-        r.baseline.bytes,
-        r.patches,
-        r.channels.len(),
-        r.baseline.output_bytes,
-        pick(&split_bytes)
-    );
-    s
-}
-
-/// A few entries of a long list: first, some middle ones, last.
-fn pick(items: &[String]) -> String {
-    if items.len() <= 4 {
-        return items.join(", ");
-    }
-    let idx = [0, items.len() / 3, 2 * items.len() / 3, items.len() - 1];
-    idx.iter()
-        .map(|&i| items[i].clone())
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-/// Errors under this are drawn at it on the log axis (the exact end of the curves).
-pub const PLOT_FLOOR: f64 = 1e-9;
-
-/// One SVG per metric (error vs p, log-log; one curve per case kind and formulation, the
-/// worst case of the kind), with its file name `<scene>-<metric>.svg`.
-pub fn svgs(r: &VerifyReport) -> Result<Vec<(String, String)>> {
-    let mut out = Vec::new();
-    for metric in Metric::ALL {
-        let has = match metric {
-            Metric::Patches => true,
-            Metric::Zones => !r.zones.is_empty(),
-            Metric::Sensors => !r.sensors.is_empty(),
-        };
-        if !has {
-            continue;
-        }
-        let name = format!("{}-{}.svg", r.scene, metric.label());
-        let svg = plot(r, metric).map_err(|e| Error::Io {
-            path: PathBuf::from(&name),
-            reason: std::io::Error::other(e),
-        })?;
-        out.push((name, svg));
-    }
-    Ok(out)
-}
-
-/// One curve: legend label, case kind (colour), split (solid) or seed (dashed), (p, error).
-type Series = (String, usize, bool, Vec<(f64, f64)>);
-
-fn plot(r: &VerifyReport, metric: Metric) -> std::result::Result<String, String> {
-    let colors = [
-        RGBColor(31, 119, 180),
-        RGBColor(214, 39, 40),
-        RGBColor(44, 160, 44),
-    ];
-    let mut series: Vec<Series> = Vec::new();
-    for (fi, f) in r.formulations.iter().enumerate() {
-        for (ki, k) in CaseKind::ALL.iter().enumerate() {
-            let points: Option<Vec<(f64, f64)>> = r
-                .modes
-                .iter()
-                .enumerate()
-                .map(|(t, &p)| {
-                    f.worst(Some(*k), metric, t)
-                        .map(|e| (p as f64, e.max(PLOT_FLOOR)))
-                })
-                .collect();
-            if let Some(points) = points {
-                series.push((
-                    format!("{}, {}", f.formulation, k.label()),
-                    ki,
-                    fi == 0,
-                    points,
-                ));
-            }
-        }
-    }
-    let top = series
-        .iter()
-        .flat_map(|s| s.3.iter().map(|p| p.1))
-        .fold(PLOT_FLOOR * 10.0, f64::max)
-        * 2.0;
-    let p_max = r.modes.last().copied().unwrap_or(1).max(2) as f64;
-    let title = format!(
-        "{}: {} error vs modes p (errors < {PLOT_FLOOR:.0e} drawn at it)",
-        r.scene,
-        metric.label()
-    );
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (800, 520)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d((1.0..p_max).log_scale(), (PLOT_FLOOR..top).log_scale())
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc("modes p")
-            .y_desc("relative error")
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .x_label_formatter(&|v| format!("{v:.0}"))
-            .draw()
-            .map_err(|e| e.to_string())?;
-        for (label, kind, split, points) in series {
-            let color = colors[kind % colors.len()];
-            if split {
-                chart
-                    .draw_series(LineSeries::new(points, color.stroke_width(2)).point_size(3))
-                    .map_err(|e| e.to_string())?
-                    .label(label)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2))
-                    });
-            } else {
-                chart
-                    .draw_series(DashedLineSeries::new(points, 6, 4, color.stroke_width(1)))
-                    .map_err(|e| e.to_string())?
-                    .label(label)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(1))
-                    });
-            }
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerLeft)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| e.to_string())?;
-        root.present().map_err(|e| e.to_string())?;
-    }
-    Ok(svg)
 }

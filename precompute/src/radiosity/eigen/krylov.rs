@@ -182,81 +182,14 @@ pub(crate) fn lanczos(
     let k_keep = (k + (m_cap - k) / 3)
         .min(m_cap.saturating_sub(1))
         .max(k.min(m_cap.saturating_sub(1)));
-    let mut basis = Mat::<f64>::zeros(n, m_cap + 1);
-    let mut t = Mat::<f64>::zeros(m_cap + 1, m_cap + 1);
-    let mut seed = 1u64;
-    let q0 = start_vector(n, seed);
-    let nrm = q0.norm_l2();
-    for i in 0..n {
-        basis[(i, 0)] = q0[i] / nrm;
-    }
-    let mut w = Mat::<f64>::zeros(n, 1);
-    let mut h = Mat::<f64>::zeros(m_cap + 1, 1);
-    let mut hsum = vec![0.0; m_cap + 1];
+    let mut st = LanczosState::new(n, m_cap);
     let mut best = f64::INFINITY;
-    let mut m = 0; // current basis size (columns 0..m hold the basis, column m the next vector)
     let mut restarts = 0;
     loop {
-        // Expand to m_cap (or until the space is exhausted).
-        let mut exhausted = false;
-        while m < m_cap {
-            let j = m;
-            op.apply_to(w.as_mut(), basis.as_ref().get(.., j..j + 1), par);
-            hsum[..=j].iter_mut().for_each(|x| *x = 0.0);
-            for _ in 0..2 {
-                let v = basis.as_ref().get(.., 0..j + 1);
-                let mut hj = h.as_mut().get_mut(0..j + 1, ..);
-                matmul(
-                    hj.rb_mut(),
-                    Accum::Replace,
-                    v.transpose(),
-                    w.as_ref(),
-                    1.0,
-                    par,
-                );
-                matmul(w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
-                for i in 0..=j {
-                    hsum[i] += hj[(i, 0)];
-                }
-            }
-            for i in 0..=j {
-                t[(j, i)] = hsum[i];
-            }
-            m += 1;
-            let mut b = w.as_ref().col(0).norm_l2();
-            if b <= 1e-12 {
-                // Invariant subspace (‖H‖ < 1): continue from a fresh orthogonal vector.
-                b = 0.0;
-                seed += 1;
-                let fresh = start_vector(n, seed);
-                for i in 0..n {
-                    w[(i, 0)] = fresh[i];
-                }
-                for _ in 0..2 {
-                    let v = basis.as_ref().get(.., 0..m);
-                    let mut hj = h.as_mut().get_mut(0..m, ..);
-                    matmul(
-                        hj.rb_mut(),
-                        Accum::Replace,
-                        v.transpose(),
-                        w.as_ref(),
-                        1.0,
-                        par,
-                    );
-                    matmul(w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
-                }
-            }
-            t[(m, m - 1)] = b;
-            let wn = w.as_ref().col(0).norm_l2();
-            if m == n || wn <= 1e-10 {
-                exhausted = true;
-                break;
-            }
-            for i in 0..n {
-                basis[(i, m)] = w[(i, 0)] / wn;
-            }
-        }
+        let exhausted = st.expand(op, m_cap, par);
+        let m = st.m;
         // Rayleigh–Ritz on T (m × m).
+        let t = &st.t;
         let tm = Mat::<f64>::from_fn(m, m, |i, j| if i >= j { t[(i, j)] } else { t[(j, i)] });
         let evd = tm
             .self_adjoint_eigen(Side::Lower)
@@ -274,16 +207,7 @@ pub(crate) fn lanczos(
         let done = est <= settings.tol || exhausted || restarts >= MAX_RESTARTS;
         if done {
             let sel: Vec<usize> = order.iter().copied().take(k).collect();
-            let y = Mat::<f64>::from_fn(m, sel.len(), |r, c| s[(r, sel[c])]);
-            let mut u = Mat::<f64>::zeros(n, sel.len());
-            matmul(
-                u.as_mut(),
-                Accum::Replace,
-                basis.as_ref().get(.., 0..m),
-                y.as_ref(),
-                1.0,
-                par,
-            );
+            let u = st.ritz_vectors(s, &sel, par);
             let values: Vec<f64> = sel.iter().map(|&i| vals[i]).collect();
             let res = residuals(op, &values, u.as_ref(), par);
             let max = res.iter().copied().fold(0.0, f64::max);
@@ -302,25 +226,137 @@ pub(crate) fn lanczos(
         // Thick restart: keep the k_keep best Ritz vectors and the next Lanczos vector.
         restarts += 1;
         let keep: Vec<usize> = order.iter().copied().take(k_keep).collect();
-        let y = Mat::<f64>::from_fn(m, keep.len(), |r, c| s[(r, keep[c])]);
-        let mut u = Mat::<f64>::zeros(n, keep.len());
+        let u = st.ritz_vectors(s, &keep, par);
+        let next = st.basis.as_ref().col(m).to_owned();
+        st.basis.as_mut().get_mut(.., 0..keep.len()).copy_from(&u);
+        st.basis.as_mut().col_mut(keep.len()).copy_from(&next);
+        st.t.fill(0.0);
+        for (c, &i) in keep.iter().enumerate() {
+            st.t[(c, c)] = vals[i];
+            st.t[(keep.len(), c)] = beta * s[(m - 1, i)];
+        }
+        st.m = keep.len();
+    }
+}
+
+/// The Lanczos basis of [`lanczos`] and its projected matrix between restarts.
+#[cfg(test)]
+struct LanczosState {
+    /// `n × (m_cap + 1)`: columns `0..m` the basis, column `m` the next vector.
+    basis: Mat<f64>,
+    /// `T = Vᵀ H V`, lower triangle, with `β` below the last column.
+    t: Mat<f64>,
+    /// The vector being orthogonalised.
+    w: Mat<f64>,
+    /// Gram–Schmidt coefficients of one pass.
+    h: Mat<f64>,
+    /// Their sum over both passes.
+    hsum: Vec<f64>,
+    /// Current basis size.
+    m: usize,
+    /// Seed of the last start vector.
+    seed: u64,
+}
+
+#[cfg(test)]
+impl LanczosState {
+    /// A basis holding the normalised first start vector.
+    fn new(n: usize, m_cap: usize) -> Self {
+        let mut basis = Mat::<f64>::zeros(n, m_cap + 1);
+        let seed = 1u64;
+        let q0 = start_vector(n, seed);
+        let nrm = q0.norm_l2();
+        for i in 0..n {
+            basis[(i, 0)] = q0[i] / nrm;
+        }
+        LanczosState {
+            basis,
+            t: Mat::<f64>::zeros(m_cap + 1, m_cap + 1),
+            w: Mat::<f64>::zeros(n, 1),
+            h: Mat::<f64>::zeros(m_cap + 1, 1),
+            hsum: vec![0.0; m_cap + 1],
+            m: 0,
+            seed,
+        }
+    }
+
+    /// Expands the basis to `m_cap` columns; true if the space was exhausted first.
+    fn expand(&mut self, op: &ScaledOp<'_>, m_cap: usize, par: Par) -> bool {
+        let n = op.dim();
+        while self.m < m_cap {
+            let j = self.m;
+            op.apply_to(self.w.as_mut(), self.basis.as_ref().get(.., j..j + 1), par);
+            self.hsum[..=j].iter_mut().for_each(|x| *x = 0.0);
+            for _ in 0..2 {
+                let v = self.basis.as_ref().get(.., 0..j + 1);
+                let mut hj = self.h.as_mut().get_mut(0..j + 1, ..);
+                matmul(
+                    hj.rb_mut(),
+                    Accum::Replace,
+                    v.transpose(),
+                    self.w.as_ref(),
+                    1.0,
+                    par,
+                );
+                matmul(self.w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
+                for i in 0..=j {
+                    self.hsum[i] += hj[(i, 0)];
+                }
+            }
+            for i in 0..=j {
+                self.t[(j, i)] = self.hsum[i];
+            }
+            self.m += 1;
+            let m = self.m;
+            let mut b = self.w.as_ref().col(0).norm_l2();
+            if b <= 1e-12 {
+                // Invariant subspace (‖H‖ < 1): continue from a fresh orthogonal vector.
+                b = 0.0;
+                self.seed += 1;
+                let fresh = start_vector(n, self.seed);
+                for i in 0..n {
+                    self.w[(i, 0)] = fresh[i];
+                }
+                for _ in 0..2 {
+                    let v = self.basis.as_ref().get(.., 0..m);
+                    let mut hj = self.h.as_mut().get_mut(0..m, ..);
+                    matmul(
+                        hj.rb_mut(),
+                        Accum::Replace,
+                        v.transpose(),
+                        self.w.as_ref(),
+                        1.0,
+                        par,
+                    );
+                    matmul(self.w.as_mut(), Accum::Add, v, hj.rb(), -1.0, par);
+                }
+            }
+            self.t[(m, m - 1)] = b;
+            let wn = self.w.as_ref().col(0).norm_l2();
+            if m == n || wn <= 1e-10 {
+                return true;
+            }
+            for i in 0..n {
+                self.basis[(i, m)] = self.w[(i, 0)] / wn;
+            }
+        }
+        false
+    }
+
+    /// The Ritz vectors `V y` for the columns `sel` of the eigenvectors `s` of `T`.
+    fn ritz_vectors(&self, s: MatRef<'_, f64>, sel: &[usize], par: Par) -> Mat<f64> {
+        let m = self.m;
+        let y = Mat::<f64>::from_fn(m, sel.len(), |r, c| s[(r, sel[c])]);
+        let mut u = Mat::<f64>::zeros(self.basis.nrows(), sel.len());
         matmul(
             u.as_mut(),
             Accum::Replace,
-            basis.as_ref().get(.., 0..m),
+            self.basis.as_ref().get(.., 0..m),
             y.as_ref(),
             1.0,
             par,
         );
-        let next = basis.as_ref().col(m).to_owned();
-        basis.as_mut().get_mut(.., 0..keep.len()).copy_from(&u);
-        basis.as_mut().col_mut(keep.len()).copy_from(&next);
-        t.fill(0.0);
-        for (c, &i) in keep.iter().enumerate() {
-            t[(c, c)] = vals[i];
-            t[(keep.len(), c)] = beta * s[(m - 1, i)];
-        }
-        m = keep.len();
+        u
     }
 }
 

@@ -48,12 +48,9 @@ pub enum Method {
     Lanczos,
 }
 
-/// Above this many reflecting patches [`Solver::Auto`] uses the partial solver.
-///
-/// Measured by `eigenrad-bench eigen` (release, 2 idle cores, the office meshed finer,
-/// p = 32; docs/performance.md): dense 0.2 s and partial 0.2 s at 1061 reflecting patches,
-/// 0.7 s and 0.6 s at 1944, 14.7 s and 2.4 s at 4766. The crossover is near n = 2000.
-pub const AUTO_DENSE_MAX: usize = 2000;
+/// Above this many reflecting patches [`Solver::Auto`] uses the partial solver: defined with
+/// the memory model of a build, which depends on it.
+pub use crate::memory::AUTO_DENSE_MAX;
 
 /// Relative asymmetry `max |G_ij − G_ji| / max |G|` accepted in the input.
 pub const SYMMETRY_TOLERANCE: f64 = 1e-10;

@@ -1,0 +1,102 @@
+//! `eigenrad-bench`: the figures of `docs/performance.md`.
+//!
+//! - `eigenrad-bench update SCENE...`: cost of turning new channel levels into (a) every sensor
+//!   and zone reading and (b) every patch exitance, for the eigenbasis through the runtime and
+//!   for the alternatives (exact per-channel superposition, dense LU, Southwell shooting,
+//!   Gauss–Seidel), with the accuracy each reaches against the exact solve; and the host
+//!   evaluation against a memory-bandwidth bound.
+//! - `eigenrad-bench scale SCENE...`: precompute stage times and peak memory, one child
+//!   process per scene (so that each peak is its own).
+//! - `eigenrad-bench eigen SCENE...`: dense against partial eigensolve on the same matrix.
+//!
+//! Run in release: `cargo run --release -p eigenrad-precompute --bin eigenrad-bench -- …`.
+
+mod eigen;
+mod scale;
+mod update;
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use eigenrad_precompute::pipeline;
+
+/// The eigenbasis row every ratio is relative to, and the mode count of `eigen`: the default
+/// build's (p = 32).
+const REFERENCE_MODES: usize = pipeline::DEFAULT_MODES;
+
+#[derive(Parser)]
+#[command(about = "Benchmarks of eigenrad (docs/performance.md)")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Per-update cost and accuracy of every method on each scene (one band).
+    Update {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+        /// Skip the LU factorisation per update (seconds per update at n = 5000).
+        #[arg(long)]
+        skip_lu: bool,
+    },
+    /// Precompute stage times and peak memory, one child process per scene.
+    Scale {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+    },
+    /// (internal) One row of `scale`, in this process.
+    ScaleOne {
+        /// Scene file.
+        scene: PathBuf,
+    },
+    /// Dense against partial eigensolve (p = 32) on each scene's form factors.
+    Eigen {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+        /// Largest reflecting-patch count for which the dense solve is run.
+        #[arg(long, default_value_t = 5000)]
+        dense_max: usize,
+    },
+}
+
+fn main() -> Result<()> {
+    match Cli::parse().command {
+        Command::Update { scenes, skip_lu } => {
+            machine();
+            update::run(&scenes, skip_lu)?;
+        }
+        Command::Scale { scenes } => {
+            machine();
+            scale::run(&scenes)?;
+        }
+        Command::ScaleOne { scene } => scale::one(&scene)?,
+        Command::Eigen { scenes, dense_max } => {
+            machine();
+            eigen::run(&scenes, dense_max)?;
+        }
+    }
+    Ok(())
+}
+
+/// Prints the CPU model and core count (`lscpu`).
+fn machine() {
+    let out = std::process::Command::new("lscpu")
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+        .unwrap_or_default();
+    let field = |name: &str| {
+        out.lines()
+            .find(|l| l.starts_with(name))
+            .and_then(|l| l.split(':').nth(1))
+            .map_or("?".to_string(), |v| v.trim().to_string())
+    };
+    println!(
+        "machine: {} ({} CPUs), rayon threads {}",
+        field("Model name"),
+        field("CPU(s)"),
+        rayon::current_num_threads()
+    );
+}

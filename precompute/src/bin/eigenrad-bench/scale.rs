@@ -1,0 +1,110 @@
+//! `eigenrad-bench scale`: the precompute's stage times and peak memory, one child process
+//! per scene so that each peak is its own.
+
+use std::hint::black_box;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{bail, Context as _, Result};
+use eigenrad_precompute::pipeline::{self, BuildOptions};
+
+/// Prints the table's header, then runs `eigenrad-bench scale-one` on each scene in a child
+/// process, which prints its row.
+pub(crate) fn run(scenes: &[PathBuf]) -> Result<()> {
+    println!(
+        "| patches | meshing s | BVH s | form factors s | sensors & zones s | eigenbasis s | exact reference s | serialization s | verification s | total s | CPU s | peak MB |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let exe = std::env::current_exe()?;
+    for s in scenes {
+        let status = std::process::Command::new(&exe)
+            .arg("scale-one")
+            .arg(s)
+            .status()?;
+        if !status.success() {
+            bail!("{}: scale-one failed", s.display());
+        }
+    }
+    Ok(())
+}
+
+/// Peak resident memory of this process so far (`VmHWM`), bytes.
+fn peak_rss() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|kb| kb.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kb| kb * 1024.0)
+}
+
+/// CPU seconds (user + system) of this process so far, from `/proc/self/stat`.
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // Fields after the command name (which is in parentheses): utime is field 14, stime 15.
+    let rest = stat.rsplit(')').next().unwrap_or("");
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = |k: usize| {
+        f.get(k)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
+    // rest starts at field 3; utime (14) is index 11, stime (15) index 12; 100 ticks/s.
+    (ticks(11) + ticks(12)) / 100.0
+}
+
+/// One row of the table: builds the scene at `path` with the default options in this process.
+pub(crate) fn one(path: &Path) -> Result<()> {
+    let start = Instant::now();
+    let scene =
+        eigenrad_precompute::scene::load(path).with_context(|| format!("{}", path.display()))?;
+    let t = Instant::now();
+    let occ = eigenrad_precompute::formfactor::Occluders::with_faces(&scene.patches, &scene.faces);
+    let bvh_s = t.elapsed().as_secs_f64();
+    black_box(occ.len());
+    drop(occ);
+    drop(scene);
+    let (_bytes, report) = pipeline::build(path, &BuildOptions::default())?;
+    let total = start.elapsed().as_secs_f64();
+    let stage = |name: &str| {
+        report
+            .timings
+            .iter()
+            .filter(|s| s.stage.starts_with(name))
+            .map(|s| s.seconds)
+            .sum::<f64>()
+    };
+    println!(
+        "| {} | {:.2} | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {:.1} | {:.1} | {:.0} |",
+        report.patches,
+        stage("scene"),
+        bvh_s,
+        stage("form factors"),
+        stage("sensors"),
+        stage("eigenbasis"),
+        stage("exact"),
+        stage("serialization"),
+        stage("verification"),
+        total,
+        cpu_seconds(),
+        peak_rss() / 1e6
+    );
+    let worst = report.accuracy.iter().fold((0.0f64, 0.0f64), |w, c| {
+        (w.0.max(c.patch_error), w.1.max(c.output_error))
+    });
+    eprintln!(
+        "  {}: {} modes, row sums {:.4}..{:.4}, reciprocity {:.1e}, worst patch error {:.1e}, worst sensor/zone error {:.1e}",
+        path.display(),
+        report.modes,
+        report.form_factors.row_sum_min,
+        report.form_factors.row_sum_max,
+        report.form_factors.reciprocity_mismatch,
+        worst.0,
+        worst.1
+    );
+    Ok(())
+}

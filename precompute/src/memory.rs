@@ -1,0 +1,149 @@
+//! What a build of n patches holds in memory, the sizes at which its solvers change method
+//! (and with it what they hold), and how much of the machine a build may take.
+//!
+//! The radiosity system is dense, so a build's memory is its n × n matrices of f64: the
+//! scene check (before meshing, from the estimated patch count) and the pipeline's check
+//! (after meshing, before the form factors are allocated) both refuse a scene for which
+//! [`build_bytes`] exceeds [`budget_bytes`]. The thresholds live here, not with the solvers
+//! that use them, so that the scene stage can apply the model without depending on a later
+//! stage.
+//!
+//! At its peak a build of `n` patches, `n_r` of them reflecting in a band, holds `G`
+//! (`n²`) and, one after the other:
+//!
+//! - while the modes are computed, for a band with `n_r ≤` [`AUTO_DENSE_MAX`] (the dense
+//!   eigensolver): `5 n_r²`, namely the scaled matrix `H`, the eigenvectors `U` and faer's
+//!   workspace, a copy reduced to tridiagonal form and the two matrices of divide and
+//!   conquer (`faer::linalg::evd::self_adjoint_evd_scratch`). The partial (Lanczos)
+//!   solver above it holds a few hundred vectors of length `n_r`, not counted.
+//! - while the exact reference is factorised, for `n ≤` [`EXACT_LU_MAX`]: one LU factor
+//!   of `n²` per band, plus the matrix `I − R F` being factorised. Conjugate gradients
+//!   above it hold a few vectors per case, not counted.
+//!
+//! Checked against `eigenrad-bench scale` and `eigen` (docs/performance.md): the model gives
+//! 55, 184, 196 and 785 MB for the office at 1101, 2028, 4947 and 9905 patches, whose builds
+//! peaked at 77, 212, 278 and 875 MB (the rest is per-patch data and the program itself), and
+//! 4.4 GB for the dense eigensolve at 9905 patches, which peaked at 4.1 GB.
+//!
+//! It is the model of `eigenrad build` with the default solver and the split formulation.
+//! `--solver dense`, `--formulation seed` and `eigenrad verify` run the dense eigensolver at
+//! any size, and `eigenrad verify` also copies `G`: on scenes near the budget they need more.
+
+use std::sync::OnceLock;
+
+/// Largest patch count whose exact reference is an LU factorisation of `I − R F`
+/// ([`crate::radiosity::exact::ExactSolver::auto`]: an `n²` f64 copy and `n³/3` flops per
+/// band); above it the reference comes from conjugate gradients on `G` itself.
+pub const EXACT_LU_MAX: usize = 3000;
+
+/// Above this many reflecting patches [`crate::radiosity::eigen::Solver::Auto`] uses the
+/// partial solver.
+///
+/// Measured by `eigenrad-bench eigen` (release, 2 idle cores, the office meshed finer,
+/// p = 32; docs/performance.md): dense 0.2 s and partial 0.2 s at 1061 reflecting patches,
+/// 0.7 s and 0.6 s at 1944, 14.7 s and 2.4 s at 4766. The crossover is near n = 2000.
+pub const AUTO_DENSE_MAX: usize = 2000;
+
+/// Share of physical memory a build may plan to use: the rest is left to the per-patch data
+/// the model does not count, the program and the rest of the machine.
+pub const BUDGET_SHARE: f64 = 0.8;
+
+/// Physical memory assumed when the platform does not tell, bytes.
+const ASSUMED_MEMORY: f64 = 8e9;
+
+/// Bytes of one entry of a dense matrix (f64).
+const ENTRY_BYTES: f64 = 8.0;
+
+/// Matrices of `n_r²` entries the dense eigensolver holds for one band: `H`, `U` and
+/// faer's three of workspace.
+const DENSE_EIGEN_MATRICES: f64 = 5.0;
+
+/// Bytes of a dense `n × n` matrix of f64 (`n` may be an estimate, hence f64).
+pub fn matrix_bytes(n: f64) -> f64 {
+    n * n * ENTRY_BYTES
+}
+
+/// Bytes the dense eigensolver holds for one band of `reflecting` reflecting patches, on top
+/// of `G`.
+pub fn dense_eigen_bytes(reflecting: f64) -> f64 {
+    DENSE_EIGEN_MATRICES * matrix_bytes(reflecting)
+}
+
+/// Peak bytes of the dense matrices of `eigenrad build` (default solver, split formulation)
+/// for `patches` patches with `reflecting[b]` reflecting patches in band `b` (one entry per
+/// band). Counts may be estimates.
+pub fn build_bytes(patches: f64, reflecting: &[f64]) -> f64 {
+    let eigen = reflecting
+        .iter()
+        .filter(|&&r| r <= AUTO_DENSE_MAX as f64)
+        .map(|&r| dense_eigen_bytes(r))
+        .fold(0.0, f64::max);
+    let reference = if patches <= EXACT_LU_MAX as f64 {
+        (reflecting.len() as f64 + 1.0) * matrix_bytes(patches)
+    } else {
+        0.0
+    };
+    matrix_bytes(patches) + eigen.max(reference)
+}
+
+/// Physical memory in bytes, read once (Linux `/proc/meminfo`; 8 GB assumed elsewhere).
+pub fn physical_bytes() -> f64 {
+    static PHYSICAL: OnceLock<f64> = OnceLock::new();
+    *PHYSICAL.get_or_init(|| {
+        std::fs::read_to_string("/proc/meminfo")
+            .ok()
+            .and_then(|s| {
+                s.lines()
+                    .find(|l| l.starts_with("MemTotal:"))
+                    .and_then(|l| l.split_whitespace().nth(1))
+                    .and_then(|kb| kb.parse::<f64>().ok())
+            })
+            .map_or(ASSUMED_MEMORY, |kb| kb * 1024.0)
+    })
+}
+
+/// Bytes a build may plan to use: [`BUDGET_SHARE`] of [`physical_bytes`].
+pub fn budget_bytes() -> f64 {
+    BUDGET_SHARE * physical_bytes()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The model against the peaks `eigenrad-bench` measured on the office
+    /// (docs/performance.md, "Precompute scaling"; one band): it accounts for at least 70 %
+    /// of each build's peak and overestimates none by more than 10 %.
+    #[test]
+    fn model_accounts_for_the_measured_peaks() {
+        // (patches, reflecting, measured peak in MB, dense eigensolve forced)
+        let measured = [
+            (1101.0, 1061.0, 77.0, false),
+            (2028.0, 1944.0, 212.0, false),
+            (4947.0, 4766.0, 278.0, false),
+            (9905.0, 9514.0, 875.0, false),
+            (9905.0, 9514.0, 4100.0, true),
+        ];
+        for (n, nr, peak, dense) in measured {
+            let model = if dense {
+                matrix_bytes(n) + dense_eigen_bytes(nr)
+            } else {
+                build_bytes(n, &[nr])
+            } / 1e6;
+            let share = model / peak;
+            assert!(
+                (0.7..=1.1).contains(&share),
+                "{n} patches: model {model:.0} MB against a peak of {peak} MB"
+            );
+        }
+    }
+
+    /// The scene of `tests/scenes/too_many_patches.toml` (8.8e7 patches) needs one matrix of
+    /// 6.2e16 bytes: far beyond any machine.
+    #[test]
+    fn huge_scenes_need_the_form_factors_alone() {
+        let n = 8.8e7;
+        assert_eq!(build_bytes(n, &[n]), matrix_bytes(n));
+        assert!(build_bytes(n, &[n]) > 1e16);
+    }
+}
