@@ -64,9 +64,10 @@ enum Command {
         /// Number of modes per band [default: 32, when --tolerance is not given].
         #[arg(long, conflicts_with = "tolerance")]
         modes: Option<usize>,
-        /// Instead of --modes: the smallest mode count whose relative error (area-weighted
-        /// RMS of patch exitance) against the exact solve stays under this, for every
-        /// channel alone and for random emitter patterns.
+        /// Instead of --modes: the smallest mode count at which every case of the report
+        /// (channels, level vectors, exitance set patch by patch) stays within this relative
+        /// error of the exact solve: the area-weighted RMS of patch exitance, and every
+        /// sensor and zone against its own exact value.
         #[arg(long)]
         tolerance: Option<f64>,
         /// Expansion to store.

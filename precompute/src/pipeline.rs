@@ -8,6 +8,7 @@ use eigenrad_runtime::Precision;
 use faer::Mat;
 use serde::Serialize;
 
+use crate::accuracy::metric::Worst;
 use crate::accuracy::runtime_eval;
 use crate::accuracy::{self, Case};
 use crate::basis;
@@ -80,8 +81,15 @@ pub struct CaseAccuracy {
     pub case: String,
     /// [`accuracy::metric::patch_error`], worst band.
     pub patch_error: f64,
-    /// [`accuracy::metric::output_error`] over the sensors and zones, worst band.
-    pub output_error: f64,
+    /// The patch whose exitance is furthest from its own exact value, worst band.
+    pub worst_patch: Worst,
+    /// The surface it belongs to.
+    pub worst_patch_surface: String,
+    /// The sensor or zone (sensors first, then zones) whose reading is furthest from its own
+    /// exact value, worst band.
+    pub worst_reading: Worst,
+    /// Its name.
+    pub worst_reading_name: String,
 }
 
 /// Time spent in one stage.
@@ -242,7 +250,10 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
                 modes: available,
                 best: curves
                     .iter()
-                    .map(|c| c.patch_error.last().copied().unwrap_or(f64::NAN))
+                    .map(|c| {
+                        let last = |e: &[f64]| e.last().copied().unwrap_or(f64::NAN);
+                        last(&c.patch_error).max(last(&c.reading_error))
+                    })
                     .fold(0.0, f64::max),
             })
         })?,
@@ -251,7 +262,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         basis::basis_tables(&scene, &model, p, opts.precision).to_bytes()
     })?;
     let accuracy = timed(&mut timings, "verification through the runtime", || {
-        verify(&model, &solvers, &cases, &bytes)
+        verify(&model, &solvers, &cases, &bytes, &scene)
     })?;
     let report = BuildReport {
         scene: scene.name.clone(),
@@ -269,6 +280,14 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     Ok((bytes, report))
 }
 
+/// `sensor NAME` for every sensor, then `zone NAME` for every zone: the outputs in basis order.
+pub fn output_names(scene: &Scene) -> Vec<String> {
+    let sensors = scene.sensors.iter().map(|s| format!("sensor {}", s.name));
+    sensors
+        .chain(scene.zones.iter().map(|z| format!("zone {}", z.name)))
+        .collect()
+}
+
 /// Evaluates the encoded basis through the runtime for every case and compares with the
 /// exact solve.
 fn verify(
@@ -276,7 +295,9 @@ fn verify(
     solvers: &[crate::radiosity::exact::ExactSolver],
     cases: &[Case],
     bytes: &[u8],
+    scene: &Scene,
 ) -> Result<Vec<CaseAccuracy>> {
+    let output_names = output_names(scene);
     // Every case's exact solution at once, per band.
     let exact_all: Vec<Vec<Vec<f64>>> = solvers
         .iter()
@@ -294,21 +315,33 @@ fn verify(
         let levels: Vec<f32> = case.levels.iter().map(|&l| l as f32).collect();
         let got = runtime_eval::evaluate(bytes, &levels, &case.extra, true)?;
         let mut patch_error = 0.0f64;
-        let mut output_error = 0.0f64;
+        let mut worst_patch = Worst::default();
+        let mut worst_reading = Worst::default();
         for b in 0..solvers.len() {
             let exact = &exact_all[b][index];
             let exitance: Vec<f64> = got.exitance.iter().map(|e| e[b]).collect();
             let patches = accuracy::metric::patch_error(&model.area, &exitance, exact);
             patch_error = patch_error.max(patches);
+            worst_patch = worst_patch.max(accuracy::metric::worst_reading(&exitance, exact));
             let readings: Vec<f64> = got.sensors.iter().chain(&got.zones).map(|r| r[b]).collect();
-            let outputs =
-                accuracy::metric::output_error(&readings, &model.readings(b, exact, &case.levels));
-            output_error = output_error.max(outputs);
+            let exact_readings = model.readings(b, exact, &case.levels);
+            worst_reading =
+                worst_reading.max(accuracy::metric::worst_reading(&readings, &exact_readings));
         }
         out.push(CaseAccuracy {
             case: case.name.clone(),
             patch_error,
-            output_error,
+            worst_patch,
+            worst_reading,
+            worst_reading_name: output_names
+                .get(worst_reading.index)
+                .cloned()
+                .unwrap_or_default(),
+            worst_patch_surface: scene
+                .patches
+                .get(worst_patch.index)
+                .map(|p| scene.surfaces[p.surface].name.clone())
+                .unwrap_or_default(),
         });
     }
     Ok(out)

@@ -32,29 +32,102 @@ pub struct Curve {
     pub modes: Vec<usize>,
     /// [`metric::patch_error`] at each p, worst band.
     pub patch_error: Vec<f64>,
-    /// [`metric::output_error`] at each p, worst band.
-    pub output_error: Vec<f64>,
+    /// The worst [`metric::reading_errors`] over the sensors and zones at each p, worst band.
+    pub reading_error: Vec<f64>,
 }
 
-/// Every channel alone at level 1, then `random` emitter patterns: a random fifth of the
-/// patches each emitting a random exitance up to the largest exitance a patch of the scene
-/// emits at level 1, in any band (the brightest channel's when its surfaces emit alike; 1
-/// when nothing emits), same in every band.
+/// Channel levels a random level vector draws from: off, dimmed and full, as a controller
+/// sets them.
+pub const RANDOM_LEVELS: [f64; 5] = [0.0, 0.1, 0.37, 0.8, 1.0];
+
+/// The cases every build report lists: [`channel_cases`], `random` [`level_cases`],
+/// `random` [`emitter_cases`] and `random` [`pattern_cases`].
 pub fn standard_cases(scene: &Scene, random: usize) -> Vec<Case> {
-    let n = scene.patches.len();
-    let bands = scene.bands.count();
+    let mut cases = channel_cases(scene);
+    cases.extend(level_cases(scene, random));
+    cases.extend(emitter_cases(scene, random));
+    cases.extend(pattern_cases(scene, random));
+    cases
+}
+
+/// A case with channel levels `levels` and exitance set patch by patch `extra` (per band).
+fn case(name: String, levels: Vec<f64>, extra: Vec<Vec<f64>>) -> Case {
+    Case {
+        name,
+        levels,
+        extra,
+    }
+}
+
+/// No exitance set patch by patch: zero in every band.
+fn no_extra(scene: &Scene) -> Vec<Vec<f64>> {
+    vec![vec![0.0; scene.patches.len()]; scene.bands.count()]
+}
+
+/// Every channel alone at level 1.
+pub fn channel_cases(scene: &Scene) -> Vec<Case> {
     let m = scene.channels.len();
-    let mut cases: Vec<Case> = (0..m)
+    (0..m)
         .map(|c| {
             let mut levels = vec![0.0; m];
             levels[c] = 1.0;
-            Case {
-                name: format!("channel {}", scene.channels[c].name),
-                levels,
-                extra: vec![vec![0.0; n]; bands],
-            }
+            let name = format!("channel {}", scene.channels[c].name);
+            case(name, levels, no_extra(scene))
         })
-        .collect();
+        .collect()
+}
+
+/// `count` level vectors, each channel at one of [`RANDOM_LEVELS`] (none without channels).
+pub fn level_cases(scene: &Scene, count: usize) -> Vec<Case> {
+    let m = scene.channels.len();
+    let mut rng = Rng(0xD1B5_4A32_D192_ED03);
+    (0..count * usize::from(m > 0))
+        .map(|k| {
+            let levels = (0..m)
+                .map(|_| {
+                    let pick = (rng.next_f64() * RANDOM_LEVELS.len() as f64) as usize;
+                    RANDOM_LEVELS[pick.min(RANDOM_LEVELS.len() - 1)]
+                })
+                .collect();
+            case(format!("random levels {}", k + 1), levels, no_extra(scene))
+        })
+        .collect()
+}
+
+/// `count` patterns of exitance set patch by patch on the patches that emit, each at a
+/// random share of its own exitance at level 1, channels off (none when nothing emits).
+pub fn emitter_cases(scene: &Scene, count: usize) -> Vec<Case> {
+    let (n, bands, m) = (
+        scene.patches.len(),
+        scene.bands.count(),
+        scene.channels.len(),
+    );
+    let emits = scene.emission.iter().flatten().any(|&e| e > 0.0);
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    (0..count * usize::from(emits))
+        .map(|k| {
+            let shares: Vec<f64> = (0..n).map(|_| rng.next_f64()).collect();
+            let extra = (0..bands)
+                .map(|b| (0..n).map(|i| shares[i] * scene.emission[i][b]).collect())
+                .collect();
+            case(
+                format!("emitters patch by patch {}", k + 1),
+                vec![0.0; m],
+                extra,
+            )
+        })
+        .collect()
+}
+
+/// `count` patterns over the whole room, channels off: a random fifth of the patches each
+/// emitting a random exitance up to the largest exitance a patch of the scene emits at level
+/// 1, in any band (1 when nothing emits), same in every band.
+pub fn pattern_cases(scene: &Scene, count: usize) -> Vec<Case> {
+    let (n, bands, m) = (
+        scene.patches.len(),
+        scene.bands.count(),
+        scene.channels.len(),
+    );
     let peak = scene
         .emission
         .iter()
@@ -63,23 +136,21 @@ pub fn standard_cases(scene: &Scene, random: usize) -> Vec<Case> {
         .fold(0.0f64, f64::max);
     let peak = if peak > 0.0 { peak } else { 1.0 };
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
-    for k in 0..random {
-        let pattern: Vec<f64> = (0..n)
-            .map(|_| {
-                if rng.next_f64() < 0.2 {
-                    peak * rng.next_f64()
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        cases.push(Case {
-            name: format!("random pattern {}", k + 1),
-            levels: vec![0.0; m],
-            extra: vec![pattern; bands],
-        });
-    }
-    cases
+    (0..count)
+        .map(|k| {
+            let pattern: Vec<f64> = (0..n)
+                .map(|_| {
+                    if rng.next_f64() < 0.2 {
+                        peak * rng.next_f64()
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
+            let name = format!("random pattern {}", k + 1);
+            case(name, vec![0.0; m], vec![pattern; bands])
+        })
+        .collect()
 }
 
 /// Mode counts tested for the tolerance search and reports: 1, 2, 3, 4, 6, 8, 12, 16, …
@@ -169,27 +240,32 @@ pub fn sweep(
 /// Error curves of `case` for every p in `modes` (ascending), against the exact solve.
 pub fn curve(model: &Model, solvers: &[ExactSolver], case: &Case, modes: &[usize]) -> Curve {
     let mut patch_error = vec![0.0f64; modes.len()];
-    let mut output_error = vec![0.0f64; modes.len()];
+    let mut reading_error = vec![0.0f64; modes.len()];
     sweep(model, solvers, case, modes, |pt| {
         let t = pt.step;
         let patches = metric::patch_error(&model.area, pt.exitance, pt.exact);
         patch_error[t] = patch_error[t].max(patches);
-        let outputs = metric::output_error(pt.outputs, pt.exact_outputs);
-        output_error[t] = output_error[t].max(outputs);
+        let readings = metric::worst_reading(pt.outputs, pt.exact_outputs);
+        reading_error[t] = reading_error[t].max(readings.error);
     });
     Curve {
         case: case.name.clone(),
         modes: modes.to_vec(),
         patch_error,
-        output_error,
+        reading_error,
     }
 }
 
-/// The smallest p whose patch error stays at or under `tolerance` for every curve, if any.
+/// The smallest p at which, for every curve, the patch error and every sensor's and zone's
+/// reading error are at or under `tolerance`, if any.
 pub fn smallest_p(curves: &[Curve], tolerance: f64) -> Option<usize> {
     let modes = &curves.first()?.modes;
     (0..modes.len())
-        .find(|&t| curves.iter().all(|c| c.patch_error[t] <= tolerance))
+        .find(|&t| {
+            curves
+                .iter()
+                .all(|c| c.patch_error[t] <= tolerance && c.reading_error[t] <= tolerance)
+        })
         .map(|t| modes[t])
 }
 

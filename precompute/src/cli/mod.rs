@@ -547,20 +547,30 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
     );
     let _ = writeln!(
         s,
-        "accuracy through the runtime against the exact solve (relative):"
+        "accuracy through the runtime against the exact solve (relative error):"
     );
     let _ = writeln!(
         s,
-        "  {:<32} {:>14} {:>16}",
-        "case", "patch exitance", "sensors & zones"
+        "  {:<28} {:>10}  {:<34}  {:<30}",
+        "case", "exitance", "worst patch", "worst sensor or zone"
     );
     for a in &r.accuracy {
+        let patch = format!(
+            "{:.1e} (patch {}, {})",
+            a.worst_patch.error, a.worst_patch.index, a.worst_patch_surface
+        );
+        let reading = format!("{:.1e} ({})", a.worst_reading.error, a.worst_reading_name);
         let _ = writeln!(
             s,
-            "  {:<32} {:>14.2e} {:>16.2e}",
-            a.case, a.patch_error, a.output_error
+            "  {:<28} {:>10.1e}  {:<34}  {:<30}",
+            a.case, a.patch_error, patch, reading
         );
     }
+    let _ = writeln!(
+        s,
+        "  (exitance: area-weighted RMS over the patches; a patch, sensor or zone against its own exact value, floored at {:.0e} of the largest)",
+        crate::accuracy::metric::READING_FLOOR
+    );
     let _ = writeln!(s, "time per stage:");
     for t in &r.timings {
         let _ = writeln!(s, "  {:<34} {:>8.3} s", t.stage, t.seconds);

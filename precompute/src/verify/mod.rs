@@ -182,16 +182,14 @@ fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
     let scene = &prepared.scene;
     let m = scene.channels.len();
     let n = scene.patches.len();
-    let standard = accuracy::standard_cases(scene, opts.random_patterns);
-    let mut out: Vec<(CaseKind, Case)> = Vec::new();
-    let mut patterns = Vec::new();
-    for (i, c) in standard.into_iter().enumerate() {
-        if i < m {
-            out.push((CaseKind::Channel, c));
-        } else {
-            patterns.push((CaseKind::EmitterPattern, c));
-        }
-    }
+    let mut out: Vec<(CaseKind, Case)> = accuracy::channel_cases(scene)
+        .into_iter()
+        .map(|c| (CaseKind::Channel, c))
+        .collect();
+    let patterns: Vec<(CaseKind, Case)> = accuracy::pattern_cases(scene, opts.random_patterns)
+        .into_iter()
+        .map(|c| (CaseKind::EmitterPattern, c))
+        .collect();
     if m > 0 {
         let mut rng = Rng(0xD1B5_4A32_D192_ED03);
         for k in 0..opts.random_mixes {

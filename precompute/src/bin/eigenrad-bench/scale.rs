@@ -94,7 +94,7 @@ pub(crate) fn one(path: &Path) -> Result<()> {
         peak_rss() / 1e6
     );
     let worst = report.accuracy.iter().fold((0.0f64, 0.0f64), |w, c| {
-        (w.0.max(c.patch_error), w.1.max(c.output_error))
+        (w.0.max(c.patch_error), w.1.max(c.worst_reading.error))
     });
     eprintln!(
         "  {}: {} modes, row sums {:.4}..{:.4}, reciprocity {:.1e}, worst patch error {:.1e}, worst sensor/zone error {:.1e}",

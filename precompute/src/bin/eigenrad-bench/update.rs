@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Result};
-use eigenrad_precompute::accuracy::metric::{output_error, patch_error};
+use eigenrad_precompute::accuracy::metric::{patch_error, worst_reading};
 use eigenrad_precompute::accuracy::rng::level_vector;
 use eigenrad_precompute::basis;
 use eigenrad_precompute::formfactor::FormFactorOptions;
@@ -198,13 +198,14 @@ impl<'m> Bench<'m> {
         level_vector(k, self.m).iter().map(|&x| x as f32).collect()
     }
 
-    /// Worst (a) output and (b) patch error of `solve` over the accuracy cases.
+    /// Worst (a) sensor or zone reading error (each against its own exact value) and (b)
+    /// patch error of `solve` over the accuracy cases.
     fn errors(&self, solve: &mut Solution<'_>) -> (f64, f64) {
         let (mut ep, mut eo) = (0.0f64, 0.0f64);
         for (l, (x, o)) in self.cases.iter().zip(&self.truth) {
             let (gx, go) = solve(l);
             ep = ep.max(patch_error(&self.model.area, &gx, x));
-            eo = eo.max(output_error(&go, o));
+            eo = eo.max(worst_reading(&go, o).error);
         }
         (eo, ep)
     }
