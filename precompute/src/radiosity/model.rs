@@ -260,14 +260,13 @@ impl Model {
         let band = &self.bands[b];
         let mut amplitude = vec![0.0; band.mode_count()];
         let mut identity = vec![0.0; self.patch_count()];
+        // Channels are carried by their exact responses, as the basis stores them: the modes
+        // serve only exitance set patch by patch.
         for (c, &l) in levels.iter().enumerate() {
             if l == 0.0 {
                 continue;
             }
-            for (a, x) in amplitude.iter_mut().zip(self.channel_projection(c, b)) {
-                *a += l * x;
-            }
-            for (o, x) in identity.iter_mut().zip(self.channel_identity(c, b)) {
+            for (o, x) in identity.iter_mut().zip(self.channel_response(c, b)) {
                 *o += l * x;
             }
         }
