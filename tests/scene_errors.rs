@@ -573,3 +573,45 @@ fn too_many_patches_refused_before_meshing_with_the_estimate() {
     // Room 6 m x 4 m x 2 m at 1 mm: 2 (6·4 + 6·2 + 4·2) m² / 1e-6 m² = 8.8e7 patches.
     assert!(m.contains("8.800e7 patches"), "estimate not in: {m}");
 }
+
+#[test]
+fn reflectance_that_single_precision_rounds_to_one() {
+    // 0.9999999999 < 1, but a basis stores reflectance in f32, where it is 1.
+    expect(
+        "reflectance_rounds_to_one.toml",
+        "reflectance_rounds_to_one.toml",
+        &[
+            &line("reflectance_rounds_to_one.toml", "wall ="),
+            "materials.wall.reflectance",
+            "[0, 1)",
+            "0.99999994",
+        ],
+    );
+}
+
+#[test]
+fn reflectance_too_small_to_weigh() {
+    // Between 0 (black) and 1e-6 the weight A/ρ of the eigenproblem could overflow.
+    expect(
+        "reflectance_tiny.toml",
+        "reflectance_tiny.toml",
+        &[
+            &line("reflectance_tiny.toml", "wall ="),
+            "materials.wall.reflectance",
+            "1e-6",
+        ],
+    );
+}
+
+#[test]
+fn flux_giving_an_exitance_no_basis_stores() {
+    expect(
+        "enormous_flux.toml",
+        "enormous_flux.toml",
+        &[
+            &line("enormous_flux.toml", "flux = 1e308"),
+            "channel `lamp`.flux",
+            "1e9",
+        ],
+    );
+}

@@ -2,6 +2,8 @@
 
 use toml::Spanned;
 
+use eigenrad_runtime::MAX_EXITANCE;
+
 use super::context::{resolve_surfaces, unique, Ctx, RawSurface};
 use super::error::SceneError;
 use super::file::ChannelDef;
@@ -157,7 +159,18 @@ fn exitance(ctx: &Ctx, c: &ChannelDef, area: f64) -> Result<Option<Vec<f64>>, Sc
         (None, Some(f)) => {
             let field = format!("{what}.flux");
             let flux = ctx.check_exitance(ctx.per_band(f, &field)?, &ctx.at(f), &field)?;
-            Some(flux.iter().map(|f| f / area).collect())
+            let exitance: Vec<f64> = flux.iter().map(|f| f / area).collect();
+            if exitance.iter().any(|e| *e > f64::from(MAX_EXITANCE)) {
+                return Err(SceneError::OutOfRange {
+                    at: ctx.at(f),
+                    field,
+                    message: format!(
+                        "{flux:?} over the channel's {area} m² is an exitance of {exitance:?}, \
+                         above the {MAX_EXITANCE:e} a basis stores"
+                    ),
+                });
+            }
+            Some(exitance)
         }
         (None, None) => None,
     })

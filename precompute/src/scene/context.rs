@@ -10,6 +10,7 @@ use super::error::{Location, SceneError};
 use super::file::PerBand;
 use super::Surface;
 use crate::geometry::Vec3;
+use eigenrad_runtime::{MAX_EXITANCE, MIN_REFLECTANCE};
 
 /// Luminance weights of linear RGB (ITU-R BT.709 primaries), used to make photopic values.
 pub(crate) const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
@@ -123,42 +124,59 @@ impl Ctx<'_> {
         }
     }
 
-    /// Checks reflectances are in [0, 1).
+    /// Checks reflectances are what a basis can store: 0 (black), or at least
+    /// [`MIN_REFLECTANCE`] and still below 1 once rounded to f32.
     pub fn check_reflectance(
         &self,
         r: Vec<f64>,
         at: &Location,
         field: &str,
     ) -> Result<Vec<f64>, SceneError> {
-        if r.iter().all(|x| (0.0..1.0).contains(x)) {
+        let storable = |x: f64| {
+            let stored = x as f32;
+            x == 0.0 || (x > 0.0 && stored >= MIN_REFLECTANCE && stored < 1.0)
+        };
+        if r.iter().all(|&x| storable(x)) {
             Ok(r)
         } else {
             Err(SceneError::OutOfRange {
                 at: at.clone(),
                 field: field.into(),
-                message: format!("reflectance must be in [0, 1), found {r:?}"),
+                message: format!(
+                    "reflectance must be in [0, 1): 0 for a black surface, otherwise at least \
+                     {MIN_REFLECTANCE:e} and at most {LARGEST_REFLECTANCE} (the largest below 1 \
+                     in single precision); found {r:?}"
+                ),
             })
         }
     }
 
-    /// Checks exitances (or fluxes) are finite and non-negative.
+    /// Checks exitances (or fluxes) are finite, non-negative and at most [`MAX_EXITANCE`].
     pub fn check_exitance(
         &self,
         e: Vec<f64>,
         at: &Location,
         field: &str,
     ) -> Result<Vec<f64>, SceneError> {
-        if e.iter().all(|x| x.is_finite() && *x >= 0.0) {
+        if e
+            .iter()
+            .all(|x| x.is_finite() && (0.0..=f64::from(MAX_EXITANCE)).contains(x))
+        {
             Ok(e)
         } else {
             Err(SceneError::OutOfRange {
                 at: at.clone(),
                 field: field.into(),
-                message: format!("must be finite and non-negative, found {e:?}"),
+                message: format!(
+                    "must be finite, non-negative and at most {MAX_EXITANCE:e}, found {e:?}"
+                ),
             })
         }
     }
 }
+
+/// The largest reflectance below 1 that single precision holds: `1 − 2⁻²⁴`.
+const LARGEST_REFLECTANCE: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// Checks that no two items share a name.
 pub(crate) fn unique<'n>(
