@@ -134,7 +134,7 @@ impl Ctx<'_> {
     ) -> Result<Vec<f64>, SceneError> {
         let storable = |x: f64| {
             let stored = x as f32;
-            x == 0.0 || (x > 0.0 && stored >= MIN_REFLECTANCE && stored < 1.0)
+            x == 0.0 || (x > 0.0 && (MIN_REFLECTANCE..1.0).contains(&stored))
         };
         if r.iter().all(|&x| storable(x)) {
             Ok(r)
