@@ -615,3 +615,51 @@ fn flux_giving_an_exitance_no_basis_stores() {
         ],
     );
 }
+
+#[test]
+fn quad_with_five_corners() {
+    expect(
+        "quad_five_corners.toml",
+        "quad_five_corners.toml",
+        &[
+            &line("quad_five_corners.toml", "corners ="),
+            "quad `lamp`.corners",
+            "4 corners, found 5",
+        ],
+    );
+}
+
+#[test]
+fn point_with_four_coordinates() {
+    expect(
+        "sensor_four_coordinates.toml",
+        "sensor_four_coordinates.toml",
+        &[
+            &line("sensor_four_coordinates.toml", "position ="),
+            "3 numbers",
+        ],
+    );
+}
+
+#[test]
+fn channel_names_that_level_arguments_cannot_address() {
+    for (file, problem) in [
+        ("channel_name_with_equals.toml", "contains `=`"),
+        ("channel_name_empty.toml", "is empty"),
+    ] {
+        expect(file, file, &[&line(file, "[[channel]]"), ".name", problem]);
+    }
+}
+
+#[test]
+fn zone_naming_no_surface() {
+    expect(
+        "zone_without_surfaces.toml",
+        "zone_without_surfaces.toml",
+        &[
+            &line("zone_without_surfaces.toml", "surfaces = []"),
+            "zone `nothing`.surfaces",
+            "names no surface",
+        ],
+    );
+}

@@ -39,6 +39,9 @@ pub(crate) fn resolve(
         "channel",
         defs.iter().map(|c| (c.get_ref().name.as_str(), ctx.at(c))),
     )?;
+    for def in defs {
+        addressable(ctx, def)?;
+    }
     let mut channel_of_surface: Vec<Option<usize>> = vec![None; surfaces.len()];
     let mut surface_emission = vec![vec![0.0; ctx.bands]; surfaces.len()];
     let mut channels = Vec::with_capacity(defs.len());
@@ -138,6 +141,29 @@ fn members(
         });
     }
     Ok(members)
+}
+
+/// A channel's name must be one `eigenrad eval --level NAME=VALUE` can address: not empty,
+/// no `=`, no white space at either end.
+fn addressable(ctx: &Ctx, def: &Spanned<ChannelDef>) -> Result<(), SceneError> {
+    let name = &def.get_ref().name;
+    let problem = if name.is_empty() {
+        Some("is empty")
+    } else if name.contains('=') {
+        Some("contains `=`")
+    } else if name.trim() != name {
+        Some("begins or ends with white space")
+    } else {
+        None
+    };
+    match problem {
+        Some(problem) => Err(SceneError::Invalid {
+            at: ctx.at(def),
+            field: format!("channel `{name}`.name"),
+            message: format!("the name {problem}, so `--level NAME=VALUE` cannot address it"),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// The exitance channel `c` gives its surfaces at level 1 (lux or W/m² per band): as written,

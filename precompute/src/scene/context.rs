@@ -7,7 +7,7 @@ use std::path::Path;
 use toml::Spanned;
 
 use super::error::{Location, SceneError};
-use super::file::PerBand;
+use super::file::{PerBand, Xyz};
 use super::Surface;
 use crate::geometry::Vec3;
 use eigenrad_runtime::{MAX_EXITANCE, MIN_REFLECTANCE};
@@ -58,8 +58,8 @@ impl Ctx<'_> {
     }
 
     /// A point or vector from the file, checked finite and converted to metres.
-    pub fn point(&self, p: &Spanned<[f64; 3]>, field: &str) -> Result<Vec3, SceneError> {
-        self.coordinates(*p.get_ref(), p, field)
+    pub fn point(&self, p: &Spanned<Xyz>, field: &str) -> Result<Vec3, SceneError> {
+        self.coordinates(**p.get_ref(), p, field)
     }
 
     /// Coordinates checked finite and converted to metres; `span` locates errors.
@@ -158,8 +158,7 @@ impl Ctx<'_> {
         at: &Location,
         field: &str,
     ) -> Result<Vec<f64>, SceneError> {
-        if e
-            .iter()
+        if e.iter()
             .all(|x| x.is_finite() && (0.0..=f64::from(MAX_EXITANCE)).contains(x))
         {
             Ok(e)

@@ -6,10 +6,31 @@
 
 use std::collections::BTreeMap;
 
-use serde::Deserialize;
+use serde::{Deserialize, Deserializer};
 use toml::Spanned;
 
 use super::error::{Location, SceneError};
+
+/// Three numbers (a point or a direction), exactly: an array of another length is an error
+/// naming its line, where a fixed-size array would drop extra numbers silently.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Xyz(pub [f64; 3]);
+
+impl<'de> Deserialize<'de> for Xyz {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let v = Vec::<f64>::deserialize(d)?;
+        <[f64; 3]>::try_from(v.as_slice())
+            .map(Xyz)
+            .map_err(|_| serde::de::Error::invalid_length(v.len(), &"3 numbers (x, y, z)"))
+    }
+}
+
+impl std::ops::Deref for Xyz {
+    type Target = [f64; 3];
+    fn deref(&self) -> &[f64; 3] {
+        &self.0
+    }
+}
 
 /// The whole file.
 #[derive(Debug, Deserialize)]
@@ -174,7 +195,8 @@ pub(crate) struct QuadDef {
     pub name: String,
     pub material: Spanned<String>,
     /// Counter-clockwise seen from the front.
-    pub corners: Spanned<[[f64; 3]; 4]>,
+    /// Four corners; a list of another length is an error naming it (not truncated).
+    pub corners: Spanned<Vec<Xyz>>,
     #[serde(default)]
     pub max_edge: Option<Spanned<f64>>,
 }
@@ -184,8 +206,8 @@ pub(crate) struct QuadDef {
 #[serde(deny_unknown_fields)]
 pub(crate) struct RoomDef {
     pub name: String,
-    pub min: Spanned<[f64; 3]>,
-    pub max: Spanned<[f64; 3]>,
+    pub min: Spanned<Xyz>,
+    pub max: Spanned<Xyz>,
     pub material: Spanned<String>,
     #[serde(default)]
     pub floor: Option<Spanned<String>>,
@@ -205,8 +227,8 @@ pub(crate) struct RoomDef {
 #[serde(deny_unknown_fields)]
 pub(crate) struct BlockDef {
     pub name: String,
-    pub min: Spanned<[f64; 3]>,
-    pub max: Spanned<[f64; 3]>,
+    pub min: Spanned<Xyz>,
+    pub max: Spanned<Xyz>,
     pub material: Spanned<String>,
     /// Whether to make the bottom face (leave it out when the block stands on the floor).
     #[serde(default = "yes")]
@@ -235,7 +257,7 @@ pub(crate) struct ObjDef {
     pub scale: Option<Spanned<f64>>,
     /// In the scene's unit, applied after `up` and `scale`.
     #[serde(default)]
-    pub translate: Option<Spanned<[f64; 3]>>,
+    pub translate: Option<Spanned<Xyz>>,
     #[serde(default)]
     pub max_edge: Option<Spanned<f64>>,
     /// Drop a face whose corners are those of an earlier face of the same surface.
@@ -283,8 +305,8 @@ pub(crate) struct ChannelDef {
 #[serde(deny_unknown_fields)]
 pub(crate) struct SensorDef {
     pub name: String,
-    pub position: Spanned<[f64; 3]>,
-    pub normal: Spanned<[f64; 3]>,
+    pub position: Spanned<Xyz>,
+    pub normal: Spanned<Xyz>,
     /// Degrees.
     #[serde(default)]
     pub half_angle: Option<Spanned<f64>>,

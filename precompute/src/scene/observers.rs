@@ -178,6 +178,13 @@ pub(crate) fn zones(
         let kind = match (&z.surfaces, &z.work_plane) {
             (Some(refs), None) => {
                 let members = resolve_surfaces(ctx, surfaces, refs, &format!("{what}.surfaces"))?;
+                if members.is_empty() {
+                    return Err(SceneError::Invalid {
+                        at: ctx.at(refs),
+                        field: format!("{what}.surfaces"),
+                        message: "names no surface: a zone averages over at least one".into(),
+                    });
+                }
                 ZoneKind::Surfaces(
                     members
                         .iter()

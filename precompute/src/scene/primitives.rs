@@ -5,7 +5,7 @@ use toml::Spanned;
 
 use super::context::{Ctx, RawSurface};
 use super::error::SceneError;
-use super::file::{BlockDef, QuadDef, RoomDef};
+use super::file::{BlockDef, QuadDef, RoomDef, Xyz};
 use super::openings::CONTACT_TOLERANCE;
 use crate::geometry::Vec3;
 
@@ -52,8 +52,8 @@ fn box_faces(lo: Vec3, hi: Vec3) -> [(&'static str, &'static str, [Vec3; 4]); 6]
 pub(crate) fn box_corners(
     ctx: &Ctx,
     what: &str,
-    min: &Spanned<[f64; 3]>,
-    max: &Spanned<[f64; 3]>,
+    min: &Spanned<Xyz>,
+    max: &Spanned<Xyz>,
 ) -> Result<(Vec3, Vec3), SceneError> {
     let lo = ctx.point(min, &format!("{what}.min"))?;
     let hi = ctx.point(max, &format!("{what}.max"))?;
@@ -129,9 +129,19 @@ pub(crate) fn block(ctx: &Ctx, def: &Spanned<BlockDef>) -> Result<Vec<RawSurface
 pub(crate) fn quad(ctx: &Ctx, def: &Spanned<QuadDef>) -> Result<RawSurface, SceneError> {
     let q = def.get_ref();
     let what = format!("quad `{}`", q.name);
+    if q.corners.get_ref().len() != 4 {
+        return Err(SceneError::Invalid {
+            at: ctx.at(&q.corners),
+            field: format!("{what}.corners"),
+            message: format!(
+                "a quad has 4 corners, found {}; use an OBJ file for other polygons",
+                q.corners.get_ref().len()
+            ),
+        });
+    }
     let mut corners = Vec::with_capacity(4);
     for c in q.corners.get_ref() {
-        corners.push(ctx.coordinates(*c, &q.corners, &format!("{what}.corners"))?);
+        corners.push(ctx.coordinates(**c, &q.corners, &format!("{what}.corners"))?);
     }
     Ok(RawSurface {
         name: q.name.clone(),
