@@ -663,3 +663,17 @@ fn zone_naming_no_surface() {
         ],
     );
 }
+
+#[test]
+fn work_plane_meshed_too_finely_for_memory() {
+    // Refused from an estimate, before meshing 4e10 receivers.
+    expect(
+        "work_plane_too_fine.toml",
+        "work_plane_too_fine.toml",
+        &[
+            &line("work_plane_too_fine.toml", "max_edge = 0.00001"),
+            "zone `desk`.work_plane.max_edge",
+            "receivers",
+        ],
+    );
+}

@@ -86,6 +86,12 @@ pub fn build_bytes(patches: f64, reflecting: &[f64]) -> f64 {
     matrix_bytes(patches) + eigen.max(reference)
 }
 
+/// Bytes of a receiver form-factor matrix (`receivers × patches` f64): what a work plane of
+/// `receivers` points holds while its row is computed, on top of a build.
+pub fn receiver_bytes(receivers: f64, patches: f64) -> f64 {
+    receivers * patches * ENTRY_BYTES
+}
+
 /// Physical memory in bytes, read once (Linux `/proc/meminfo`; 8 GB assumed elsewhere).
 pub fn physical_bytes() -> f64 {
     static PHYSICAL: OnceLock<f64> = OnceLock::new();

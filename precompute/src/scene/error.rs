@@ -177,6 +177,25 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
+    /// A work plane would have more receivers than a build on this machine can hold next to
+    /// the scene's patches ([`crate::memory::receiver_bytes`]); refused before meshing it.
+    #[error(
+        "{at}: {field}: the work plane would have about {receivers:.3e} receivers; their form \
+         factors to the scene's patches and the build need about {needed:.3e} bytes, more than \
+         the {available:.3e} bytes a build may use on this machine; raise `max_edge`"
+    )]
+    TooManyReceivers {
+        /// Where the work plane's `max_edge` (or the scene's) was written.
+        at: Location,
+        /// The mesh size setting at fault.
+        field: String,
+        /// Estimated receiver count.
+        receivers: f64,
+        /// Estimated memory, bytes.
+        needed: f64,
+        /// Memory a build may use ([`crate::memory::budget_bytes`]), bytes.
+        available: f64,
+    },
     /// Meshing would make more patches than a build on this machine can hold
     /// ([`crate::memory::build_bytes`]); refused before meshing.
     #[error(

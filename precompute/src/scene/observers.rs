@@ -5,10 +5,11 @@ use toml::Spanned;
 use super::context::{resolve_surfaces, unique, Ctx};
 use super::error::SceneError;
 use super::file::{SensorDef, WorkPlaneDef, ZoneDef};
-use super::mesh::mesh_face;
+use super::mesh::{estimate, mesh_face};
 use super::openings::CONTACT_TOLERANCE;
 use super::{Sensor, Surface, Zone, ZoneKind};
 use crate::geometry::{Patch, Polygon, Vec3};
+use crate::memory;
 
 /// Reads and checks the sensors; `rooms` and `blocks` are (name, min, max) in metres.
 pub(crate) fn sensors(
@@ -283,10 +284,42 @@ fn work_plane(
         Vec3::new(x1, y1, z),
         Vec3::new(x0, y1, z),
     ];
+    let edge_used = edge.unwrap_or(default_edge);
+    check_receivers(ctx, what, def, estimate(&corners, edge_used), surfaces)?;
     let mut polygons: Vec<Polygon> = Vec::new();
-    mesh_face(&corners, edge.unwrap_or(default_edge), &mut polygons);
+    mesh_face(&corners, edge_used, &mut polygons);
     Ok(ZoneKind::WorkPlane {
         height,
         receivers: polygons.into_iter().map(|p| Patch::new(p, floor)).collect(),
+    })
+}
+
+/// Refuses a work plane whose `receivers` (an estimate) would not fit in memory next to the
+/// build of the scene's patches, before it is meshed; names its `max_edge`.
+fn check_receivers(
+    ctx: &Ctx,
+    what: &str,
+    def: &Spanned<WorkPlaneDef>,
+    receivers: f64,
+    surfaces: &[Surface],
+) -> Result<(), SceneError> {
+    let patches = surfaces.iter().map(|s| s.patch_range.len()).sum::<usize>() as f64;
+    let needed = memory::build_bytes(patches, &vec![patches; ctx.bands])
+        + memory::receiver_bytes(receivers, patches);
+    let available = memory::budget_bytes();
+    if needed <= available {
+        return Ok(());
+    }
+    let wp = def.get_ref();
+    let (at, field) = match &wp.max_edge {
+        Some(e) => (ctx.at(e), format!("{what}.work_plane.max_edge")),
+        None => (ctx.at(def), "scene.max_edge".to_string()),
+    };
+    Err(SceneError::TooManyReceivers {
+        at,
+        field,
+        receivers,
+        needed,
+        available,
     })
 }
