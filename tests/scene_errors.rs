@@ -677,3 +677,42 @@ fn work_plane_meshed_too_finely_for_memory() {
         ],
     );
 }
+
+#[test]
+fn obj_faults_name_their_file_line_and_cause() {
+    // (scene, the file at fault, text of the line at fault, the cause).
+    for (scene, file, at, cause) in [
+        (
+            "obj_undefined_usemtl.toml",
+            "undefined_usemtl.obj",
+            "usemtl nosuch",
+            "names no material (its MTL files define grey)",
+        ),
+        (
+            "obj_infinite_vertex.toml",
+            "infinite_vertex.obj",
+            "v 1 inf 1",
+            "`inf` is not finite",
+        ),
+        (
+            "obj_forward_vertex.toml",
+            "forward_vertex.obj",
+            "f 1 4 3 2",
+            "defined further down",
+        ),
+    ] {
+        let located = format!("{file}{}", line(file, at));
+        expect(scene, file, &[&located, cause]);
+    }
+    expect(
+        "obj_no_faces.toml",
+        "no_faces.obj",
+        &["no_faces.obj:1:", "no faces"],
+    );
+    // Its third line holds the bytes 0xFF 0xFE (so `line` cannot read it as text).
+    expect(
+        "obj_mtl_not_utf8.toml",
+        "not_utf8.mtl",
+        &["not_utf8.mtl:3:", "not UTF-8"],
+    );
+}

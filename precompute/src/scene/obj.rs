@@ -112,13 +112,40 @@ fn read(o: &ObjDef, at: &Location, path: &Path) -> Result<Loaded, SceneError> {
     if let Some(problem) = obj_problem(&text) {
         return Err(located(path, problem));
     }
+    let mut defined = HashSet::new();
     for mtl in &mtls {
-        if let Some(problem) = std::fs::read_to_string(mtl)
-            .ok()
-            .and_then(|t| mtl_problem(&t))
-        {
+        let bytes = std::fs::read(mtl).map_err(|reason| SceneError::Read {
+            path: mtl.clone(),
+            reason,
+        })?;
+        let text = match String::from_utf8(bytes) {
+            Ok(text) => text,
+            Err(e) => {
+                let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+                let line = valid.iter().filter(|&&b| b == b'\n').count() + 1;
+                return Err(located(
+                    mtl,
+                    (line, "not UTF-8 text: is this an MTL file?".into()),
+                ));
+            }
+        };
+        if let Some(problem) = mtl_problem(&text) {
             return Err(located(mtl, problem));
         }
+        defined.extend(material_names(&text));
+    }
+    if let Some((line, name)) = undefined_material(&text, &defined) {
+        let known = if defined.is_empty() {
+            "its MTL files define none".to_string()
+        } else {
+            let mut names: Vec<&str> = defined.iter().map(String::as_str).collect();
+            names.sort_unstable();
+            format!("its MTL files define {}", names.join(", "))
+        };
+        return Err(located(
+            path,
+            (line, format!("`usemtl {name}` names no material ({known})")),
+        ));
     }
     let (models, materials) = tobj::load_obj(path, &options).map_err(|e| obj_error("OBJ", e))?;
     let materials = materials.map_err(|e| obj_error("MTL", e))?;
@@ -287,6 +314,12 @@ fn obj_problem(text: &str) -> Option<(usize, String)> {
                 if let Some(bad) = values.iter().find(|v| v.parse::<f64>().is_err()) {
                     return Some((n + 1, format!("vertex coordinate `{bad}` is not a number")));
                 }
+                if let Some(bad) = values
+                    .iter()
+                    .find(|v| v.parse::<f64>().is_ok_and(|x| !x.is_finite()))
+                {
+                    return Some((n + 1, format!("vertex coordinate `{bad}` is not finite")));
+                }
             }
             Some("f") => {
                 let corners: Vec<&str> = fields.collect();
@@ -298,6 +331,19 @@ fn obj_problem(text: &str) -> Option<(usize, String)> {
                 }
                 for c in corners {
                     let index = c.split('/').next().unwrap_or("");
+                    if index
+                        .parse::<i64>()
+                        .is_ok_and(|i| i > 0 && (i as usize) <= total && (i as usize) > seen)
+                    {
+                        return Some((
+                            n + 1,
+                            format!(
+                                "face corner `{c}` uses a vertex defined further down the \
+                                 file (only {seen} vertices before this line): define vertices \
+                                 before the faces that use them"
+                            ),
+                        ));
+                    }
                     let valid = match index.parse::<i64>() {
                         Ok(i) if i > 0 => (i as usize) <= total,
                         Ok(i) if i < 0 => i.unsigned_abs() as usize <= seen,
@@ -317,7 +363,31 @@ fn obj_problem(text: &str) -> Option<(usize, String)> {
             _ => {}
         }
     }
-    None
+    let faces = text
+        .lines()
+        .any(|l| l.split_whitespace().next() == Some("f"));
+    (!faces).then(|| {
+        (
+            1,
+            "no faces (`f` lines): is this an OBJ file, and does it hold the geometry?".into(),
+        )
+    })
+}
+
+/// The names an MTL file defines (`newmtl NAME`).
+fn material_names(text: &str) -> Vec<String> {
+    text.lines()
+        .filter_map(|l| l.trim_start().strip_prefix("newmtl "))
+        .map(|name| name.trim().to_string())
+        .collect()
+}
+
+/// The first `usemtl` line (1-based) naming a material outside `defined`, and that name.
+fn undefined_material(text: &str, defined: &HashSet<String>) -> Option<(usize, String)> {
+    text.lines().enumerate().find_map(|(n, l)| {
+        let name = l.trim_start().strip_prefix("usemtl ")?.trim();
+        (!defined.contains(name)).then(|| (n + 1, name.to_string()))
+    })
 }
 
 /// The first malformed line of an MTL file (1-based): a colour or scalar that is not numbers.
