@@ -1,0 +1,121 @@
+//! `eigenrad inspect`: what a basis holds (dimensions, names, sizes, leading eigenvalues).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use eigenrad_runtime::Basis;
+use serde::Serialize;
+
+use super::readout::{band_names, basis_error, unit};
+use crate::error::Result;
+
+/// What `inspect` shows.
+#[derive(Clone, Debug, Serialize)]
+pub struct BasisInfo {
+    /// Format version.
+    pub format_version: u16,
+    /// Total bytes.
+    pub bytes: usize,
+    /// Unit.
+    pub unit: &'static str,
+    /// Band names.
+    pub bands: Vec<&'static str>,
+    /// `split` or `seed`.
+    pub formulation: &'static str,
+    /// `f32`, `f16` or `i16`.
+    pub precision: &'static str,
+    /// Number of patches.
+    pub patches: usize,
+    /// Modes per band.
+    pub modes: usize,
+    /// Surface names.
+    pub surfaces: Vec<String>,
+    /// Channel names.
+    pub channels: Vec<String>,
+    /// Sensor names.
+    pub sensors: Vec<String>,
+    /// Zone names with their areas (m²).
+    pub zones: Vec<(String, f32)>,
+    /// Eigenvalues of the first band.
+    pub eigenvalues: Vec<f32>,
+}
+
+fn names<'a>(
+    count: usize,
+    f: impl Fn(usize) -> std::result::Result<&'a str, eigenrad_runtime::Error>,
+) -> std::result::Result<Vec<String>, eigenrad_runtime::Error> {
+    (0..count).map(|i| f(i).map(str::to_owned)).collect()
+}
+
+/// `eigenrad inspect`.
+pub fn inspect(path: &Path, bytes: &[u8]) -> Result<BasisInfo> {
+    let b = Basis::from_bytes(bytes).map_err(basis_error(path))?;
+    let e = basis_error(path);
+    let mut zones = Vec::new();
+    for z in 0..b.zone_count() {
+        zones.push((
+            b.zone_name(z).map_err(&e)?.to_owned(),
+            b.zone_area(z).map_err(&e)?,
+        ));
+    }
+    Ok(BasisInfo {
+        format_version: eigenrad_runtime::format::FORMAT_VERSION,
+        bytes: b.byte_len(),
+        unit: unit(b.quantity()),
+        bands: band_names(b.bands()),
+        formulation: b.formulation().name(),
+        precision: b.precision().name(),
+        patches: b.patch_count(),
+        modes: b.mode_count(),
+        surfaces: names(b.surface_count(), |i| b.surface_name(i)).map_err(&e)?,
+        channels: names(b.channel_count(), |i| b.channel_name(i)).map_err(&e)?,
+        sensors: names(b.sensor_count(), |i| b.sensor_name(i)).map_err(&e)?,
+        zones,
+        eigenvalues: (0..b.mode_count())
+            .map(|k| b.eigenvalue(0, k))
+            .collect::<std::result::Result<_, _>>()
+            .map_err(&e)?,
+    })
+}
+
+/// Human-readable `inspect`.
+pub fn format_inspect(i: &BasisInfo) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "format v{}, {} bytes", i.format_version, i.bytes);
+    let _ = writeln!(
+        s,
+        "{} patches, {} modes per band, bands: {} ({})",
+        i.patches,
+        i.modes,
+        i.bands.join(" "),
+        i.unit
+    );
+    let _ = writeln!(s, "formulation {}, storage {}", i.formulation, i.precision);
+    let _ = writeln!(
+        s,
+        "surfaces ({}): {}",
+        i.surfaces.len(),
+        i.surfaces.join(", ")
+    );
+    let _ = writeln!(
+        s,
+        "channels ({}): {}",
+        i.channels.len(),
+        i.channels.join(", ")
+    );
+    let _ = writeln!(s, "sensors ({}): {}", i.sensors.len(), i.sensors.join(", "));
+    let zones: Vec<String> = i
+        .zones
+        .iter()
+        .map(|(n, a)| format!("{n} ({a:.2} m²)"))
+        .collect();
+    let _ = writeln!(s, "zones ({}): {}", i.zones.len(), zones.join(", "));
+    let head: Vec<String> = i
+        .eigenvalues
+        .iter()
+        .take(8)
+        .map(|e| format!("{e:.4}"))
+        .collect();
+    let _ = writeln!(s, "leading eigenvalues (band 1): {}", head.join(" "));
+    s
+}

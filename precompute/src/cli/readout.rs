@@ -1,0 +1,326 @@
+//! `eigenrad solve` and `eigenrad eval`: the readings of a scene's exact solve or of a basis
+//! evaluated through the runtime, for channel levels given as `NAME=VALUE`, and their table.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use eigenrad_runtime::{Basis, Quantity};
+use serde::Serialize;
+
+use crate::accuracy::runtime_eval;
+use crate::error::{Error, Result};
+use crate::formfactor::exchange;
+use crate::formfactor::FormFactorOptions;
+use crate::pipeline;
+use crate::radiosity::exact::ExactSolver;
+use crate::radiosity::model;
+
+/// A channel level as applied.
+#[derive(Clone, Debug, Serialize)]
+pub struct Level {
+    /// Channel name.
+    pub name: String,
+    /// Relative level (1 = as built).
+    pub level: f64,
+}
+
+/// One sensor or zone reading.
+#[derive(Clone, Debug, Serialize)]
+pub struct Reading {
+    /// Sensor or zone name.
+    pub name: String,
+    /// Irradiance per band (W/m²) or illuminance (lux).
+    pub irradiance: Vec<f64>,
+}
+
+/// One patch's results.
+#[derive(Clone, Debug, Serialize)]
+pub struct PatchReading {
+    /// Patch index.
+    pub id: usize,
+    /// Surface name.
+    pub surface: String,
+    /// Area, m².
+    pub area: f64,
+    /// Centroid, m.
+    pub centroid: [f64; 3],
+    /// Exitance per band, W/m² or lux.
+    pub exitance: Vec<f64>,
+    /// Irradiance per band, W/m² or lux; `null` where the patch is black and the runtime
+    /// cannot tell.
+    pub irradiance: Option<Vec<f64>>,
+}
+
+/// The JSON document of `solve` and `eval`.
+#[derive(Clone, Debug, Serialize)]
+pub struct Readout {
+    /// Unit of every irradiance and exitance.
+    pub unit: &'static str,
+    /// Band names.
+    pub bands: Vec<&'static str>,
+    /// Channel levels used.
+    pub levels: Vec<Level>,
+    /// Sensor readings.
+    pub sensors: Vec<Reading>,
+    /// Zone readings (area-average irradiance).
+    pub zones: Vec<Reading>,
+    /// Per patch, with `--patches`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub patches: Option<Vec<PatchReading>>,
+}
+
+pub(super) fn band_names(count: usize) -> Vec<&'static str> {
+    if count == 1 {
+        vec!["photopic"]
+    } else {
+        vec!["red", "green", "blue"]
+    }
+}
+
+/// Parses `NAME=VALUE` arguments against the channel names; unnamed channels stay at 1.
+pub fn parse_levels(arguments: &[String], channels: &[String]) -> Result<Vec<f64>> {
+    let mut levels = vec![1.0; channels.len()];
+    for argument in arguments {
+        let bad = |reason: String| Error::Level {
+            argument: argument.clone(),
+            reason,
+        };
+        let (name, value) = argument
+            .split_once('=')
+            .ok_or_else(|| bad("expected NAME=VALUE".into()))?;
+        let index = channels.iter().position(|c| c == name).ok_or_else(|| {
+            bad(format!(
+                "no channel named `{name}` (channels: {})",
+                channels.join(", ")
+            ))
+        })?;
+        let value: f64 = value
+            .trim()
+            .parse()
+            .map_err(|_| bad(format!("`{value}` is not a number")))?;
+        if !value.is_finite() || value < 0.0 || value > f64::from(eigenrad_runtime::MAX_LEVEL) {
+            return Err(bad(format!(
+                "level must be between 0 and {}",
+                eigenrad_runtime::MAX_LEVEL
+            )));
+        }
+        levels[index] = value;
+    }
+    Ok(levels)
+}
+
+/// `eigenrad solve`: the exact dense solution.
+pub fn solve(scene_path: &Path, level_args: &[String], patches: bool) -> Result<Readout> {
+    let prepared = pipeline::prepare(scene_path, &FormFactorOptions::default())?;
+    let scene = &prepared.scene;
+    let names: Vec<String> = scene.channels.iter().map(|c| c.name.clone()).collect();
+    let levels = parse_levels(level_args, &names)?;
+    let n = scene.patches.len();
+    let bands = scene.bands.count();
+    let mut exitance = vec![vec![0.0; bands]; n];
+    let mut irradiance = vec![vec![0.0; bands]; n];
+    let mut outputs = vec![vec![0.0; bands]; prepared.output_rows.len()];
+    let external: Vec<_> = prepared
+        .lights
+        .iter()
+        .map(|l| l.external(&prepared.g, &prepared.area, &prepared.output_rows))
+        .collect();
+    for b in 0..bands {
+        let rho: Vec<f64> = scene.reflectance.iter().map(|r| r[b]).collect();
+        let solver = ExactSolver::new(prepared.g.as_ref(), &prepared.area, &rho)?;
+        let m0 = model::initial_exitance(&prepared.lights, &external, &rho, b, &levels, &[]);
+        let m = solver.solve(&m0);
+        // E = F M (exact for black patches too), plus the light from beyond the patches.
+        let mut e = exchange::patch_irradiance(&prepared.g, &prepared.area, &m);
+        for (c, &l) in levels.iter().enumerate() {
+            if let Some(e_ext) = &external[c].patches[b] {
+                for (x, d) in e.iter_mut().zip(e_ext) {
+                    *x += l * d;
+                }
+            }
+        }
+        let mut readings = exchange::output_irradiance(&prepared.output_rows, &m);
+        model::add_external_readings(&mut readings, &external, b, &levels);
+        for i in 0..n {
+            exitance[i][b] = m[i];
+            irradiance[i][b] = e[i];
+        }
+        for (o, r) in readings.iter().enumerate() {
+            outputs[o][b] = *r;
+        }
+    }
+    let sensors = scene.sensors.len();
+    Ok(Readout {
+        unit: scene.bands.unit(),
+        bands: band_names(bands),
+        levels: names
+            .iter()
+            .zip(&levels)
+            .map(|(n, &l)| Level {
+                name: n.clone(),
+                level: l,
+            })
+            .collect(),
+        sensors: scene
+            .sensors
+            .iter()
+            .zip(&outputs)
+            .map(|(s, o)| Reading {
+                name: s.name.clone(),
+                irradiance: o.clone(),
+            })
+            .collect(),
+        zones: scene
+            .zones
+            .iter()
+            .zip(outputs.iter().skip(sensors))
+            .map(|(z, o)| Reading {
+                name: z.name.clone(),
+                irradiance: o.clone(),
+            })
+            .collect(),
+        patches: patches.then(|| {
+            scene
+                .patches
+                .iter()
+                .enumerate()
+                .map(|(i, p)| PatchReading {
+                    id: i,
+                    surface: scene.surfaces[p.surface].name.clone(),
+                    area: p.area,
+                    centroid: p.centroid.to_array(),
+                    exitance: exitance[i].clone(),
+                    irradiance: Some(irradiance[i].clone()),
+                })
+                .collect()
+        }),
+    })
+}
+
+pub(super) fn basis_error(path: &Path) -> impl Fn(eigenrad_runtime::Error) -> Error + '_ {
+    move |reason| Error::Basis {
+        path: path.to_path_buf(),
+        reason,
+    }
+}
+
+/// `eigenrad eval`: the basis evaluated through the runtime.
+pub fn eval(path: &Path, bytes: &[u8], level_args: &[String], patches: bool) -> Result<Readout> {
+    let basis = Basis::from_bytes(bytes).map_err(basis_error(path))?;
+    let names: Vec<String> = (0..basis.channel_count())
+        .map(|c| basis.channel_name(c).map(str::to_owned))
+        .collect::<std::result::Result<_, _>>()
+        .map_err(basis_error(path))?;
+    let levels = parse_levels(level_args, &names)?;
+    let levels32: Vec<f32> = levels.iter().map(|&l| l as f32).collect();
+    let got = runtime_eval::evaluate(bytes, &levels32, &[], patches)?;
+    let name = |r: std::result::Result<&str, eigenrad_runtime::Error>| {
+        r.map(str::to_owned).map_err(basis_error(path))
+    };
+    let mut sensors = Vec::new();
+    for (s, v) in got.sensors.iter().enumerate() {
+        sensors.push(Reading {
+            name: name(basis.sensor_name(s))?,
+            irradiance: v.clone(),
+        });
+    }
+    let mut zones = Vec::new();
+    for (z, v) in got.zones.iter().enumerate() {
+        zones.push(Reading {
+            name: name(basis.zone_name(z))?,
+            irradiance: v.clone(),
+        });
+    }
+    let patch_list = if patches {
+        let mut list = Vec::new();
+        for (i, (m, e)) in got.exitance.iter().zip(&got.irradiance).enumerate() {
+            let info = basis.patch(i).map_err(basis_error(path))?;
+            list.push(PatchReading {
+                id: i,
+                surface: name(basis.surface_name(info.surface))?,
+                area: f64::from(info.area),
+                centroid: info.centroid.map(f64::from),
+                exitance: m.clone(),
+                irradiance: e.clone(),
+            });
+        }
+        Some(list)
+    } else {
+        None
+    };
+    Ok(Readout {
+        unit: unit(basis.quantity()),
+        bands: band_names(basis.bands()),
+        levels: names
+            .iter()
+            .zip(&levels)
+            .map(|(n, &l)| Level {
+                name: n.clone(),
+                level: l,
+            })
+            .collect(),
+        sensors,
+        zones,
+        patches: patch_list,
+    })
+}
+
+pub(super) fn unit(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Photometric => "lux",
+        _ => "W/m²",
+    }
+}
+
+/// A readout as a table, one line per sensor and zone (and per patch when it has them).
+pub fn format_readout(r: &Readout) -> String {
+    let fmt = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x:.4}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "levels: {}",
+        r.levels
+            .iter()
+            .map(|l| format!("{}={}", l.name, l.level))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let _ = writeln!(s, "bands: {} ({})", r.bands.join(" "), r.unit);
+    for x in &r.sensors {
+        let _ = writeln!(s, "sensor {:<20} {} {}", x.name, fmt(&x.irradiance), r.unit);
+    }
+    for z in &r.zones {
+        let _ = writeln!(
+            s,
+            "zone   {:<20} {} {} (average)",
+            z.name,
+            fmt(&z.irradiance),
+            r.unit
+        );
+    }
+    if let Some(patches) = &r.patches {
+        let _ = writeln!(
+            s,
+            "{:>6} {:<20} {:>10} {:>28} {:>28}",
+            "patch", "surface", "area m²", "exitance", "irradiance"
+        );
+        for p in patches {
+            let e = p.irradiance.as_deref().map_or("-".into(), fmt);
+            let _ = writeln!(
+                s,
+                "{:>6} {:<20} {:>10.5} {:>28} {:>28}",
+                p.id,
+                p.surface,
+                p.area,
+                fmt(&p.exitance),
+                e
+            );
+        }
+    }
+    s
+}

@@ -1,0 +1,105 @@
+//! The files and text `eigenrad build` and `eigenrad verify` leave: the build report's table
+//! and verify's curves.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use super::atomic;
+use crate::error::{Error, Result};
+use crate::pipeline::BuildReport;
+use crate::verify::{self, VerifyReport};
+
+/// Human-readable build report.
+pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "scene {}: {} patches, {} band(s) in {}",
+        r.scene, r.patches, r.bands, r.unit
+    );
+    let f = &r.form_factors;
+    let _ = writeln!(
+        s,
+        "form factors: before symmetrising, the two directions of a pair differ by at most {:.1e} of a patch's output ({:.1e} relative to the exchange, floored at 0.1 % of the output); row sums {:.5} .. {:.5}; {}",
+        f.reciprocity_share,
+        f.reciprocity_mismatch,
+        f.row_sum_min,
+        f.row_sum_max,
+        if f.closed {
+            "closed scene".to_owned()
+        } else {
+            format!(
+                "open scene: {:.2} % of the light leaving the surfaces escapes through openings",
+                100.0 * f.escaping
+            )
+        }
+    );
+    let _ = writeln!(
+        s,
+        "basis: {} modes, formulation {}, storage {}, {} bytes -> {}",
+        r.modes,
+        r.formulation,
+        r.precision,
+        r.bytes,
+        output.display()
+    );
+    let _ = writeln!(
+        s,
+        "accuracy through the runtime against the exact solve (relative error):"
+    );
+    let _ = writeln!(
+        s,
+        "  {:<28} {:>10}  {:<34}  {:<30}",
+        "case", "exitance", "worst patch", "worst sensor or zone"
+    );
+    for a in &r.accuracy {
+        let patch = format!(
+            "{:.1e} (patch {}, {})",
+            a.worst_patch.error, a.worst_patch.index, a.worst_patch_surface
+        );
+        let reading = format!("{:.1e} ({})", a.worst_reading.error, a.worst_reading_name);
+        let _ = writeln!(
+            s,
+            "  {:<28} {:>10.1e}  {:<34}  {:<30}",
+            a.case, a.patch_error, patch, reading
+        );
+    }
+    let _ = writeln!(
+        s,
+        "  (exitance: area-weighted RMS over the patches; a patch, sensor or zone against its own exact value, floored at {:.0e} of the largest)",
+        crate::accuracy::metric::READING_FLOOR
+    );
+    let _ = writeln!(s, "time per stage:");
+    for t in &r.timings {
+        let _ = writeln!(s, "  {:<34} {:>8.3} s", t.stage, t.seconds);
+    }
+    s
+}
+
+/// Every file `eigenrad verify --out dir` may write for the scene named `scene`: the tables
+/// and one SVG per metric.
+pub fn verify_outputs(dir: &Path, scene: &str) -> Vec<PathBuf> {
+    let mut out = vec![dir.join(format!("{scene}.md"))];
+    out.extend(
+        verify::Metric::ALL
+            .iter()
+            .map(|m| dir.join(format!("{scene}-{}.svg", m.label()))),
+    );
+    out
+}
+
+/// Writes `eigenrad verify`'s curves into `dir` (created if missing), one SVG per metric
+/// ([`verify::svgs`]), each atomically. Returns the files written.
+pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|reason| Error::Io {
+        path: dir.to_path_buf(),
+        reason,
+    })?;
+    let mut written = Vec::new();
+    for (name, svg) in verify::svgs(r)? {
+        let path = dir.join(name);
+        atomic::write(&path, svg.as_bytes())?;
+        written.push(path);
+    }
+    Ok(written)
+}
