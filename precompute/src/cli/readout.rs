@@ -77,6 +77,18 @@ pub(super) fn band_names(count: usize) -> Vec<&'static str> {
     }
 }
 
+/// Each channel's name with the level applied to it.
+fn applied(names: &[String], levels: &[f64]) -> Vec<Level> {
+    names
+        .iter()
+        .zip(levels)
+        .map(|(name, &level)| Level {
+            name: name.clone(),
+            level,
+        })
+        .collect()
+}
+
 /// Parses `NAME=VALUE` arguments against the channel names; unnamed channels stay at 1.
 pub fn parse_levels(arguments: &[String], channels: &[String]) -> Result<Vec<f64>> {
     let mut levels = vec![1.0; channels.len()];
@@ -153,14 +165,7 @@ pub fn solve(scene_path: &Path, level_args: &[String], patches: bool) -> Result<
     Ok(Readout {
         unit: scene.bands.unit(),
         bands: band_names(bands),
-        levels: names
-            .iter()
-            .zip(&levels)
-            .map(|(n, &l)| Level {
-                name: n.clone(),
-                level: l,
-            })
-            .collect(),
+        levels: applied(&names, &levels),
         sensors: scene
             .sensors
             .iter()
@@ -251,14 +256,7 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &[String], patches: bool) -> 
     Ok(Readout {
         unit: unit(basis.quantity()),
         bands: band_names(basis.bands()),
-        levels: names
-            .iter()
-            .zip(&levels)
-            .map(|(n, &l)| Level {
-                name: n.clone(),
-                level: l,
-            })
-            .collect(),
+        levels: applied(&names, &levels),
         sensors,
         zones,
         patches: patch_list,
