@@ -290,10 +290,21 @@ fn random_basis(seed: u64, d: Dims, precision: Precision) -> Vec<u8> {
     t.black_projection = (0..black * bands * p)
         .map(|_| rng.range(-0.5, 0.5))
         .collect();
-    t.channel_projection = (0..m * bands * p)
-        .map(|_| rng.range(-50.0, 500.0))
-        .collect();
-    t.channel_bounce = (0..n * m * bands).map(|_| rng.range(0.0, 80.0)).collect();
+    // Each channel's exitance on every patch: reflected light everywhere plus the emission
+    // of the channel's own luminaires, as an exact response has it.
+    for i in 0..n {
+        for c in 0..m {
+            for b in 0..bands {
+                let own = t.patch_channel[i] == Some(c as u16);
+                let emission = if own {
+                    t.patch_emission[i * bands + b]
+                } else {
+                    0.0
+                };
+                t.channel_response.push(emission + rng.range(0.0, 80.0));
+            }
+        }
+    }
     t.sensor_geometry = (0..d.sensors)
         .map(|_| [1.0, 2.0, 0.8, 0.0, 0.0, 1.0, 1.2])
         .collect();
