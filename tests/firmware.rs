@@ -1,18 +1,20 @@
-//! The firmware example (`examples/firmware`) run under QEMU agrees with `eigenrad eval`, and
-//! its evaluator's RAM does not grow with the basis.
+//! The firmware example (`examples/firmware`) run under QEMU agrees with `eigenrad eval`, its
+//! evaluators' RAM does not grow with the basis, and on the office at 32 modes a channel
+//! update and the read of every output stay within their instruction budgets.
 //!
 //! Each test takes a basis, runs `scripts/firmware.sh` on it (build for
 //! `thumbv7em-none-eabihf` with the basis in flash, run on QEMU `mps2-an386`), parses the
-//! records the firmware prints and, for every step of the firmware's level sequence, runs the
-//! real command `eigenrad eval BASIS --json --patches --level NAME=VALUE ...` at the levels
+//! records the firmware prints (read from its `ChannelEvaluator`; the firmware itself checks
+//! that its full `Evaluator` reads the same, to the bit) and, for every step of the
+//! firmware's level sequence, runs the real command `eigenrad eval BASIS --json --patches --level NAME=VALUE ...` at the levels
 //! the firmware reports. Every sensor and zone reading and every patch exitance the firmware
 //! prints (patches 0, 97, 194, ...) must agree with it within [`REL_TOL`].
 //!
 //! The bases, all written by `eigenrad build` except the last:
 //!
-//! - the office example (`examples/office/scene.toml`, 1078 patches, 5 channels, 2 sensors,
+//! - the office example (`examples/office/scene.toml`, 1101 patches, 5 channels, 2 sensors,
 //!   2 zones) at 32 modes, f32 storage;
-//! - the same office on a coarser mesh (`max_edge` 0.7 m instead of 0.35 m: 290 patches) at
+//! - the same office on a coarser mesh (`max_edge` 0.7 m instead of 0.35 m: 337 patches) at
 //!   16 modes in f16 and at 64 modes in i16. A build's form factors cost grows as the square
 //!   of the patch count, so the coarse mesh keeps the test's run time down while the
 //!   precisions and mode counts still differ from the f32 basis;
@@ -34,15 +36,15 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use eigenrad_runtime::dali::arc_power_to_level;
 use eigenrad_runtime::writer::BasisTables;
-use eigenrad_runtime::{Basis, Evaluator, Formulation, Precision, Quantity};
+use eigenrad_runtime::{Basis, ChannelEvaluator, Evaluator, Formulation, Precision, Quantity};
 use serde_json::Value;
 
 /// Readings agree within this fraction of the larger of the reference and the output's
-/// reading with every channel at 1. The firmware applies the levels step by step
-/// (incremental updates), `eigenrad eval` evaluates each state from scratch with the same
-/// runtime code and the same stored (f32, f16 or i16) values; both sum `p + m` products in
-/// `f32`, so they differ by rounding (a few times 2⁻²⁴ ≈ 6e-8 per step), orders of
-/// magnitude below this.
+/// reading with every channel at 1. The firmware applies the levels step by step,
+/// `eigenrad eval` sets each state at once; both sum the same `m` stored (f32, f16 or i16)
+/// products per band in `f32` with the same runtime code, so they differ by the rounding of
+/// two compilations of that sum at most (a few times 2⁻²⁴ ≈ 6e-8), orders of magnitude below
+/// this.
 const REL_TOL: f64 = 1e-4;
 
 /// Capacities of the firmware's evaluator (`examples/firmware/src/main.rs`).
@@ -134,7 +136,7 @@ fn office_scene() -> PathBuf {
 const OFFICE_MAX_EDGE: &str = "max_edge = 0.35";
 const COARSE_MAX_EDGE: &str = "max_edge = 0.7";
 
-/// The office scene with `max_edge` 0.7 m (290 patches instead of 1078), written next to
+/// The office scene with `max_edge` 0.7 m (337 patches instead of 1101), written next to
 /// the test's bases. Everything else (geometry, materials, channels, sensors, zones) is
 /// the example's.
 fn coarse_office_scene() -> PathBuf {
@@ -346,10 +348,14 @@ fn rgb_basis() -> PathBuf {
 struct FirmwareRun {
     /// `basis ...` fields, e.g. `bytes`, `patches`.
     basis: HashMap<String, usize>,
-    /// `size_of` the evaluator on the target, bytes.
+    /// `size_of` the full evaluator on the target, bytes.
     evaluator_size_of: usize,
     /// `Evaluator::RAM_BYTES` on the target.
     ram_bytes: usize,
+    /// `size_of` the channel evaluator on the target, bytes.
+    channel_size_of: usize,
+    /// `ChannelEvaluator::RAM_BYTES` on the target.
+    channel_ram_bytes: usize,
     steps: Vec<Step>,
     /// Instructions per call, by operation (`full_update`, ...).
     instructions: HashMap<String, u64>,
@@ -416,6 +422,10 @@ impl FirmwareRun {
                 ["evaluator", "size_of", s, "ram_bytes", r, "capacity", ..] => {
                     run.evaluator_size_of = number(s, line);
                     run.ram_bytes = number(r, line);
+                }
+                ["channel_evaluator", "size_of", s, "ram_bytes", r, "capacity", ..] => {
+                    run.channel_size_of = number(s, line);
+                    run.channel_ram_bytes = number(r, line);
                 }
                 ["step", k, "op", op @ ..] => {
                     let k: usize = number(k, line);
@@ -527,11 +537,13 @@ fn firmware(name: &str, basis_path: &Path) -> Option<Arc<FirmwareRun>> {
 
 fn summary(run: &FirmwareRun) -> String {
     format!(
-        "basis {:?}, evaluator size_of {} (RAM_BYTES {}), stack {} of {}, \
-         instructions {:?} ({:.3} per tick), sizes {:?}",
+        "basis {:?}, evaluator size_of {} (RAM_BYTES {}), channel evaluator size_of {} \
+         (RAM_BYTES {}), stack {} of {}, instructions {:?} ({:.3} per tick), sizes {:?}",
         run.basis,
         run.evaluator_size_of,
         run.ram_bytes,
+        run.channel_size_of,
+        run.channel_ram_bytes,
         run.stack_high_water,
         run.stack_region,
         run.instructions,
@@ -772,19 +784,35 @@ fn check_against_eval(name: &str, path: &Path) -> Option<Arc<FirmwareRun>> {
         "instructions per SysTick tick: {}",
         run.instructions_per_tick
     );
-    for what in [
-        "full_update",
-        "channel_update",
-        "read_outputs",
-        "patch_exitance",
-    ] {
+    for what in INSTRUCTIONS {
         assert!(run.instructions.get(what).is_some_and(|&n| n > 0), "{what}");
     }
+    assert_eq!(run.instructions.len(), INSTRUCTIONS.len());
     assert!(0 < run.stack_high_water && run.stack_high_water < run.stack_region);
     assert_eq!(run.basis["bytes"], bytes.len());
     assert_eq!(run.basis["modes"], basis.mode_count());
     Some(run)
 }
+
+/// The operations the firmware times (`measure` in `examples/firmware/src/main.rs`).
+const INSTRUCTIONS: [&str; 9] = [
+    "full_update",
+    "channel_update",
+    "read_outputs",
+    "full_update_read_outputs",
+    "channel_update_read_outputs",
+    "channel_exitance",
+    "patch_update",
+    "patch_read_outputs",
+    "patch_exitance",
+];
+
+/// Instruction budgets for the office at 32 modes (issue 12, docs/embedded.md): a full update
+/// of every channel plus the read of every output, and one channel's update. QEMU counts
+/// instructions exactly (`-icount shift=0`), so the figures repeat from run to run; a change
+/// that exceeds a budget fails here rather than in a later table.
+const BUDGET_FULL_UPDATE_READ_OUTPUTS: u64 = 1000;
+const BUDGET_CHANNEL_UPDATE: u64 = 300;
 
 #[test]
 fn firmware_matches_eval_office_f32() {
@@ -797,9 +825,20 @@ fn firmware_matches_eval_office_f32() {
     assert_eq!(run.basis["sensors"], 2);
     assert_eq!(run.basis["zones"], 2);
     assert!(run.basis["patches"] > 1000);
+    let full = run.instructions["full_update_read_outputs"];
+    assert!(
+        full <= BUDGET_FULL_UPDATE_READ_OUTPUTS,
+        "full update and every output read: {full} instructions, budget \
+         {BUDGET_FULL_UPDATE_READ_OUTPUTS}"
+    );
+    let one = run.instructions["channel_update"];
+    assert!(
+        one <= BUDGET_CHANNEL_UPDATE,
+        "one channel: {one} instructions, budget {BUDGET_CHANNEL_UPDATE}"
+    );
 }
 
-/// Mode vectors, first bounces and view rows in f16: the patch exitances read them.
+/// Mode vectors, channel responses and view rows in f16: the patch exitances read them.
 #[test]
 fn firmware_matches_eval_office_f16() {
     let (path, name) = office_basis(Mesh::Coarse, 16, "f16");
@@ -818,12 +857,13 @@ fn firmware_matches_eval_rgb() {
     check_against_eval("random-rgb", &rgb_basis());
 }
 
-/// The evaluator's state is fixed by its capacities: bases of 16, 32 and 64 modes, up to a
+/// The evaluators' state is fixed by their capacities: bases of 16, 32 and 64 modes, up to a
 /// thousand times larger than the 2-patch one, take the same RAM on the host and on the
-/// target, and the basis goes to flash.
+/// target, and the basis goes to flash. The channel evaluator holds one level per channel.
 #[test]
 fn evaluator_ram_does_not_grow_with_basis() {
     type Fw<'a> = Evaluator<'a, 1, FW_PATCHES, FW_MODES, FW_CHANNELS, FW_OUTPUTS>;
+    type FwChannels<'a> = ChannelEvaluator<'a, 1, FW_CHANNELS>;
     let tiny = tiny_basis_path();
     let office = [
         office_basis(Mesh::Coarse, 16, "f16"),
@@ -832,6 +872,7 @@ fn evaluator_ram_does_not_grow_with_basis() {
     ];
     let small = std::fs::read(&tiny).unwrap();
     let a = Fw::new(Basis::from_bytes(&small).unwrap()).unwrap();
+    let ca = FwChannels::new(Basis::from_bytes(&small).unwrap()).unwrap();
     for (path, name) in &office {
         let large = std::fs::read(path).unwrap();
         assert!(
@@ -844,14 +885,26 @@ fn evaluator_ram_does_not_grow_with_basis() {
             std::mem::size_of_val(&b),
             "{name}"
         );
+        let cb = FwChannels::new(Basis::from_bytes(&large).unwrap()).unwrap();
+        assert_eq!(
+            std::mem::size_of_val(&ca),
+            std::mem::size_of_val(&cb),
+            "{name}"
+        );
     }
     // The state is RAM_BYTES plus the basis' slice headers (pointers and lengths).
     assert!(std::mem::size_of_val(&a) >= Fw::RAM_BYTES);
+    assert!(std::mem::size_of_val(&ca) >= FwChannels::RAM_BYTES);
+    assert_eq!(FwChannels::RAM_BYTES, 4 * FW_CHANNELS);
 
     let Some(small_run) = firmware("tiny", &tiny) else {
         return;
     };
     assert_eq!(small_run.ram_bytes, Fw::RAM_BYTES);
+    assert_eq!(small_run.channel_ram_bytes, FwChannels::RAM_BYTES);
+    // On the target the channel evaluator is its levels and the basis view: a few hundred
+    // bytes against the full evaluator's kilobytes of per-patch state.
+    assert!(small_run.channel_size_of < FwChannels::RAM_BYTES + 512);
     // Flash is where the basis goes: .rodata grows by the basis' size, give or take the
     // alignment padding around it (seen: 4 bytes less than the size difference).
     const PADDING: usize = 64;
@@ -866,7 +919,12 @@ fn evaluator_ram_does_not_grow_with_basis() {
             run.evaluator_size_of, small_run.evaluator_size_of,
             "{name}: evaluator size_of on the target"
         );
+        assert_eq!(
+            run.channel_size_of, small_run.channel_size_of,
+            "{name}: channel evaluator size_of on the target"
+        );
         assert_eq!(run.ram_bytes, Fw::RAM_BYTES, "{name}");
+        assert_eq!(run.channel_ram_bytes, FwChannels::RAM_BYTES, "{name}");
         assert!(
             rodata(&run) + PADDING >= rodata(&small_run) + bytes - small.len(),
             "{name}: .rodata {} with the basis, {} with tiny.basis, basis {bytes} bytes",
