@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Measures the firmware example (examples/firmware) on one scene for mode counts 16, 32, 64
-# and storage f32, f16, i16 (9 bases), and prints the markdown table of docs/embedded.md.
+# and storage f32, f16, i16 (9 bases), and prints the two markdown tables of docs/embedded.md
+# (flash and RAM; instructions per call).
 #
 # For each basis: `eigenrad build SCENE --modes P --precision S`, then scripts/firmware.sh
 # (build for thumbv7em-none-eabihf with the basis in flash, run under QEMU mps2-an386 with
@@ -18,7 +19,7 @@
 #   EMBEDDED_TABLE_MODES  mode counts (default "16 32 64")
 #   EMBEDDED_TABLE_STORAGE storage precisions (default "f32 f16 i16")
 #
-# Progress goes to stderr; the table goes to stdout.
+# Progress goes to stderr; the tables go to stdout.
 set -euo pipefail
 
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -35,7 +36,11 @@ log() { printf '== %s\n' "$*" >&2; }
 mkdir -p "$dir"
 log "building the eigenrad command (release)"
 (cd "$root" && cargo build --release --quiet -p eigenrad-precompute --bin eigenrad) >&2
-eigenrad="$root/target/release/eigenrad"
+# Where cargo put it: CARGO_TARGET_DIR when set (relative to the workspace, where cargo ran),
+# else the workspace's target folder.
+target="${CARGO_TARGET_DIR:-target}"
+[[ $target == /* ]] || target="$root/$target"
+eigenrad="$target/release/eigenrad"
 
 # Value of field $2 in the first record of file $1 that starts with words $3...: records are
 # `word word ... key value key value`.
@@ -50,9 +55,8 @@ field() {
 
 kib() { awk -v b="$1" 'BEGIN { printf "%.1f", b / 1024 }'; }
 
-printf '| p | storage | basis (bytes) | .text (tiny → with basis) | .rodata (tiny → with basis) | flash used | fits 512 KiB | Evaluator size_of / RAM_BYTES (bytes) | stack high-water (bytes) | full update (instr.) | one channel (instr.) | read all outputs (instr.) | one patch exitance (instr.) |\n'
-printf '|---|---|---|---|---|---|---|---|---|---|---|---|---|\n'
-
+memory=()
+instructions=()
 for p in $modes_list; do
     for s in $storage_list; do
         name="p$p-$s"
@@ -74,8 +78,9 @@ for p in $modes_list; do
                 reason="does not link: flash overflows"
             fi
             log "$name: $reason"
-            printf '| %s | %s | %s | – | – | – | no (%s) | – | – | – | – | – | – |\n' \
-                "$p" "$s" "$bytes" "$reason"
+            memory+=("$(printf '| %s | %s | %s | – | – | – | no (%s) | – | – | – |' \
+                "$p" "$s" "$bytes" "$reason")")
+            instructions+=("$(printf '| %s | %s | – | – | – | – | – | – | – | – | – |' "$p" "$s")")
             continue
         fi
         sizes="$dir/$name.sizes"
@@ -89,13 +94,28 @@ for p in $modes_list; do
         ((flash <= flash_limit)) || fits=no
         size_of=$(field "$out" size_of evaluator)
         ram=$(field "$out" ram_bytes evaluator)
+        channel_size_of=$(field "$out" size_of channel_evaluator)
+        channel_ram=$(field "$out" ram_bytes channel_evaluator)
         stack=$(field "$out" high_water stack)
-        full=$(awk '$1 == "instructions" && $2 == "full_update" { print $3 }' "$out")
-        chan=$(awk '$1 == "instructions" && $2 == "channel_update" { print $3 }' "$out")
-        read_all=$(awk '$1 == "instructions" && $2 == "read_outputs" { print $3 }' "$out")
-        patch=$(awk '$1 == "instructions" && $2 == "patch_exitance" { print $3 }' "$out")
-        printf '| %s | %s | %s | %s → %s | %s → %s | %s B (%s KiB) | %s | %s / %s | %s | %s | %s | %s | %s |\n' \
+        memory+=("$(printf '| %s | %s | %s | %s → %s | %s → %s | %s B (%s KiB) | %s | %s / %s | %s / %s | %s |' \
             "$p" "$s" "$bytes" "$text0" "$text1" "$ro0" "$ro1" "$flash" "$(kib "$flash")" "$fits" \
-            "$size_of" "$ram" "$stack" "$full" "$chan" "$read_all" "$patch"
+            "$channel_size_of" "$channel_ram" "$size_of" "$ram" "$stack")")
+        row="| $p | $s |"
+        for what in full_update channel_update read_outputs full_update_read_outputs \
+            channel_update_read_outputs channel_exitance patch_update patch_read_outputs \
+            patch_exitance; do
+            n=$(awk -v what="$what" '$1 == "instructions" && $2 == what { print $3 }' "$out")
+            row="$row ${n:-–} |"
+        done
+        instructions+=("$row")
     done
 done
+
+printf '### Flash and RAM\n\n'
+printf '| p | storage | basis (bytes) | .text (tiny → with basis) | .rodata (tiny → with basis) | flash used | fits 512 KiB | ChannelEvaluator size_of / RAM_BYTES (bytes) | Evaluator size_of / RAM_BYTES (bytes) | stack high-water (bytes) |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|\n'
+printf '%s\n' "${memory[@]}"
+printf '\n### Instructions per call\n\n'
+printf '| p | storage | full update | one channel | read all outputs | full update + read all outputs | one channel + read all outputs | one patch exitance | set one patch exitance | read all outputs, patch exitance set | one patch exitance, patch exitance set |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|\n'
+printf '%s\n' "${instructions[@]}"

@@ -53,17 +53,18 @@ fn cli_unreadable_basis_names_the_file_and_the_fault() {
     std::fs::write(&garbage, b"this is not a basis, just some bytes.....").expect("write");
     let truncated = dir.join("truncated.basis");
     std::fs::write(&truncated, &good[..good.len() / 2]).expect("write");
-    // Header bytes 8..10 are the format version, little-endian (docs/format.md).
-    let mut v2 = good.clone();
-    v2[8..10].copy_from_slice(&2u16.to_le_bytes());
-    let version2 = dir.join("version2.basis");
-    std::fs::write(&version2, &v2).expect("write");
+    // Header bytes 8..10 are the format version, little-endian (docs/format.md): a basis
+    // that says it is of the older version 1.
+    let mut v1 = good.clone();
+    v1[8..10].copy_from_slice(&1u16.to_le_bytes());
+    let version1 = dir.join("version1.basis");
+    std::fs::write(&version1, &v1).expect("write");
     let missing = dir.join("missing.basis");
 
     for (path, expected) in [
         (&garbage, "magic"),
         (&truncated, "truncated"),
-        (&version2, "version 2 is not supported"),
+        (&version1, "version 1 is not supported"),
         (&missing, "No such file"),
     ] {
         for command in ["eval", "inspect"] {

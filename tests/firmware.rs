@@ -1,18 +1,20 @@
-//! The firmware example (`examples/firmware`) run under QEMU agrees with `eigenrad eval`, and
-//! its evaluator's RAM does not grow with the basis.
+//! The firmware example (`examples/firmware`) run under QEMU agrees with `eigenrad eval`, its
+//! evaluators' RAM does not grow with the basis, and on the office at 32 modes a channel
+//! update and the read of every output stay within their instruction budgets.
 //!
 //! Each test takes a basis, runs `scripts/firmware.sh` on it (build for
 //! `thumbv7em-none-eabihf` with the basis in flash, run on QEMU `mps2-an386`), parses the
-//! records the firmware prints and, for every step of the firmware's level sequence, runs the
-//! real command `eigenrad eval BASIS --json --patches --level NAME=VALUE ...` at the levels
+//! records the firmware prints (read from its `ChannelEvaluator`; the firmware itself checks
+//! that its full `Evaluator` reads the same, to the bit) and, for every step of the
+//! firmware's level sequence, runs the real command `eigenrad eval BASIS --json --patches --level NAME=VALUE ...` at the levels
 //! the firmware reports. Every sensor and zone reading and every patch exitance the firmware
 //! prints (patches 0, 97, 194, ...) must agree with it within [`REL_TOL`].
 //!
 //! The bases, all written by `eigenrad build` except the last:
 //!
-//! - the office example (`examples/office/scene.toml`, 1078 patches, 5 channels, 2 sensors,
+//! - the office example (`examples/office/scene.toml`, 1101 patches, 5 channels, 2 sensors,
 //!   2 zones) at 32 modes, f32 storage;
-//! - the same office on a coarser mesh (`max_edge` 0.7 m instead of 0.35 m: 290 patches) at
+//! - the same office on a coarser mesh (`max_edge` 0.7 m instead of 0.35 m: 337 patches) at
 //!   16 modes in f16 and at 64 modes in i16. A build's form factors cost grows as the square
 //!   of the patch count, so the coarse mesh keeps the test's run time down while the
 //!   precisions and mode counts still differ from the f32 basis;
@@ -42,11 +44,11 @@ use serde_json::Value;
 mod checks;
 
 /// Readings agree within this fraction of the larger of the reference and the output's
-/// reading with every channel at 1. The firmware applies the levels step by step
-/// (incremental updates), `eigenrad eval` evaluates each state from scratch with the same
-/// runtime code and the same stored (f32, f16 or i16) values; both sum `p + m` products in
-/// `f32`, so they differ by rounding (a few times 2⁻²⁴ ≈ 6e-8 per step), orders of
-/// magnitude below this.
+/// reading with every channel at 1. The firmware applies the levels step by step,
+/// `eigenrad eval` sets each state at once; both sum the same `m` stored (f32, f16 or i16)
+/// products per band in `f32` with the same runtime code, so they differ by the rounding of
+/// two compilations of that sum at most (a few times 2⁻²⁴ ≈ 6e-8), orders of magnitude below
+/// this.
 const REL_TOL: f64 = 1e-4;
 
 /// Capacities of the firmware's evaluator (`examples/firmware/src/main.rs`).
@@ -138,7 +140,7 @@ fn office_scene() -> PathBuf {
 const OFFICE_MAX_EDGE: &str = "max_edge = 0.35";
 const COARSE_MAX_EDGE: &str = "max_edge = 0.7";
 
-/// The office scene with `max_edge` 0.7 m (290 patches instead of 1078), written next to
+/// The office scene with `max_edge` 0.7 m (337 patches instead of 1101), written next to
 /// the test's bases. Everything else (geometry, materials, channels, sensors, zones) is
 /// the example's.
 fn coarse_office_scene() -> PathBuf {
@@ -280,10 +282,21 @@ fn random_basis(seed: u64, d: Dims, precision: Precision) -> Vec<u8> {
     t.black_projection = (0..black * bands * p)
         .map(|_| rng.range(-0.5, 0.5))
         .collect();
-    t.channel_projection = (0..m * bands * p)
-        .map(|_| rng.range(-50.0, 500.0))
-        .collect();
-    t.channel_bounce = (0..n * m * bands).map(|_| rng.range(0.0, 80.0)).collect();
+    // Each channel's exitance on every patch: reflected light everywhere plus the emission
+    // of the channel's own luminaires, as an exact response has it.
+    for i in 0..n {
+        for c in 0..m {
+            for b in 0..bands {
+                let own = t.patch_channel[i] == Some(c as u16);
+                let emission = if own {
+                    t.patch_emission[i * bands + b]
+                } else {
+                    0.0
+                };
+                t.channel_response.push(emission + rng.range(0.0, 80.0));
+            }
+        }
+    }
     t.sensor_geometry = (0..d.sensors)
         .map(|_| [1.0, 2.0, 0.8, 0.0, 0.0, 1.0, 1.2])
         .collect();
@@ -325,10 +338,14 @@ fn rgb_basis() -> PathBuf {
 struct FirmwareRun {
     /// `basis ...` fields, e.g. `bytes`, `patches`.
     basis: HashMap<String, usize>,
-    /// `size_of` the evaluator on the target, bytes.
+    /// `size_of` the full evaluator on the target, bytes.
     evaluator_size_of: usize,
     /// `Evaluator::RAM_BYTES` on the target.
     ram_bytes: usize,
+    /// `size_of` the channel evaluator on the target, bytes.
+    channel_size_of: usize,
+    /// `ChannelEvaluator::RAM_BYTES` on the target.
+    channel_ram_bytes: usize,
     steps: Vec<Step>,
     /// Instructions per call, by operation (`full_update`, ...).
     instructions: HashMap<String, u64>,
@@ -395,6 +412,10 @@ impl FirmwareRun {
                 ["evaluator", "size_of", s, "ram_bytes", r, "capacity", ..] => {
                     run.evaluator_size_of = number(s, line);
                     run.ram_bytes = number(r, line);
+                }
+                ["channel_evaluator", "size_of", s, "ram_bytes", r, "capacity", ..] => {
+                    run.channel_size_of = number(s, line);
+                    run.channel_ram_bytes = number(r, line);
                 }
                 ["step", k, "op", op @ ..] => {
                     let k: usize = number(k, line);
@@ -506,11 +527,13 @@ fn firmware(name: &str, basis_path: &Path) -> Option<Arc<FirmwareRun>> {
 
 fn summary(run: &FirmwareRun) -> String {
     format!(
-        "basis {:?}, evaluator size_of {} (RAM_BYTES {}), stack {} of {}, \
-         instructions {:?} ({:.3} per tick), sizes {:?}",
+        "basis {:?}, evaluator size_of {} (RAM_BYTES {}), channel evaluator size_of {} \
+         (RAM_BYTES {}), stack {} of {}, instructions {:?} ({:.3} per tick), sizes {:?}",
         run.basis,
         run.evaluator_size_of,
         run.ram_bytes,
+        run.channel_size_of,
+        run.channel_ram_bytes,
         run.stack_high_water,
         run.stack_region,
         run.instructions,

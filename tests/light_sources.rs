@@ -266,9 +266,9 @@ fn light_from_beyond_the_patches_lights_the_room_as_the_surfaces_do() {
 }
 
 #[test]
-fn truncated_split_expansion_is_the_same_for_both_kinds_of_light() {
-    // The split expansion keeps the first reflection exact whichever way the light comes, so
-    // even a short expansion differs between the two only by the emitters' own exitance.
+fn short_expansions_read_both_kinds_of_light_alike() {
+    // Channels are carried by their exact responses whichever way the light comes, so even a
+    // short expansion differs between the two only by the emitters' own exitance.
     let p = prepared("truncated");
     let n = p.scene.patches.len();
     let levels = [1.0, 1.0];

@@ -83,23 +83,14 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         }
     }
 
-    let identities: Vec<Vec<Vec<f64>>> = (0..m)
-        .map(|c| (0..bands).map(|b| model.channel_identity(c, b)).collect())
-        .collect();
+    // Channels are stored exactly, from the exact solve the model did at build time: any
+    // combination of levels is then exact to the storage precision, and the modes serve
+    // exitance set patch by patch only.
+    t.channel_response = vec![0.0; n * m * bands];
     for c in 0..m {
         for b in 0..bands {
-            t.channel_projection
-                .extend(truncate(model.channel_projection(c, b)));
-        }
-    }
-    if split {
-        t.channel_bounce = vec![0.0; n * m * bands];
-        for c in 0..m {
-            for b in 0..bands {
-                let d = model.channel_first_bounce(c, b);
-                for (i, x) in d.iter().enumerate() {
-                    t.channel_bounce[i * m * bands + c * bands + b] = *x;
-                }
+            for (i, x) in model.channel_response(c, b).iter().enumerate() {
+                t.channel_response[i * m * bands + c * bands + b] = *x;
             }
         }
     }
@@ -120,22 +111,22 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         t.zone_area
             .push(crate::formfactor::outputs::zone_area(scene, z));
     }
-    for (o, row) in model.output_rows.iter().enumerate() {
+    for row in &model.output_rows {
         for b in 0..bands {
             for k in 0..p {
                 t.output_modes
                     .push((0..n).map(|j| row[j] * mode(b, j, k)).sum());
             }
         }
+    }
+    // `O × B × m`: the exact readings of each channel alone at level 1.
+    let readings: Vec<Vec<Vec<f64>>> = (0..m)
+        .map(|c| (0..bands).map(|b| model.channel_readings(c, b)).collect())
+        .collect();
+    for o in 0..outputs {
         for b in 0..bands {
-            for (identity, external) in identities.iter().zip(&model.external) {
-                // What the channel's patches send to the output, plus the direct light from
-                // its sources beyond the patches.
-                let carried: f64 = row.iter().zip(&identity[b]).map(|(r, x)| r * x).sum();
-                t.output_channels.push(match &external.outputs[b] {
-                    Some(direct) => carried + direct[o],
-                    None => carried,
-                });
+            for channel in &readings {
+                t.output_channels.push(channel[b][o]);
             }
         }
     }

@@ -11,7 +11,9 @@ pub const MIN_REFLECTANCE: f32 = 1.0e-6;
 /// A radiosity eigenbasis read in place from a byte slice (e.g. flash).
 ///
 /// Cheap to copy: it holds only slices into the original bytes. Build one with
-/// [`Basis::from_bytes`], evaluate it with an [`Evaluator`](crate::Evaluator).
+/// [`Basis::from_bytes`], evaluate it with a [`ChannelEvaluator`](crate::ChannelEvaluator)
+/// (channel levels only) or an [`Evaluator`](crate::Evaluator) (also exitance set patch by
+/// patch).
 #[derive(Clone, Copy, Debug)]
 pub struct Basis<'a> {
     /// The payload's `quantity`, typed.
@@ -267,10 +269,12 @@ impl<'a> Basis<'a> {
         self.matrix(self.tables.modes, self.counts.modes_cols())
     }
 
-    /// The `channel_bounce` matrix: `n × (m·B)` (split) or `n × 0` (seed).
-    pub(crate) fn channel_bounce(&self) -> Matrix<'a> {
-        let cols = self.counts.channel_bounce_cols(self.formulation);
-        self.matrix(self.tables.channel_bounce, cols)
+    /// The `channel_response` matrix: `n × (m·B)`, column `c·B + b`.
+    pub(crate) fn channel_response(&self) -> Matrix<'a> {
+        self.matrix(
+            self.tables.channel_response,
+            self.counts.channel_response_cols(),
+        )
     }
 
     /// The `output_view` matrix: `n × O`.

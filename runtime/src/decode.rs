@@ -45,7 +45,7 @@ pub(crate) fn basis(bytes: &[u8]) -> Result<Basis<'_>> {
     patch_tables(&raw, &counts)?;
     modes(&raw, &counts, precision)?;
     black_patches(&raw, &counts)?;
-    channel_tables(&raw, &counts, formulation, precision)?;
+    channel_tables(&raw, &counts, precision)?;
     outputs(&raw, &counts, precision)?;
     Ok(Basis {
         quantity,
@@ -241,22 +241,15 @@ fn black_patches(raw: &Payload<'_>, c: &Counts) -> Result<()> {
     f32_table("black_projection", raw.black_projection, count, bounded)
 }
 
-/// Channel tables: `channel_projection` and the `channel_bounce` matrix.
-fn channel_tables(
-    raw: &Payload<'_>,
-    c: &Counts,
-    formulation: Formulation,
-    precision: Precision,
-) -> Result<()> {
-    let count = mul(c.channel_count, cols(c.modes_cols())?)?;
-    f32_table("channel_projection", raw.channel_projection, count, bounded)?;
+/// Channel tables: the `channel_response` matrix, `n × (m·B)` in both formulations.
+fn channel_tables(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
     matrix(
-        "channel_bounce.data",
-        "channel_bounce.scales",
-        raw.channel_bounce,
+        "channel_response.data",
+        "channel_response.scales",
+        raw.channel_response,
         precision,
         c.patch_count,
-        cols(c.channel_bounce_cols(formulation))?,
+        cols(c.channel_response_cols())?,
     )
 }
 

@@ -10,10 +10,11 @@ pub type Result<T> = core::result::Result<T, Error>;
 /// Decoding errors (`Decode*`) come from [`Basis::from_bytes`](crate::Basis::from_bytes) and
 /// mean the byte string is not a valid basis. Encoding errors (`Encode*`) come from the
 /// host-side writer ([`format::encode`](crate::format::encode) and `writer::BasisTables`) and
-/// mean the tables cannot be written in the format. The others come from the
-/// [`Evaluator`](crate::Evaluator) and mean the request does not fit the basis or the
-/// evaluator's capacities; [`Error::UnknownName`] is for callers that look a name up. No
-/// byte string and no request makes the runtime panic.
+/// mean the tables cannot be written in the format. The others come from the evaluators
+/// ([`ChannelEvaluator`](crate::ChannelEvaluator), [`Evaluator`](crate::Evaluator)) and
+/// mean the request does not fit the basis or the evaluator's capacities;
+/// [`Error::UnknownName`] is for callers that look a name up. No byte string and no request
+/// makes the runtime panic.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Error {
@@ -139,7 +140,8 @@ impl fmt::Display for Error {
             Error::DecodeBadMagic => f.write_str("not an eigenrad basis (bad magic bytes)"),
             Error::DecodeVersion { found, supported } => write!(
                 f,
-                "basis format version {found} is not supported (this runtime reads version {supported})"
+                "basis format version {found} is not supported: this runtime reads version \
+                 {supported}; rebuild the basis with `eigenrad build`"
             ),
             Error::DecodeChecksum { expected, found } => write!(
                 f,
@@ -149,7 +151,11 @@ impl fmt::Display for Error {
             Error::DecodeField { field, value } => {
                 write!(f, "basis field `{field}` has invalid value {value}")
             }
-            Error::DecodeLength { field, expected, found } => write!(
+            Error::DecodeLength {
+                field,
+                expected,
+                found,
+            } => write!(
                 f,
                 "basis table `{field}` is {found} bytes, its counts need {expected}"
             ),
@@ -165,14 +171,22 @@ impl fmt::Display for Error {
                 write!(f, "basis field `{field}` is too large for the format")
             }
             Error::EncodePayload => f.write_str("basis payload could not be serialised"),
-            Error::Capacity { what, needed, capacity } => write!(
+            Error::Capacity {
+                what,
+                needed,
+                capacity,
+            } => write!(
                 f,
                 "basis needs {needed} {what} but the evaluator has room for {capacity}"
             ),
             Error::IndexOutOfRange { what, index, count } => {
                 write!(f, "{what} index {index} out of range (there are {count})")
             }
-            Error::LengthMismatch { what, expected, found } => {
+            Error::LengthMismatch {
+                what,
+                expected,
+                found,
+            } => {
                 write!(f, "`{what}` has length {found}, expected {expected}")
             }
             Error::InvalidInput { what } => write!(

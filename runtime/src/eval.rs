@@ -1,17 +1,296 @@
 //! Evaluation of a basis for changing emitter levels, in fixed-size buffers.
+//!
+//! Two evaluators share the channel arithmetic. [`ChannelEvaluator`] holds one level per
+//! channel and nothing else: every reading is a sum over the channels of their exact stored
+//! responses (`channel_response`, `output_channels`). [`Evaluator`] adds exitance set patch by
+//! patch, which goes through the modes, and the per-patch state that needs.
 
 use crate::basis::{check_index, Basis};
 use crate::dali;
 use crate::error::{Error, Result};
 use crate::format::{Formulation, NO_CHANNEL};
-use crate::storage::{axpy_f32, dot_f32, f32_at, f32_row, f32s, u16_at};
+use crate::storage::{dot_f32, f32_at, f32_row, f32s, u16_at};
 
 /// Largest channel level accepted (relative; 1 is the level the basis was built for).
 pub const MAX_LEVEL: f32 = 1.0e3;
 /// Largest exitance accepted for a single patch, W/m² or lux.
 pub const MAX_EXITANCE: f32 = 1.0e9;
 
-/// Turns emitter levels into exitance, irradiance, sensor and zone readings.
+/// `Ok` when the basis needs at most what the evaluator type has room for, else
+/// [`Error::Capacity`] naming both sizes.
+fn fits(what: &'static str, needed: usize, capacity: usize) -> Result<()> {
+    if needed <= capacity {
+        Ok(())
+    } else {
+        Err(Error::Capacity {
+            what,
+            needed,
+            capacity,
+        })
+    }
+}
+
+/// Turns channel levels into exitance, irradiance, sensor and zone readings, exact to the
+/// storage precision for every combination of levels.
+///
+/// The evaluator for a controller that only dims channels: its state is one level per
+/// channel ([`ChannelEvaluator::RAM_BYTES`] = `4 × CHANNELS` bytes) besides the [`Basis`]
+/// view. A channel update writes its level; a reading sums `m` stored products per band,
+/// one per channel (`channel_response` for a patch, `output_channels` for a sensor or zone).
+///
+/// `BANDS` must equal the basis' band count (1 or 3) and the basis may have at most
+/// `CHANNELS` channels. Exitance set patch by patch needs the modes and per-patch state:
+/// use an [`Evaluator`] for that.
+///
+/// Readings cannot overflow: stored values are at most 10⁹ in magnitude, levels at most
+/// [`MAX_LEVEL`] and channels fewer than 65535, so a sum stays below 10¹⁷ (and an irradiance,
+/// divided by ρ ≥ 10⁻⁶, below 10²³), far inside `f32`.
+#[derive(Clone, Debug)]
+pub struct ChannelEvaluator<'a, const BANDS: usize, const CHANNELS: usize> {
+    basis: Basis<'a>,
+    /// Level of every channel of the basis (relative, 1 = as built): `m` values.
+    levels: heapless::Vec<f32, CHANNELS>,
+}
+
+impl<'a, const BANDS: usize, const CHANNELS: usize> ChannelEvaluator<'a, BANDS, CHANNELS> {
+    /// Bytes of state an evaluator of this type holds besides the basis view and the
+    /// levels' length: one `f32` level per channel.
+    pub const RAM_BYTES: usize = 4 * CHANNELS;
+
+    /// An evaluator for `basis` with every channel at level 0.
+    ///
+    /// Fails with [`Error::Capacity`] naming both sizes when the basis has another band
+    /// count than `BANDS` or more channels than `CHANNELS`.
+    pub fn new(basis: Basis<'a>) -> Result<Self> {
+        const {
+            assert!(
+                BANDS == 1 || BANDS == 3,
+                "BANDS must be 1 (photopic) or 3 (RGB)"
+            )
+        };
+        if basis.bands() != BANDS {
+            return Err(Error::Capacity {
+                what: "bands",
+                needed: basis.bands(),
+                capacity: BANDS,
+            });
+        }
+        let capacity = Error::Capacity {
+            what: "channels",
+            needed: basis.channel_count(),
+            capacity: CHANNELS,
+        };
+        let mut levels = heapless::Vec::new();
+        levels
+            .resize(basis.channel_count(), 0.0)
+            .map_err(|_| capacity)?;
+        Ok(ChannelEvaluator { basis, levels })
+    }
+
+    /// The basis being evaluated.
+    pub fn basis(&self) -> &Basis<'a> {
+        &self.basis
+    }
+
+    fn check_level(level: f32) -> Result<()> {
+        if level.is_finite() && (0.0..=MAX_LEVEL).contains(&level) {
+            Ok(())
+        } else {
+            Err(Error::InvalidInput { what: "level" })
+        }
+    }
+
+    /// Sets every channel's level at once (relative, 1 = as built; at most [`MAX_LEVEL`]).
+    /// `levels` has one entry per channel of the basis. O(m).
+    ///
+    /// A wrong length or any invalid level is an error and changes nothing.
+    pub fn set_channel_levels(&mut self, levels: &[f32]) -> Result<()> {
+        let m = self.basis.counts.channel_count;
+        if levels.len() != m {
+            return Err(Error::LengthMismatch {
+                what: "levels",
+                expected: m,
+                found: levels.len(),
+            });
+        }
+        for &l in levels {
+            Self::check_level(l)?;
+        }
+        for (slot, &l) in self.levels.iter_mut().zip(levels) {
+            *slot = l;
+        }
+        Ok(())
+    }
+
+    /// Changes one channel's level (relative, 1 = as built; at most [`MAX_LEVEL`]). O(1): it
+    /// writes the level, readings sum the channels when they are read.
+    pub fn set_channel_level(&mut self, channel: usize, level: f32) -> Result<()> {
+        check_index("channel", channel, self.basis.counts.channel_count)?;
+        Self::check_level(level)?;
+        if let Some(slot) = self.levels.get_mut(channel) {
+            *slot = level;
+        }
+        Ok(())
+    }
+
+    /// Sets a channel from a DALI arc power level (IEC 62386-102 logarithmic curve, 0 = off,
+    /// 254 = 100 %; 255 is MASK and rejected).
+    pub fn set_channel_arc_power(&mut self, channel: usize, arc: u8) -> Result<()> {
+        self.set_channel_level(channel, dali::arc_power_to_level(arc)?)
+    }
+
+    /// Current level of `channel` (relative).
+    pub fn channel_level(&self, channel: usize) -> Result<f32> {
+        check_index("channel", channel, self.basis.counts.channel_count)?;
+        Ok(self.levels.get(channel).copied().unwrap_or(0.0))
+    }
+
+    /// Final exitance of `patch` per band, W/m² or lux (lm/m²): `Σ_c L_c ·
+    /// channel_response[patch][c·B + b]`, emission included. O(m) per band.
+    pub fn exitance(&self, patch: usize) -> Result<[f32; BANDS]> {
+        check_index("patch", patch, self.basis.counts.patch_count)?;
+        Ok(self.exitance_unchecked(patch))
+    }
+
+    /// [`exitance`](Self::exitance) for an index already checked.
+    fn exitance_unchecked(&self, patch: usize) -> [f32; BANDS] {
+        let levels = &self.levels;
+        let response = self.basis.channel_response();
+        let mut out = [0.0f32; BANDS];
+        if BANDS == 1 {
+            // One band: the row is one value per channel, a plain dot product.
+            if let Some(slot) = out.first_mut() {
+                *slot = response.row_dot(patch, 0, levels);
+            }
+            return out;
+        }
+        // Several bands: one pass over the row (channel-major, band-minor), no index
+        // arithmetic per value.
+        let (mut channel, mut band) = (0, 0);
+        response.for_each(patch, 0, levels.len() * BANDS, |_, v| {
+            if let (Some(slot), Some(&level)) = (out.get_mut(band), levels.get(channel)) {
+                *slot += v * level;
+            }
+            band += 1;
+            if band == BANDS {
+                band = 0;
+                channel += 1;
+            }
+        });
+        out
+    }
+
+    /// Fills `out[i]` with the exitance of every patch `i` (W/m² or lux); `out` must have
+    /// one entry per patch. O(n·m) per band.
+    pub fn exitance_all(&self, out: &mut [[f32; BANDS]]) -> Result<()> {
+        let n = self.basis.counts.patch_count;
+        if out.len() != n {
+            return Err(Error::LengthMismatch {
+                what: "out",
+                expected: n,
+                found: out.len(),
+            });
+        }
+        for (i, slot) in out.iter_mut().enumerate() {
+            *slot = self.exitance_unchecked(i);
+        }
+        Ok(())
+    }
+
+    /// Exitance `patch` emits itself in `band` through its channel: the channel's level
+    /// times `patch_emission`, W/m² or lux.
+    fn emitted(&self, patch: usize, band: usize) -> f32 {
+        let c = u16_at(self.basis.tables.patch_channel, patch);
+        if c == NO_CHANNEL {
+            return 0.0;
+        }
+        let level = self.levels.get(usize::from(c)).copied().unwrap_or(0.0);
+        level
+            * f32_at(
+                self.basis.tables.patch_emission,
+                patch * self.basis.counts.bands + band,
+            )
+    }
+
+    /// Irradiance (illuminance in a photopic basis) arriving on `patch`, W/m² or lux:
+    /// `E = (M − M_emitted)/ρ`. A patch with ρ = 0 in some band gives
+    /// [`Error::BlackPatch`]: read a sensor or zone there instead.
+    pub fn irradiance(&self, patch: usize) -> Result<[f32; BANDS]> {
+        let m = self.exitance(patch)?;
+        irradiance(&self.basis, patch, m, |b| self.emitted(patch, b))
+    }
+
+    /// Luminance of `patch` as a Lambertian surface, `L = M/π`: W/(m²·sr), or cd/m² in a
+    /// photopic basis.
+    pub fn luminance(&self, patch: usize) -> Result<[f32; BANDS]> {
+        Ok(luminance(self.exitance(patch)?))
+    }
+
+    /// Irradiance of output `o` (sensors first, then zones), already checked:
+    /// `Σ_c L_c · output_channels[o][b][c]`. O(m) per band, independent of n.
+    fn output(&self, o: usize) -> [f32; BANDS] {
+        let levels = &self.levels;
+        let m = levels.len();
+        let mut out = [0.0f32; BANDS];
+        for (b, slot) in out.iter_mut().enumerate() {
+            let row = f32_row(self.basis.tables.output_channels, o * BANDS + b, m);
+            *slot = dot_f32(row, levels);
+        }
+        out
+    }
+
+    /// Irradiance at sensor `sensor` (illuminance in lux for a photopic basis, W/m² per
+    /// band otherwise). O(m) per band.
+    pub fn sensor_irradiance(&self, sensor: usize) -> Result<[f32; BANDS]> {
+        check_index("sensor", sensor, self.basis.counts.sensor_count)?;
+        Ok(self.output(sensor))
+    }
+
+    /// Area-average irradiance over zone `zone` (illuminance in lux for a photopic basis,
+    /// W/m² per band otherwise). O(m) per band.
+    pub fn zone_irradiance(&self, zone: usize) -> Result<[f32; BANDS]> {
+        check_index("zone", zone, self.basis.counts.zone_count)?;
+        Ok(self.output(self.basis.counts.sensor_count + zone))
+    }
+}
+
+/// `(M − emitted)/ρ` per band, or [`Error::BlackPatch`] when ρ = 0 in some band.
+fn irradiance<const BANDS: usize>(
+    basis: &Basis<'_>,
+    patch: usize,
+    exitance: [f32; BANDS],
+    emitted: impl Fn(usize) -> f32,
+) -> Result<[f32; BANDS]> {
+    let mut out = [0.0f32; BANDS];
+    for (b, (slot, &m)) in out.iter_mut().zip(&exitance).enumerate() {
+        let rho = f32_at(
+            basis.tables.patch_reflectance,
+            patch * basis.counts.bands + b,
+        );
+        if rho == 0.0 {
+            return Err(Error::BlackPatch { patch });
+        }
+        *slot = (m - emitted(b)) / rho;
+    }
+    Ok(out)
+}
+
+/// `M/π` per band.
+fn luminance<const BANDS: usize>(mut exitance: [f32; BANDS]) -> [f32; BANDS] {
+    for v in &mut exitance {
+        *v /= core::f32::consts::PI;
+    }
+    exitance
+}
+
+/// Turns channel levels and exitance set patch by patch into exitance, irradiance, sensor
+/// and zone readings.
+///
+/// A [`ChannelEvaluator`] plus what exitance set patch by patch needs: channels read their
+/// exact stored responses as there, and exitance set with
+/// [`set_patch_exitance`](Self::set_patch_exitance) (on any patch, also one that belongs to
+/// no channel) goes through the modes. With no patch exitance set, every reading equals the
+/// [`ChannelEvaluator`]'s, to the bit, and costs the same.
 ///
 /// Capacities are compile-time: `BANDS` must equal the basis' band count (1 or 3), and the
 /// basis may have at most `PATCHES` patches, `MODES` modes, `CHANNELS` channels and
@@ -19,9 +298,9 @@ pub const MAX_EXITANCE: f32 = 1.0e9;
 /// ([`Evaluator::RAM_BYTES`] bounds the state) and does not grow with the basis, which
 /// stays in the caller's bytes.
 ///
-/// State kept, per band: the amplitude of every mode (`MODES` values), the part of it that
-/// comes from exitance set patch by patch, that exitance itself (`PATCHES` values), and its
-/// direct contribution to each output (`OUTPUTS` values); plus one level per channel.
+/// State kept besides the channel levels, per band: the amplitude of every mode from
+/// exitance set patch by patch (`MODES` values), that exitance itself (`PATCHES` values), and
+/// its direct contribution to each output (`OUTPUTS` values).
 #[derive(Clone, Debug)]
 pub struct Evaluator<
     'a,
@@ -31,17 +310,16 @@ pub struct Evaluator<
     const CHANNELS: usize,
     const OUTPUTS: usize,
 > {
-    basis: Basis<'a>,
-    /// One level per channel of the basis (length m).
-    levels: heapless::Vec<f32, CHANNELS>,
-    /// Mode amplitudes from channels and patches together, coefficient included.
+    channels: ChannelEvaluator<'a, BANDS, CHANNELS>,
+    /// Mode amplitudes from exitance set patch by patch, coefficient included.
     amplitude: [[f32; MODES]; BANDS],
-    /// The part of `amplitude` that comes from per-patch exitance.
-    patch_amplitude: [[f32; MODES]; BANDS],
     /// Exitance set patch by patch (on top of the channels), W/m² or lux.
     patch_exitance: [[f32; BANDS]; PATCHES],
     /// Direct irradiance of every output from `patch_exitance`, W/m² or lux.
     patch_direct: [[f32; BANDS]; OUTPUTS],
+    /// Patches whose `patch_exitance` is non-zero in some band. While it is 0 the modal and
+    /// direct terms are exactly 0 and reads skip them.
+    lit: usize,
 }
 
 impl<
@@ -53,31 +331,16 @@ impl<
         const OUTPUTS: usize,
     > Evaluator<'a, BANDS, PATCHES, MODES, CHANNELS, OUTPUTS>
 {
-    /// Bytes of state an evaluator of this type holds besides the basis views.
-    pub const RAM_BYTES: usize =
-        4 * (CHANNELS + 2 * BANDS * MODES + BANDS * PATCHES + BANDS * OUTPUTS);
+    /// Bytes of state an evaluator of this type holds besides the basis view and a count:
+    /// the [`ChannelEvaluator`]'s levels plus `4 × BANDS × (MODES + PATCHES + OUTPUTS)` for
+    /// exitance set patch by patch.
+    pub const RAM_BYTES: usize = ChannelEvaluator::<'a, BANDS, CHANNELS>::RAM_BYTES
+        + 4 * BANDS * (MODES + PATCHES + OUTPUTS);
 
     /// An evaluator for `basis` with every channel at level 0 and no patch exitance.
     ///
     /// Fails with [`Error::Capacity`] naming both sizes when the basis does not fit.
     pub fn new(basis: Basis<'a>) -> Result<Self> {
-        const {
-            assert!(
-                BANDS == 1 || BANDS == 3,
-                "BANDS must be 1 (photopic) or 3 (RGB)"
-            )
-        };
-        let fits = |what: &'static str, needed: usize, capacity: usize| {
-            if needed <= capacity {
-                Ok(())
-            } else {
-                Err(Error::Capacity {
-                    what,
-                    needed,
-                    capacity,
-                })
-            }
-        };
         if basis.bands() != BANDS {
             return Err(Error::Capacity {
                 what: "bands",
@@ -93,164 +356,64 @@ impl<
             basis.sensor_count() + basis.zone_count(),
             OUTPUTS,
         )?;
-        let mut levels = heapless::Vec::new();
-        levels
-            .resize(basis.channel_count(), 0.0)
-            .map_err(|_| Error::Capacity {
-                what: "channels",
-                needed: basis.channel_count(),
-                capacity: CHANNELS,
-            })?;
         Ok(Evaluator {
-            basis,
-            levels,
+            channels: ChannelEvaluator::new(basis)?,
             amplitude: [[0.0; MODES]; BANDS],
-            patch_amplitude: [[0.0; MODES]; BANDS],
             patch_exitance: [[0.0; BANDS]; PATCHES],
             patch_direct: [[0.0; BANDS]; OUTPUTS],
+            lit: 0,
         })
     }
 
     /// The basis being evaluated.
     pub fn basis(&self) -> &Basis<'a> {
-        &self.basis
+        &self.channels.basis
+    }
+
+    /// The channel part of the state: what the evaluator reads with no patch exitance.
+    pub fn channels(&self) -> &ChannelEvaluator<'a, BANDS, CHANNELS> {
+        &self.channels
     }
 
     fn p(&self) -> usize {
-        self.basis.counts.mode_count
+        self.channels.basis.counts.mode_count
     }
 
-    fn check_level(level: f32) -> Result<()> {
-        if level.is_finite() && (0.0..=MAX_LEVEL).contains(&level) {
-            Ok(())
-        } else {
-            Err(Error::InvalidInput { what: "level" })
-        }
-    }
-
-    /// Bytes of channel `c`'s mode projection in band `b`.
-    fn channel_projection(&self, c: usize, b: usize) -> &'a [u8] {
-        f32_row(
-            self.basis.tables.channel_projection,
-            c * self.basis.counts.bands + b,
-            self.p(),
-        )
-    }
-
-    /// Sets every channel's level at once (relative, 1 = as built) and recomputes the mode
-    /// amplitudes from scratch, which also clears rounding drift of incremental updates.
-    /// O(m·p·bands).
+    /// Sets every channel's level at once; see [`ChannelEvaluator::set_channel_levels`].
+    /// O(m); exitance set patch by patch is kept.
     pub fn set_channel_levels(&mut self, levels: &[f32]) -> Result<()> {
-        let m = self.basis.counts.channel_count;
-        if levels.len() != m {
-            return Err(Error::LengthMismatch {
-                what: "levels",
-                expected: m,
-                found: levels.len(),
-            });
-        }
-        for &l in levels {
-            Self::check_level(l)?;
-        }
-        self.recompute_amplitude(levels);
-        if self.amplitude_is_finite() {
-            for (slot, &l) in self.levels.iter_mut().zip(levels) {
-                *slot = l;
-            }
-            Ok(())
-        } else {
-            // Back to the previous, valid levels.
-            let old = self.levels.clone();
-            self.recompute_amplitude(&old);
-            Err(Error::InvalidInput { what: "levels" })
-        }
+        self.channels.set_channel_levels(levels)
     }
 
-    /// `amplitude = patch_amplitude + Σ_c levels[c] · projection[c]`, over the first p modes.
-    fn recompute_amplitude(&mut self, levels: &[f32]) {
-        let p = self.p();
-        for b in 0..BANDS {
-            let (Some(amp), Some(base)) = (self.amplitude.get_mut(b), self.patch_amplitude.get(b))
-            else {
-                continue;
-            };
-            let amp = amp.get_mut(..p).unwrap_or(&mut []);
-            amp.copy_from_slice(base.get(..p).unwrap_or(&[]));
-            for (c, &l) in levels.iter().enumerate() {
-                let projection = f32_row(
-                    self.basis.tables.channel_projection,
-                    c * self.basis.counts.bands + b,
-                    p,
-                );
-                axpy_f32(l, projection, amp);
-            }
-        }
-    }
-
-    fn amplitude_is_finite(&self) -> bool {
-        let p = self.p();
-        self.amplitude
-            .iter()
-            .all(|a| a.get(..p).unwrap_or(&[]).iter().all(|v| v.is_finite()))
-    }
-
-    /// Changes one channel's level (relative, 1 = as built), updating the mode amplitudes
-    /// incrementally in O(p·bands) without touching the other channels.
+    /// Changes one channel's level; see [`ChannelEvaluator::set_channel_level`]. O(1).
     pub fn set_channel_level(&mut self, channel: usize, level: f32) -> Result<()> {
-        check_index("channel", channel, self.basis.counts.channel_count)?;
-        Self::check_level(level)?;
-        let old = self.levels.get(channel).copied().unwrap_or(0.0);
-        let delta = level - old;
-        let p = self.p();
-        for b in 0..BANDS {
-            let proj = self.channel_projection(channel, b);
-            if let Some(amp) = self.amplitude.get_mut(b) {
-                axpy_f32(delta, proj, amp.get_mut(..p).unwrap_or(&mut []));
-            }
-        }
-        if !self.amplitude_is_finite() {
-            let levels = self.levels.clone();
-            self.recompute_amplitude(&levels);
-            return Err(Error::InvalidInput { what: "level" });
-        }
-        if let Some(slot) = self.levels.get_mut(channel) {
-            *slot = level;
-        }
-        Ok(())
+        self.channels.set_channel_level(channel, level)
     }
 
     /// Sets a channel from a DALI arc power level (IEC 62386-102 logarithmic curve, 0 = off,
     /// 254 = 100 %; 255 is MASK and rejected).
     pub fn set_channel_arc_power(&mut self, channel: usize, arc: u8) -> Result<()> {
-        self.set_channel_level(channel, dali::arc_power_to_level(arc)?)
+        self.channels.set_channel_arc_power(channel, arc)
     }
 
-    /// Current level of `channel`.
+    /// Current level of `channel` (relative).
     pub fn channel_level(&self, channel: usize) -> Result<f32> {
-        check_index("channel", channel, self.basis.counts.channel_count)?;
-        Ok(self.levels.get(channel).copied().unwrap_or(0.0))
-    }
-
-    fn identity(&self, patch: usize, band: usize) -> bool {
-        identity(&self.basis, patch, band)
-    }
-
-    fn reflectance(&self, patch: usize, band: usize) -> f32 {
-        f32_at(
-            self.basis.tables.patch_reflectance,
-            patch * self.basis.counts.bands + band,
-        )
+        self.channels.channel_level(channel)
     }
 
     /// Sets the exitance a patch emits on top of its channel (the general case of an
-    /// arbitrary initial exitance `M0`), per band in W/m² or lux. Incremental: O(p·bands +
-    /// outputs·bands).
+    /// arbitrary initial exitance `M0`), per band in W/m² or lux, at most [`MAX_EXITANCE`].
+    /// Any patch may be given exitance, also one that belongs to no channel. Incremental:
+    /// O(p·bands + outputs·bands).
     ///
-    /// The patch's own exitance and its direct light on sensors and zones are exact; the
-    /// light it sends into the room is carried by the modes, so its accuracy is that of the
-    /// truncation (exact when `p = n`).
+    /// The patch's own exitance and its direct light on sensors and zones are exact (split
+    /// formulation; in the seed one only on black patches); the light it sends into the room
+    /// is carried by the modes, so its accuracy is that of the truncation (exact when
+    /// `p = n`). An invalid value, or one that would overflow the state, is an error and
+    /// changes nothing.
     pub fn set_patch_exitance(&mut self, patch: usize, exitance: [f32; BANDS]) -> Result<()> {
-        check_index("patch", patch, self.basis.counts.patch_count)?;
+        let basis = self.channels.basis;
+        check_index("patch", patch, basis.counts.patch_count)?;
         if exitance
             .iter()
             .any(|e| !e.is_finite() || !(0.0..=MAX_EXITANCE).contains(e))
@@ -262,7 +425,7 @@ impl<
             .get(patch)
             .copied()
             .unwrap_or([0.0; BANDS]);
-        let outputs = self.outputs();
+        let outputs = basis.counts.sensor_count + basis.counts.zone_count;
         // Two passes: check that every updated value stays finite, then apply, so that a
         // rejected request leaves the state exactly as it was.
         for apply in [false, true] {
@@ -273,22 +436,19 @@ impl<
                     continue;
                 }
                 let mut ok = true;
-                let (amp, patch_amp) = (self.amplitude.get_mut(b), self.patch_amplitude.get_mut(b));
-                let (Some(amp), Some(patch_amp)) = (amp, patch_amp) else {
+                let Some(amp) = self.amplitude.get_mut(b) else {
                     continue;
                 };
-                let basis = &self.basis;
-                patch_response(basis, patch, b, delta, |k, step| {
-                    if let (Some(a), Some(pa)) = (amp.get_mut(k), patch_amp.get_mut(k)) {
+                patch_response(&basis, patch, b, delta, |k, step| {
+                    if let Some(a) = amp.get_mut(k) {
                         if apply {
                             *a += step;
-                            *pa += step;
                         } else {
-                            ok &= (*a + step).is_finite() && (*pa + step).is_finite();
+                            ok &= (*a + step).is_finite();
                         }
                     }
                 });
-                if identity(basis, patch, b) {
+                if identity(&basis, patch, b) {
                     let direct = &mut self.patch_direct;
                     basis
                         .output_view()
@@ -307,85 +467,66 @@ impl<
                 }
             }
         }
+        let was_lit = old.iter().any(|&x| x != 0.0);
+        let now_lit = exitance.iter().any(|&x| x != 0.0);
         if let Some(slot) = self.patch_exitance.get_mut(patch) {
             *slot = exitance;
+        }
+        match (was_lit, now_lit) {
+            (false, true) => self.lit += 1,
+            (true, false) => {
+                self.lit = self.lit.saturating_sub(1);
+                if self.lit == 0 {
+                    // Nothing is set any more: drop the rounding residue of the increments,
+                    // so that reads equal the channel evaluator's again.
+                    self.clear_patch_exitance();
+                }
+            }
+            _ => {}
         }
         Ok(())
     }
 
     /// Removes all exitance set with [`set_patch_exitance`](Self::set_patch_exitance).
     pub fn clear_patch_exitance(&mut self) {
-        for (a, pa) in self.amplitude.iter_mut().zip(&mut self.patch_amplitude) {
-            for (x, y) in a.iter_mut().zip(pa.iter_mut()) {
-                *x -= *y;
-                *y = 0.0;
-            }
-        }
+        self.amplitude = [[0.0; MODES]; BANDS];
         self.patch_exitance = [[0.0; BANDS]; PATCHES];
         self.patch_direct = [[0.0; BANDS]; OUTPUTS];
+        self.lit = 0;
     }
 
-    fn outputs(&self) -> usize {
-        self.basis.counts.sensor_count + self.basis.counts.zone_count
-    }
-
-    /// Exitance the patch emits itself in `band`: its channel's share plus its own.
-    fn emitted(&self, patch: usize, band: usize) -> f32 {
-        let own = self
-            .patch_exitance
+    /// Exitance set on `patch` in `band` with [`set_patch_exitance`](Self::set_patch_exitance).
+    fn own(&self, patch: usize, band: usize) -> f32 {
+        self.patch_exitance
             .get(patch)
             .and_then(|e| e.get(band))
             .copied()
-            .unwrap_or(0.0);
-        let c = u16_at(self.basis.tables.patch_channel, patch);
-        if c == NO_CHANNEL {
-            return own;
-        }
-        let level = self.levels.get(usize::from(c)).copied().unwrap_or(0.0);
-        own + level
-            * f32_at(
-                self.basis.tables.patch_emission,
-                patch * self.basis.counts.bands + band,
-            )
+            .unwrap_or(0.0)
     }
 
     fn checked(values: [f32; BANDS]) -> Result<[f32; BANDS]> {
         if values.iter().all(|v| v.is_finite()) {
             Ok(values)
         } else {
-            Err(Error::InvalidInput { what: "levels" })
+            Err(Error::InvalidInput { what: "exitance" })
         }
     }
 
-    /// Final exitance of `patch` per band, W/m² or lux (lm/m²). O(p + m) per band.
+    /// Final exitance of `patch` per band, W/m² or lux (lm/m²): the channels' exact
+    /// responses, plus, where exitance is set patch by patch, that exitance (where carried
+    /// exactly) and the modes. O(m) per band, O(p + m) with patch exitance set.
     pub fn exitance(&self, patch: usize) -> Result<[f32; BANDS]> {
-        check_index("patch", patch, self.basis.counts.patch_count)?;
+        let mut out = self.channels.exitance(patch)?;
+        if self.lit == 0 {
+            return Ok(out);
+        }
+        let basis = &self.channels.basis;
         let p = self.p();
-        let bands = self.basis.counts.bands;
-        let m = self.basis.counts.channel_count;
-        let mut out = [0.0f32; BANDS];
+        let modes = basis.modes();
         for (b, slot) in out.iter_mut().enumerate() {
-            if self.identity(patch, b) {
-                *slot = self.emitted(patch, b);
+            if identity(basis, patch, b) {
+                *slot += self.own(patch, b);
             }
-        }
-        let bounce = self.basis.channel_bounce();
-        if bounce.cols != 0 {
-            // One pass over the row (channel-major, band-minor), no index arithmetic per value.
-            let (mut channel, mut band) = (0, 0);
-            bounce.for_each(patch, 0, m * bands, |_, v| {
-                if let (Some(slot), Some(&level)) = (out.get_mut(band), self.levels.get(channel)) {
-                    *slot += v * level;
-                }
-                band += 1;
-                if band == bands {
-                    band = 0;
-                    channel += 1;
-                }
-            });
-        }
-        let modes = self.basis.modes();
-        for (b, slot) in out.iter_mut().enumerate() {
             let amp = self
                 .amplitude
                 .get(b)
@@ -396,9 +537,9 @@ impl<
     }
 
     /// Fills `out[i]` with the exitance of every patch `i` (W/m² or lux); `out` must have
-    /// one entry per patch. O(n·(p + m)) per band.
+    /// one entry per patch. O(n·m) per band, O(n·(p + m)) with patch exitance set.
     pub fn exitance_all(&self, out: &mut [[f32; BANDS]]) -> Result<()> {
-        let n = self.basis.counts.patch_count;
+        let n = self.channels.basis.counts.patch_count;
         if out.len() != n {
             return Err(Error::LengthMismatch {
                 what: "out",
@@ -413,72 +554,68 @@ impl<
     }
 
     /// Irradiance (illuminance in a photopic basis) arriving on `patch`, W/m² or lux:
-    /// `E = (M − M_emitted)/ρ`. A patch with ρ = 0 in some band gives
-    /// [`Error::BlackPatch`]: read a sensor or zone there instead.
+    /// `E = (M − M_emitted)/ρ`, the emitted part being the channel's and the exitance set on
+    /// the patch. A patch with ρ = 0 in some band gives [`Error::BlackPatch`]: read a sensor
+    /// or zone there instead.
     pub fn irradiance(&self, patch: usize) -> Result<[f32; BANDS]> {
         let m = self.exitance(patch)?;
-        let mut out = [0.0f32; BANDS];
-        for (b, (slot, &mb)) in out.iter_mut().zip(&m).enumerate() {
-            let rho = self.reflectance(patch, b);
-            if rho == 0.0 {
-                return Err(Error::BlackPatch { patch });
-            }
-            *slot = (mb - self.emitted(patch, b)) / rho;
-        }
+        let out = irradiance(&self.channels.basis, patch, m, |b| {
+            self.channels.emitted(patch, b) + self.own(patch, b)
+        })?;
         Self::checked(out)
     }
 
     /// Luminance of `patch` as a Lambertian surface, `L = M/π`: W/(m²·sr), or cd/m² in a
     /// photopic basis.
     pub fn luminance(&self, patch: usize) -> Result<[f32; BANDS]> {
-        let mut m = self.exitance(patch)?;
-        for v in &mut m {
-            *v /= core::f32::consts::PI;
-        }
-        Ok(m)
+        Ok(luminance(self.exitance(patch)?))
     }
 
-    /// Irradiance of output `o` (sensors first, then zones): modes, exact channel part and
-    /// direct light from per-patch exitance. O(p + m) per band, independent of n.
+    /// Irradiance of output `o` (sensors first, then zones), already checked: the channels'
+    /// exact readings, plus, with patch exitance set, the modes and its direct light.
+    /// O(m) per band, O(p + m) with patch exitance set; independent of n.
     fn output(&self, o: usize) -> Result<[f32; BANDS]> {
+        let mut out = self.channels.output(o);
+        if self.lit == 0 {
+            return Ok(out);
+        }
         let p = self.p();
-        let m = self.basis.counts.channel_count;
-        let bands = self.basis.counts.bands;
-        let mut out = [0.0f32; BANDS];
+        let tables = &self.channels.basis.tables;
         for (b, slot) in out.iter_mut().enumerate() {
-            let modes = f32_row(self.basis.tables.output_modes, o * bands + b, p);
+            let modes = f32_row(tables.output_modes, o * BANDS + b, p);
             let amp = self
                 .amplitude
                 .get(b)
                 .map_or(&[][..], |a| a.get(..p).unwrap_or(&[]));
-            let chans = f32_row(self.basis.tables.output_channels, o * bands + b, m);
             let direct = self
                 .patch_direct
                 .get(o)
                 .and_then(|d| d.get(b))
                 .copied()
                 .unwrap_or(0.0);
-            *slot = dot_f32(modes, amp) + dot_f32(chans, &self.levels) + direct;
+            *slot += dot_f32(modes, amp) + direct;
         }
         Self::checked(out)
     }
 
-    /// Irradiance at sensor `sensor` (illuminance in lux for a photopic basis). O(p + m).
+    /// Irradiance at sensor `sensor` (illuminance in lux for a photopic basis, W/m² per
+    /// band otherwise). O(m) per band, O(p + m) with patch exitance set.
     pub fn sensor_irradiance(&self, sensor: usize) -> Result<[f32; BANDS]> {
-        check_index("sensor", sensor, self.basis.counts.sensor_count)?;
+        check_index("sensor", sensor, self.channels.basis.counts.sensor_count)?;
         self.output(sensor)
     }
 
-    /// Area-average irradiance over zone `zone` (illuminance in lux for a photopic basis).
-    /// O(p + m).
+    /// Area-average irradiance over zone `zone` (illuminance in lux for a photopic basis,
+    /// W/m² per band otherwise). O(m) per band, O(p + m) with patch exitance set.
     pub fn zone_irradiance(&self, zone: usize) -> Result<[f32; BANDS]> {
-        check_index("zone", zone, self.basis.counts.zone_count)?;
-        self.output(self.basis.counts.sensor_count + zone)
+        let counts = &self.channels.basis.counts;
+        check_index("zone", zone, counts.zone_count)?;
+        self.output(counts.sensor_count + zone)
     }
 }
 
-/// Whether exitance of `patch` in `band` is carried exactly (not through the modes): all
-/// patches in the split formulation, black patches only in the seed formulation.
+/// Whether exitance set on `patch` in `band` is carried exactly (not through the modes): on
+/// every patch in the split formulation, on black patches only in the seed formulation.
 fn identity(basis: &Basis<'_>, patch: usize, band: usize) -> bool {
     basis.formulation == Formulation::Split
         || f32_at(

@@ -1,4 +1,4 @@
-//! The serialized basis, format version 1: the wire types a writer fills and the reader
+//! The serialized basis, format version 2: the wire types a writer fills and the reader
 //! decodes in place. `docs/format.md` is the normative description; this module is its
 //! layout and header, the checks of the payload's sections are in `decode.rs`.
 //!
@@ -22,18 +22,21 @@ use crate::error::{Error, Result};
 /// The eight bytes every basis starts with.
 pub const MAGIC: [u8; 8] = *b"EIGENRAD";
 /// The format version this runtime writes and reads.
-pub const FORMAT_VERSION: u16 = 1;
+pub const FORMAT_VERSION: u16 = 2;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 20;
 /// `patch_channel` value of a patch that belongs to no channel.
 pub const NO_CHANNEL: u16 = u16::MAX;
 
-/// How the interreflection operator is expanded (see `docs/format.md` and docs/math.md).
+/// How the interreflection operator is expanded in modes (see `docs/format.md` and
+/// docs/math.md). Channels are stored exactly in either; the expansion serves exitance set
+/// patch by patch at run time.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[repr(u8)]
 pub enum Formulation {
-    /// Default. `M = M0 + first bounce + Σ c_k v_k (v_k · b∘M0)` with `c_k = μ_k/(1−μ_k)`;
-    /// the stored eigenvalues are `μ_k` (eigenvalues of `R F`).
+    /// Default. `M = M0 + Σ c_k v_k (v_k · b∘M0)` with `c_k = μ_k/(1−μ_k)`: a patch's own
+    /// exitance exact, the interreflection in modes; the stored eigenvalues are `μ_k`
+    /// (eigenvalues of `R F`).
     #[default]
     Split = 0,
     /// The seed paper's expansion, corrected: `M = Σ (1/λ_k) v_k (v_k · b∘M0)` over the
@@ -41,7 +44,7 @@ pub enum Formulation {
     Seed = 1,
 }
 
-/// How the large tables (mode vectors, first bounces, view rows) are stored.
+/// How the large tables (mode vectors, channel responses, view rows) are stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u8)]
 pub enum Precision {
@@ -168,14 +171,10 @@ pub struct Payload<'a> {
     /// the mode coefficient included (split `v_k·G e_j/(1−μ_k)`, seed `v_k·G e_j/λ_k`).
     #[serde(borrow)]
     pub black_projection: &'a [u8],
-    /// `m × B × p` `f32`: mode-space response to each channel at level 1, coefficient
-    /// included.
+    /// `n × (m·B)` matrix: each channel's exact exitance on every patch at level 1,
+    /// emission included (W/m² or lux), from the exact solve at build time. Column `c·B + b`.
     #[serde(borrow)]
-    pub channel_projection: &'a [u8],
-    /// `n × (m·B)` matrix: each channel's exact first bounce `R F e` at level 1 (split only;
-    /// zero columns for seed). Column `c·B + b`.
-    #[serde(borrow)]
-    pub channel_bounce: MatrixBytes<'a>,
+    pub channel_response: MatrixBytes<'a>,
     /// `S × 7` `f32`: sensor position (m), unit normal, field-of-view half-angle (rad, π for
     /// a full hemisphere).
     #[serde(borrow)]
@@ -186,8 +185,8 @@ pub struct Payload<'a> {
     /// `O × B × p` `f32`: each output's irradiance per unit mode amplitude.
     #[serde(borrow)]
     pub output_modes: &'a [u8],
-    /// `O × B × m` `f32`: each output's irradiance from the part of each channel at level 1
-    /// that is not carried by the modes (emission and first bounce, exact).
+    /// `O × B × m` `f32`: each output's exact irradiance from each channel alone at level 1
+    /// (W/m² or lux).
     #[serde(borrow)]
     pub output_channels: &'a [u8],
     /// `n × O` matrix: view factor from each output to each patch (a zone's is
@@ -231,13 +230,9 @@ impl Counts {
         self.bands.checked_mul(self.mode_count)
     }
 
-    /// Columns of `channel_bounce`: `m·B` in the split formulation, none in the seed one
-    /// (it carries the first bounce through its modes).
-    pub fn channel_bounce_cols(&self, formulation: Formulation) -> Option<usize> {
-        match formulation {
-            Formulation::Split => self.channel_count.checked_mul(self.bands),
-            Formulation::Seed => Some(0),
-        }
+    /// Columns of `channel_response`: `m·B`.
+    pub fn channel_response_cols(&self) -> Option<usize> {
+        self.channel_count.checked_mul(self.bands)
     }
 
     /// Columns of `output_view`: `O`.

@@ -16,5 +16,5 @@ pub mod writer;
 
 pub use basis::{Basis, PatchInfo, SensorInfo, MIN_REFLECTANCE};
 pub use error::{Error, Result};
-pub use eval::{Evaluator, MAX_EXITANCE, MAX_LEVEL};
+pub use eval::{ChannelEvaluator, Evaluator, MAX_EXITANCE, MAX_LEVEL};
 pub use format::{Formulation, Precision, Quantity};

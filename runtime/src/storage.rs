@@ -55,14 +55,6 @@ pub(crate) fn dot_f32(bytes: &[u8], x: &[f32]) -> f32 {
     f32s(bytes).zip(x).map(|(a, &b)| a * b).sum()
 }
 
-/// `y[k] += alpha · table[k]` over a little-endian `f32` table.
-#[inline]
-pub(crate) fn axpy_f32(alpha: f32, bytes: &[u8], y: &mut [f32]) {
-    for (yk, a) in y.iter_mut().zip(f32s(bytes)) {
-        *yk += alpha * a;
-    }
-}
-
 /// A row-major matrix in the basis' storage precision with a scale per column.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Matrix<'a> {

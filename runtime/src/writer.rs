@@ -31,7 +31,7 @@ pub struct BasisTables {
     pub quantity: Quantity,
     /// Expansion used.
     pub formulation: Formulation,
-    /// Storage of the three matrices (`modes`, `channel_bounce`, `output_view`).
+    /// Storage of the three matrices (`modes`, `channel_response`, `output_view`).
     pub precision: Precision,
     /// `B`: 1 or 3.
     pub bands: usize,
@@ -64,10 +64,8 @@ pub struct BasisTables {
     pub modes: Vec<f64>,
     /// `K × B × p`, black patches in ascending order (those with ρ = 0 in some band).
     pub black_projection: Vec<f64>,
-    /// `m × B × p`.
-    pub channel_projection: Vec<f64>,
-    /// `n × (m·B)` (split) or empty (seed).
-    pub channel_bounce: Vec<f64>,
+    /// `n × (m·B)`: each channel's exact exitance per patch at level 1, column `c·B + b`.
+    pub channel_response: Vec<f64>,
     /// Per sensor: position (m), unit normal, half-angle (rad).
     pub sensor_geometry: Vec<[f64; 7]>,
     /// Per zone, m².
@@ -199,8 +197,7 @@ impl BasisTables {
             patch_emission: Vec::new(),
             modes: Vec::new(),
             black_projection: Vec::new(),
-            channel_projection: Vec::new(),
-            channel_bounce: Vec::new(),
+            channel_response: Vec::new(),
             sensor_geometry: Vec::new(),
             zone_area: Vec::new(),
             output_modes: Vec::new(),
@@ -288,12 +285,7 @@ impl BasisTables {
             modes: matrix(&self.modes, c.modes_cols())?.bytes(),
             black_patches: &self.black_patches(),
             black_projection: &f32_bytes(&self.black_projection),
-            channel_projection: &f32_bytes(&self.channel_projection),
-            channel_bounce: matrix(
-                &self.channel_bounce,
-                c.channel_bounce_cols(self.formulation),
-            )?
-            .bytes(),
+            channel_response: matrix(&self.channel_response, c.channel_response_cols())?.bytes(),
             sensor_geometry: &f32_bytes(self.sensor_geometry.as_flattened()),
             zone_area: &f32_bytes(&self.zone_area),
             output_modes: &f32_bytes(&self.output_modes),

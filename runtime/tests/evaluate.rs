@@ -1,5 +1,6 @@
-//! The evaluator against a plain f64 evaluation of the same basis, incremental updates
-//! against full recomputation, capacities, DALI.
+//! Both evaluators against a plain f64 evaluation of the same basis, the channel evaluator
+//! against the full one, incremental patch updates against full recomputation, capacities,
+//! DALI.
 #![allow(
     clippy::unwrap_used,
     clippy::expect_used,
@@ -12,7 +13,7 @@ mod common;
 
 use common::Rng;
 use eigenrad_runtime::writer::BasisTables;
-use eigenrad_runtime::{dali, Basis, Error, Evaluator, Formulation, Precision};
+use eigenrad_runtime::{dali, Basis, ChannelEvaluator, Error, Evaluator, Formulation, Precision};
 
 /// Relative tolerance of the f32 evaluator against f64 arithmetic on the same stored
 /// numbers (f32 storage): accumulated rounding of sums of ~10 terms, with margin.
@@ -56,12 +57,10 @@ impl Reference<'_> {
     fn identity(&self, i: usize, b: usize) -> bool {
         self.split() || self.rho(i, b) == 0.0
     }
+    /// Mode amplitude from the exitance set patch by patch (channels do not use the modes).
     fn amplitude(&self, b: usize, k: usize) -> f64 {
         let (bands, p) = (self.t.bands, self.t.mode_count);
         let mut a = 0.0;
-        for (c, l) in self.levels.iter().enumerate() {
-            a += l * r(self.t.channel_projection[(c * bands + b) * p + k]);
-        }
         let e = r(self.t.eigenvalues[b * p + k]);
         let coef = if self.split() { e / (1.0 - e) } else { 1.0 / e };
         for i in 0..self.n() {
@@ -83,15 +82,12 @@ impl Reference<'_> {
     }
     fn exitance(&self, i: usize, b: usize) -> f64 {
         let (bands, p, m) = (self.t.bands, self.t.mode_count, self.levels.len());
-        let mut v = if self.identity(i, b) {
-            self.emitted(i, b)
-        } else {
-            0.0
-        };
-        if self.split() {
-            for c in 0..m {
-                v += self.levels[c] * r(self.t.channel_bounce[i * m * bands + c * bands + b]);
-            }
+        let mut v = 0.0;
+        for c in 0..m {
+            v += self.levels[c] * r(self.t.channel_response[i * m * bands + c * bands + b]);
+        }
+        if self.identity(i, b) {
+            v += self.extra[i][b];
         }
         for k in 0..p {
             v += self.v(i, b, k) * self.amplitude(b, k);
@@ -117,16 +113,52 @@ impl Reference<'_> {
     }
 }
 
+/// What both evaluators read, so that one comparison serves both.
+trait Reads<const B: usize> {
+    fn exitance(&self, i: usize) -> Result<[f32; B], Error>;
+    fn exitance_all(&self, out: &mut [[f32; B]]) -> Result<(), Error>;
+    fn irradiance(&self, i: usize) -> Result<[f32; B], Error>;
+    fn luminance(&self, i: usize) -> Result<[f32; B], Error>;
+    fn sensor_irradiance(&self, s: usize) -> Result<[f32; B], Error>;
+    fn zone_irradiance(&self, z: usize) -> Result<[f32; B], Error>;
+}
+
+macro_rules! reads {
+    ($ty:ty) => {
+        fn exitance(&self, i: usize) -> Result<[f32; B], Error> {
+            <$ty>::exitance(self, i)
+        }
+        fn exitance_all(&self, out: &mut [[f32; B]]) -> Result<(), Error> {
+            <$ty>::exitance_all(self, out)
+        }
+        fn irradiance(&self, i: usize) -> Result<[f32; B], Error> {
+            <$ty>::irradiance(self, i)
+        }
+        fn luminance(&self, i: usize) -> Result<[f32; B], Error> {
+            <$ty>::luminance(self, i)
+        }
+        fn sensor_irradiance(&self, s: usize) -> Result<[f32; B], Error> {
+            <$ty>::sensor_irradiance(self, s)
+        }
+        fn zone_irradiance(&self, z: usize) -> Result<[f32; B], Error> {
+            <$ty>::zone_irradiance(self, z)
+        }
+    };
+}
+
+impl<const B: usize> Reads<B> for Evaluator<'_, B, 64, 16, 8, 8> {
+    reads!(Evaluator<'_, B, 64, 16, 8, 8>);
+}
+
+impl<const B: usize> Reads<B> for ChannelEvaluator<'_, B, 8> {
+    reads!(ChannelEvaluator<'_, B, 8>);
+}
+
 type Eval3<'a> = Evaluator<'a, 3, 64, 16, 8, 8>;
 type Eval1<'a> = Evaluator<'a, 1, 64, 16, 8, 8>;
 
 /// Compares every read of `eval` with the reference, norm-wise per kind of output.
-fn compare<const B: usize>(
-    eval: &Evaluator<'_, B, 64, 16, 8, 8>,
-    reference: &Reference<'_>,
-    rtol: f64,
-    what: &str,
-) {
+fn compare<const B: usize>(eval: &impl Reads<B>, reference: &Reference<'_>, rtol: f64, what: &str) {
     let n = reference.n();
     let mut worst = 0.0f64;
     let mut all = vec![[0.0f32; B]; n];
@@ -137,9 +169,11 @@ fn compare<const B: usize>(
         .fold(0.0, f64::max);
     for (i, row) in all.iter().enumerate() {
         let one = eval.exitance(i).unwrap();
+        let lum = eval.luminance(i).unwrap();
         for b in 0..B {
             let want = reference.exitance(i, b);
             assert_eq!(one[b], row[b]);
+            assert_eq!(lum[b], one[b] / std::f32::consts::PI);
             worst = worst.max((f64::from(one[b]) - want).abs());
             if reference.rho(i, b) > 0.0 {
                 let e = eval.irradiance(i).unwrap()[b];
@@ -191,12 +225,14 @@ fn exercise<const B: usize>(formulation: Formulation, precision: Precision, rtol
         let bytes = t.to_bytes().unwrap();
         let basis = Basis::from_bytes(&bytes).unwrap();
         let mut eval = Evaluator::<B, 64, 16, 8, 8>::new(basis).unwrap();
+        let mut channels = ChannelEvaluator::<B, 8>::new(basis).unwrap();
         let mut rng = Rng(seed);
         let n = t.patch_area.len();
         let m = t.channel_names.len();
         let levels: Vec<f64> = (0..m).map(|_| rng.range(0.0, 1.0)).collect();
         let levels32: Vec<f32> = levels.iter().map(|&l| l as f32).collect();
         eval.set_channel_levels(&levels32).unwrap();
+        channels.set_channel_levels(&levels32).unwrap();
         let mut reference = Reference {
             t: &t,
             levels: levels32.iter().map(|&l| f64::from(l)).collect(),
@@ -204,8 +240,21 @@ fn exercise<const B: usize>(formulation: Formulation, precision: Precision, rtol
         };
         let what = format!("{formulation:?}/{precision:?}/{B} bands/seed {seed}");
         compare(&eval, &reference, rtol, &format!("{what}: levels"));
+        compare(
+            &channels,
+            &reference,
+            rtol,
+            &format!("{what}: channel evaluator"),
+        );
 
-        // General case: arbitrary exitance on reflecting and black patches.
+        // One channel changed.
+        channels.set_channel_level(1, 0.25).unwrap();
+        eval.set_channel_level(1, 0.25).unwrap();
+        reference.levels[1] = 0.25;
+        compare(&channels, &reference, rtol, &format!("{what}: one channel"));
+
+        // General case: arbitrary exitance on reflecting patches in no channel (0, 5), on a
+        // reflecting lamp (10) and on black lamps (3, 17).
         for i in [0, 3, 5, 10, 17] {
             let x: [f32; B] = core::array::from_fn(|_| rng.range(0.0, 500.0) as f32);
             eval.set_patch_exitance(i, x).unwrap();
@@ -213,10 +262,15 @@ fn exercise<const B: usize>(formulation: Formulation, precision: Precision, rtol
         }
         compare(&eval, &reference, rtol, &format!("{what}: patch exitance"));
 
-        // One channel changed incrementally.
-        eval.set_channel_level(1, 0.25).unwrap();
-        reference.levels[1] = 0.25;
-        compare(&eval, &reference, rtol, &format!("{what}: one channel"));
+        // Channels change on top of patch exitance.
+        eval.set_channel_level(2, 0.9).unwrap();
+        reference.levels[2] = 0.9;
+        compare(
+            &eval,
+            &reference,
+            rtol,
+            &format!("{what}: channel and patches"),
+        );
     }
 }
 
@@ -293,12 +347,95 @@ fn clearing_patch_exitance_restores_the_channel_state() {
     let mut e = Eval1::new(basis).unwrap();
     e.set_channel_levels(&[0.3, 0.6, 0.9]).unwrap();
     let before: Vec<f32> = (0..23).map(|i| e.exitance(i).unwrap()[0]).collect();
+    let sensor = e.sensor_irradiance(0).unwrap();
     e.set_patch_exitance(2, [700.0]).unwrap();
     e.set_patch_exitance(3, [300.0]).unwrap();
     assert_ne!(e.exitance(2).unwrap()[0], before[2]);
+    assert_ne!(e.sensor_irradiance(0).unwrap(), sensor);
+    // Channels are not in the modes: clearing restores their readings to the bit.
     e.clear_patch_exitance();
     for (i, b) in before.iter().enumerate() {
-        assert!((e.exitance(i).unwrap()[0] - b).abs() <= 1e-4 * b.abs().max(1.0));
+        assert_eq!(e.exitance(i).unwrap()[0], *b, "patch {i}");
+    }
+    assert_eq!(e.sensor_irradiance(0).unwrap(), sensor);
+    // So does setting every patch back to 0, one at a time.
+    e.set_patch_exitance(2, [700.0]).unwrap();
+    e.set_patch_exitance(3, [300.0]).unwrap();
+    e.set_patch_exitance(2, [0.0]).unwrap();
+    assert_ne!(e.sensor_irradiance(0).unwrap(), sensor);
+    e.set_patch_exitance(3, [0.0]).unwrap();
+    for (i, b) in before.iter().enumerate() {
+        assert_eq!(e.exitance(i).unwrap()[0], *b, "patch {i}");
+    }
+    assert_eq!(e.sensor_irradiance(0).unwrap(), sensor);
+}
+
+/// Every read of `a` and `b` agrees to the bit.
+fn same_reads<const B: usize>(a: &impl Reads<B>, b: &impl Reads<B>, n: usize, what: &str) {
+    let mut all_a = vec![[0.0f32; B]; n];
+    let mut all_b = vec![[0.0f32; B]; n];
+    a.exitance_all(&mut all_a).unwrap();
+    b.exitance_all(&mut all_b).unwrap();
+    assert_eq!(all_a, all_b, "{what}: exitance_all");
+    for i in 0..n {
+        assert_eq!(a.exitance(i), b.exitance(i), "{what}: exitance {i}");
+        assert_eq!(a.irradiance(i), b.irradiance(i), "{what}: irradiance {i}");
+        assert_eq!(a.luminance(i), b.luminance(i), "{what}: luminance {i}");
+    }
+    for s in 0..3 {
+        assert_eq!(
+            a.sensor_irradiance(s),
+            b.sensor_irradiance(s),
+            "{what}: sensor {s}"
+        );
+        assert_eq!(
+            a.zone_irradiance(s),
+            b.zone_irradiance(s),
+            "{what}: zone {s}"
+        );
+    }
+}
+
+fn channel_and_full_agree<const B: usize>(formulation: Formulation, precision: Precision) {
+    let t = common::random(31, formulation, precision, B);
+    let bytes = t.to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let mut full = Evaluator::<B, 64, 16, 8, 8>::new(basis).unwrap();
+    let mut channels = ChannelEvaluator::<B, 8>::new(basis).unwrap();
+    let what = format!("{formulation:?}/{precision:?}/{B} bands");
+    same_reads(&full, &channels, 23, &format!("{what}: all off"));
+    let mut rng = Rng(5);
+    for step in 0..20 {
+        let c = step % 3;
+        let level = [0.0, 0.1, 0.37, 0.8, 1.0][(rng.next_f64() * 5.0) as usize % 5];
+        full.set_channel_level(c, level).unwrap();
+        channels.set_channel_level(c, level).unwrap();
+        if step == 10 {
+            // Patch exitance set and removed again leaves nothing behind.
+            full.set_patch_exitance(5, [250.0; B]).unwrap();
+            full.clear_patch_exitance();
+        }
+        same_reads(&full, &channels, 23, &format!("{what}: step {step}"));
+    }
+    full.set_channel_levels(&[0.2, 0.4, 0.6]).unwrap();
+    channels.set_channel_levels(&[0.2, 0.4, 0.6]).unwrap();
+    same_reads(&full, &channels, 23, &format!("{what}: all set"));
+    // The full evaluator exposes its channel part as the same reads.
+    same_reads(
+        full.channels(),
+        &channels,
+        23,
+        &format!("{what}: channels()"),
+    );
+}
+
+#[test]
+fn channel_evaluator_reads_what_the_full_one_reads_without_patch_exitance() {
+    for f in [Formulation::Split, Formulation::Seed] {
+        for p in [Precision::F32, Precision::F16, Precision::I16] {
+            channel_and_full_agree::<1>(f, p);
+            channel_and_full_agree::<3>(f, p);
+        }
     }
 }
 
@@ -348,6 +485,23 @@ fn capacities_are_checked_with_both_sizes() {
         }
     );
     assert!(Evaluator::<1, 23, 7, 3, 4>::new(basis).is_ok());
+    assert_eq!(
+        ChannelEvaluator::<1, 2>::new(basis).unwrap_err(),
+        Error::Capacity {
+            what: "channels",
+            needed: 3,
+            capacity: 2
+        }
+    );
+    assert_eq!(
+        ChannelEvaluator::<3, 8>::new(basis).unwrap_err(),
+        Error::Capacity {
+            what: "bands",
+            needed: 1,
+            capacity: 3
+        }
+    );
+    assert!(ChannelEvaluator::<1, 3>::new(basis).is_ok());
 }
 
 #[test]
@@ -357,10 +511,19 @@ fn bad_requests_are_errors_and_leave_the_state_alone() {
     let basis = Basis::from_bytes(&bytes).unwrap();
     let mut e = Eval1::new(basis).unwrap();
     e.set_channel_levels(&[0.5, 0.5, 0.5]).unwrap();
-    let before = e.exitance(0).unwrap();
+    e.set_patch_exitance(4, [80.0]).unwrap();
+    let before: Vec<_> = (0..23).map(|i| e.exitance(i).unwrap()).collect();
+    let sensors = [
+        e.sensor_irradiance(0).unwrap(),
+        e.zone_irradiance(1).unwrap(),
+    ];
     for bad in [f32::NAN, -0.1, f32::INFINITY, 1e4] {
         assert_eq!(
             e.set_channel_level(0, bad).unwrap_err(),
+            Error::InvalidInput { what: "level" }
+        );
+        assert_eq!(
+            e.set_channel_levels(&[0.1, bad, 0.2]).unwrap_err(),
             Error::InvalidInput { what: "level" }
         );
         assert_eq!(
@@ -392,6 +555,10 @@ fn bad_requests_are_errors_and_leave_the_state_alone() {
         Err(Error::IndexOutOfRange { what: "zone", .. })
     ));
     assert!(matches!(
+        e.exitance(23),
+        Err(Error::IndexOutOfRange { what: "patch", .. })
+    ));
+    assert!(matches!(
         e.exitance_all(&mut [[0.0]; 3]),
         Err(Error::LengthMismatch { .. })
     ));
@@ -399,7 +566,69 @@ fn bad_requests_are_errors_and_leave_the_state_alone() {
         e.set_channel_arc_power(0, 255).unwrap_err(),
         Error::DaliMask
     );
-    assert_eq!(e.exitance(0).unwrap(), before);
+    let after: Vec<_> = (0..23).map(|i| e.exitance(i).unwrap()).collect();
+    assert_eq!(after, before);
+    assert_eq!(
+        [
+            e.sensor_irradiance(0).unwrap(),
+            e.zone_irradiance(1).unwrap()
+        ],
+        sensors
+    );
+    for c in 0..3 {
+        assert_eq!(e.channel_level(c).unwrap(), 0.5);
+    }
+
+    // The channel evaluator refuses the same requests the same way.
+    let mut c = ChannelEvaluator::<1, 8>::new(basis).unwrap();
+    c.set_channel_levels(&[0.5, 0.5, 0.5]).unwrap();
+    let before: Vec<_> = (0..23).map(|i| c.exitance(i).unwrap()).collect();
+    for bad in [f32::NAN, -0.1, f32::INFINITY, 1e4] {
+        assert_eq!(
+            c.set_channel_level(0, bad).unwrap_err(),
+            Error::InvalidInput { what: "level" }
+        );
+        assert_eq!(
+            c.set_channel_levels(&[bad, 0.1, 0.2]).unwrap_err(),
+            Error::InvalidInput { what: "level" }
+        );
+    }
+    assert!(matches!(
+        c.set_channel_levels(&[0.5; 4]),
+        Err(Error::LengthMismatch { .. })
+    ));
+    assert!(matches!(
+        c.set_channel_level(3, 0.5),
+        Err(Error::IndexOutOfRange { .. })
+    ));
+    assert!(matches!(
+        c.channel_level(3),
+        Err(Error::IndexOutOfRange { .. })
+    ));
+    assert!(matches!(
+        c.exitance(23),
+        Err(Error::IndexOutOfRange { what: "patch", .. })
+    ));
+    assert!(matches!(
+        c.sensor_irradiance(2),
+        Err(Error::IndexOutOfRange { what: "sensor", .. })
+    ));
+    assert!(matches!(
+        c.zone_irradiance(2),
+        Err(Error::IndexOutOfRange { what: "zone", .. })
+    ));
+    assert!(matches!(
+        c.exitance_all(&mut [[0.0]; 24]),
+        Err(Error::LengthMismatch { .. })
+    ));
+    assert_eq!(
+        c.set_channel_arc_power(1, 255).unwrap_err(),
+        Error::DaliMask
+    );
+    let after: Vec<_> = (0..23).map(|i| c.exitance(i).unwrap()).collect();
+    assert_eq!(after, before);
+    // A black patch has no irradiance to read back.
+    assert_eq!(c.irradiance(3).unwrap_err(), Error::BlackPatch { patch: 3 });
 }
 
 #[test]
@@ -431,10 +660,26 @@ fn ram_does_not_depend_on_the_basis() {
         "{size} vs {}",
         Eval3::RAM_BYTES
     );
+    type Channels3<'a> = ChannelEvaluator<'a, 3, 8>;
+    let channel_size = core::mem::size_of::<Channels3<'_>>();
+    assert!(
+        (Channels3::RAM_BYTES..=Channels3::RAM_BYTES + 512).contains(&channel_size),
+        "{channel_size} vs {}",
+        Channels3::RAM_BYTES
+    );
+    // The channel evaluator carries no per-patch, per-mode or per-output state.
+    assert_eq!(Channels3::RAM_BYTES, 4 * 8);
+    assert_eq!(
+        Eval3::RAM_BYTES,
+        Channels3::RAM_BYTES + 4 * 3 * (16 + 64 + 8)
+    );
     for seed in [1, 2] {
         let small = common::random(seed, Formulation::Split, Precision::F32, 3);
         let bytes = small.to_bytes().unwrap();
-        let e = Eval3::new(Basis::from_bytes(&bytes).unwrap()).unwrap();
+        let basis = Basis::from_bytes(&bytes).unwrap();
+        let e = Eval3::new(basis).unwrap();
         assert_eq!(core::mem::size_of_val(&e), size);
+        let c = Channels3::new(basis).unwrap();
+        assert_eq!(core::mem::size_of_val(&c), channel_size);
     }
 }

@@ -14,12 +14,12 @@ use eigenrad_runtime::{Basis, Error, Formulation, Precision, Quantity};
 /// The tiny basis of `common::tiny`, encoded. Changing the layout changes these bytes: that
 /// is a format change and needs a new `FORMAT_VERSION`.
 const TINY_GOLDEN: &str = concat!(
-    "454947454e52414401000000d2000000d773be18010100000201020101011b05666c6f6f72046c61",
+    "454947454e52414402000000cd000000de6ed00e010100000201020101011b05666c6f6f72046c61",
     "6d70046d61696e046465736b05706c616e65040000003f08000000400000803e180000803f000080",
     "3f000000000000803f0000803f00002040040000010004ffff0000080000003f0000000008000000",
-    "0000007a4400080000003f000000000401000000040000c841040050c34600080000484200000000",
-    "1c0000803f0000803fcdcc4c3f00000000000000000000803fdb0f49400400000040080000803e00",
-    "00003f080000c8420000204200100000000000000000cdcccc3dcdcc4c3d",
+    "0000007a4400080000003f000000000401000000040000c84100080000964200007a441c0000803f",
+    "0000803fcdcc4c3f00000000000000000000803fdb0f49400400000040080000803e0000003f0800",
+    "00c8420000204200100000000000000000cdcccc3dcdcc4c3d",
 );
 
 fn hex(bytes: &[u8]) -> String {
@@ -175,14 +175,39 @@ fn bad_magic() {
 #[test]
 fn newer_version() {
     let mut bytes = common::tiny().to_bytes().unwrap();
-    bytes[8..10].copy_from_slice(&2u16.to_le_bytes());
+    bytes[8..10].copy_from_slice(&3u16.to_le_bytes());
     assert_eq!(
         Basis::from_bytes(&bytes).unwrap_err(),
         Error::DecodeVersion {
-            found: 2,
-            supported: 1
+            found: 3,
+            supported: 2
         }
     );
+}
+
+#[test]
+fn a_version_1_basis_is_refused_naming_both_versions() {
+    // The tiny basis as format version 1 wrote it (`runtime/tests/data/tiny.basis` before
+    // the version 2 change, kept byte for byte).
+    let v1 = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/tiny-v1.basis"
+    ))
+    .unwrap();
+    assert_eq!(&v1[..8], b"EIGENRAD");
+    assert_eq!(u16::from_le_bytes([v1[8], v1[9]]), 1);
+    let err = Basis::from_bytes(&v1).unwrap_err();
+    assert_eq!(
+        err,
+        Error::DecodeVersion {
+            found: 1,
+            supported: 2
+        }
+    );
+    let message = err.to_string();
+    for part in ["version 1", "version 2", "eigenrad build"] {
+        assert!(message.contains(part), "`{part}` missing: {message}");
+    }
 }
 
 #[test]
@@ -295,12 +320,8 @@ fn table_length_mismatches() {
             Box::new(|t| t.black_projection.push(0.0)),
         ),
         (
-            "channel_projection",
-            Box::new(|t| t.channel_projection.push(0.0)),
-        ),
-        (
-            "channel_bounce.data",
-            Box::new(|t| t.channel_bounce.push(0.0)),
+            "channel_response.data",
+            Box::new(|t| t.channel_response.push(0.0)),
         ),
         (
             "sensor_geometry",
@@ -369,12 +390,12 @@ fn values_out_of_range() {
             Box::new(|t| t.black_projection[0] = f64::INFINITY),
         ),
         (
-            "channel_projection",
-            Box::new(|t| t.channel_projection[0] = 1e30),
+            "channel_response.data",
+            Box::new(|t| t.channel_response[0] = f64::NAN),
         ),
         (
-            "channel_bounce.data",
-            Box::new(|t| t.channel_bounce[0] = f64::NAN),
+            "channel_response.data",
+            Box::new(|t| t.channel_response[1] = 1e30),
         ),
         (
             "sensor_geometry",
@@ -404,7 +425,6 @@ fn values_out_of_range() {
 fn seed_eigenvalues_must_be_positive() {
     let r = decode_edited(|t| {
         t.formulation = Formulation::Seed;
-        t.channel_bounce.clear();
         t.eigenvalues[0] = -1.0;
     });
     assert!(matches!(
@@ -440,13 +460,38 @@ fn black_patch_list_must_match_reflectance() {
 
 #[test]
 fn quantised_scales_must_be_valid() {
-    let mut t = common::random(5, Formulation::Split, Precision::I16, 1);
-    t.modes[0] = 1e30; // the column's scale overflows f32 and the reader rejects it
-    let bytes = t.to_bytes().unwrap();
+    type Matrix = fn(&mut eigenrad_runtime::writer::BasisTables) -> &mut Vec<f64>;
+    let matrices: [(&str, Matrix); 3] = [
+        ("modes.scales", |t| &mut t.modes),
+        ("channel_response.scales", |t| &mut t.channel_response),
+        ("output_view.scales", |t| &mut t.output_view),
+    ];
+    for precision in [Precision::F16, Precision::I16] {
+        for (field, table) in matrices {
+            let mut t = common::random(5, Formulation::Split, precision, 1);
+            table(&mut t)[0] = 1e30; // the column's scale overflows f32: the reader refuses it
+            let bytes = t.to_bytes().unwrap();
+            let r = Basis::from_bytes(&bytes);
+            assert!(
+                matches!(r, Err(Error::DecodeValue { field: f, .. }) if f == field),
+                "{precision:?} {field}: got {r:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn seed_bases_carry_channel_responses_too() {
+    // Version 1 left the first-bounce table empty in the seed formulation; the exact
+    // responses are there in both.
+    let r = decode_edited(|t| {
+        t.formulation = Formulation::Seed;
+        t.channel_response.clear();
+    });
     assert!(matches!(
-        Basis::from_bytes(&bytes),
-        Err(Error::DecodeValue {
-            field: "modes.scales",
+        r,
+        Err(Error::DecodeLength {
+            field: "channel_response.data",
             ..
         })
     ));

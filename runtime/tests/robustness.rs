@@ -1,5 +1,6 @@
 //! Properties over corrupted bases: decoding never panics, and whatever decodes evaluates to
-//! finite numbers (or a documented error) for any finite, non-negative input.
+//! finite numbers (or a documented error) for any finite, non-negative input. The channel
+//! evaluator reads finite numbers for every level in range: its sums cannot overflow.
 #![allow(
     clippy::unwrap_used,
     clippy::expect_used,
@@ -9,8 +10,8 @@
 
 mod common;
 
-use eigenrad_runtime::format::{crc32, HEADER_LEN};
-use eigenrad_runtime::{Basis, Error, Evaluator, Formulation, Precision};
+use eigenrad_runtime::format::{crc32, FORMAT_VERSION, HEADER_LEN};
+use eigenrad_runtime::{Basis, ChannelEvaluator, Error, Evaluator, Formulation, Precision};
 use proptest::prelude::*;
 
 /// Valid bases of every formulation, precision and band count.
@@ -115,11 +116,48 @@ fn evaluate_all<const B: usize>(basis: Basis<'_>, levels: &[f32], exitance: f32)
     }
 }
 
+/// The same for the channel evaluator: levels only.
+fn evaluate_channels<const B: usize>(basis: Basis<'_>, levels: &[f32]) {
+    let Ok(mut e) = ChannelEvaluator::<B, 8>::new(basis) else {
+        return;
+    };
+    let m = basis.channel_count();
+    let lv: Vec<f32> = (0..m).map(|c| levels[c % levels.len()]).collect();
+    e.set_channel_levels(&lv).unwrap();
+    for c in 0..m {
+        e.set_channel_level(c, levels[(c + 1) % levels.len()])
+            .unwrap();
+        e.set_channel_arc_power(c, 200).unwrap();
+    }
+    let finite = |r: eigenrad_runtime::Result<[f32; B]>| match r {
+        Ok(v) => assert!(v.iter().all(|x| x.is_finite()), "non-finite reading {v:?}"),
+        Err(Error::BlackPatch { .. }) => {}
+        Err(other) => panic!("unexpected {other:?}"),
+    };
+    for i in 0..basis.patch_count() {
+        finite(e.exitance(i));
+        finite(e.irradiance(i));
+        finite(e.luminance(i));
+    }
+    for s in 0..basis.sensor_count() {
+        finite(e.sensor_irradiance(s));
+    }
+    for z in 0..basis.zone_count() {
+        finite(e.zone_irradiance(z));
+    }
+}
+
 fn exercise(bytes: &[u8], levels: &[f32], exitance: f32) {
     if let Ok(basis) = Basis::from_bytes(bytes) {
         match basis.bands() {
-            1 => evaluate_all::<1>(basis, levels, exitance),
-            _ => evaluate_all::<3>(basis, levels, exitance),
+            1 => {
+                evaluate_all::<1>(basis, levels, exitance);
+                evaluate_channels::<1>(basis, levels);
+            }
+            _ => {
+                evaluate_all::<3>(basis, levels, exitance);
+                evaluate_channels::<3>(basis, levels);
+            }
         }
     }
 }
@@ -151,7 +189,8 @@ proptest! {
         if resealed && bytes.len() >= 8 {
             bytes[..8].copy_from_slice(b"EIGENRAD");
             if bytes.len() >= HEADER_LEN {
-                bytes[8..12].copy_from_slice(&[1, 0, 0, 0]);
+                bytes[8..10].copy_from_slice(&FORMAT_VERSION.to_le_bytes());
+                bytes[10..12].copy_from_slice(&[0, 0]);
             }
             reseal(&mut bytes);
         }

@@ -2,7 +2,7 @@
 //! evaluator's RAM against the basis size, and the record parser.
 
 use eigenrad_runtime::dali::arc_power_to_level;
-use eigenrad_runtime::{Basis, Evaluator};
+use eigenrad_runtime::{Basis, ChannelEvaluator, Evaluator};
 
 use super::*;
 
@@ -144,19 +144,35 @@ fn check_against_eval(name: &str, path: &Path) -> Option<Arc<FirmwareRun>> {
         "instructions per SysTick tick: {}",
         run.instructions_per_tick
     );
-    for what in [
-        "full_update",
-        "channel_update",
-        "read_outputs",
-        "patch_exitance",
-    ] {
+    for what in INSTRUCTIONS {
         assert!(run.instructions.get(what).is_some_and(|&n| n > 0), "{what}");
     }
+    assert_eq!(run.instructions.len(), INSTRUCTIONS.len());
     assert!(0 < run.stack_high_water && run.stack_high_water < run.stack_region);
     assert_eq!(run.basis["bytes"], bytes.len());
     assert_eq!(run.basis["modes"], basis.mode_count());
     Some(run)
 }
+
+/// The operations the firmware times (`measure` in `examples/firmware/src/main.rs`).
+const INSTRUCTIONS: [&str; 9] = [
+    "full_update",
+    "channel_update",
+    "read_outputs",
+    "full_update_read_outputs",
+    "channel_update_read_outputs",
+    "channel_exitance",
+    "patch_update",
+    "patch_read_outputs",
+    "patch_exitance",
+];
+
+/// Instruction budgets for the office at 32 modes (issue 12, docs/embedded.md): a full update
+/// of every channel plus the read of every output, and one channel's update. QEMU counts
+/// instructions exactly (`-icount shift=0`), so the figures repeat from run to run; a change
+/// that exceeds a budget fails here rather than in a later table.
+const BUDGET_FULL_UPDATE_READ_OUTPUTS: u64 = 1000;
+const BUDGET_CHANNEL_UPDATE: u64 = 300;
 
 #[test]
 fn firmware_matches_eval_office_f32() {
@@ -169,9 +185,20 @@ fn firmware_matches_eval_office_f32() {
     assert_eq!(run.basis["sensors"], 2);
     assert_eq!(run.basis["zones"], 2);
     assert!(run.basis["patches"] > 1000);
+    let full = run.instructions["full_update_read_outputs"];
+    assert!(
+        full <= BUDGET_FULL_UPDATE_READ_OUTPUTS,
+        "full update and every output read: {full} instructions, budget \
+         {BUDGET_FULL_UPDATE_READ_OUTPUTS}"
+    );
+    let one = run.instructions["channel_update"];
+    assert!(
+        one <= BUDGET_CHANNEL_UPDATE,
+        "one channel: {one} instructions, budget {BUDGET_CHANNEL_UPDATE}"
+    );
 }
 
-/// Mode vectors, first bounces and view rows in f16: the patch exitances read them.
+/// Mode vectors, channel responses and view rows in f16: the patch exitances read them.
 #[test]
 fn firmware_matches_eval_office_f16() {
     let (path, name) = office_basis(Mesh::Coarse, 16, "f16");
@@ -190,12 +217,13 @@ fn firmware_matches_eval_rgb() {
     check_against_eval("random-rgb", &rgb_basis());
 }
 
-/// The evaluator's state is fixed by its capacities: bases of 16, 32 and 64 modes, up to a
+/// The evaluators' state is fixed by their capacities: bases of 16, 32 and 64 modes, up to a
 /// thousand times larger than the 2-patch one, take the same RAM on the host and on the
-/// target, and the basis goes to flash.
+/// target, and the basis goes to flash. The channel evaluator holds one level per channel.
 #[test]
 fn evaluator_ram_does_not_grow_with_basis() {
     type Fw<'a> = Evaluator<'a, 1, FW_PATCHES, FW_MODES, FW_CHANNELS, FW_OUTPUTS>;
+    type FwChannels<'a> = ChannelEvaluator<'a, 1, FW_CHANNELS>;
     let tiny = tiny_basis_path();
     let office = [
         office_basis(Mesh::Coarse, 16, "f16"),
@@ -204,6 +232,7 @@ fn evaluator_ram_does_not_grow_with_basis() {
     ];
     let small = std::fs::read(&tiny).unwrap();
     let a = Fw::new(Basis::from_bytes(&small).unwrap()).unwrap();
+    let ca = FwChannels::new(Basis::from_bytes(&small).unwrap()).unwrap();
     for (path, name) in &office {
         let large = std::fs::read(path).unwrap();
         assert!(
@@ -216,14 +245,26 @@ fn evaluator_ram_does_not_grow_with_basis() {
             std::mem::size_of_val(&b),
             "{name}"
         );
+        let cb = FwChannels::new(Basis::from_bytes(&large).unwrap()).unwrap();
+        assert_eq!(
+            std::mem::size_of_val(&ca),
+            std::mem::size_of_val(&cb),
+            "{name}"
+        );
     }
     // The state is RAM_BYTES plus the basis' slice headers (pointers and lengths).
     assert!(std::mem::size_of_val(&a) >= Fw::RAM_BYTES);
+    assert!(std::mem::size_of_val(&ca) >= FwChannels::RAM_BYTES);
+    assert_eq!(FwChannels::RAM_BYTES, 4 * FW_CHANNELS);
 
     let Some(small_run) = firmware("tiny", &tiny) else {
         return;
     };
     assert_eq!(small_run.ram_bytes, Fw::RAM_BYTES);
+    assert_eq!(small_run.channel_ram_bytes, FwChannels::RAM_BYTES);
+    // On the target the channel evaluator is its levels and the basis view: a few hundred
+    // bytes against the full evaluator's kilobytes of per-patch state.
+    assert!(small_run.channel_size_of < FwChannels::RAM_BYTES + 512);
     // Flash is where the basis goes: .rodata grows by the basis' size, give or take the
     // alignment padding around it (seen: 4 bytes less than the size difference).
     const PADDING: usize = 64;
@@ -238,7 +279,12 @@ fn evaluator_ram_does_not_grow_with_basis() {
             run.evaluator_size_of, small_run.evaluator_size_of,
             "{name}: evaluator size_of on the target"
         );
+        assert_eq!(
+            run.channel_size_of, small_run.channel_size_of,
+            "{name}: channel evaluator size_of on the target"
+        );
         assert_eq!(run.ram_bytes, Fw::RAM_BYTES, "{name}");
+        assert_eq!(run.channel_ram_bytes, FwChannels::RAM_BYTES, "{name}");
         assert!(
             rodata(&run) + PADDING >= rodata(&small_run) + bytes - small.len(),
             "{name}: .rodata {} with the basis, {} with tiny.basis, basis {bytes} bytes",

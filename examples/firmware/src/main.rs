@@ -1,6 +1,12 @@
 //! eigenrad on a Cortex-M4F: evaluates the basis linked into flash for a fixed sequence of
-//! channel levels and prints every reading, the RAM the evaluator takes, the stack used and
-//! the instructions spent per update, as lines a host test parses (`tests/firmware.rs`).
+//! channel levels and prints every reading, the RAM the evaluators take, the stack used and
+//! the instructions spent per update and read, as lines a host test parses
+//! (`tests/firmware.rs`).
+//!
+//! Two evaluators run side by side: a `ChannelEvaluator` (channel levels only, the state a
+//! controller that dims channels needs) prints the readings, and a full `Evaluator` (also
+//! exitance set patch by patch) must read exactly the same at every step; the firmware stops
+//! with an error if it does not.
 //!
 //! Output, one record a line, fields separated by single spaces, numbers in `{:e}` (the
 //! shortest form that reads back to the same `f32`):
@@ -8,6 +14,7 @@
 //! ```text
 //! basis bytes <len> bands <B> patches <n> modes <p> channels <m> sensors <s> zones <z>
 //! evaluator size_of <bytes> ram_bytes <bytes> capacity <B> <n> <p> <m> <outputs>
+//! channel_evaluator size_of <bytes> ram_bytes <bytes> capacity <B> <m>
 //! step <k> op all <level> | op level <channel> <level> | op arc <channel> <arc>
 //! step <k> levels <l0> <l1> ...                 relative level of every channel
 //! reading <k> sensor <name> <v0> [<v1> <v2>]    W/m² per band, or lux
@@ -15,7 +22,7 @@
 //! exitance <k> patch <i> <v0> [<v1> <v2>]       every PATCH_STRIDE-th patch, W/m² or lux
 //! systick calibration instructions <n> ticks <t> instructions_per_tick <x>
 //! timing <what> reps <r> ticks <t> baseline_ticks <t0>
-//! instructions full_update|channel_update|read_outputs|patch_exitance <per call>
+//! instructions <what> <per call>                see `measure` for the operations
 //! stack high_water <bytes> region <bytes>
 //! done
 //! ```
@@ -33,7 +40,7 @@ use core::hint::black_box;
 
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
-use eigenrad_runtime::{Basis, Error, Evaluator};
+use eigenrad_runtime::{Basis, ChannelEvaluator, Error, Evaluator};
 
 use timing::Ticks;
 
@@ -41,8 +48,8 @@ use timing::Ticks;
 static BASIS: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/basis.bin"));
 
 /// Evaluator capacities: a room of up to 2048 patches, 128 modes per band, 8 channels and 8
-/// sensors plus zones. The same type serves every basis that fits, so RAM does not depend on
-/// which basis is linked.
+/// sensors plus zones (the channel evaluator needs only the channels). The same types serve
+/// every basis that fits, so RAM does not depend on which basis is linked.
 const PATCHES: usize = 2048;
 const MODES: usize = 128;
 const CHANNELS: usize = 8;
@@ -56,10 +63,13 @@ const HALF: f32 = 0.5;
 /// Repetitions of each timed operation; the count is divided out.
 const REPS: u32 = 1000;
 /// The exitance of patches 0, 97, 194, ... is printed at every step. Sensors and zones read
-/// only `f32` tables; a patch's exitance reads its row of mode vectors and first bounces,
-/// the tables an f16 or i16 basis stores in 16 bits. 97 is prime, so the sample does not
-/// follow the regular order in which a mesher emits the patches of one wall.
+/// only `f32` tables; a patch's exitance reads its row of channel responses, a table an f16
+/// or i16 basis stores in 16 bits. 97 is prime, so the sample does not follow the regular
+/// order in which a mesher emits the patches of one wall.
 const PATCH_STRIDE: usize = 97;
+
+/// Exitance set on a patch when the evaluator's patch operations are timed, lux or W/m².
+const PATCH_EXITANCE: f32 = 50.0;
 
 /// Why the firmware stopped.
 enum Fail {
@@ -67,6 +77,8 @@ enum Fail {
     Runtime(Error),
     /// Something about the board: a peripheral already taken, a basis with an odd shape.
     Board(&'static str),
+    /// The two evaluators read different values at a step.
+    Disagree(usize),
 }
 
 impl From<Error> for Fail {
@@ -80,6 +92,11 @@ impl fmt::Display for Fail {
         match self {
             Fail::Runtime(e) => write!(f, "runtime: {e}"),
             Fail::Board(what) => write!(f, "board: {what}"),
+            Fail::Disagree(step) => write!(
+                f,
+                "step {step}: the full evaluator without patch exitance reads otherwise than \
+                 the channel evaluator"
+            ),
         }
     }
 }
@@ -144,6 +161,7 @@ fn exercise<const BANDS: usize>(
     ticks: &mut Ticks,
     calibration: timing::Calibration,
 ) -> Result<(), Fail> {
+    let mut lights = ChannelEvaluator::<BANDS, CHANNELS>::new(basis)?;
     let mut eval = Evaluator::<BANDS, PATCHES, MODES, CHANNELS, OUTPUTS>::new(basis)?;
     hprintln!(
         "evaluator size_of {} ram_bytes {} capacity {} {} {} {} {}",
@@ -155,45 +173,64 @@ fn exercise<const BANDS: usize>(
         CHANNELS,
         OUTPUTS
     );
+    hprintln!(
+        "channel_evaluator size_of {} ram_bytes {} capacity {} {}",
+        core::mem::size_of_val(&lights),
+        ChannelEvaluator::<BANDS, CHANNELS>::RAM_BYTES,
+        BANDS,
+        CHANNELS
+    );
     let m = basis.channel_count();
     let mut step = 0usize;
 
     hprintln!("step {} op all {:e}", step, 1.0f32);
     let ones = [1.0f32; CHANNELS];
-    eval.set_channel_levels(ones.get(..m).unwrap_or(&[]))?;
-    report(&eval, step)?;
+    let ones = ones.get(..m).unwrap_or(&[]);
+    lights.set_channel_levels(ones)?;
+    eval.set_channel_levels(ones)?;
+    report(&lights, &eval, step)?;
 
     step += 1;
     hprintln!("step {} op level 0 {:e}", step, HALF);
+    lights.set_channel_level(0, HALF)?;
     eval.set_channel_level(0, HALF)?;
-    report(&eval, step)?;
+    report(&lights, &eval, step)?;
 
     for channel in 0..m {
         for arc in ARC_LEVELS {
             step += 1;
             hprintln!("step {} op arc {} {}", step, channel, arc);
+            lights.set_channel_arc_power(channel, arc)?;
             eval.set_channel_arc_power(channel, arc)?;
-            report(&eval, step)?;
+            report(&lights, &eval, step)?;
         }
     }
 
-    measure(&mut eval, ticks, calibration)
+    measure(&mut lights, &mut eval, ticks, calibration)?;
+    // Patch exitance set and cleared leaves the full evaluator reading the channels alone.
+    for c in 0..m {
+        eval.set_channel_level(c, lights.channel_level(c)?)?;
+    }
+    eval.clear_patch_exitance();
+    compare(&lights, &eval, step + 1)
 }
 
 /// Prints the levels, every sensor and zone reading and a sample of patch exitances after
-/// step `step`.
+/// step `step`, read from the channel evaluator, and checks that the full evaluator reads
+/// the same.
 fn report<const B: usize, const N: usize, const P: usize, const C: usize, const O: usize>(
+    lights: &ChannelEvaluator<'_, B, C>,
     eval: &Evaluator<'_, B, N, P, C, O>,
     step: usize,
 ) -> Result<(), Fail> {
-    let basis = *eval.basis();
+    let basis = *lights.basis();
     let mut levels = Line::new();
     for c in 0..basis.channel_count() {
-        levels.push(eval.channel_level(c)?);
+        levels.push(lights.channel_level(c)?);
     }
     hprintln!("step {} levels{}", step, levels);
     for s in 0..basis.sensor_count() {
-        let values = Line::of(&eval.sensor_irradiance(s)?);
+        let values = Line::of(&lights.sensor_irradiance(s)?);
         hprintln!(
             "reading {} sensor {}{}",
             step,
@@ -202,43 +239,112 @@ fn report<const B: usize, const N: usize, const P: usize, const C: usize, const 
         );
     }
     for z in 0..basis.zone_count() {
-        let values = Line::of(&eval.zone_irradiance(z)?);
+        let values = Line::of(&lights.zone_irradiance(z)?);
         hprintln!("reading {} zone {}{}", step, basis.zone_name(z)?, values);
     }
     for i in (0..basis.patch_count()).step_by(PATCH_STRIDE) {
-        let values = Line::of(&eval.exitance(i)?);
+        let values = Line::of(&lights.exitance(i)?);
         hprintln!("exitance {} patch {}{}", step, i, values);
     }
-    Ok(())
+    compare(lights, eval, step)
 }
 
-/// Counts instructions for full updates, single-channel updates, reads of all outputs and
-/// reads of one patch's exitance, each repeated [`REPS`] times and set against an empty loop of the same shape.
+/// Every level, reading and patch exitance of the two evaluators agrees to the bit, or
+/// [`Fail::Disagree`].
+fn compare<const B: usize, const N: usize, const P: usize, const C: usize, const O: usize>(
+    lights: &ChannelEvaluator<'_, B, C>,
+    eval: &Evaluator<'_, B, N, P, C, O>,
+    step: usize,
+) -> Result<(), Fail> {
+    let basis = *lights.basis();
+    let mut same = true;
+    for c in 0..basis.channel_count() {
+        same &= lights.channel_level(c)? == eval.channel_level(c)?;
+    }
+    for s in 0..basis.sensor_count() {
+        same &= lights.sensor_irradiance(s)? == eval.sensor_irradiance(s)?;
+    }
+    for z in 0..basis.zone_count() {
+        same &= lights.zone_irradiance(z)? == eval.zone_irradiance(z)?;
+    }
+    for i in 0..basis.patch_count() {
+        same &= lights.exitance(i)? == eval.exitance(i)?;
+    }
+    if same {
+        Ok(())
+    } else {
+        Err(Fail::Disagree(step))
+    }
+}
+
+/// Counts instructions per call, each operation repeated [`REPS`] times and set against an
+/// empty loop of the same shape:
+///
+/// - on the channel evaluator: `full_update` (`set_channel_levels`, every channel
+///   changed), `channel_update` (`set_channel_level`), `read_outputs` (every sensor and
+///   zone), `full_update_read_outputs` and `channel_update_read_outputs` (an update, then
+///   every output), `channel_exitance` (one patch's exitance);
+/// - on the full evaluator: `patch_update` (`set_patch_exitance` on one patch), then, with
+///   exitance set on those patches, `patch_read_outputs` (every sensor and zone) and
+///   `patch_exitance` (one patch's exitance).
 fn measure<const B: usize, const N: usize, const P: usize, const C: usize, const O: usize>(
+    lights: &mut ChannelEvaluator<'_, B, C>,
     eval: &mut Evaluator<'_, B, N, P, C, O>,
     ticks: &mut Ticks,
     calibration: timing::Calibration,
 ) -> Result<(), Fail> {
-    let basis = *eval.basis();
+    let basis = *lights.basis();
     let m = basis.channel_count();
     // Two level sets that differ in every channel, so each update does real work.
     let low = [0.25f32; CHANNELS];
     let high = [0.75f32; CHANNELS];
     let low = low.get(..m).unwrap_or(&[]);
     let high = high.get(..m).unwrap_or(&[]);
+    let level = |i: u32| if i % 2 == 0 { 0.25 } else { 0.75 };
+    let n = basis.patch_count().max(1);
+    // Patches spread through the basis, so that reads do not stay in one part of flash.
+    let spread = |i: u32| i as usize * PATCH_STRIDE % n;
 
     let baseline = ticks.count(REPS, |i| {
         black_box(i);
         Ok::<(), Error>(())
     })?;
+    let read_all = |lights: &ChannelEvaluator<'_, B, C>| {
+        for s in 0..basis.sensor_count() {
+            black_box(lights.sensor_irradiance(s)?);
+        }
+        for z in 0..basis.zone_count() {
+            black_box(lights.zone_irradiance(z)?);
+        }
+        Ok::<(), Error>(())
+    };
     let full = ticks.count(REPS, |i| {
-        eval.set_channel_levels(if i % 2 == 0 { low } else { high })
+        lights.set_channel_levels(if i % 2 == 0 { low } else { high })
     })?;
     let channel = ticks.count(REPS, |i| {
-        let c = i as usize % m.max(1);
-        eval.set_channel_level(c, if i % 2 == 0 { 0.25 } else { 0.75 })
+        lights.set_channel_level(i as usize % m.max(1), level(i))
     })?;
-    let read = ticks.count(REPS, |_| {
+    let read = ticks.count(REPS, |_| read_all(lights))?;
+    let full_read = ticks.count(REPS, |i| {
+        lights.set_channel_levels(if i % 2 == 0 { low } else { high })?;
+        read_all(lights)
+    })?;
+    let channel_read = ticks.count(REPS, |i| {
+        lights.set_channel_level(i as usize % m.max(1), level(i))?;
+        read_all(lights)
+    })?;
+    let channel_patch = ticks.count(REPS, |i| {
+        black_box(lights.exitance(spread(i))?);
+        Ok::<(), Error>(())
+    })?;
+
+    // The full evaluator with patch exitance set: the modal part of every read.
+    eval.set_channel_levels(low)?;
+    let patch_update = ticks.count(REPS, |i| {
+        let x = if i % 2 == 0 { 1.0 } else { 2.0 };
+        eval.set_patch_exitance(spread(i), [x * PATCH_EXITANCE; B])
+    })?;
+    let patch_read = ticks.count(REPS, |_| {
         for s in 0..basis.sensor_count() {
             black_box(eval.sensor_irradiance(s)?);
         }
@@ -247,17 +353,19 @@ fn measure<const B: usize, const N: usize, const P: usize, const C: usize, const
         }
         Ok::<(), Error>(())
     })?;
-    // One patch's exitance: the read that decodes the f16/i16 tables (mode vectors and first
-    // bounces), over patches spread through the basis.
-    let n = basis.patch_count().max(1);
     let patch = ticks.count(REPS, |i| {
-        black_box(eval.exitance(i as usize * PATCH_STRIDE % n)?);
+        black_box(eval.exitance(spread(i))?);
         Ok::<(), Error>(())
     })?;
     for (what, t) in [
         ("full_update", full),
         ("channel_update", channel),
         ("read_outputs", read),
+        ("full_update_read_outputs", full_read),
+        ("channel_update_read_outputs", channel_read),
+        ("channel_exitance", channel_patch),
+        ("patch_update", patch_update),
+        ("patch_read_outputs", patch_read),
         ("patch_exitance", patch),
     ] {
         hprintln!(

@@ -2,7 +2,7 @@
 //! inputs taken from the tail of the data. Nothing may panic; every Ok reading is finite.
 #![no_main]
 
-use eigenrad_runtime::{Basis, Evaluator};
+use eigenrad_runtime::{Basis, ChannelEvaluator, Evaluator};
 use libfuzzer_sys::fuzz_target;
 
 fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
@@ -34,6 +34,23 @@ fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
         check(e.zone_irradiance(z));
     }
     e.clear_patch_exitance();
+    // The channel evaluator, driven with the same levels.
+    if let Ok(mut c) = ChannelEvaluator::<B, 8>::new(basis) {
+        let _ = c.set_channel_levels(&levels);
+        for ch in 0..m {
+            let _ = c.set_channel_arc_power(ch, knob(ch + 3));
+        }
+        for i in 0..basis.patch_count() {
+            check(c.exitance(i));
+            check(c.irradiance(i));
+        }
+        for s in 0..basis.sensor_count() {
+            check(c.sensor_irradiance(s));
+        }
+        for z in 0..basis.zone_count() {
+            check(c.zone_irradiance(z));
+        }
+    }
     let _ = basis.find_channel("main");
     for i in 0..basis.channel_count() {
         let _ = basis.channel_name(i);

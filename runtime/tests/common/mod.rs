@@ -47,8 +47,8 @@ pub fn tiny() -> BasisTables {
         patch_emission: vec![0.0, 1000.0],
         modes: vec![0.5, 0.0],
         black_projection: vec![25.0],
-        channel_projection: vec![25000.0],
-        channel_bounce: vec![50.0, 0.0],
+        // The floor's exitance and the lamp's (its emission: it reflects nothing).
+        channel_response: vec![75.0, 1000.0],
         sensor_geometry: vec![[1.0, 1.0, 0.8, 0.0, 0.0, 1.0, std::f64::consts::PI]],
         zone_area: vec![2.0],
         output_modes: vec![0.25, 0.5],
@@ -119,11 +119,20 @@ pub fn random(
     t.black_projection = (0..black * bands * p)
         .map(|_| rng.range(-0.5, 0.5))
         .collect();
-    t.channel_projection = (0..m * bands * p)
-        .map(|_| rng.range(-50.0, 500.0))
-        .collect();
-    if formulation == Formulation::Split {
-        t.channel_bounce = (0..n * m * bands).map(|_| rng.range(0.0, 80.0)).collect();
+    // Each channel's exitance on every patch: some reflected light everywhere, plus the
+    // emission on the channel's own lamps, as an exact response has it.
+    for i in 0..n {
+        for c in 0..m {
+            for b in 0..bands {
+                let own = t.patch_channel[i] == Some(c as u16);
+                let emission = if own {
+                    t.patch_emission[i * bands + b]
+                } else {
+                    0.0
+                };
+                t.channel_response.push(emission + rng.range(0.0, 80.0));
+            }
+        }
     }
     t.sensor_geometry = (0..sensors)
         .map(|_| [1.0, 2.0, 0.8, 0.0, 0.0, 1.0, 1.2])
