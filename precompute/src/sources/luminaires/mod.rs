@@ -18,8 +18,9 @@
 //! # Near field
 //!
 //! `I cos θ / d²` holds far from the source. When the luminous opening (length `L` along C0,
-//! width `W` along C90, from the photometric file) is larger than `d / ratio` (ratio 5 by
-//! default, the five-times rule of photometry), the opening is split into `k_L × k_W`
+//! width `W` along C90, from the photometric file) is larger than `d / ratio`, `d` the
+//! distance from the receiving point to the opening's nearest point (ratio 5 by default, the
+//! five-times rule of photometry), the opening is split into `k_L × k_W`
 //! equal pieces, `k_L = ⌈ratio · L / d⌉` and likewise for the width (at most
 //! [`MAX_SPLIT`] each), so that every piece is at most `d / ratio` across; each piece sits at
 //! its centre in the opening's plane (through the photometric centre, perpendicular to the
@@ -36,7 +37,11 @@
 //! opening's half-diagonal), at most `max_depth` times. A smooth integrand is then integrated
 //! to about `(cell_angle / 2)^(2 order)`, ~1e-7 at the defaults; the tests hold patches next to
 //! a point source to 1e-5 of the exact patch average. A patch whose plane has the whole
-//! opening behind or in it receives nothing and costs nothing.
+//! opening behind or in it receives nothing and costs nothing. Where a shadow edge crosses a
+//! cell (some of its points lit, a blocker hiding the light from others) the cell is split
+//! again, down to `edge_depth` (1/256 of the patch's side): the tests hold the flux of a
+//! shadow to 2e-3. The split pieces of a Lambertian opening converge to its exitance's exact
+//! form factor as `1/k²`: 0.7 % off at the five-times rule, 0.05 % at twenty times.
 
 use rayon::prelude::*;
 
@@ -60,8 +65,12 @@ pub struct LuminaireOptions {
     pub cell_angle: f64,
     /// Gauss–Legendre points per side on each cell. Default 4.
     pub order: usize,
-    /// Most times a patch is split (its finest cells are `4^-max_depth` of it). Default 5.
+    /// Most times a patch is split for its distance (its finest cells are `4^-max_depth` of
+    /// it). Default 5.
     pub max_depth: u32,
+    /// Most times a patch is split where a shadow edge crosses it. Default 8: cells of
+    /// 1/256 of its side along the edge.
+    pub edge_depth: u32,
 }
 
 impl Default for LuminaireOptions {
@@ -71,6 +80,7 @@ impl Default for LuminaireOptions {
             cell_angle: 0.25,
             order: 4,
             max_depth: 5,
+            edge_depth: 8,
         }
     }
 }
@@ -201,7 +211,7 @@ impl<'a> Source<'a> {
         self.half.0.hypot(self.half.1)
     }
 
-    /// The pieces of the opening seen from `d` metres away: `f(position, share)` for each,
+    /// The pieces of the opening seen from a point `d` metres from its nearest point: `f(position, share)` for each,
     /// shares summing to 1 (module documentation, "Near field").
     fn for_each_piece(&self, d: f64, mut f: impl FnMut(Vec3, f64)) {
         let ratio = self.opts.near_field_ratio;
@@ -242,11 +252,25 @@ impl<'a> Source<'a> {
     /// Illuminance, lux, at `x` (m) facing the unit `normal`; `cone` is the cosine of a
     /// sensor's half-angle (only light within it counts); `ignore` the receiving patch.
     pub fn point(&self, x: Vec3, normal: Vec3, cone: Option<f64>, ignore: &[usize]) -> f64 {
-        let d = (self.lum.position - x).length();
+        self.lit(x, normal, cone, ignore).0
+    }
+
+    /// Distance, m, from `x` to the nearest point of the opening's bounding rectangle.
+    fn distance(&self, x: Vec3) -> f64 {
+        let v = x - self.lum.position;
+        let u = v.dot(self.lum.c0).abs() - self.half.0;
+        let w = v.dot(self.lum.c90).abs() - self.half.1;
+        let h = v.dot(self.lum.nadir);
+        (u.max(0.0).powi(2) + w.max(0.0).powi(2) + h * h).sqrt()
+    }
+
+    /// [`Source::point`], and whether a blocker hid some light that would otherwise arrive.
+    fn lit(&self, x: Vec3, normal: Vec3, cone: Option<f64>, ignore: &[usize]) -> (f64, bool) {
+        let d = self.distance(x);
         if d == 0.0 {
-            return 0.0;
+            return (0.0, false);
         }
-        let mut e = 0.0;
+        let (mut e, mut hidden) = (0.0, false);
         self.for_each_piece(d, |q, share| {
             let v = q - x;
             let r2 = v.dot(v);
@@ -255,11 +279,15 @@ impl<'a> Source<'a> {
                 return;
             }
             let intensity = self.lum.intensity(-v) * share;
-            if intensity > 0.0 && self.occluders.visible(q, x, ignore) {
-                e += intensity * cos / r2;
+            if intensity > 0.0 {
+                if self.occluders.visible(q, x, ignore) {
+                    e += intensity * cos / r2;
+                } else {
+                    hidden = true;
+                }
             }
         });
-        e
+        (e, hidden)
     }
 
     /// Mean illuminance, lux, over `patch` (its front side); `ignore` is the patch itself when
@@ -283,8 +311,15 @@ impl<'a> Source<'a> {
     }
 
     /// `∫ E dA` over a convex cell, lm: split while it is large for its distance, then the
-    /// Gauss–Legendre rule.
+    /// Gauss–Legendre rule; a cell where some points see the light and a blocker hides it
+    /// from others holds a shadow edge, and is split again down to `edge_depth`.
     fn cell(&self, corners: &[Vec3], normal: Vec3, ignore: &[usize], depth: u32) -> f64 {
+        let split = |corners: &[Vec3]| -> f64 {
+            split_cell(corners)
+                .iter()
+                .map(|c| self.cell(c, normal, ignore, depth + 1))
+                .sum()
+        };
         let centroid = corners.iter().fold(Vec3::ZERO, |s, &c| s + c) / corners.len() as f64;
         let half_diameter = corners
             .iter()
@@ -293,15 +328,18 @@ impl<'a> Source<'a> {
         let nearest =
             ((self.lum.position - centroid).length() - half_diameter - self.radius()).max(0.0);
         if depth < self.opts.max_depth && 2.0 * half_diameter > self.opts.cell_angle * nearest {
-            return split_cell(corners)
-                .iter()
-                .map(|c| self.cell(c, normal, ignore, depth + 1))
-                .sum();
+            return split(corners);
         }
-        let mut lumens = 0.0;
+        let (mut lumens, mut seen, mut hidden) = (0.0, false, false);
         for_each_on_cell(corners, self.gl, |x, w| {
-            lumens += w * self.point(x, normal, None, ignore);
+            let (e, h) = self.lit(x, normal, None, ignore);
+            lumens += w * e;
+            seen |= e > 0.0;
+            hidden |= h;
         });
+        if seen && hidden && depth < self.opts.edge_depth {
+            return split(corners);
+        }
         lumens
     }
 }
