@@ -31,6 +31,7 @@ use crate::sources::photometry::Photometry;
 
 pub use error::{Location, SceneError};
 pub use inputs::{inputs, SceneInputs};
+#[cfg(test)]
 pub(crate) use luminaires::frame as luminaire_frame;
 
 /// The spectral bands a scene is computed in.
