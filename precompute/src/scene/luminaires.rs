@@ -103,7 +103,8 @@ fn load(
         reason => SceneError::Photometry {
             at: ctx.at(written),
             field: format!("{what}.file"),
-            reason,
+            // Boxed: the reader's error is large, and every scene result carries the variant.
+            reason: Box::new(reason),
         },
     })
 }

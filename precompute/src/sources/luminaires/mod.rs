@@ -275,7 +275,8 @@ impl<'a> Source<'a> {
             let v = q - x;
             let r2 = v.dot(v);
             let cos = normal.dot(v) / r2.sqrt();
-            if !(cos > 0.0) || cone.is_some_and(|c| cos < c) {
+            // NaN (a piece at the point itself) counts as behind.
+            if cos.is_nan() || cos <= 0.0 || cone.is_some_and(|c| cos < c) {
                 return;
             }
             let intensity = self.lum.intensity(-v) * share;
