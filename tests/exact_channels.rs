@@ -51,12 +51,25 @@ fn relative(got: f64, want: f64) -> f64 {
 
 #[test]
 fn office_channels_read_the_exact_solve_for_any_levels() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/office/scene.toml");
+    channels_read_the_exact_solve_for_any_levels("examples/office/scene.toml", 1000, 5);
+}
+
+/// The classroom's channels are luminaires with photometry: their light enters the model as
+/// direct irradiance from beyond the patches, and the basis reads it as exactly.
+#[test]
+fn classroom_luminaire_channels_read_the_exact_solve_for_any_levels() {
+    channels_read_the_exact_solve_for_any_levels("examples/classroom/scene.toml", 500, 2);
+}
+
+/// The scene at `scene` (relative to the repository), of more than `patches` patches and
+/// `channels` channels, read through the runtime for many level vectors.
+fn channels_read_the_exact_solve_for_any_levels(scene: &str, patches: usize, channels: usize) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(scene);
     let prepared = prepare(&path, &FormFactorOptions::default()).unwrap();
     let scene = &prepared.scene;
     let n = scene.patches.len();
     let m = scene.channels.len();
-    assert!(n > 1000 && m == 5, "{n} patches, {m} channels");
+    assert!(n > patches && m == channels, "{n} patches, {m} channels");
     let mut rng = Rng(0x5eed);
     // Every channel alone at full, all on, all off, and random combinations.
     let mut cases: Vec<Vec<f64>> = (0..m)
@@ -85,7 +98,7 @@ fn office_channels_read_the_exact_solve_for_any_levels() {
         let basis = Basis::from_bytes(&bytes).unwrap();
         assert_eq!(basis.mode_count(), MODES);
         let solver = model.exact_solver(0).unwrap();
-        let mut channels = ChannelEvaluator::<1, 8>::new(basis).unwrap();
+        let mut evaluator = ChannelEvaluator::<1, 8>::new(basis).unwrap();
         let (mut worst_storage, mut worst_exact) = (0.0f64, 0.0f64);
 
         for levels in &cases {
@@ -93,7 +106,7 @@ fn office_channels_read_the_exact_solve_for_any_levels() {
             // The levels as the runtime holds them, for the f64 combinations.
             let held: Vec<f64> = levels32.iter().map(|&l| f64::from(l)).collect();
             let got = runtime_eval::evaluate(&bytes, &levels32, &[], true).unwrap();
-            channels.set_channel_levels(&levels32).unwrap();
+            evaluator.set_channel_levels(&levels32).unwrap();
 
             // The model's exact per-channel responses and readings, combined in f64.
             let combined: Vec<f64> = (0..n)
@@ -115,7 +128,7 @@ fn office_channels_read_the_exact_solve_for_any_levels() {
             for i in 0..n {
                 let runtime = got.exitance[i][0];
                 assert_eq!(
-                    channels.exitance(i).unwrap()[0] as f64,
+                    evaluator.exitance(i).unwrap()[0] as f64,
                     runtime,
                     "patch {i}"
                 );
@@ -142,9 +155,9 @@ fn office_channels_read_the_exact_solve_for_any_levels() {
             assert_eq!(runtime_out.len(), outputs);
             for (o, &runtime) in runtime_out.iter().enumerate() {
                 let direct = if o < sensors {
-                    channels.sensor_irradiance(o)
+                    evaluator.sensor_irradiance(o)
                 } else {
-                    channels.zone_irradiance(o - sensors)
+                    evaluator.zone_irradiance(o - sensors)
                 };
                 assert_eq!(direct.unwrap()[0] as f64, runtime, "output {o}");
                 let s = relative(runtime, combined_out[o]);

@@ -186,7 +186,18 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         outputs::output_rows(&scene, &g, &area, &occluders, opts)
     });
     let lights = timed(&mut timings, "light sources", || {
-        sources::surfaces::channel_lights(&scene, &g, &area, &output_rows)
+        let surfaces = sources::surfaces::channel_lights(&scene, &g, &area, &output_rows);
+        if scene.luminaires.is_empty() {
+            // Left exactly as it is: scenes without luminaires build the bases they always did.
+            return surfaces;
+        }
+        let options = sources::luminaires::LuminaireOptions::default();
+        let luminaires = sources::luminaires::channel_lights(&scene, &occluders, &options);
+        surfaces
+            .iter()
+            .zip(&luminaires)
+            .map(|(s, l)| s.plus(l))
+            .collect()
     });
     Ok(Prepared {
         scene,

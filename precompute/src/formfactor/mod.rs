@@ -36,7 +36,9 @@ mod tests;
 mod visibility;
 
 pub use bvh::Occluders;
+// The patch rules, for the direct light of sources that are not patches (`crate::sources`).
 pub use health::{FormFactorHealth, CLOSED_TOLERANCE};
+pub(crate) use quadrature::{for_each_on_cell, gauss_legendre, split_cell};
 
 use crate::geometry::{Patch, Vec3};
 use faer::Mat;

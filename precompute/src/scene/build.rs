@@ -9,7 +9,7 @@ use super::context::{unique, Ctx, MaterialInfo, RawSurface};
 use super::error::SceneError;
 use super::file::{BandsDef, SceneFile};
 use super::mesh::{check_face, mesh_face, triangulate};
-use super::{channels, limits, obj, observers, openings, primitives, winding};
+use super::{channels, limits, luminaires, obj, observers, openings, primitives, winding};
 use super::{Bands, Scene, Surface};
 use crate::geometry::{Face, Patch, Polygon, Vec3};
 
@@ -67,9 +67,14 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
 
     let raw = &geometry.raw;
     let meshed = mesh(raw, &materials, &flip, &split, max_edge, planarity)?;
+    let luminaires = luminaires::place(&ctx, &file.luminaire, &file.channel)?;
+    let lit: Vec<bool> = (0..file.channel.len())
+        .map(|k| luminaires.iter().any(|l| l.channel == k))
+        .collect();
     let emitters = channels::resolve(
         &ctx,
         &file.channel,
+        &lit,
         &meshed.surfaces,
         &meshed.patches,
         raw,
@@ -101,6 +106,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         emission,
         channel_of_patch,
         channels: emitters.channels,
+        luminaires,
         sensors,
         zones,
     })

@@ -1,4 +1,5 @@
-//! Channels: which surfaces each drives and how much they emit at level 1.
+//! Channels: which surfaces each drives and how much they emit at level 1. A channel may
+//! drive luminaires only (`[[luminaire]]` entries naming it), and then no surface.
 
 use toml::Spanned;
 
@@ -18,11 +19,13 @@ pub(crate) struct Emitters {
     pub surface_emission: Vec<Vec<f64>>,
 }
 
-/// Resolves the channels. `material_emission` is each surface's material emission; `raw`
-/// locates each surface's material for messages.
+/// Resolves the channels. `lit[k]` says whether a luminaire is in channel `k`;
+/// `material_emission` is each surface's material emission; `raw` locates each surface's
+/// material for messages.
 pub(crate) fn resolve(
     ctx: &Ctx,
     defs: &[Spanned<ChannelDef>],
+    lit: &[bool],
     surfaces: &[Surface],
     patches: &[Patch],
     raw: &[RawSurface],
@@ -47,7 +50,25 @@ pub(crate) fn resolve(
     let mut channels = Vec::with_capacity(defs.len());
     for (k, def) in defs.iter().enumerate() {
         let c = def.get_ref();
-        let members = members(ctx, def, surfaces)?;
+        let members = members(ctx, def, surfaces, lit[k])?;
+        if members.is_empty() {
+            // Luminaires only: their light is their photometry's, not a surface's exitance.
+            if let Some(given) = c.exitance.as_ref().or(c.flux.as_ref()) {
+                return Err(SceneError::Invalid {
+                    at: ctx.at(given),
+                    field: format!("channel `{}`", c.name),
+                    message: "gives `exitance` or `flux` but names no surface; its luminaires' \
+                              light comes from their photometric files"
+                        .into(),
+                });
+            }
+            channels.push(Channel {
+                name: c.name.clone(),
+                surfaces: members,
+                exitance: vec![0.0; ctx.bands],
+            });
+            continue;
+        }
         let area: f64 = members.iter().map(|&i| area_of(i)).sum();
         let exitance = exitance(ctx, c, area)?;
         for &i in &members {
@@ -101,11 +122,12 @@ pub(crate) fn resolve(
 }
 
 /// The surfaces channel `def` drives: those it names, then those of the materials it names;
-/// an error if that is none.
+/// an error if that is none and no luminaire is in the channel (`lit`).
 fn members(
     ctx: &Ctx,
     def: &Spanned<ChannelDef>,
     surfaces: &[Surface],
+    lit: bool,
 ) -> Result<Vec<usize>, SceneError> {
     let c = def.get_ref();
     let what = format!("channel `{}`", c.name);
@@ -133,11 +155,13 @@ fn members(
             }
         }
     }
-    if members.is_empty() {
+    if members.is_empty() && !lit {
         return Err(SceneError::EmptyChannel {
             at: ctx.at(def),
             channel: c.name.clone(),
-            message: "names no surface: give `surfaces` or `materials`".into(),
+            message: "names no surface and no luminaire is in it: give `surfaces` or \
+                      `materials`, or name the channel in a [[luminaire]]"
+                .into(),
         });
     }
     Ok(members)

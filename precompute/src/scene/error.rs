@@ -167,6 +167,17 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
+    /// A luminaire's photometric file could not be read; the reader's error names that file
+    /// and its line.
+    #[error("{at}: {field}: {reason}")]
+    Photometry {
+        /// Where the scene names the file.
+        at: Location,
+        /// The field naming it (`luminaire `NAME`.file`).
+        field: String,
+        /// The reader's error.
+        reason: Box<crate::sources::photometry::PhotometryError>,
+    },
     /// A zone or sensor is not well defined (e.g. zero-length normal, no surfaces).
     #[error("{at}: {field}: {message}")]
     Invalid {

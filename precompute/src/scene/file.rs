@@ -52,6 +52,8 @@ pub(crate) struct SceneFile {
     #[serde(default)]
     pub channel: Vec<Spanned<ChannelDef>>,
     #[serde(default)]
+    pub luminaire: Vec<Spanned<LuminaireDef>>,
+    #[serde(default)]
     pub sensor: Vec<Spanned<SensorDef>>,
     #[serde(default)]
     pub zone: Vec<Spanned<ZoneDef>>,
@@ -298,6 +300,40 @@ pub(crate) struct ChannelDef {
     /// Flux at level 1, lm or W per band, spread uniformly over the channel's area.
     #[serde(default)]
     pub flux: Option<Spanned<PerBand>>,
+}
+
+/// `[[luminaire]]`: a luminaire (or an array of them) placed with its photometric file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LuminaireDef {
+    pub name: String,
+    /// An `.ies` or `.ldt` file, relative to the scene file.
+    pub file: Spanned<String>,
+    /// Photometric centre, in the scene's unit (of the first element of an array).
+    pub position: Spanned<Xyz>,
+    /// The nadir direction (γ = 0), any non-zero length; default straight down.
+    #[serde(default)]
+    pub aim: Option<Spanned<Xyz>>,
+    /// Rotation of the C0 plane about the nadir axis, degrees.
+    #[serde(default)]
+    pub spin: Option<Spanned<f64>>,
+    #[serde(default)]
+    pub array: Option<Spanned<ArrayDef>>,
+    /// The `[[channel]]` that dims it.
+    pub channel: Spanned<String>,
+    /// Light-loss factor in (0, 1]; default 1.
+    #[serde(default)]
+    pub maintenance_factor: Option<Spanned<f64>>,
+}
+
+/// `luminaire.array`: copies in rows along y and columns along x of the scene.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ArrayDef {
+    pub rows: usize,
+    pub columns: usize,
+    /// `[dx, dy]` between neighbouring columns and rows, in the scene's unit.
+    pub spacing: Vec<f64>,
 }
 
 /// `[[sensor]]`.

@@ -12,6 +12,7 @@ mod error;
 mod file;
 mod inputs;
 mod limits;
+mod luminaires;
 mod mesh;
 mod obj;
 mod observers;
@@ -22,12 +23,16 @@ mod tests;
 mod winding;
 
 use std::ops::Range;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use crate::geometry::{Face, Patch, Vec3};
+use crate::sources::photometry::Photometry;
 
 pub use error::{Location, SceneError};
 pub use inputs::{inputs, SceneInputs};
+#[cfg(test)]
+pub(crate) use luminaires::frame as luminaire_frame;
 
 /// The spectral bands a scene is computed in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -71,16 +76,63 @@ pub struct Surface {
     pub patch_range: Range<usize>,
 }
 
-/// A group of emitting surfaces dimmed together (a luminaire circuit, a window).
+/// A group of light sources dimmed together (a luminaire circuit, a window): emitting
+/// surfaces, luminaires with photometry ([`Scene::luminaires`] naming it), or both.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Channel {
     /// Unique name.
     pub name: String,
-    /// Indices into [`Scene::surfaces`] of the surfaces it drives.
+    /// Indices into [`Scene::surfaces`] of the surfaces it drives (none for a channel of
+    /// luminaires only).
     pub surfaces: Vec<usize>,
-    /// Area-weighted mean exitance of its surfaces at level 1, per band (lux or W/m²).
-    /// Times the channel's area this is its flux (lm or W).
+    /// Area-weighted mean exitance of its surfaces at level 1, per band (lux or W/m²); zero
+    /// when it drives no surface. Times the channel's area this is its surfaces' flux (lm or
+    /// W).
     pub exitance: Vec<f64>,
+}
+
+/// A luminaire placed in the scene with its photometry: one element of a `[[luminaire]]`
+/// entry (docs/scene.md, "Luminaires").
+///
+/// Its frame is right-handed as seen from behind: `c90 = −nadir × c0`, so C counts
+/// counter-clockwise seen from above a downward luminaire, as type C photometry does.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Luminaire {
+    /// Unique name: the entry's name, or `name[row,column]` (1-based) for an array's element.
+    pub name: String,
+    /// The photometric file, as found from the scene's folder.
+    pub file: PathBuf,
+    /// Its photometry, shared by every luminaire of the same file.
+    pub photometry: Arc<Photometry>,
+    /// Photometric centre, metres.
+    pub position: Vec3,
+    /// Unit vector of γ = 0 (the nadir of the distribution).
+    pub nadir: Vec3,
+    /// Unit vector of C = 0°, γ = 90°: perpendicular to `nadir`.
+    pub c0: Vec3,
+    /// Unit vector of C = 90°, γ = 90°.
+    pub c90: Vec3,
+    /// Index into [`Scene::channels`] of the channel that dims it.
+    pub channel: usize,
+    /// Light-loss (maintenance) factor in (0, 1], multiplying every intensity.
+    pub maintenance_factor: f64,
+}
+
+impl Luminaire {
+    /// The photometric angles `(C, γ)`, degrees, of a direction (any non-zero length) leaving
+    /// the luminaire: `γ` from `nadir` in [0, 180], `C` from `c0` towards `c90` in (−180, 180].
+    pub fn angles(&self, direction: Vec3) -> (f64, f64) {
+        let d = direction.normalized();
+        let gamma = d.dot(self.nadir).clamp(-1.0, 1.0).acos().to_degrees();
+        let c = d.dot(self.c90).atan2(d.dot(self.c0)).to_degrees();
+        (c, gamma)
+    }
+
+    /// Luminous intensity, cd, towards `direction`, the maintenance factor included.
+    pub fn intensity(&self, direction: Vec3) -> f64 {
+        let (c, gamma) = self.angles(direction);
+        self.maintenance_factor * self.photometry.intensity(c, gamma)
+    }
 }
 
 /// A point sensor (e.g. a ceiling photocell or a desk illuminance meter).
@@ -143,6 +195,9 @@ pub struct Scene {
     pub channel_of_patch: Vec<Option<usize>>,
     /// Channels, in file order.
     pub channels: Vec<Channel>,
+    /// Luminaires with photometry, in file order (an array's elements row by row); their
+    /// light is not patch emission (`sources::luminaires`).
+    pub luminaires: Vec<Luminaire>,
     /// Sensors, in file order.
     pub sensors: Vec<Sensor>,
     /// Zones, in file order.

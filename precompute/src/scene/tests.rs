@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use super::*;
 
 mod errors;
+mod luminaires;
 mod obj;
 mod openings;
 

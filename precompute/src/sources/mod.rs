@@ -5,9 +5,14 @@
 //!
 //! - [`surfaces`]: emitting surfaces of the scene (luminaire faces, windows as Lambertian
 //!   panels), grouped by the scene's channels.
+//! - [`luminaires`]: luminaires placed with their photometry: no emission, their direct
+//!   illuminance on every patch and output.
 //! - [`photometry`]: luminaire photometric files (IES LM-63, EULUMDAT) read into intensity
 //!   distributions in candela.
+//!
+//! A channel may have both kinds; [`ChannelLight::plus`] adds their light.
 
+pub mod luminaires;
 pub mod photometry;
 pub mod surfaces;
 
@@ -33,6 +38,37 @@ impl ChannelLight {
     /// Number of bands.
     pub fn bands(&self) -> usize {
         self.emission.len()
+    }
+
+    /// The light of two sources of one channel together: emission and direct irradiance
+    /// added entry by entry (light is additive).
+    ///
+    /// # Panics
+    ///
+    /// When the two are not of the same shape (bands, patches, outputs): they would not be
+    /// lights of the same scene.
+    pub fn plus(&self, other: &ChannelLight) -> ChannelLight {
+        let add = |a: &[Vec<f64>], b: &[Vec<f64>], what: &str| -> Vec<Vec<f64>> {
+            let shape = |x: &[Vec<f64>]| x.iter().map(Vec::len).collect::<Vec<_>>();
+            assert_eq!(shape(a), shape(b), "{what} of different shapes");
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| x.iter().zip(y).map(|(p, q)| p + q).collect())
+                .collect()
+        };
+        ChannelLight {
+            emission: add(&self.emission, &other.emission, "emission"),
+            patch_irradiance: add(
+                &self.patch_irradiance,
+                &other.patch_irradiance,
+                "patch irradiance",
+            ),
+            output_irradiance: add(
+                &self.output_irradiance,
+                &other.output_irradiance,
+                "output irradiance",
+            ),
+        }
     }
 }
 

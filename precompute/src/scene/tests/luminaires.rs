@@ -1,0 +1,189 @@
+//! `[[luminaire]]` entries: the example classroom, arrays, orientation, channels driven by
+//! luminaires only, and an error for each mistake naming the file, line and field.
+
+use super::*;
+
+/// The photometric test files of the photometry reader, by absolute path (a scene joins an
+/// absolute `file` as it is).
+fn testdata(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("src/sources/photometry/testdata")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+fn lamp(fields: &str) -> String {
+    format!(
+        "\n[[channel]]\nname = \"c\"\n\n[[luminaire]]\nname = \"lamp\"\nfile = \"{}\"\n\
+         position = [0.5, 0.5, 2]\nchannel = \"c\"\n{fields}",
+        testdata("isotropic.ies")
+    )
+}
+
+#[test]
+fn scene_classroom_example_places_six_luminaires_on_two_channels() {
+    let scene = load(&example("classroom")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.channels.len(), 2);
+    assert!(scene.channels.iter().all(|c| c.surfaces.is_empty()));
+    assert!(scene.emission.iter().flatten().all(|&e| e == 0.0));
+    let names: Vec<&str> = scene.luminaires.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "window_row[1,1]",
+            "window_row[1,2]",
+            "window_row[1,3]",
+            "corridor_row[1,1]",
+            "corridor_row[1,2]",
+            "corridor_row[1,3]"
+        ]
+    );
+    let l = &scene.luminaires[4];
+    assert_eq!(l.channel, 1);
+    assert!((l.position - Vec3::new(4.0, 4.5, 3.0)).length() < 1e-12);
+    assert_eq!(l.maintenance_factor, 0.8);
+    assert!((l.nadir - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-15);
+    // One file, read once, shared.
+    assert!(std::sync::Arc::ptr_eq(
+        &l.photometry,
+        &scene.luminaires[0].photometry
+    ));
+    let p = &l.photometry;
+    assert!((p.opening.length - 0.6).abs() < 1e-12 && (p.opening.width - 0.6).abs() < 1e-12);
+    assert!((p.flux() / 3141.6 - 1.0).abs() < 2e-2, "{} lm", p.flux());
+}
+
+#[test]
+fn scene_luminaire_aim_spin_array_and_units() {
+    let text = BASE
+        .replace("unit = \"m\"", "unit = \"cm\"")
+        .replace("max_edge = 0.5", "max_edge = 50");
+    let extra = format!(
+        "\n[[channel]]\nname = \"c\"\n\n[[luminaire]]\nname = \"wash\"\nfile = \"{}\"\n\
+         position = [10, 20, 200]\naim = [1, 0, 0]\nspin = 90\n\
+         array = {{ rows = 2, columns = 3, spacing = [100, 50] }}\nchannel = \"c\"\n",
+        testdata("lm63-2019-none.ies")
+    );
+    let scene = parse(&format!("{text}{extra}"), Path::new(FILE)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.luminaires.len(), 6);
+    let last = &scene.luminaires[5];
+    assert_eq!(last.name, "wash[2,3]");
+    // Columns along x, rows along y, in the scene's unit.
+    assert!((last.position - Vec3::new(2.1, 0.7, 2.0)).length() < 1e-12);
+    // Aimed at +x: C0 points up before the spin, and the spin of 90° turns it onto C90's
+    // place (+y), counter-clockwise seen from behind the luminaire.
+    assert!((last.nadir - Vec3::new(1.0, 0.0, 0.0)).length() < 1e-12);
+    assert!(
+        (last.c0 - Vec3::new(0.0, 1.0, 0.0)).length() < 1e-12,
+        "{:?}",
+        last.c0
+    );
+    assert!((last.c90 - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-12);
+    // Straight at the nadir the luminaire gives its distribution's γ = 0 value.
+    let (c, gamma) = last.angles(Vec3::new(3.0, 0.0, 0.0));
+    assert!(gamma.abs() < 1e-9, "{c} {gamma}");
+}
+
+#[test]
+fn scene_error_luminaire_unknown_channel_file_and_photometry() {
+    let extra = lamp("").replace("channel = \"c\"\n", "channel = \"d\"\n");
+    let m = error(&extra);
+    assert_names(
+        &m,
+        &[
+            "luminaire `lamp`.channel",
+            "unknown channel `d`",
+            &format!(":{}:", line_of(&extra, "channel = \"d\"")),
+        ],
+    );
+
+    let extra = lamp("").replace("isotropic.ies", "absent.ies");
+    assert_names(
+        &error(&extra),
+        &["luminaire `lamp`.file", "not found", "absent.ies"],
+    );
+
+    // The reader's error keeps the photometric file and its line.
+    let dir = scratch("bad-photometry");
+    let bad = dir.join("bad.ies");
+    std::fs::write(&bad, "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 x 1 1 2 0 0 0\n").unwrap();
+    let extra = lamp("").replace(&testdata("isotropic.ies"), &bad.display().to_string());
+    let m = error(&extra);
+    assert_names(&m, &["luminaire `lamp`.file", "bad.ies:3"]);
+}
+
+#[test]
+fn scene_error_luminaire_values() {
+    for (fields, parts) in [
+        (
+            "maintenance_factor = 1.5\n",
+            &["luminaire `lamp`.maintenance_factor", "(0, 1]"][..],
+        ),
+        (
+            "maintenance_factor = 0\n",
+            &["maintenance_factor", "found 0"][..],
+        ),
+        (
+            "aim = [0, 0, 0]\n",
+            &["luminaire `lamp`.aim", "non-zero"][..],
+        ),
+        (
+            "array = { rows = 0, columns = 2, spacing = [1, 1] }\n",
+            &["luminaire `lamp`.array", "at least 1"][..],
+        ),
+        (
+            "array = { rows = 2, columns = 2, spacing = [1] }\n",
+            &["luminaire `lamp`.array", "two lengths"][..],
+        ),
+        (
+            "array = { rows = 2, columns = 2, spacing = [1, -1] }\n",
+            &["luminaire `lamp`.array", "positive"][..],
+        ),
+        ("spinn = 3\n", &["unknown field `spinn`"][..]),
+    ] {
+        let extra = lamp(fields);
+        let m = error(&extra);
+        assert_names(&m, parts);
+        assert!(
+            m.contains(&format!(":{}:", line_of(&extra, fields.trim_end()))),
+            "{m}"
+        );
+    }
+    // Two elements of the same name.
+    let twice = format!(
+        "{}{}",
+        lamp(""),
+        lamp("")
+            .split("[[luminaire]]")
+            .nth(1)
+            .map(|l| format!("[[luminaire]]{l}"))
+            .unwrap()
+    );
+    assert_names(&error(&twice), &["duplicate luminaire name `lamp`"]);
+}
+
+#[test]
+fn scene_error_luminaire_channels() {
+    // A channel of luminaires only is fine; one driving nothing is not.
+    parse(&format!("{BASE}{}", lamp("")), Path::new(FILE)).unwrap_or_else(|e| panic!("{e}"));
+    let extra = format!("{}\n[[channel]]\nname = \"idle\"\n", lamp(""));
+    assert_names(
+        &error(&extra),
+        &["channel `idle`", "names no surface", "[[luminaire]]"],
+    );
+    // Luminaires only: a flux or exitance would have nothing to spread over.
+    let extra = lamp("").replace("name = \"c\"\n", "name = \"c\"\nflux = 100\n");
+    assert_names(
+        &error(&extra),
+        &[
+            "channel `c`",
+            "names no surface",
+            &format!(":{}:", line_of(&extra, "flux = 100")),
+        ],
+    );
+    // Photometry is in candela: RGB scenes are refused.
+    let rgb = BASE.replace("photopic", "rgb");
+    let m = error_in(&format!("{rgb}{}", lamp("")));
+    assert_names(&m, &["luminaire `lamp`", "photopic"]);
+}

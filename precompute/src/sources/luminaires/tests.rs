@@ -1,0 +1,403 @@
+//! The direct light of luminaires against closed forms: a point source over a plane (at
+//! points and averaged over patches), flux conservation in a closed room, occlusion,
+//! orientation, and the near-field split against the exact form factor of a Lambertian
+//! rectangle.
+
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use super::{channel_lights, LuminaireOptions, Source};
+use crate::formfactor::{gauss_legendre, Occluders};
+use crate::geometry::{Patch, Polygon, Vec3};
+use crate::scene::{self, luminaire_frame, Luminaire};
+use crate::sources::photometry::{
+    Distribution, Format, Identity, Opening, OpeningShape, Photometry, Symmetry,
+};
+
+fn photometry(
+    symmetry: Symmetry,
+    planes: &[f64],
+    gamma: Vec<f64>,
+    candela: Vec<Vec<f64>>,
+    opening: Opening,
+) -> Photometry {
+    Photometry {
+        format: Format::Eulumdat,
+        identity: Identity::default(),
+        symmetry,
+        opening,
+        luminaire: None,
+        lamps: 1,
+        absolute: true,
+        lamp_flux: None,
+        luminaire_flux: None,
+        downward_fraction: None,
+        input_watts: None,
+        tilt: None,
+        distribution: Distribution::new(symmetry, planes, gamma, candela).unwrap(),
+    }
+}
+
+fn point() -> Opening {
+    Opening {
+        shape: OpeningShape::Point,
+        length: 0.0,
+        width: 0.0,
+        height: 0.0,
+        side_heights: None,
+    }
+}
+
+/// `i` cd in every direction.
+fn isotropic(i: f64) -> Photometry {
+    photometry(
+        Symmetry::Rotational,
+        &[0.0],
+        vec![0.0, 180.0],
+        vec![vec![i, i]],
+        point(),
+    )
+}
+
+/// `i0 cos γ` cd downward (flux π i0 lm), tabulated every degree, from a flat rectangular
+/// opening `length × width` (m).
+fn lambertian(i0: f64, length: f64, width: f64) -> Photometry {
+    let gamma: Vec<f64> = (0..=90).map(f64::from).collect();
+    let values = gamma.iter().map(|g| i0 * g.to_radians().cos()).collect();
+    let opening = Opening {
+        shape: OpeningShape::Rectangular,
+        length,
+        width,
+        height: 0.0,
+        side_heights: None,
+    };
+    photometry(Symmetry::Rotational, &[0.0], gamma, vec![values], opening)
+}
+
+fn luminaire(p: Photometry, position: Vec3, aim: Vec3, spin_degrees: f64) -> Luminaire {
+    let (nadir, c0, c90) = luminaire_frame(aim, spin_degrees.to_radians());
+    Luminaire {
+        name: "l".into(),
+        file: PathBuf::from("synthetic"),
+        photometry: Arc::new(p),
+        position,
+        nadir,
+        c0,
+        c90,
+        channel: 0,
+        maintenance_factor: 1.0,
+    }
+}
+
+const DOWN: Vec3 = Vec3::new(0.0, 0.0, -1.0);
+const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+
+/// A `cells × cells` grid of square patches of side `side` (m) on the plane z = `z`, centred
+/// on the origin, facing up.
+fn floor(cells: usize, side: f64, z: f64) -> Vec<Patch> {
+    let o = -0.5 * side * cells as f64;
+    let mut out = Vec::new();
+    for i in 0..cells {
+        for j in 0..cells {
+            let (x, y) = (o + side * i as f64, o + side * j as f64);
+            let v = vec![
+                Vec3::new(x, y, z),
+                Vec3::new(x + side, y, z),
+                Vec3::new(x + side, y + side, z),
+                Vec3::new(x, y + side, z),
+            ];
+            out.push(Patch::new(Polygon::new(v), 0));
+        }
+    }
+    out
+}
+
+/// Solid angle (sr) of the rectangle `[x1, x2] × [y1, y2]` of a plane seen from a point at
+/// height `h` above its origin: `Σ ± atan(x y / (h √(x² + y² + h²)))` over the corners.
+fn solid_angle(x1: f64, x2: f64, y1: f64, y2: f64, h: f64) -> f64 {
+    let f = |x: f64, y: f64| (x * y / (h * (x * x + y * y + h * h).sqrt())).atan();
+    f(x2, y2) - f(x1, y2) - f(x2, y1) + f(x1, y1)
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+#[test]
+fn point_source_over_a_plane_at_points_and_over_patches() {
+    let (i, h) = (100.0, 1.0);
+    let lum = luminaire(isotropic(i), Vec3::new(0.0, 0.0, h), DOWN, 0.0);
+    // 0.5 m patches out to 2 m: the nearest are half their distance to the source across.
+    let patches = floor(8, 0.5, 0.0);
+    let occluders = Occluders::new(&patches);
+    let opts = LuminaireOptions::default();
+    let gl = gauss_legendre(opts.order);
+    let source = Source::new(&lum, &occluders, &opts, &gl);
+    // At points: E = I h / (r² + h²)^{3/2}, to rounding.
+    for r in [0.0, 0.3, 1.0, 1.9] {
+        let e = source.point(Vec3::new(r, 0.0, 0.0), UP, None, &[]);
+        let exact = i * h / (r * r + h * h).powf(1.5);
+        assert!(relative(e, exact) < 1e-12, "r = {r}: {e} against {exact}");
+    }
+    // Over patches: the patch average of the closed form is I Ω / A.
+    let mut worst = 0.0f64;
+    for (k, p) in patches.iter().enumerate() {
+        let v = &p.polygon.vertices;
+        let exact = i * solid_angle(v[0].x, v[2].x, v[0].y, v[2].y, h) / p.area;
+        worst = worst.max(relative(source.patch(p, &[k]), exact));
+    }
+    assert!(worst < 1e-5, "patch averages within {worst:.2e}");
+    // The centroid alone would be off by far more near the source: why patches integrate.
+    let p = &patches[27];
+    let v = &p.polygon.vertices;
+    let exact = i * solid_angle(v[0].x, v[2].x, v[0].y, v[2].y, h) / p.area;
+    let centroid = source.point(p.centroid, UP, None, &[]);
+    assert!(relative(centroid, exact) > 1e-2);
+}
+
+#[test]
+fn a_blocker_shadows_a_sensor_and_a_patch() {
+    let lum = luminaire(isotropic(50.0), Vec3::new(0.0, 0.0, 2.0), DOWN, 0.0);
+    let mut patches = floor(4, 1.0, 0.0);
+    // A 0.6 m square at 1 m, over the origin.
+    let blocker = floor(1, 0.6, 1.0).remove(0);
+    patches.push(blocker);
+    let occluders = Occluders::new(&patches);
+    let opts = LuminaireOptions::default();
+    let gl = gauss_legendre(opts.order);
+    let source = Source::new(&lum, &occluders, &opts, &gl);
+    assert_eq!(source.point(Vec3::new(0.1, 0.2, 0.0), UP, None, &[]), 0.0);
+    let far = Vec3::new(1.5, 0.0, 0.0);
+    let e = source.point(far, UP, None, &[]);
+    assert!(relative(e, 50.0 * 2.0 / (1.5f64 * 1.5 + 4.0).powf(1.5)) < 1e-12);
+    // The blocker's shadow is the square of side 1.2 m around the origin: the four central
+    // patches lose exactly that area's share of their light, the rest nothing.
+    let shadowed: f64 = (0..16)
+        .map(|k| patches[k].area * source.patch(&patches[k], &[k]))
+        .sum();
+    let open = luminaire(isotropic(50.0), lum.position, DOWN, 0.0);
+    let clear_patches = floor(4, 1.0, 0.0);
+    let clear_occluders = Occluders::new(&clear_patches);
+    let clear = Source::new(&open, &clear_occluders, &opts, &gl);
+    let all: f64 = (0..16).map(|k| clear.patch(&clear_patches[k], &[k])).sum();
+    let shadow = 50.0 * solid_angle(-0.6, 0.6, -0.6, 0.6, 2.0);
+    // Shadow edges cut the cells: refined to 1/256 of a patch there, within 2e-3 of the
+    // shadow's flux.
+    let error = relative(all - shadowed, shadow);
+    assert!(
+        error < 2e-3,
+        "{all} − {shadowed} against {shadow}: {error:.2e}"
+    );
+}
+
+#[test]
+fn aim_and_spin_turn_the_distribution() {
+    // A narrow beam: 1000 cd within 10° of the nadir, none beyond 15°.
+    let gamma = vec![0.0, 10.0, 15.0, 180.0];
+    let beam = photometry(
+        Symmetry::Rotational,
+        &[0.0],
+        gamma,
+        vec![vec![1000.0, 1000.0, 0.0, 0.0]],
+        point(),
+    );
+    // Aimed at +x from 2 m: the wall there is lit at I/d², the floor below not at all.
+    let wall = Patch::new(
+        Polygon::new(vec![
+            Vec3::new(2.0, -1.0, 0.0),
+            Vec3::new(2.0, -1.0, 2.0),
+            Vec3::new(2.0, 1.0, 2.0),
+            Vec3::new(2.0, 1.0, 0.0),
+        ]),
+        0,
+    );
+    let ground = floor(1, 4.0, 0.0).remove(0);
+    let patches = vec![wall.clone(), ground.clone()];
+    let occluders = Occluders::new(&patches);
+    let opts = LuminaireOptions::default();
+    let gl = gauss_legendre(opts.order);
+    let sideways = luminaire(
+        beam,
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        0.0,
+    );
+    let source = Source::new(&sideways, &occluders, &opts, &gl);
+    let on_wall = source.point(
+        Vec3::new(2.0, 0.0, 1.0),
+        Vec3::new(-1.0, 0.0, 0.0),
+        None,
+        &[0],
+    );
+    assert!(relative(on_wall, 1000.0 / 4.0) < 1e-12, "{on_wall}");
+    assert!(source.patch(&wall, &[0]) > 0.0);
+    assert_eq!(source.patch(&ground, &[1]), 0.0);
+
+    // One-sided: all the light in the C0 half-plane, none at C90…C270.
+    let planes = [0.0, 90.0, 180.0, 270.0];
+    let lopsided = |spin| {
+        let p = photometry(
+            Symmetry::None,
+            &planes,
+            vec![0.0, 90.0],
+            vec![vec![100.0, 100.0], vec![0.0; 2], vec![0.0; 2], vec![0.0; 2]],
+            point(),
+        );
+        luminaire(p, Vec3::new(0.0, 0.0, 1.0), DOWN, spin)
+    };
+    let (east, north) = (Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
+    let lit = 100.0 * 0.5f64.sqrt() / 2.0;
+    for (spin, bright, dark) in [(0.0, east, north), (90.0, north, east)] {
+        let l = lopsided(spin);
+        let s = Source::new(&l, &occluders, &opts, &gl);
+        assert!(
+            relative(s.point(bright, UP, None, &[]), lit) < 1e-12,
+            "spin {spin}"
+        );
+        assert_eq!(s.point(dark, UP, None, &[]), 0.0, "spin {spin}");
+    }
+}
+
+/// Form factor from a point to the parallel rectangle `[x1, x2] × [y1, y2]` at height `h`
+/// above it (Howell's catalogue, B-3: `(1/2π) Σ ± (X/√(1+X²)) atan(Y/√(1+X²)) + (Y/√(1+Y²))
+/// atan(X/√(1+Y²))`, `X = x/h`, `Y = y/h`, over the corners).
+fn parallel_rectangle(x1: f64, x2: f64, y1: f64, y2: f64, h: f64) -> f64 {
+    let f = |x: f64, y: f64| {
+        let (a, b) = (x / h, y / h);
+        let (sa, sb) = ((1.0 + a * a).sqrt(), (1.0 + b * b).sqrt());
+        (a / sa * (b / sa).atan() + b / sb * (a / sb).atan()) / (2.0 * PI)
+    };
+    f(x2, y2) - f(x1, y2) - f(x2, y1) + f(x1, y1)
+}
+
+#[test]
+fn a_large_opening_near_a_plane_converges_to_its_exitance_form_factor() {
+    // A 0.6 m × 0.6 m Lambertian panel of 1000 cd at nadir, 0.3 m above the receiving points:
+    // its exitance M = π I0 / A lights a parallel point with M times the exact form factor.
+    let (i0, side, h) = (1000.0, 0.6, 0.3);
+    let lum = luminaire(
+        lambertian(i0, side, side),
+        Vec3::new(0.0, 0.0, h),
+        DOWN,
+        0.0,
+    );
+    let exitance = PI * i0 / (side * side);
+    let occluders = Occluders::new(&[]);
+    let gl = gauss_legendre(4);
+    for x in [0.0, 0.25, 0.6] {
+        let exact = exitance * parallel_rectangle(-0.3 - x, 0.3 - x, -0.3, 0.3, h);
+        let mut previous = f64::INFINITY;
+        let mut errors = Vec::new();
+        for ratio in [2.5, 5.0, 10.0, 20.0] {
+            let opts = LuminaireOptions {
+                near_field_ratio: ratio,
+                ..LuminaireOptions::default()
+            };
+            let s = Source::new(&lum, &occluders, &opts, &gl);
+            let error = relative(s.point(Vec3::new(x, 0.0, 0.0), UP, None, &[]), exact);
+            assert!(
+                error < previous,
+                "x = {x}: not converging: {errors:?} then {error}"
+            );
+            previous = error;
+            errors.push(error);
+        }
+        // The midpoint rule over the pieces: the error falls as 1/k², 0.7 % at the default.
+        assert!(errors[1] < 1e-2, "x = {x}: five-times rule {errors:?}");
+        assert!(errors[3] < 1e-3, "x = {x}: refined {errors:?}");
+        // As a point source it would be far off.
+        let d2 = x * x + h * h;
+        let as_point = i0 * (h * h / d2) / d2;
+        assert!(relative(as_point, exact) > 0.05, "x = {x}");
+    }
+}
+
+/// A closed 4 m × 3 m × 2.5 m room with a luminaire of `file` (absolute path) at `position`.
+fn room_with(file: &Path, position: [f64; 3], maintenance: f64) -> scene::Scene {
+    let text = format!(
+        r#"[scene]
+name = "lit room"
+bands = "photopic"
+unit = "m"
+max_edge = 0.5
+
+[materials]
+wall = {{ reflectance = 0.5 }}
+
+[[room]]
+name = "room"
+min = [0, 0, 0]
+max = [4, 3, 2.5]
+material = "wall"
+
+[[channel]]
+name = "lamps"
+
+[[luminaire]]
+name = "lamp"
+file = "{}"
+position = {position:?}
+channel = "lamps"
+maintenance_factor = {maintenance}
+"#,
+        file.display()
+    );
+    scene::parse(&text, Path::new("/nowhere/room.toml")).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// An LM-63 file of `i0 cos γ` cd (absolute photometry) from a flat `width × length` (m)
+/// opening, written to a scratch folder.
+fn lambertian_file(test: &str, width: f64, length: f64) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("eigenrad-lum-{}-{test}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let gamma: Vec<String> = (0..=18).map(|k| (5 * k).to_string()).collect();
+    let candela: Vec<String> = (0..=18)
+        .map(|k| format!("{:.6}", 800.0 * f64::from(5 * k).to_radians().cos()))
+        .collect();
+    let text = format!(
+        "IESNA:LM-63-2002\n[TEST] synthetic\nTILT=NONE\n1 -1 1 19 1 1 2 {width} {length} 0\n\
+         1 1 30\n{}\n0\n{}\n",
+        gamma.join(" "),
+        candela.join(" ")
+    );
+    let path = dir.join("panel.ies");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_closed_room_receives_the_luminaires_flux() {
+    let testdata = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/sources/photometry/testdata");
+    let cases = [
+        // An isotropic point source in the middle of the room.
+        (testdata.join("isotropic.ies"), [2.0, 1.5, 1.25], 0.8, 1e-5),
+        // A 0.6 m panel recessed in the ceiling: split near the walls and the floor.
+        (
+            lambertian_file("flux", 0.6, 0.6),
+            [2.0, 1.5, 2.5],
+            1.0,
+            1e-3,
+        ),
+    ];
+    for (file, position, mf, tolerance) in cases {
+        let scene = room_with(&file, position, mf);
+        assert_eq!(scene.luminaires.len(), 1);
+        let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
+        let lights = channel_lights(&scene, &occluders, &LuminaireOptions::default());
+        assert_eq!(lights.len(), 1);
+        assert!(lights[0].emission[0].iter().all(|&e| e == 0.0));
+        let received: f64 = scene
+            .patches
+            .iter()
+            .zip(&lights[0].patch_irradiance[0])
+            .map(|(p, e)| p.area * e)
+            .sum();
+        let flux = scene.luminaires[0].photometry.flux() * mf;
+        assert!(
+            relative(received, flux) < tolerance,
+            "{}: {received} lm of {flux} lm",
+            file.display()
+        );
+    }
+}
