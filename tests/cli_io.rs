@@ -179,3 +179,31 @@ fn cli_full_standard_output_is_an_error_naming_it() {
     assert!(stderr(&o).contains("standard output"), "{}", stderr(&o));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn cli_build_refuses_an_unwritable_output_or_a_meaningless_tolerance_before_any_work() {
+    let dir = scratch("io-args");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, scene_text()).expect("write scene");
+    let folder = utf8(&dir).to_string();
+    let missing = dir.join("missing/x.basis");
+    for (args, says) in [
+        (vec!["-o", folder.as_str()], "is a folder"),
+        (vec!["-o", utf8(&missing)], "its folder does not exist"),
+        (
+            vec!["-o", "x.basis", "--tolerance", "nan"],
+            "not a relative error",
+        ),
+        (
+            vec!["-o", "x.basis", "--tolerance", "0"],
+            "not a relative error",
+        ),
+    ] {
+        let mut all = vec!["build", utf8(&scene)];
+        all.extend(&args);
+        let o = run(&all);
+        assert!(!o.status.success(), "{args:?}");
+        assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -68,7 +68,7 @@ enum Command {
         /// (channels, level vectors, exitance set patch by patch) stays within this relative
         /// error of the exact solve: the area-weighted RMS of patch exitance, and every
         /// sensor and zone against its own exact value.
-        #[arg(long)]
+        #[arg(long, value_parser = positive_fraction)]
         tolerance: Option<f64>,
         /// Expansion to store.
         #[arg(long, value_enum, default_value = "split")]
@@ -139,6 +139,15 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// A relative error a build can aim for: a number in (0, 1].
+fn positive_fraction(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(x) if x > 0.0 && x <= 1.0 => Ok(x),
+        Ok(x) => Err(format!("{x} is not a relative error in (0, 1]")),
+        Err(_) => Err(format!("`{text}` is not a number")),
+    }
 }
 
 fn main() -> ExitCode {
@@ -212,7 +221,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 },
                 ..BuildOptions::default()
             };
-            // Before any work: the basis must not replace the scene or a file it reads.
+            // Before any work: the basis must be writable and must not replace the scene or a
+            // file it reads.
+            guard::check_file_output(&output)?;
             guard::check_outputs(std::slice::from_ref(&output), &scene::inputs(&scene)?.files)?;
             let (bytes, report) = pipeline::build(&scene, &opts)?;
             atomic::write(&output, &bytes)?;

@@ -22,6 +22,28 @@ pub fn check_outputs(outputs: &[PathBuf], inputs: &[PathBuf]) -> Result<()> {
     Ok(())
 }
 
+/// Fails, before any work, when `path` cannot become a file: it is a folder, or its folder
+/// does not exist.
+pub fn check_file_output(path: &Path) -> Result<()> {
+    let problem = if path.is_dir() {
+        Some("is a folder: name the file to write")
+    } else {
+        match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() && !d.is_dir() => {
+                Some("its folder does not exist")
+            }
+            _ => None,
+        }
+    };
+    match problem {
+        Some(problem) => Err(Error::Io {
+            path: path.to_path_buf(),
+            reason: std::io::Error::other(problem),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// The path `path` names once its folder's links and `..` are resolved: the file itself when
 /// it exists (a link to an input resolves to the input), otherwise its resolved folder joined
 /// with its name. Falls back to the path as given when the folder does not exist (then it
