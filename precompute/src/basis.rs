@@ -7,13 +7,9 @@ use crate::radiosity::eigen::Formulation;
 use crate::radiosity::model::Model;
 use crate::scene::{Bands, Scene};
 
-/// Fills every table of the basis for the first `p` modes of `model`.
+/// Fills every table of the basis for the first `p` modes of `model`, section by section of
+/// `docs/format.md`.
 pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision) -> BasisTables {
-    let n = model.patch_count();
-    let bands = model.bands.len();
-    let m = scene.channels.len();
-    let outputs = model.output_rows.len();
-    let split = model.formulation == Formulation::Split;
     let p = model
         .bands
         .iter()
@@ -21,7 +17,6 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         .max()
         .unwrap_or(0)
         .min(p);
-
     let quantity = match scene.bands {
         Bands::Photopic => Quantity::Photometric,
         Bands::Rgb => Quantity::Radiometric,
@@ -31,31 +26,54 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         channel_names: scene.channels.iter().map(|c| c.name.clone()).collect(),
         sensor_names: scene.sensors.iter().map(|s| s.name.clone()).collect(),
         zone_names: scene.zones.iter().map(|z| z.name.clone()).collect(),
-        ..BasisTables::new(quantity, model.formulation, precision, bands, p)
+        ..BasisTables::new(quantity, model.formulation, precision, model.bands.len(), p)
     };
+    let modes = Truncated { model, p };
+    eigenvalues(&mut t, &modes);
+    patch_tables(&mut t, scene, &modes);
+    channel_tables(&mut t, model);
+    output_tables(&mut t, scene, &modes);
+    t
+}
 
-    // A band with fewer reflecting patches than p is padded with null modes: zero vectors
-    // with μ = 0 (split, c = 0) or λ = 1 (seed, positive as the format requires).
-    let pad = if split { 0.0 } else { 1.0 };
-    for band in &model.bands {
-        for k in 0..p {
-            t.eigenvalues
-                .push(band.modes.values.get(k).copied().unwrap_or(pad));
-        }
-    }
-    let mode = |b: usize, i: usize, k: usize| {
-        let v = &model.bands[b].modes.vectors;
+/// The first `p` modes of a model, padded with null modes where a band has fewer.
+struct Truncated<'m> {
+    model: &'m Model,
+    p: usize,
+}
+
+impl Truncated<'_> {
+    /// Entry `i` of mode `k` in band `b`; 0 for a padding mode.
+    fn mode(&self, b: usize, i: usize, k: usize) -> f64 {
+        let v = &self.model.bands[b].modes.vectors;
         if k < v.ncols() {
             v[(i, k)]
         } else {
             0.0
         }
-    };
-    let truncate = |mut x: Vec<f64>| {
-        x.resize(p, 0.0);
-        x
-    };
+    }
+}
 
+/// `eigenvalues`: a band with fewer reflecting patches than p is padded with null modes, zero
+/// vectors with μ = 0 (split, c = 0) or λ = 1 (seed, positive as the format requires).
+fn eigenvalues(t: &mut BasisTables, modes: &Truncated) {
+    let pad = if modes.model.formulation == Formulation::Split {
+        0.0
+    } else {
+        1.0
+    };
+    for band in &modes.model.bands {
+        for k in 0..modes.p {
+            t.eigenvalues
+                .push(band.modes.values.get(k).copied().unwrap_or(pad));
+        }
+    }
+}
+
+/// Patch tables, the mode vectors and the black patches' projections.
+fn patch_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
+    let (model, p) = (modes.model, modes.p);
+    let bands = model.bands.len();
     for (i, patch) in scene.patches.iter().enumerate() {
         t.patch_area.push(patch.area);
         t.patch_centroid.push(patch.centroid.to_array());
@@ -70,22 +88,30 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
         }
         for b in 0..bands {
             for k in 0..p {
-                t.modes.push(mode(b, i, k));
+                t.modes.push(modes.mode(b, i, k));
             }
         }
     }
-    for j in 0..n {
+    for j in 0..model.patch_count() {
         if (0..bands).any(|b| model.bands[b].reflectance[j] == 0.0) {
             for b in 0..bands {
-                t.black_projection
-                    .extend(truncate(model.patch_projection(j, b)));
+                let mut projection = model.patch_projection(j, b);
+                projection.resize(p, 0.0);
+                t.black_projection.extend(projection);
             }
         }
     }
+}
 
-    // Channels are stored exactly, from the exact solve the model did at build time: any
-    // combination of levels is then exact to the storage precision, and the modes serve
-    // exitance set patch by patch only.
+/// `channel_response`: channels are stored exactly, from the exact solve the model did at
+/// build time; any combination of levels is then exact to the storage precision, and the
+/// modes serve exitance set patch by patch only.
+fn channel_tables(t: &mut BasisTables, model: &Model) {
+    let (n, m, bands) = (
+        model.patch_count(),
+        model.channel_count(),
+        model.bands.len(),
+    );
     t.channel_response = vec![0.0; n * m * bands];
     for c in 0..m {
         for b in 0..bands {
@@ -94,18 +120,21 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
             }
         }
     }
+}
 
+/// Sensor geometry, zone areas, and the outputs' modes, exact channel readings and view rows.
+fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
+    let model = modes.model;
+    let (n, m, bands) = (
+        model.patch_count(),
+        model.channel_count(),
+        model.bands.len(),
+    );
+    let outputs = model.output_rows.len();
     for s in &scene.sensors {
         let half = s.half_angle.unwrap_or(std::f64::consts::PI);
-        t.sensor_geometry.push([
-            s.position.x,
-            s.position.y,
-            s.position.z,
-            s.normal.x,
-            s.normal.y,
-            s.normal.z,
-            half,
-        ]);
+        let (x, d) = (s.position, s.normal);
+        t.sensor_geometry.push([x.x, x.y, x.z, d.x, d.y, d.z, half]);
     }
     for z in &scene.zones {
         t.zone_area
@@ -113,9 +142,9 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
     }
     for row in &model.output_rows {
         for b in 0..bands {
-            for k in 0..p {
+            for k in 0..modes.p {
                 t.output_modes
-                    .push((0..n).map(|j| row[j] * mode(b, j, k)).sum());
+                    .push((0..n).map(|j| row[j] * modes.mode(b, j, k)).sum());
             }
         }
     }
@@ -136,5 +165,4 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
             t.output_view[j * outputs + o] = v;
         }
     }
-    t
 }
