@@ -18,7 +18,7 @@ use crate::storage::{dot_f32, f32_at, f32_row, u16_at};
 ///
 /// `BANDS` must equal the basis' band count (1 or 3) and the basis may have at most
 /// `CHANNELS` channels. Exitance set patch by patch needs the modes and per-patch state:
-/// use an [`Evaluator`] for that.
+/// use an [`Evaluator`](super::Evaluator) for that.
 ///
 /// Readings cannot overflow: stored values are at most 10⁹ in magnitude, levels at most
 /// [`MAX_LEVEL`] and channels fewer than 65535, so a sum stays below 10¹⁷ (and an irradiance,
