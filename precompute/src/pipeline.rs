@@ -19,6 +19,7 @@ use crate::memory;
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::radiosity::model::Model;
 use crate::scene::{self, Scene};
+use crate::sources::luminaires::LuminaireFlux;
 use crate::sources::{self, ChannelLight};
 
 /// Modes kept when neither a count nor a tolerance is given. On the example office (1101
@@ -122,6 +123,8 @@ pub struct BuildReport {
     pub bytes: usize,
     /// Form-factor health.
     pub form_factors: FormFactorHealth,
+    /// Each luminaire's flux: stated, integrated, reaching the surfaces, escaping.
+    pub luminaires: Vec<LuminaireFlux>,
     /// Accuracy per case, through the runtime.
     pub accuracy: Vec<CaseAccuracy>,
     /// Time per stage.
@@ -140,6 +143,8 @@ pub struct Prepared {
     pub output_rows: Vec<Vec<f64>>,
     /// The light of every channel at level 1, from its sources.
     pub lights: Vec<ChannelLight>,
+    /// Where each luminaire's flux goes.
+    pub luminaire_flux: Vec<LuminaireFlux>,
     /// Form-factor health.
     pub form_factor_health: FormFactorHealth,
     /// Stage timings so far.
@@ -185,19 +190,21 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let output_rows = timed(&mut timings, "sensors and zones", || {
         outputs::output_rows(&scene, &g, &area, &occluders, opts)
     });
-    let lights = timed(&mut timings, "light sources", || {
+    let (lights, luminaire_flux) = timed(&mut timings, "light sources", || {
         let surfaces = sources::surfaces::channel_lights(&scene, &g, &area, &output_rows);
         if scene.luminaires.is_empty() {
             // Left exactly as it is: scenes without luminaires build the bases they always did.
-            return surfaces;
+            return (surfaces, Vec::new());
         }
         let options = sources::luminaires::LuminaireOptions::default();
-        let luminaires = sources::luminaires::channel_lights(&scene, &occluders, &options);
-        surfaces
+        let (luminaires, flux) =
+            sources::luminaires::lights_and_flux(&scene, &occluders, &options);
+        let lights = surfaces
             .iter()
             .zip(&luminaires)
             .map(|(s, l)| s.plus(l))
-            .collect()
+            .collect();
+        (lights, flux)
     });
     Ok(Prepared {
         scene,
@@ -205,6 +212,7 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         area,
         output_rows,
         lights,
+        luminaire_flux,
         form_factor_health,
         timings,
     })
@@ -219,6 +227,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         area: _,
         output_rows,
         lights,
+        luminaire_flux,
         form_factor_health,
         mut timings,
     } = prepared;
@@ -285,6 +294,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         modes: p,
         bytes: bytes.len(),
         form_factors: form_factor_health,
+        luminaires: luminaire_flux,
         accuracy,
         timings,
     };

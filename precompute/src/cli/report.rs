@@ -43,6 +43,7 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         r.bytes,
         output.display()
     );
+    write_luminaires(&mut s, r);
     let _ = writeln!(
         s,
         "accuracy through the runtime against the exact solve (relative error):"
@@ -102,4 +103,33 @@ pub fn write_svgs(r: &VerifyReport, dir: &Path) -> Result<Vec<PathBuf>> {
         written.push(path);
     }
     Ok(written)
+}
+
+/// The luminaires' flux table of the build report, and a warning for each file whose stated
+/// flux its candela table does not carry.
+fn write_luminaires(s: &mut String, r: &BuildReport) {
+    if r.luminaires.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        s,
+        "luminaires (lm): {:<24} {:>10} {:>10} {:>10} {:>10} {:>10}",
+        "name", "stated", "integrated", "emitted", "received", "escaping"
+    );
+    let lm = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.1}"));
+    for l in &r.luminaires {
+        let _ = writeln!(
+            s,
+            "                 {:<24} {:>10} {:>10.1} {:>10.1} {:>10.1} {:>10.1}",
+            l.name,
+            lm(l.stated),
+            l.integrated,
+            l.emitted,
+            l.received,
+            l.escaping
+        );
+    }
+    for w in r.luminaires.iter().filter_map(|l| l.warning.as_ref()) {
+        let _ = writeln!(s, "warning: {w}");
+    }
 }

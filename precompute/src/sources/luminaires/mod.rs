@@ -51,8 +51,11 @@ use crate::geometry::{Patch, Vec3};
 use crate::scene::{Luminaire, Scene, ZoneKind};
 use crate::sources::photometry::OpeningShape;
 
+mod flux;
 #[cfg(test)]
 mod tests;
+
+pub use flux::{LuminaireFlux, FLUX_AGREEMENT};
 
 /// How finely the direct light of a luminaire is integrated.
 #[derive(Clone, Debug)]
@@ -101,6 +104,15 @@ pub fn channel_lights(
     occluders: &Occluders,
     opts: &LuminaireOptions,
 ) -> Vec<ChannelLight> {
+    lights_and_flux(scene, occluders, opts).0
+}
+
+/// [`channel_lights`], and where each luminaire's flux goes (in [`Scene::luminaires`] order).
+pub fn lights_and_flux(
+    scene: &Scene,
+    occluders: &Occluders,
+    opts: &LuminaireOptions,
+) -> (Vec<ChannelLight>, Vec<LuminaireFlux>) {
     let bands = scene.bands.count();
     assert!(
         scene.luminaires.is_empty() || bands == 1,
@@ -111,6 +123,7 @@ pub fn channel_lights(
     let mut patches = vec![vec![0.0; n]; m];
     let mut sensors = vec![vec![0.0; scene.sensors.len()]; m];
     let mut planes = vec![vec![0.0; scene.zones.len()]; m];
+    let mut accounts = Vec::with_capacity(scene.luminaires.len());
     for lum in &scene.luminaires {
         let source = Source::new(lum, occluders, opts, &gl);
         let c = lum.channel;
@@ -120,6 +133,13 @@ pub fn channel_lights(
             .enumerate()
             .map(|(i, p)| source.patch(p, &[i]))
             .collect();
+        let received: f64 = scene
+            .patches
+            .iter()
+            .zip(&on_patches)
+            .map(|(p, e)| p.area * e)
+            .sum();
+        accounts.push(LuminaireFlux::new(lum, received));
         for (sum, e) in patches[c].iter_mut().zip(on_patches) {
             *sum += e;
         }
@@ -138,7 +158,7 @@ pub fn channel_lights(
             }
         }
     }
-    (0..m)
+    let lights = (0..m)
         .map(|c| {
             let mut outputs = sensors[c].clone();
             for (z, zone) in scene.zones.iter().enumerate() {
@@ -160,7 +180,8 @@ pub fn channel_lights(
                 output_irradiance: vec![outputs; bands],
             }
         })
-        .collect()
+        .collect();
+    (lights, accounts)
 }
 
 /// One luminaire ready to light points: its opening and the rules used on patches.

@@ -7,7 +7,7 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use super::{channel_lights, LuminaireOptions, Source};
+use super::{channel_lights, lights_and_flux, LuminaireFlux, LuminaireOptions, Source};
 use crate::formfactor::{gauss_legendre, Occluders};
 use crate::geometry::{Patch, Polygon, Vec3};
 use crate::scene::{self, luminaire_frame, Luminaire};
@@ -400,4 +400,36 @@ fn a_closed_room_receives_the_luminaires_flux() {
             file.display()
         );
     }
+}
+
+#[test]
+fn the_flux_account_of_a_closed_room_loses_nothing_and_flags_files_that_disagree() {
+    // Closed room: what the luminaire emits reaches the surfaces; nothing escapes.
+    let testdata = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/sources/photometry/testdata");
+    let scene = room_with(&testdata.join("isotropic.ies"), [2.0, 1.5, 1.25], 0.8);
+    let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
+    let (_, accounts) = lights_and_flux(&scene, &occluders, &LuminaireOptions::default());
+    assert_eq!(accounts.len(), 1);
+    let a = &accounts[0];
+    assert_eq!(a.name, "lamp");
+    assert!(relative(a.emitted, 0.8 * a.integrated) < 1e-15);
+    assert!(a.escaping.abs() < 1e-5 * a.emitted, "{a:?}");
+    assert!(a.warning.is_none(), "{a:?}");
+
+    // A stated flux the candela table does not carry, and lamps giving less than the
+    // luminaire sends out, are flagged; agreement within the tolerance is not.
+    let account = |stated: Option<f64>, lamps: Option<f64>| {
+        let mut p = isotropic(100.0);
+        p.luminaire_flux = stated;
+        p.lamp_flux = lamps;
+        let lum = luminaire(p, Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.0, -1.0), 0.0);
+        LuminaireFlux::new(&lum, 0.0)
+    };
+    let flux = 400.0 * PI;
+    assert!(account(Some(flux * 1.001), None).warning.is_none());
+    let off = account(Some(flux * 1.02), None).warning.expect("2 % apart");
+    assert!(off.contains("integrates to") && off.contains("% apart"), "{off}");
+    assert!(account(None, Some(flux * 1.25)).warning.is_none());
+    let more = account(None, Some(flux * 0.9)).warning.expect("more than the lamps");
+    assert!(more.contains("more than the"), "{more}");
 }
