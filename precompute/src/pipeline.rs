@@ -197,8 +197,7 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
             return (surfaces, Vec::new());
         }
         let options = sources::luminaires::LuminaireOptions::default();
-        let (luminaires, flux) =
-            sources::luminaires::lights_and_flux(&scene, &occluders, &options);
+        let (luminaires, flux) = sources::luminaires::lights_and_flux(&scene, &occluders, &options);
         let lights = surfaces
             .iter()
             .zip(&luminaires)

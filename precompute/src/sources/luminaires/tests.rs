@@ -428,8 +428,13 @@ fn the_flux_account_of_a_closed_room_loses_nothing_and_flags_files_that_disagree
     let flux = 400.0 * PI;
     assert!(account(Some(flux * 1.001), None).warning.is_none());
     let off = account(Some(flux * 1.02), None).warning.expect("2 % apart");
-    assert!(off.contains("integrates to") && off.contains("% apart"), "{off}");
+    assert!(
+        off.contains("integrates to") && off.contains("% apart"),
+        "{off}"
+    );
     assert!(account(None, Some(flux * 1.25)).warning.is_none());
-    let more = account(None, Some(flux * 0.9)).warning.expect("more than the lamps");
+    let more = account(None, Some(flux * 0.9))
+        .warning
+        .expect("more than the lamps");
     assert!(more.contains("more than the"), "{more}");
 }
