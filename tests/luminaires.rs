@@ -62,7 +62,7 @@ work_plane = {{ height = 0.8, margin = 0.3, max_edge = 0.5 }}
 
 fn isotropic() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("precompute/src/sources/photometry/testdata/isotropic.ies")
+        .join("precompute/src/scene/photometry/testdata/isotropic.ies")
 }
 
 fn write_scene(test: &str) -> PathBuf {

@@ -176,7 +176,7 @@ pub enum SceneError {
         /// The field naming it (`luminaire `NAME`.file`).
         field: String,
         /// The reader's error.
-        reason: Box<crate::sources::photometry::PhotometryError>,
+        reason: Box<crate::scene::photometry::PhotometryError>,
     },
     /// A zone or sensor is not well defined (e.g. zero-length normal, no surfaces).
     #[error("{at}: {field}: {message}")]

@@ -12,7 +12,7 @@ use super::error::SceneError;
 use super::file::{ChannelDef, LuminaireDef};
 use super::Luminaire;
 use crate::geometry::Vec3;
-use crate::sources::photometry::{self, Photometry, PhotometryError};
+use crate::scene::photometry::{self, Photometry, PhotometryError};
 
 /// The luminaires of the file, element by element, with the channel each belongs to (an index
 /// into `channels`, the `[[channel]]` entries in file order). Only photopic scenes (one band)

@@ -17,6 +17,7 @@ mod mesh;
 mod obj;
 mod observers;
 mod openings;
+pub mod photometry;
 mod primitives;
 #[cfg(test)]
 mod tests;
@@ -27,7 +28,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use crate::geometry::{Face, Patch, Vec3};
-use crate::sources::photometry::Photometry;
+use crate::scene::photometry::Photometry;
 
 pub use error::{Location, SceneError};
 pub use inputs::{inputs, SceneInputs};

@@ -7,13 +7,13 @@
 //!   panels), grouped by the scene's channels.
 //! - [`luminaires`]: luminaires placed with their photometry: no emission, their direct
 //!   illuminance on every patch and output.
-//! - [`photometry`]: luminaire photometric files (IES LM-63, EULUMDAT) read into intensity
-//!   distributions in candela.
+//!
+//! The photometric files themselves (IES LM-63, EULUMDAT) are scene input, read by
+//! [`crate::scene::photometry`].
 //!
 //! A channel may have both kinds; [`ChannelLight::plus`] adds their light.
 
 pub mod luminaires;
-pub mod photometry;
 pub mod surfaces;
 
 /// The light of one channel at level 1, per band: what the model needs of a light source.

@@ -7,7 +7,7 @@ use super::*;
 /// absolute `file` as it is).
 fn testdata(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("src/sources/photometry/testdata")
+        .join("src/scene/photometry/testdata")
         .join(name)
         .display()
         .to_string()

@@ -48,8 +48,8 @@ use rayon::prelude::*;
 use super::ChannelLight;
 use crate::formfactor::{for_each_on_cell, gauss_legendre, split_cell, Occluders};
 use crate::geometry::{Patch, Vec3};
+use crate::scene::photometry::OpeningShape;
 use crate::scene::{Luminaire, Scene, ZoneKind};
-use crate::sources::photometry::OpeningShape;
 
 mod flux;
 #[cfg(test)]

@@ -10,10 +10,10 @@ use std::sync::Arc;
 use super::{channel_lights, lights_and_flux, LuminaireFlux, LuminaireOptions, Source};
 use crate::formfactor::{gauss_legendre, Occluders};
 use crate::geometry::{Patch, Polygon, Vec3};
-use crate::scene::{self, luminaire_frame, Luminaire};
-use crate::sources::photometry::{
+use crate::scene::photometry::{
     Distribution, Format, Identity, Opening, OpeningShape, Photometry, Symmetry,
 };
+use crate::scene::{self, luminaire_frame, Luminaire};
 
 fn photometry(
     symmetry: Symmetry,
@@ -368,7 +368,7 @@ fn lambertian_file(test: &str, width: f64, length: f64) -> PathBuf {
 
 #[test]
 fn a_closed_room_receives_the_luminaires_flux() {
-    let testdata = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/sources/photometry/testdata");
+    let testdata = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/scene/photometry/testdata");
     let cases = [
         // An isotropic point source in the middle of the room.
         (testdata.join("isotropic.ies"), [2.0, 1.5, 1.25], 0.8, 1e-5),
@@ -405,7 +405,7 @@ fn a_closed_room_receives_the_luminaires_flux() {
 #[test]
 fn the_flux_account_of_a_closed_room_loses_nothing_and_flags_files_that_disagree() {
     // Closed room: what the luminaire emits reaches the surfaces; nothing escapes.
-    let testdata = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/sources/photometry/testdata");
+    let testdata = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/scene/photometry/testdata");
     let scene = room_with(&testdata.join("isotropic.ies"), [2.0, 1.5, 1.25], 0.8);
     let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
     let (_, accounts) = lights_and_flux(&scene, &occluders, &LuminaireOptions::default());

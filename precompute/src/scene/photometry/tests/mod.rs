@@ -15,7 +15,7 @@ use super::Photometry;
 /// A file of `testdata/`.
 fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("src/sources/photometry/testdata")
+        .join("src/scene/photometry/testdata")
         .join(name)
 }
 
