@@ -246,9 +246,7 @@ impl Model {
         let mut responses = vec![Vec::with_capacity(self.bands.len()); m];
         for b in 0..self.bands.len() {
             let solver = self.exact_solver(b)?;
-            let units: Vec<Vec<f64>> = (0..m)
-                .map(|c| (0..m).map(|d| if d == c { 1.0 } else { 0.0 }).collect())
-                .collect();
+            let units: Vec<Vec<f64>> = (0..m).map(|c| alone(m, c)).collect();
             let cases: Vec<(&[f64], &[f64])> =
                 units.iter().map(|u| (u.as_slice(), &[][..])).collect();
             for (c, m) in self.exact_many(&solver, b, &cases).into_iter().enumerate() {
@@ -266,8 +264,7 @@ impl Model {
     /// Exact readings of every output (sensors, then zones) for channel `c` alone at level 1
     /// in band `b`, W/m² or lux.
     pub fn channel_readings(&self, c: usize, b: usize) -> Vec<f64> {
-        let mut unit = vec![0.0; self.channel_count()];
-        unit[c] = 1.0;
+        let unit = alone(self.channel_count(), c);
         self.readings(b, self.channel_response(c, b), &unit)
     }
 
@@ -297,6 +294,11 @@ impl Model {
             .map(|k| (0..n).map(|i| m[(i, k)]).collect())
             .collect()
     }
+}
+
+/// The levels of `m` channels with channel `c` alone at level 1.
+fn alone(m: usize, c: usize) -> Vec<f64> {
+    (0..m).map(|d| if d == c { 1.0 } else { 0.0 }).collect()
 }
 
 /// `M0` of band `b` (W/m² or lux): `extra` (empty or one value per patch), plus each
