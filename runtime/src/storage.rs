@@ -4,7 +4,7 @@
 //! never fall outside their slice; they still return neutral values instead of panicking, so
 //! that no byte string can reset a controller.
 
-use crate::format::{f16_to_f32, Precision};
+use crate::format::{f16_finite_to_f32, Precision};
 
 /// Reads the `i`-th little-endian `f32` of `bytes`, or 0 past the end.
 #[inline]
@@ -79,32 +79,20 @@ impl<'a> Matrix<'a> {
         self.scales.get(col * 4..(col + len) * 4).unwrap_or(&[])
     }
 
-    /// Calls `f(k, value(row, col + k))` for `k` in `0..len`.
+    /// Calls `f(k, value(row, col + k))` for `k` in `0..len`. One loop for every precision
+    /// (the match on it is the same at every element, so the branch predicts), so that each
+    /// caller costs one copy of it in flash; the hot reads go through [`Matrix::row_dot`].
     #[inline]
     pub fn for_each(&self, row: usize, col: usize, len: usize, mut f: impl FnMut(usize, f32)) {
         let data = self.span(row, col, len);
-        match self.precision {
-            Precision::F32 => {
-                for (k, v) in f32s(data).enumerate() {
-                    f(k, v);
-                }
-            }
-            Precision::F16 => {
-                let scales = f32s(self.scale_span(col, len));
-                for (k, (c, s)) in data.chunks_exact(2).zip(scales).enumerate() {
-                    if let [a, b] = *c {
-                        f(k, f16_to_f32(u16::from_le_bytes([a, b])) * s);
-                    }
-                }
-            }
-            Precision::I16 => {
-                let scales = f32s(self.scale_span(col, len));
-                for (k, (c, s)) in data.chunks_exact(2).zip(scales).enumerate() {
-                    if let [a, b] = *c {
-                        f(k, f32::from(i16::from_le_bytes([a, b])) * s);
-                    }
-                }
-            }
+        let scales = self.scale_span(col, len);
+        for k in 0..len {
+            let v = match self.precision {
+                Precision::F32 => f32_at(data, k),
+                Precision::F16 => f16_finite_to_f32(u16_at(data, k)) * f32_at(scales, k),
+                Precision::I16 => f32::from(u16_at(data, k) as i16) * f32_at(scales, k),
+            };
+            f(k, v);
         }
     }
 
@@ -121,7 +109,7 @@ impl<'a> Matrix<'a> {
                     .zip(scales)
                     .zip(x)
                     .map(|((c, s), &b)| match *c {
-                        [lo, hi] => f16_to_f32(u16::from_le_bytes([lo, hi])) * s * b,
+                        [lo, hi] => f16_finite_to_f32(u16::from_le_bytes([lo, hi])) * s * b,
                         _ => 0.0,
                     })
                     .sum()
