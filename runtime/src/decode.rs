@@ -323,7 +323,9 @@ fn cols(count: Option<usize>) -> Result<usize> {
     })
 }
 
-/// Checks that `bytes` holds exactly `count` values of `width` bytes.
+/// Checks that `bytes` holds exactly `count` values of `width` bytes. Not inlined: it runs
+/// once per table, and one copy of it takes less flash than one per table.
+#[inline(never)]
 fn check_len(field: &'static str, bytes: &[u8], count: usize, width: usize) -> Result<()> {
     let expected = mul(count, width)?;
     if bytes.len() == expected {
@@ -384,7 +386,8 @@ fn f32_table(field: &'static str, bytes: &[u8], count: usize, allowed: Allowed) 
 }
 
 /// A table of `count` little-endian `u16` indices, each below `limit` (or [`NO_CHANNEL`]
-/// where `no_channel_allowed`).
+/// where `no_channel_allowed`). Not inlined, as [`check_len`].
+#[inline(never)]
 fn u16_table(
     field: &'static str,
     bytes: &[u8],

@@ -79,18 +79,58 @@ impl<'a> Matrix<'a> {
         self.scales.get(col * 4..(col + len) * 4).unwrap_or(&[])
     }
 
-    /// Calls `f(k, value(row, col + k))` for `k` in `0..len`. One loop for every precision
-    /// (the match on it is the same at every element, so the branch predicts), so that each
-    /// caller costs one copy of it in flash; the hot reads go through [`Matrix::row_dot`].
+    /// Calls `f(k, value(row, col + k))` for `k` in `0..len`, with a loop specialised per
+    /// precision (three loops in flash per caller): for long rows, the `p` mode values of a
+    /// patch update.
     #[inline]
     pub fn for_each(&self, row: usize, col: usize, len: usize, mut f: impl FnMut(usize, f32)) {
         let data = self.span(row, col, len);
-        let scales = self.scale_span(col, len);
-        for k in 0..len {
-            let v = match self.precision {
-                Precision::F32 => f32_at(data, k),
-                Precision::F16 => f16_finite_to_f32(u16_at(data, k)) * f32_at(scales, k),
-                Precision::I16 => f32::from(u16_at(data, k) as i16) * f32_at(scales, k),
+        match self.precision {
+            Precision::F32 => {
+                for (k, v) in f32s(data).enumerate() {
+                    f(k, v);
+                }
+            }
+            Precision::F16 => {
+                let scales = f32s(self.scale_span(col, len));
+                for (k, (c, s)) in data.chunks_exact(2).zip(scales).enumerate() {
+                    if let [a, b] = *c {
+                        f(k, f16_finite_to_f32(u16::from_le_bytes([a, b])) * s);
+                    }
+                }
+            }
+            Precision::I16 => {
+                let scales = f32s(self.scale_span(col, len));
+                for (k, (c, s)) in data.chunks_exact(2).zip(scales).enumerate() {
+                    if let [a, b] = *c {
+                        f(k, f32::from(i16::from_le_bytes([a, b])) * s);
+                    }
+                }
+            }
+        }
+    }
+
+    /// As [`Matrix::for_each`], with one loop for every precision (a match at each element):
+    /// a third of the flash per caller, for short rows (a patch's view of the outputs, its
+    /// `m` channel responses) where the match costs little.
+    #[inline]
+    pub fn for_each_compact(
+        &self,
+        row: usize,
+        col: usize,
+        len: usize,
+        mut f: impl FnMut(usize, f32),
+    ) {
+        let data = self.span(row, col, len);
+        // F32 has no scales: every value is taken as it is (times 1, exactly).
+        let mut scales = f32s(self.scale_span(col, len)).chain(core::iter::repeat(1.0));
+        for (k, bytes) in data.chunks_exact(self.precision.bytes()).enumerate() {
+            let scale = scales.next().unwrap_or(1.0);
+            let v = match (self.precision, bytes) {
+                (Precision::F32, &[a, b, c, d]) => f32::from_le_bytes([a, b, c, d]),
+                (Precision::F16, &[a, b]) => f16_finite_to_f32(u16::from_le_bytes([a, b])) * scale,
+                (Precision::I16, &[a, b]) => f32::from(i16::from_le_bytes([a, b])) * scale,
+                _ => 0.0,
             };
             f(k, v);
         }

@@ -207,7 +207,7 @@ impl<
             let direct = &mut self.patch_direct;
             basis
                 .output_view()
-                .for_each(patch, 0, outputs.min(OUTPUTS), |o, f| {
+                .for_each_compact(patch, 0, outputs.min(OUTPUTS), |o, f| {
                     if let Some(slot) = direct.get_mut(o).and_then(|r| r.get_mut(b)) {
                         if apply {
                             *slot += f * delta;
