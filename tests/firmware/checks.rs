@@ -224,6 +224,17 @@ fn firmware_matches_eval_office_i16() {
     check_against_eval(&name, &path);
 }
 
+/// The RGB example as built by default: three bands, one channel.
+#[test]
+fn firmware_matches_eval_cornell_box() {
+    let (path, name) = cornell_box_basis();
+    let Some(run) = check_against_eval(&name, &path) else {
+        return;
+    };
+    assert_eq!(run.basis["bands"], 3);
+    assert_eq!(run.basis["channels"], 1);
+}
+
 #[test]
 fn firmware_matches_eval_rgb() {
     check_against_eval("random-rgb", &rgb_basis());
