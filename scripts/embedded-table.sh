@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Measures the firmware example (examples/firmware) on one scene for mode counts 16, 32, 64
 # and storage f32, f16, i16 (9 bases), and prints the two markdown tables of docs/embedded.md
-# (flash and RAM; instructions per call).
+# (flash and RAM; instructions per call) and the runtime's own code.
 #
 # For each basis: `eigenrad build SCENE --modes P --precision S`, then scripts/firmware.sh
 # (build for thumbv7em-none-eabihf with the basis in flash, run under QEMU mps2-an386 with
@@ -84,6 +84,7 @@ for p in $modes_list; do
             continue
         fi
         sizes="$dir/$name.sizes"
+        last_sizes="$sizes"
         out="$dir/$name.out"
         text0=$(field "$sizes" text size tiny)
         text1=$(field "$sizes" text size basis)
@@ -119,3 +120,15 @@ printf '\n### Instructions per call\n\n'
 printf '| p | storage | full update | one channel | read all outputs | full update + read all outputs | one channel + read all outputs | one patch exitance | set one patch exitance | read all outputs, patch exitance set | one patch exitance, patch exitance set |\n'
 printf '|---|---|---|---|---|---|---|---|---|---|---|\n'
 printf '%s\n' "${instructions[@]}"
+
+if [[ -n ${last_sizes:-} ]]; then
+    printf "\n### The runtime's own code\n\n"
+    printf '| what the firmware links | .text (bytes) | .rodata (bytes) |\n'
+    printf '|---|---|---|\n'
+    printf '| decoding + every `ChannelEvaluator` operation | %s | %s |\n' \
+        "$(field "$last_sizes" text size runtime_channels)" \
+        "$(field "$last_sizes" rodata size runtime_channels)"
+    printf '| decoding + every `Evaluator` operation | %s | %s |\n' \
+        "$(field "$last_sizes" text size runtime_patches)" \
+        "$(field "$last_sizes" rodata size runtime_patches)"
+fi

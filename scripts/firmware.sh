@@ -54,14 +54,16 @@ if ! rustup target list --installed | grep -qx "$triple"; then
     rustup target add "$triple" >&2
 fi
 
-# Builds the firmware with basis $1 in target folder $2 and copies the ELF to $3. The tiny
-# build has a folder of its own: its fingerprint then stays fresh from one call to the next,
-# and only the build with the caller's basis is redone.
+# Builds the firmware with basis $1 in target folder $2 and copies the ELF to $3; further
+# arguments go to cargo. The tiny build has a folder of its own: its fingerprint then stays
+# fresh from one call to the next, and only the build with the caller's basis is redone.
 build() {
-    log "building the firmware with $1"
+    local basis="$1" dir="$2" elf="$3"
+    shift 3
+    log "building the firmware with $basis"
     (cd "$root/examples/firmware" &&
-        EIGENRAD_BASIS="$1" CARGO_TARGET_DIR="$2" cargo build --release --quiet) >&2
-    cp "$2/$triple/release/eigenrad-firmware" "$3"
+        EIGENRAD_BASIS="$basis" CARGO_TARGET_DIR="$dir" cargo build --release --quiet "$@") >&2
+    cp "$dir/$triple/release/eigenrad-firmware" "$elf"
 }
 
 # A tool that prints section sizes in System V form (`name size addr` rows).
@@ -89,8 +91,9 @@ sections() {
         "$tool" -A "$1" | awk 'NF >= 2 && $1 ~ /^\./ { print $1, $2 }'
     else
         # readelf -SW: "[Nr] Name Type Address Off Size ..." with sizes in hex.
-        readelf -SW "$1" | sed 's/^ *\[ *[0-9]*\]//' |
-            awk '$1 ~ /^\./ { printf "%s %d\n", $1, strtonum("0x" $5) }'
+        # Hex to decimal in the shell: not every awk has strtonum.
+        readelf -SW "$1" | sed 's/^ *\[ *[0-9]*\]//' | awk '$1 ~ /^\./ { print $1, $5 }' |
+            while read -r name hex; do echo "$name $((16#$hex))"; done
     fi
 }
 
@@ -107,9 +110,23 @@ report_size() {
         }'
 }
 
+# Prints the code-size line of probe $1 (`.text` and `.rodata` less the empty probe's).
+report_probe() {
+    local release="$target_dir/tiny/$triple/release"
+    { sections "$release/code_size_$1" | sed 's/^/probe /'; sections "$release/code_size_empty"; } |
+        awk -v label="runtime_$1" '
+            $1 == "probe" { probe[$2] = $3; next }
+            { empty[$1] = $2 }
+            END {
+                printf "size %s text %d rodata %d\n", label,
+                    probe[".text"] - empty[".text"], probe[".rodata"] - empty[".rodata"]
+            }'
+}
+
 mkdir -p "$target_dir"
-build "$tiny" "$target_dir/tiny" "$target_dir/firmware-tiny.elf"
-build "$basis" "$target_dir" "$target_dir/firmware.elf"
+# The tiny build also builds the code-size probes (every binary of the example).
+build "$tiny" "$target_dir/tiny" "$target_dir/firmware-tiny.elf" --bins
+build "$basis" "$target_dir" "$target_dir/firmware.elf" --bin eigenrad-firmware
 
 log "running under QEMU"
 status=0
@@ -120,6 +137,8 @@ status=0
 
 report_size "$target_dir/firmware-tiny.elf" tiny "$tiny"
 report_size "$target_dir/firmware.elf" basis "$basis"
+report_probe channels
+report_probe patches
 
 if [[ $status -ne 0 ]]; then
     echo "firmware.sh: the firmware failed (status $status); its output is in $output" >&2

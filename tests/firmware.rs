@@ -18,8 +18,10 @@
 //!   16 modes in f16 and at 64 modes in i16. A build's form factors cost grows as the square
 //!   of the patch count, so the coarse mesh keeps the test's run time down while the
 //!   precisions and mode counts still differ from the f32 basis;
-//! - a random three-band basis (tables of plausible size but no room behind them): the RGB
-//!   example scene, the Cornell box, takes as long to build as the office.
+//! - the Cornell box example (`examples/cornell-box/scene.toml`, three bands, one channel) as
+//!   `eigenrad build` makes it by default;
+//! - a random three-band basis (tables of plausible size but no room behind them, several
+//!   channels).
 //!
 //! The `eigenrad` command is built with `cargo build --profile test` (a no-op when it is up
 //! to date) unless `EIGENRAD_BIN` names one. Each basis is built once per test run, in
@@ -210,6 +212,26 @@ fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) 
     eprintln!("built {name}:\n{}", String::from_utf8_lossy(&report.stdout));
     built.insert(name.clone(), path.clone());
     (path, name)
+}
+
+/// `eigenrad build` of the Cornell box example (`examples/cornell-box/scene.toml`: three
+/// bands, one channel) with the default settings, once per test run.
+fn cornell_box_basis() -> (PathBuf, String) {
+    static BUILT: OnceLock<PathBuf> = OnceLock::new();
+    let name = "cornell-box".to_string();
+    let path = BUILT.get_or_init(|| {
+        let scene = root().join("examples/cornell-box/scene.toml");
+        let path = work_dir().join(format!("{name}.basis"));
+        let report = run_eigenrad(&[
+            "build".as_ref(),
+            scene.as_os_str(),
+            "-o".as_ref(),
+            path.as_os_str(),
+        ]);
+        eprintln!("built {name}:\n{}", String::from_utf8_lossy(&report.stdout));
+        path
+    });
+    (path.clone(), name)
 }
 
 // ---------------------------------------------------------------------------------------

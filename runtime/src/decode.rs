@@ -154,12 +154,8 @@ fn names(raw: &Payload<'_>, c: &Counts) -> Result<()> {
 fn eigenvalues(raw: &Payload<'_>, c: &Counts, formulation: Formulation) -> Result<()> {
     let count = cols(c.modes_cols())?;
     match formulation {
-        Formulation::Split => f32_table("eigenvalues", raw.eigenvalues, count, |mu| {
-            mu.abs() <= MAX_MU
-        }),
-        Formulation::Seed => f32_table("eigenvalues", raw.eigenvalues, count, |l| {
-            bounded(l) && l >= MIN_LAMBDA
-        }),
+        Formulation::Split => f32_table("eigenvalues", raw.eigenvalues, count, Allowed::Mu),
+        Formulation::Seed => f32_table("eigenvalues", raw.eigenvalues, count, Allowed::Lambda),
     }
 }
 
@@ -167,20 +163,33 @@ fn eigenvalues(raw: &Payload<'_>, c: &Counts, formulation: Formulation) -> Resul
 fn patch_tables(raw: &Payload<'_>, c: &Counts) -> Result<()> {
     let n = c.patch_count;
     let nb = mul(n, c.bands)?;
-    f32_table("patch_area", raw.patch_area, n, positive)?;
-    f32_table("patch_centroid", raw.patch_centroid, mul(n, 3)?, bounded)?;
-    u16_table("patch_surface", raw.patch_surface, n, |s| {
-        usize::from(s) < c.surface_count
-    })?;
-    u16_table("patch_channel", raw.patch_channel, n, |ch| {
-        ch == NO_CHANNEL || usize::from(ch) < c.channel_count
-    })?;
-    f32_table("patch_reflectance", raw.patch_reflectance, nb, |r| {
-        r == 0.0 || (MIN_REFLECTANCE..1.0).contains(&r)
-    })?;
-    f32_table("patch_emission", raw.patch_emission, nb, |e| {
-        bounded(e) && e >= 0.0
-    })?;
+    f32_table("patch_area", raw.patch_area, n, Allowed::Positive)?;
+    f32_table(
+        "patch_centroid",
+        raw.patch_centroid,
+        mul(n, 3)?,
+        Allowed::Bounded,
+    )?;
+    u16_table(
+        "patch_surface",
+        raw.patch_surface,
+        n,
+        c.surface_count,
+        false,
+    )?;
+    u16_table("patch_channel", raw.patch_channel, n, c.channel_count, true)?;
+    f32_table(
+        "patch_reflectance",
+        raw.patch_reflectance,
+        nb,
+        Allowed::Reflectance,
+    )?;
+    f32_table(
+        "patch_emission",
+        raw.patch_emission,
+        nb,
+        Allowed::NonNegative,
+    )?;
     // Emission belongs to a channel: a patch outside every channel emits nothing.
     if let Some(index) = (0..nb).position(|k| {
         f32_at(raw.patch_emission, k) != 0.0 && u16_at(raw.patch_channel, k / c.bands) == NO_CHANNEL
@@ -238,7 +247,12 @@ fn black_patches(raw: &Payload<'_>, c: &Counts) -> Result<()> {
         });
     }
     let count = mul(black, cols(c.modes_cols())?)?;
-    f32_table("black_projection", raw.black_projection, count, bounded)
+    f32_table(
+        "black_projection",
+        raw.black_projection,
+        count,
+        Allowed::Bounded,
+    )
 }
 
 /// Channel tables: the `channel_response` matrix, `n × (m·B)` in both formulations.
@@ -258,11 +272,26 @@ fn outputs(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
     let o = cols(c.output_count())?;
     let bp = cols(c.modes_cols())?;
     let sensors = mul(c.sensor_count, 7)?;
-    f32_table("sensor_geometry", raw.sensor_geometry, sensors, bounded)?;
-    f32_table("zone_area", raw.zone_area, c.zone_count, positive)?;
-    f32_table("output_modes", raw.output_modes, mul(o, bp)?, bounded)?;
+    f32_table(
+        "sensor_geometry",
+        raw.sensor_geometry,
+        sensors,
+        Allowed::Bounded,
+    )?;
+    f32_table("zone_area", raw.zone_area, c.zone_count, Allowed::Positive)?;
+    f32_table(
+        "output_modes",
+        raw.output_modes,
+        mul(o, bp)?,
+        Allowed::Bounded,
+    )?;
     let count = mul(mul(o, c.bands)?, c.channel_count)?;
-    f32_table("output_channels", raw.output_channels, count, bounded)?;
+    f32_table(
+        "output_channels",
+        raw.output_channels,
+        count,
+        Allowed::Bounded,
+    )?;
     let cols = cols(c.output_view_cols())?;
     matrix(
         "output_view.data",
@@ -294,7 +323,9 @@ fn cols(count: Option<usize>) -> Result<usize> {
     })
 }
 
-/// Checks that `bytes` holds exactly `count` values of `width` bytes.
+/// Checks that `bytes` holds exactly `count` values of `width` bytes. Not inlined: it runs
+/// once per table, and one copy of it takes less flash than one per table.
+#[inline(never)]
 fn check_len(field: &'static str, bytes: &[u8], count: usize, width: usize) -> Result<()> {
     let expected = mul(count, width)?;
     if bytes.len() == expected {
@@ -308,45 +339,68 @@ fn check_len(field: &'static str, bytes: &[u8], count: usize, width: usize) -> R
     }
 }
 
-/// Checks every `f32` of a table against `ok`.
-fn check_f32(field: &'static str, bytes: &[u8], ok: impl Fn(f32) -> bool) -> Result<()> {
-    match f32s(bytes).position(|v| !ok(v)) {
+/// The values a stored `f32` table may hold. A value rather than a closure, so that one
+/// checking loop serves every table (one copy of it in flash).
+#[derive(Clone, Copy)]
+enum Allowed {
+    /// Finite, magnitude at most [`VALUE_LIMIT`].
+    Bounded,
+    /// Bounded and > 0 (areas).
+    Positive,
+    /// Bounded and ≥ 0 (emission, scales).
+    NonNegative,
+    /// 0 (black) or in `[MIN_REFLECTANCE, 1)`.
+    Reflectance,
+    /// A split eigenvalue: `|μ| ≤ MAX_MU`.
+    Mu,
+    /// A seed eigenvalue: bounded and at least [`MIN_LAMBDA`].
+    Lambda,
+}
+
+impl Allowed {
+    fn admits(self, v: f32) -> bool {
+        let bounded = v.is_finite() && v.abs() <= VALUE_LIMIT;
+        match self {
+            Allowed::Bounded => bounded,
+            Allowed::Positive => bounded && v > 0.0,
+            Allowed::NonNegative => bounded && v >= 0.0,
+            Allowed::Reflectance => v == 0.0 || (MIN_REFLECTANCE..1.0).contains(&v),
+            Allowed::Mu => v.abs() <= MAX_MU,
+            Allowed::Lambda => bounded && v >= MIN_LAMBDA,
+        }
+    }
+}
+
+/// Checks every `f32` of a table against `allowed`.
+fn check_f32(field: &'static str, bytes: &[u8], allowed: Allowed) -> Result<()> {
+    match f32s(bytes).position(|v| !allowed.admits(v)) {
         Some(index) => Err(Error::DecodeValue { field, index }),
         None => Ok(()),
     }
 }
 
-/// A table of `count` little-endian `f32`, each satisfying `ok`.
-fn f32_table(
-    field: &'static str,
-    bytes: &[u8],
-    count: usize,
-    ok: impl Fn(f32) -> bool,
-) -> Result<()> {
+/// A table of `count` little-endian `f32`, each one `allowed`.
+fn f32_table(field: &'static str, bytes: &[u8], count: usize, allowed: Allowed) -> Result<()> {
     check_len(field, bytes, count, 4)?;
-    check_f32(field, bytes, ok)
+    check_f32(field, bytes, allowed)
 }
 
-/// A table of `count` little-endian `u16`, each satisfying `ok`.
+/// A table of `count` little-endian `u16` indices, each below `limit` (or [`NO_CHANNEL`]
+/// where `no_channel_allowed`). Not inlined, as [`check_len`].
+#[inline(never)]
 fn u16_table(
     field: &'static str,
     bytes: &[u8],
     count: usize,
-    ok: impl Fn(u16) -> bool,
+    limit: usize,
+    no_channel_allowed: bool,
 ) -> Result<()> {
     check_len(field, bytes, count, 2)?;
-    match (0..count).position(|i| !ok(u16_at(bytes, i))) {
+    let admits = |v: u16| usize::from(v) < limit || (no_channel_allowed && v == NO_CHANNEL);
+    match (0..count).position(|i| !admits(u16_at(bytes, i))) {
         Some(index) => Err(Error::DecodeValue { field, index }),
         None => Ok(()),
     }
-}
-
-fn bounded(v: f32) -> bool {
-    v.is_finite() && v.abs() <= VALUE_LIMIT
-}
-
-fn positive(v: f32) -> bool {
-    bounded(v) && v > 0.0
 }
 
 /// A `rows × cols` matrix in `precision` (`docs/format.md`, "Matrices"): data and scales of
@@ -365,9 +419,9 @@ fn matrix(
         Precision::F16 | Precision::I16 => cols,
     };
     check_len(scales_field, raw.scales, scale_count, 4)?;
-    check_f32(scales_field, raw.scales, |s| bounded(s) && s >= 0.0)?;
+    check_f32(scales_field, raw.scales, Allowed::NonNegative)?;
     match precision {
-        Precision::F32 => check_f32(field, raw.data, bounded),
+        Precision::F32 => check_f32(field, raw.data, Allowed::Bounded),
         // Exponent 31 is infinity or NaN.
         Precision::F16 => match raw
             .data

@@ -394,23 +394,32 @@ fn byte(bytes: &[u8], at: usize) -> u8 {
     bytes.get(at).copied().unwrap_or(0)
 }
 
-/// Converts an IEEE binary16 bit pattern to `f32` (exact: every f16 is an f32).
+/// Converts an IEEE binary16 bit pattern to `f32` (exact: every f16 is an f32). Infinities
+/// and NaNs map to their `f32` counterparts.
 pub fn f16_to_f32(bits: u16) -> f32 {
-    let sign = u32::from(bits >> 15) << 31;
-    let exp = u32::from((bits >> 10) & 0x1F);
-    let man = u32::from(bits & 0x3FF);
-    let out = match (exp, man) {
-        (0, 0) => sign,
-        (0, _) => {
-            // Subnormal: value = man × 2^-24, exactly representable in f32.
-            let v = man as f32 * (1.0 / 16_777_216.0);
-            return if sign != 0 { -v } else { v };
-        }
-        (0x1F, 0) => sign | 0x7F80_0000,
-        (0x1F, _) => sign | 0x7FC0_0000 | (man << 13),
-        _ => sign | ((exp + 112) << 23) | (man << 13),
-    };
-    f32::from_bits(out)
+    if bits & 0x7C00 == 0x7C00 {
+        let sign = u32::from(bits & 0x8000) << 16;
+        let man = u32::from(bits & 0x3FF) << 13;
+        let quiet = if man != 0 { 0x0040_0000 } else { 0 };
+        return f32::from_bits(sign | 0x7F80_0000 | quiet | man);
+    }
+    f16_finite_to_f32(bits)
+}
+
+/// `2^112`: the difference between the exponent biases of `f32` (127) and binary16 (15).
+const F16_TO_F32_SCALE: f32 = f32::from_bits((127 + 112) << 23);
+
+/// Converts the bit pattern of a finite binary16 to `f32`, exactly, without a branch: the
+/// sign, exponent and mantissa fields shifted into place form an `f32` of the value times
+/// 2⁻¹¹² (a subnormal half becomes a subnormal single), and one multiplication by 2¹¹²
+/// restores it. The decoder rejects infinities and NaNs in stored tables, so the evaluator
+/// reads through this. (An FPU in flush-to-zero mode would read the few subnormal halves,
+/// magnitudes below 2⁻¹⁴ of their column's scale, as 0.)
+#[inline]
+pub(crate) fn f16_finite_to_f32(bits: u16) -> f32 {
+    let sign = u32::from(bits & 0x8000) << 16;
+    let magnitude = u32::from(bits & 0x7FFF) << 13;
+    f32::from_bits(sign | magnitude) * F16_TO_F32_SCALE
 }
 
 /// Converts `f32` to the nearest IEEE binary16 bit pattern (round to nearest even).

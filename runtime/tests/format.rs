@@ -522,6 +522,31 @@ fn f16_conversion_is_exact_where_it_can_be() {
     assert!(f16_to_f32(f32_to_f16(f32::NAN)).is_nan());
 }
 
+/// Every one of the 65536 binary16 bit patterns reads as the value IEEE 754 defines for it,
+/// computed here from the fields in `f64`: (−1)^s × 2^(e−15) × (1 + m/1024) for a normal
+/// half, (−1)^s × 2^−24 × m for a subnormal one, infinity or NaN for e = 31.
+#[test]
+fn every_f16_bit_pattern_reads_as_its_ieee_value() {
+    for bits in 0..=u16::MAX {
+        let sign = if bits & 0x8000 != 0 { -1.0f64 } else { 1.0 };
+        let e = i32::from((bits >> 10) & 0x1F);
+        let m = f64::from(bits & 0x3FF);
+        let got = f16_to_f32(bits);
+        match e {
+            31 if m == 0.0 => assert_eq!(f64::from(got), sign * f64::INFINITY, "{bits:#06x}"),
+            31 => assert!(got.is_nan(), "{bits:#06x}"),
+            0 => assert_eq!(f64::from(got), sign * m * 2f64.powi(-24), "{bits:#06x}"),
+            _ => assert_eq!(
+                f64::from(got),
+                sign * 2f64.powi(e - 15) * (1.0 + m / 1024.0),
+                "{bits:#06x}"
+            ),
+        }
+        // The sign of zero is kept too.
+        assert_eq!(got.is_sign_negative(), bits & 0x8000 != 0, "{bits:#06x}");
+    }
+}
+
 #[test]
 fn no_byte_string_panics() {
     // Every prefix and every single-byte corruption of a valid basis decodes to Ok or Err.

@@ -173,6 +173,10 @@ const INSTRUCTIONS: [&str; 9] = [
 /// that exceeds a budget fails here rather than in a later table.
 const BUDGET_FULL_UPDATE_READ_OUTPUTS: u64 = 1000;
 const BUDGET_CHANNEL_UPDATE: u64 = 300;
+/// Flash the runtime's own code may take (`.text`, bytes): decoding plus every operation of
+/// the full `Evaluator`, as the code-size probes of the firmware example measure it
+/// (`scripts/firmware.sh`, docs/embedded.md). A controller that only dims channels links less.
+const BUDGET_RUNTIME_TEXT: usize = 12 * 1024;
 
 #[test]
 fn firmware_matches_eval_office_f32() {
@@ -196,6 +200,14 @@ fn firmware_matches_eval_office_f32() {
         one <= BUDGET_CHANNEL_UPDATE,
         "one channel: {one} instructions, budget {BUDGET_CHANNEL_UPDATE}"
     );
+    let channels = run.sizes["runtime_channels"]["text"];
+    let all = run.sizes["runtime_patches"]["text"];
+    assert!(
+        all <= BUDGET_RUNTIME_TEXT,
+        "runtime .text {all} bytes, budget {BUDGET_RUNTIME_TEXT}"
+    );
+    // The channel-only probe exercises a subset of the full one.
+    assert!(0 < channels && channels < all, "{channels} vs {all}");
 }
 
 /// Mode vectors, channel responses and view rows in f16: the patch exitances read them.
@@ -210,6 +222,17 @@ fn firmware_matches_eval_office_f16() {
 fn firmware_matches_eval_office_i16() {
     let (path, name) = office_basis(Mesh::Coarse, 64, "i16");
     check_against_eval(&name, &path);
+}
+
+/// The RGB example as built by default: three bands, one channel.
+#[test]
+fn firmware_matches_eval_cornell_box() {
+    let (path, name) = cornell_box_basis();
+    let Some(run) = check_against_eval(&name, &path) else {
+        return;
+    };
+    assert_eq!(run.basis["bands"], 3);
+    assert_eq!(run.basis["channels"], 1);
 }
 
 #[test]

@@ -145,7 +145,7 @@ impl<'a, const BANDS: usize, const CHANNELS: usize> ChannelEvaluator<'a, BANDS, 
         // Several bands: one pass over the row (channel-major, band-minor), no index
         // arithmetic per value.
         let (mut channel, mut band) = (0, 0);
-        response.for_each(patch, 0, levels.len() * BANDS, |_, v| {
+        response.for_each_compact(patch, 0, levels.len() * BANDS, |_, v| {
             if let (Some(slot), Some(&level)) = (out.get_mut(band), levels.get(channel)) {
                 *slot += v * level;
             }

@@ -149,44 +149,13 @@ impl<
             .get(patch)
             .copied()
             .unwrap_or([0.0; BANDS]);
-        let outputs = basis.counts.sensor_count + basis.counts.zone_count;
         // Two passes: check that every updated value stays finite, then apply, so that a
         // rejected request leaves the state exactly as it was.
         for apply in [false, true] {
             for b in 0..BANDS {
                 let delta =
                     exitance.get(b).copied().unwrap_or(0.0) - old.get(b).copied().unwrap_or(0.0);
-                if delta == 0.0 {
-                    continue;
-                }
-                let mut ok = true;
-                let Some(amp) = self.amplitude.get_mut(b) else {
-                    continue;
-                };
-                patch_response(&basis, patch, b, delta, |k, step| {
-                    if let Some(a) = amp.get_mut(k) {
-                        if apply {
-                            *a += step;
-                        } else {
-                            ok &= (*a + step).is_finite();
-                        }
-                    }
-                });
-                if identity(&basis, patch, b) {
-                    let direct = &mut self.patch_direct;
-                    basis
-                        .output_view()
-                        .for_each(patch, 0, outputs.min(OUTPUTS), |o, f| {
-                            if let Some(slot) = direct.get_mut(o).and_then(|r| r.get_mut(b)) {
-                                if apply {
-                                    *slot += f * delta;
-                                } else {
-                                    ok &= (*slot + f * delta).is_finite();
-                                }
-                            }
-                        });
-                }
-                if !ok {
+                if delta != 0.0 && !self.add_patch_exitance(patch, b, delta, apply) {
                     return Err(Error::InvalidInput { what: "exitance" });
                 }
             }
@@ -209,6 +178,46 @@ impl<
             _ => {}
         }
         Ok(())
+    }
+
+    /// Adds `delta` more exitance on `patch` in band `b` to the mode amplitudes and, where it
+    /// is carried exactly, to the direct light on the outputs; with `apply` false only checks
+    /// that every updated value would stay finite. `false` when one would not.
+    ///
+    /// Not inlined: [`set_patch_exitance`](Self::set_patch_exitance) calls it in both passes,
+    /// and one copy of the loops over the three storage precisions is enough in flash.
+    #[inline(never)]
+    fn add_patch_exitance(&mut self, patch: usize, b: usize, delta: f32, apply: bool) -> bool {
+        let basis = self.channels.basis;
+        let outputs = basis.counts.sensor_count + basis.counts.zone_count;
+        let mut ok = true;
+        let Some(amp) = self.amplitude.get_mut(b) else {
+            return true;
+        };
+        patch_response(&basis, patch, b, delta, |k, step| {
+            if let Some(a) = amp.get_mut(k) {
+                if apply {
+                    *a += step;
+                } else {
+                    ok &= (*a + step).is_finite();
+                }
+            }
+        });
+        if identity(&basis, patch, b) {
+            let direct = &mut self.patch_direct;
+            basis
+                .output_view()
+                .for_each_compact(patch, 0, outputs.min(OUTPUTS), |o, f| {
+                    if let Some(slot) = direct.get_mut(o).and_then(|r| r.get_mut(b)) {
+                        if apply {
+                            *slot += f * delta;
+                        } else {
+                            ok &= (*slot + f * delta).is_finite();
+                        }
+                    }
+                });
+        }
+        ok
     }
 
     /// Removes all exitance set with [`set_patch_exitance`](Self::set_patch_exitance).
