@@ -265,6 +265,31 @@ pub(crate) struct ObjDef {
     /// Drop a face whose corners are those of an earlier face of the same surface.
     #[serde(default)]
     pub drop_duplicate_faces: bool,
+    /// What the MTL `Ke` values are.
+    #[serde(default)]
+    pub ke: KeMeaning,
+}
+
+/// `obj.ke`: what an MTL file's `Ke` gives.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum KeMeaning {
+    /// Emitted radiance (W/(m²·sr) per band, or cd/m²), as renderers read it: a Lambertian
+    /// emitter's exitance is π times it.
+    #[default]
+    Radiance,
+    /// The exitance itself (W/m² per band, or lux).
+    Exitance,
+}
+
+impl KeMeaning {
+    /// Exitance (W/m² or lux) per unit of `Ke`.
+    pub fn exitance_per_ke(self) -> f64 {
+        match self {
+            KeMeaning::Radiance => std::f64::consts::PI,
+            KeMeaning::Exitance => 1.0,
+        }
+    }
 }
 
 /// `obj.name_by`: what names the surfaces of an OBJ file.

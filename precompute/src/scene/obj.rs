@@ -1,6 +1,7 @@
 //! Geometry and materials from an OBJ/MTL pair (via `tobj`).
 //!
-//! MTL `Kd` is the reflectance and `Ke` the exitance at level 1; photopic scenes reduce RGB to
+//! MTL `Kd` is the reflectance and `Ke` the emitted radiance (exitance π·Ke) or, with
+//! `ke = "exitance"`, the exitance at level 1; photopic scenes reduce RGB to
 //! one band with the luminance weights of ITU-R BT.709 (0.2126, 0.7152, 0.0722).
 
 use std::collections::HashSet;
@@ -10,7 +11,7 @@ use toml::Spanned;
 
 use super::context::{Ctx, MaterialInfo, RawSurface};
 use super::error::{Location, SceneError};
-use super::file::{NameBy, ObjDef, UpAxis};
+use super::file::{KeMeaning, NameBy, ObjDef, UpAxis};
 use crate::geometry::Vec3;
 
 /// What one OBJ file contributes.
@@ -42,7 +43,7 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         [one] => Location::file(one),
         _ => obj_at.clone(),
     };
-    let infos = material_infos(ctx, &materials, &mtl_at)?;
+    let infos = material_infos(ctx, &materials, &mtl_at, o.ke)?;
     let transform = Transform::new(ctx, o)?;
     let max_edge = ctx.optional_length(o.max_edge.as_ref(), "obj.max_edge")?;
     let placed = Placement {
@@ -156,21 +157,29 @@ fn read(o: &ObjDef, at: &Location, path: &Path) -> Result<Loaded, SceneError> {
     })
 }
 
-/// The MTL materials in the scene's bands: `Kd` as reflectance, `Ke` as exitance, checked as
-/// written (RGB) and located at `mtl_at`.
+/// The MTL materials in the scene's bands: `Kd` as reflectance, `Ke` as the emitted radiance
+/// or the exitance (`ke`), checked as exitance in RGB and located at `mtl_at`.
 fn material_infos(
     ctx: &Ctx,
     materials: &[tobj::Material],
     mtl_at: &Location,
+    ke: KeMeaning,
 ) -> Result<Vec<(String, MaterialInfo)>, SceneError> {
     let mut infos = Vec::with_capacity(materials.len());
     for m in materials {
         let field = format!("MTL material `{}`", m.name);
         let kd = m.diffuse.unwrap_or([0.0; 3]);
-        let ke = m.emissive.unwrap_or([0.0; 3]);
-        // Checked as written (RGB), before a photopic scene reduces them to one band.
+        let exitance = m
+            .emissive
+            .unwrap_or([0.0; 3])
+            .map(|k| k * ke.exitance_per_ke());
+        // Checked in RGB, before a photopic scene reduces them to one band.
         let kd = ctx.check_reflectance(kd.to_vec(), mtl_at, &format!("{field} Kd"))?;
-        let ke = ctx.check_exitance(ke.to_vec(), mtl_at, &format!("{field} Ke"))?;
+        let ke_field = match ke {
+            KeMeaning::Radiance => format!("{field} Ke (radiance; exitance π·Ke)"),
+            KeMeaning::Exitance => format!("{field} Ke (exitance)"),
+        };
+        let ke = ctx.check_exitance(exitance.to_vec(), mtl_at, &ke_field)?;
         let reflectance = ctx.bands_of_rgb([kd[0], kd[1], kd[2]]);
         let emission = ctx.bands_of_rgb([ke[0], ke[1], ke[2]]);
         infos.push((

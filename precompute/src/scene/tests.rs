@@ -206,7 +206,7 @@ fn scene_cornell_box_example() {
         assert!(p.centroid.z.abs() < 1e-12 && p.normal.z > 0.999);
     }
 
-    // Channel `light` from Ke (17, 12, 4).
+    // Channel `light` from Ke (17, 12, 4), a radiance: exitance π·Ke.
     assert_eq!(scene.channels.len(), 1);
     assert_eq!(scene.channels[0].name, "light");
     assert_eq!(
@@ -217,8 +217,8 @@ fn scene_cornell_box_example() {
             .position(|s| s.name == "light")
             .unwrap_or(usize::MAX)]
     );
-    for (e, want) in scene.channels[0].exitance.iter().zip([17.0, 12.0, 4.0]) {
-        assert!((e - want).abs() < 1e-12);
+    for (e, ke) in scene.channels[0].exitance.iter().zip([17.0, 12.0, 4.0]) {
+        assert!((e - std::f64::consts::PI * ke).abs() < 1e-12);
     }
     let light = surface(&scene, "light");
     assert!((light.reflectance[0] - 0.78).abs() < 1e-12);

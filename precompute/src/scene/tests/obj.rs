@@ -77,3 +77,49 @@ fn scene_obj_units_transform_and_photopic_reduction() {
         "{m}"
     );
 }
+
+/// MTL `Ke` is an emitted radiance by default, as renderers read it (exitance = π·Ke for a
+/// Lambertian emitter); `ke = "exitance"` takes it as the exitance itself. And `up = "y"` turns
+/// the file by +90° about x: OBJ (x, y, z) is scene (x, −z, y).
+#[test]
+fn scene_obj_ke_meaning_and_y_up_axes() {
+    let dir = scratch("obj-ke");
+    // A 1 m square in the OBJ's x–z plane at y = 2, facing +y (up, in a y-up file).
+    std::fs::write(
+        dir.join("model.obj"),
+        "mtllib m.mtl\nv 0 2 0\nv 0 2 -1\nv 1 2 -1\nv 1 2 0\ng lamp\nusemtl glow\nf 1 4 3 2\n",
+    )
+    .expect("write obj");
+    std::fs::write(dir.join("m.mtl"), "newmtl glow\nKd 0.5 0.5 0.5\nKe 1 2 3\n")
+        .expect("write mtl");
+    let base = "[scene]\nname = \"o\"\nbands = \"rgb\"\nunit = \"m\"\nmax_edge = 2\n\n\
+                [[obj]]\nfile = \"model.obj\"\nup = \"y\"\n";
+    let channel = "\n[[channel]]\nname = \"lamp\"\nsurfaces = [\"lamp\"]\n";
+    let radiance = parse(&format!("{base}{channel}"), &dir.join("s.toml")).expect("loads");
+    let pi = std::f64::consts::PI;
+    for (b, ke) in [1.0, 2.0, 3.0].into_iter().enumerate() {
+        assert!((radiance.emission[0][b] - pi * ke).abs() < 1e-12);
+    }
+    let exitance = parse(
+        &format!("{base}ke = \"exitance\"\n{channel}"),
+        &dir.join("s.toml"),
+    )
+    .expect("loads");
+    assert_eq!(exitance.emission[0], vec![1.0, 2.0, 3.0]);
+    // OBJ y = 2 is scene z = 2; OBJ z in [−1, 0] is scene y in [0, 1]; the normal +y is +z.
+    let p = &radiance.patches[0];
+    assert!((p.centroid.z - 2.0).abs() < 1e-12, "{:?}", p.centroid);
+    assert!((p.centroid.y - 0.5).abs() < 1e-12 && (p.centroid.x - 0.5).abs() < 1e-12);
+    assert!((p.normal.z - 1.0).abs() < 1e-12, "{:?}", p.normal);
+    // An exitance beyond what a basis stores names the convention.
+    std::fs::write(
+        dir.join("m.mtl"),
+        "newmtl glow\nKd 0.5 0.5 0.5\nKe 4e8 0 0\n",
+    )
+    .expect("write mtl");
+    let m = match parse(&format!("{base}{channel}"), &dir.join("s.toml")) {
+        Ok(_) => panic!("π·Ke above the largest exitance accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(m.contains("m.mtl") && m.contains("Ke (radiance"), "{m}");
+}
