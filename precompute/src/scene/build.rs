@@ -5,10 +5,12 @@ use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::Path;
 
+use super::contacts::{self, Footprint};
 use super::context::{unique, Ctx, MaterialInfo, RawSurface};
 use super::error::SceneError;
 use super::file::{BandsDef, SceneFile};
 use super::mesh::{check_face, mesh_face, triangulate};
+use super::openings::CONTACT_TOLERANCE;
 use super::{channels, limits, luminaires, obj, observers, openings, primitives, winding};
 use super::{Bands, Scene, Surface};
 use crate::geometry::{Face, Patch, Polygon, Vec3};
@@ -66,7 +68,21 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     )?;
 
     let raw = &geometry.raw;
-    let meshed = mesh(raw, &materials, &flip, &split, max_edge, planarity)?;
+    let objects: Vec<usize> = geometry
+        .obj_surfaces
+        .iter()
+        .flat_map(|r| r.clone())
+        .collect();
+    let footprints = contacts::footprints(raw, &objects, contact_tolerance(raw));
+    let meshed = mesh(
+        raw,
+        &materials,
+        &flip,
+        &split,
+        &footprints,
+        max_edge,
+        planarity,
+    )?;
     let luminaires = luminaires::place(&ctx, &file.luminaire, &file.channel)?;
     let lit: Vec<bool> = (0..file.channel.len())
         .map(|k| luminaires.iter().any(|l| l.channel == k))
@@ -265,13 +281,32 @@ struct Meshed {
     material_emission: Vec<Vec<f64>>,
 }
 
+/// [`CONTACT_TOLERANCE`] of the diagonal of everything in the scene, metres: how far an OBJ
+/// object's edge may be from a face and still stand on it.
+fn contact_tolerance(raw: &[RawSurface]) -> f64 {
+    let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    let mut hi = Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for p in raw.iter().flat_map(|s| s.faces.iter().flatten()) {
+        lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+        hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+    }
+    let diagonal = (hi - lo).length();
+    if diagonal.is_finite() {
+        CONTACT_TOLERANCE * diagonal
+    } else {
+        0.0
+    }
+}
+
 /// Resolves each surface's material, checks its faces (flat within `planarity`) and meshes
-/// them into patches no longer than `max_edge` (m) or the surface's own.
+/// them into patches no longer than `max_edge` (m) or the surface's own, cut along the
+/// `footprints` of OBJ objects standing on them.
 fn mesh(
     raw: &[RawSurface],
     materials: &BTreeMap<String, MaterialInfo>,
     flip: &[bool],
     split: &[bool],
+    footprints: &[Footprint],
     max_edge: f64,
     planarity: f64,
 ) -> Result<Meshed, SceneError> {
@@ -316,10 +351,26 @@ fn mesh(
             } else {
                 vec![face]
             };
+            let standing: Vec<&Footprint> = footprints
+                .iter()
+                .filter(|fp| fp.surface == index && fp.face == f)
+                .collect();
             for piece in pieces {
                 check_face(&piece, planarity).map_err(bad)?;
                 let first = patches.len() + polygons.len();
-                mesh_face(&piece, edge, &mut polygons);
+                let mut grid = Vec::new();
+                mesh_face(&piece, edge, &mut grid);
+                for footprint in &standing {
+                    grid = grid
+                        .into_iter()
+                        .flat_map(|p| {
+                            let normal = p.normal();
+                            contacts::cut(&p.vertices, footprint, normal)
+                        })
+                        .map(Polygon::new)
+                        .collect();
+                }
+                polygons.extend(grid);
                 faces.push(Face {
                     polygon: Polygon::new(piece),
                     patches: first..patches.len() + polygons.len(),

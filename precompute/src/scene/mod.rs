@@ -7,6 +7,7 @@
 
 mod build;
 mod channels;
+mod contacts;
 mod context;
 mod error;
 mod file;
