@@ -37,8 +37,12 @@
 //! variables that cannot move on the optimal face). Phase 2 then minimises the power from
 //! that basis. The tableau is kept as `B⁻¹G` (bounds × channels) and `B⁻¹` (bounds ×
 //! bounds): the columns of `t`, `p` and `q` are ± the columns of `B⁻¹`. After each phase
-//! the basic values are recomputed from the original data through `B⁻¹`, so rounding does
-//! not accumulate in them from one pivot to the next.
+//! the basic values are refined twice against the original rows (`β += B⁻¹ (b − A x)`), so
+//! rounding does not accumulate in them from one pivot to the next. Tableau entries below
+//! 10⁻⁵ are never pivots: in `f32` they are the rounding residue of entries that are 0 (two
+//! bounds on one reading make such entries), and dividing by them would wreck `B⁻¹`. The
+//! verdict (met, or which bound fails) is taken from the final levels against the original
+//! bounds, each within [`FEASIBILITY`] of its row's scale.
 //!
 //! **Termination.** Bland's rule (enter the lowest-indexed improving variable, and among
 //! tied ratios leave the lowest-indexed one) never revisits a basis in exact arithmetic
