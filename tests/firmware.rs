@@ -375,8 +375,62 @@ struct FirmwareRun {
     instructions_per_tick: f64,
     stack_high_water: usize,
     stack_region: usize,
+    /// The `control` records (`examples/firmware/src/control.rs`), when the basis has them.
+    control: Control,
     /// `size` lines of `scripts/firmware.sh`: label → field → bytes.
     sizes: HashMap<String, HashMap<String, usize>>,
+}
+
+/// The controller loop's records.
+#[derive(Debug, Default, Clone)]
+struct Control {
+    /// Basis indices of the dimmed channels.
+    channels: Vec<usize>,
+    /// W at level 1 per dimmed channel.
+    weights: Vec<f32>,
+    sensor: usize,
+    zone: usize,
+    ratio: f32,
+    /// Lux.
+    target: f32,
+    /// `size_of` the `LevelProblem` on the target, bytes.
+    problem_size_of: usize,
+    steps: Vec<ControlStep>,
+}
+
+/// One step of the controller loop; illuminances in lux.
+#[derive(Debug, Default, Clone)]
+struct ControlStep {
+    daylight: f32,
+    reading: f32,
+    estimate: f32,
+    ambient: f32,
+    levels: Vec<f32>,
+    arcs: Vec<u8>,
+    /// W.
+    power: f32,
+    /// `None` when the target is met, else the failing bound and by how much (lux).
+    unmet: Option<(usize, f32)>,
+}
+
+impl ControlStep {
+    /// Reads `levels <l...> arc <a...> power <p> met | unmet <bound> <by>` into the step.
+    fn parse_tail(&mut self, rest: &[&str], line: &str) {
+        let at = |word: &str| {
+            rest.iter()
+                .position(|w| *w == word)
+                .unwrap_or_else(|| panic!("no {word:?} in {line:?}"))
+        };
+        let (l, a, p) = (at("levels"), at("arc"), at("power"));
+        self.levels = rest[l + 1..a].iter().map(|v| number(v, line)).collect();
+        self.arcs = rest[a + 1..p].iter().map(|v| number(v, line)).collect();
+        self.power = number(rest[p + 1], line);
+        self.unmet = match &rest[p + 2..] {
+            ["met"] => None,
+            ["unmet", bound, by] => Some((number(bound, line), number(by, line))),
+            _ => panic!("bad control status in {line:?}"),
+        };
+    }
 }
 
 /// One state of the firmware's level sequence.
@@ -471,6 +525,34 @@ impl FirmwareRun {
                         .map(|v| f64::from(number::<f32>(v, line)))
                         .collect();
                     step.patches.push((number(i, line), values));
+                }
+                ["control", "channels", cs @ ..] => {
+                    run.control.channels = cs.iter().map(|c| number(c, line)).collect();
+                }
+                ["control", "weights", ws @ ..] => {
+                    run.control.weights = ws.iter().map(|w| number(w, line)).collect();
+                }
+                ["control", "setup", "sensor", s, "zone", z, "ratio", r, "target", t, "size_of", n] =>
+                {
+                    run.control.sensor = number(s, line);
+                    run.control.zone = number(z, line);
+                    run.control.ratio = number(r, line);
+                    run.control.target = number(t, line);
+                    run.control.problem_size_of = number(n, line);
+                }
+                ["control", "step", k, "daylight", d, "reading", r, "estimate", e, "ambient", a, rest @ ..] =>
+                {
+                    let k: usize = number(k, line);
+                    assert_eq!(k, run.control.steps.len(), "control steps out of order");
+                    let mut step = ControlStep {
+                        daylight: number(d, line),
+                        reading: number(r, line),
+                        estimate: number(e, line),
+                        ambient: number(a, line),
+                        ..ControlStep::default()
+                    };
+                    step.parse_tail(rest, line);
+                    run.control.steps.push(step);
                 }
                 ["timing", ..] => {}
                 ["instructions", what, n] => {

@@ -15,7 +15,7 @@ pub type Result<T> = core::result::Result<T, Error>;
 /// mean the request does not fit the basis or the evaluator's capacities;
 /// [`Error::UnknownName`] is for callers that look a name up. No byte string and no request
 /// makes the runtime panic.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Error {
     /// The byte string is shorter than the fixed header or than the payload it announces.
@@ -129,6 +129,29 @@ pub enum Error {
         /// Which kind of name (`"channel"`, `"sensor"`, `"zone"`).
         what: &'static str,
     },
+    /// A [`LevelProblem`](crate::LevelProblem) bound whose lower bound is above its upper
+    /// bound.
+    InvalidBound {
+        /// The bound, in the order added.
+        bound: usize,
+    },
+    /// No channel levels in [0, 1] meet every bound of a
+    /// [`LevelProblem`](crate::LevelProblem): the levels written are the closest (least
+    /// total violation), and this is the bound they violate the most.
+    BoundUnmet {
+        /// The bound, in the order added.
+        bound: usize,
+        /// The upper bound is exceeded (else the lower bound is not reached).
+        upper: bool,
+        /// By how much, in the reading's unit (lux in a photopic basis).
+        by: f32,
+    },
+    /// The level solver stopped after this many pivots without an optimum (a safeguard
+    /// against rounding; see `target.rs`).
+    PivotLimit {
+        /// Pivots and bound flips made.
+        pivots: u32,
+    },
 }
 
 impl fmt::Display for Error {
@@ -199,6 +222,21 @@ impl fmt::Display for Error {
             ),
             Error::DaliMask => f.write_str("DALI arc power level 255 (MASK) is not a light level"),
             Error::UnknownName { what } => write!(f, "the basis has no {what} of that name"),
+            Error::InvalidBound { bound } => {
+                write!(f, "bound {bound}: its lower bound is above its upper bound")
+            }
+            Error::BoundUnmet { bound, upper, by } => {
+                write!(
+                f,
+                "no channel levels in [0, 1] meet bound {bound}: the closest levels {} by {by:e} \
+                 (lux in a photopic basis)",
+                if upper { "exceed its upper bound" } else { "fall short of its lower bound" }
+            )
+            }
+            Error::PivotLimit { pivots } => write!(
+                f,
+                "the level solver stopped after {pivots} pivots without reaching an optimum"
+            ),
         }
     }
 }

@@ -11,6 +11,7 @@ mod error;
 mod eval;
 pub mod format;
 mod storage;
+pub mod target;
 #[cfg(any(test, feature = "alloc"))]
 pub mod writer;
 
@@ -18,3 +19,4 @@ pub use basis::{Basis, PatchInfo, SensorInfo, MIN_REFLECTANCE};
 pub use error::{Error, Result};
 pub use eval::{ChannelEvaluator, Evaluator, MAX_EXITANCE, MAX_LEVEL};
 pub use format::{Formulation, Precision, Quantity};
+pub use target::{LevelProblem, Output};

@@ -23,6 +23,7 @@
 //! systick calibration instructions <n> ticks <t> instructions_per_tick <x>
 //! timing <what> reps <r> ticks <t> baseline_ticks <t0>
 //! instructions <what> <per call>                see `measure` for the operations
+//! control ...                                  the controller loop: see `control.rs`
 //! stack high_water <bytes> region <bytes>
 //! done
 //! ```
@@ -32,6 +33,7 @@
 #![no_main]
 #![deny(unsafe_code)]
 
+mod control;
 mod stack;
 mod timing;
 
@@ -142,7 +144,10 @@ fn run() -> Result<(), Fail> {
     );
     // One instantiation per band count, each in its own frame: only one is ever live.
     match basis.bands() {
-        1 => exercise::<1>(basis, &mut ticks, calibration)?,
+        1 => {
+            exercise::<1>(basis, &mut ticks, calibration)?;
+            controller(basis, &mut ticks, calibration)?;
+        }
         3 => exercise::<3>(basis, &mut ticks, calibration)?,
         _ => return Err(Fail::Board("basis band count is neither 1 nor 3")),
     }
@@ -213,6 +218,17 @@ fn exercise<const BANDS: usize>(
     }
     eval.clear_patch_exitance();
     compare(&lights, &eval, step + 1)
+}
+
+/// The controller loop of `control.rs` on a channel evaluator of its own (one band).
+#[inline(never)]
+fn controller(
+    basis: Basis<'_>,
+    ticks: &mut Ticks,
+    calibration: timing::Calibration,
+) -> Result<(), Fail> {
+    let mut lights = ChannelEvaluator::<1, CHANNELS>::new(basis)?;
+    control::run(&mut lights, ticks, calibration)
 }
 
 /// Prints the levels, every sensor and zone reading and a sample of patch exitances after
