@@ -131,4 +131,7 @@ if [[ -n ${last_sizes:-} ]]; then
     printf '| decoding + every `Evaluator` operation | %s | %s |\n' \
         "$(field "$last_sizes" text size runtime_patches)" \
         "$(field "$last_sizes" rodata size runtime_patches)"
+    printf '| decoding + channel levels + outputs + `LevelProblem` (levels for a target) | %s | %s |\n' \
+        "$(field "$last_sizes" text size runtime_levels)" \
+        "$(field "$last_sizes" rodata size runtime_levels)"
 fi

@@ -139,6 +139,7 @@ report_size "$target_dir/firmware-tiny.elf" tiny "$tiny"
 report_size "$target_dir/firmware.elf" basis "$basis"
 report_probe channels
 report_probe patches
+report_probe levels
 
 if [[ $status -ne 0 ]]; then
     echo "firmware.sh: the firmware failed (status $status); its output is in $output" >&2
