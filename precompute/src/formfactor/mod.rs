@@ -11,9 +11,11 @@
 //!   `x` (module `kernel`; Howell's catalogue, Modest eq. 4.36);
 //! - the outer integral (module `pair`) is a Gauss–Legendre rule on patch i (bilinear map for
 //!   quadrilaterals, collapsed map for triangles) whose order falls with the distance between
-//!   the patches ([`FormFactorOptions::quadrature_tolerance`]), rises for touching patches, is
-//!   one common rule for all pairs a blocker may cut, and covers only the front part of i when
-//!   j's plane cuts i;
+//!   the patches ([`FormFactorOptions::quadrature_tolerance`]), is one common rule for all pairs
+//!   a blocker may cut, and covers only the front part of i when j's plane cuts i. Where i
+//!   touches j, comes closer to it than its own size or meets it in a T-junction, i is cut
+//!   into cells refined toward j until each is further from j than its size (half of it next
+//!   to a contact; module `near`: thin cells are first halved across their long side);
 //! - `V_ij(x)` restricts the kernel to the part of j that no blocker hides from `x`. It is exact:
 //!   the shadows of the blockers that can cut the pair (shaft culling, [`Occluders`]) are cut
 //!   out of j, and the contour integral runs over the visible pieces (module `shadow`). Only when
@@ -27,6 +29,7 @@ mod bvh;
 pub mod exchange;
 mod health;
 mod kernel;
+mod near;
 pub mod outputs;
 mod pair;
 mod quadrature;
@@ -122,6 +125,14 @@ pub struct FormFactors {
     pub row_sums: Vec<f64>,
 }
 
+/// Version of the form-factor algorithm: bumped whenever a change alters the numbers
+/// [`patch_form_factors`], [`receiver_form_factors`] or [`point_form_factors`] return for the
+/// same patches and options, so that a cache of form factors can key on it.
+///
+/// 2: the outer integral is refined toward targets that come close without touching, and
+/// toward thin targets; thin source cells are halved across their long side.
+pub const ALGORITHM_VERSION: u32 = 2;
+
 /// A progress bar on stderr, or a hidden one.
 fn progress_bar(len: usize, show: bool, what: &str) -> ProgressBar {
     if !show {
@@ -157,6 +168,7 @@ pub fn patch_form_factors_with(
         gauss: gauss_rules(max_order(opts)),
         occluders,
         opts,
+        refine_gaps: true,
     };
     let bar = progress_bar(n, opts.progress, "form factors");
     // Column i holds row i of the raw F, so that rows are filled in parallel contiguously.
@@ -238,6 +250,7 @@ pub fn point_form_factors(
         gauss: gauss_rules(max_order(&opts)),
         occluders,
         opts: &opts,
+        refine_gaps: false,
     };
     let normal = normal.normalized();
     let cone = half_angle.and_then(|a| Cone::new(normal, a));
@@ -267,6 +280,10 @@ pub fn point_form_factors(
 /// Receiving patches that do not block light (e.g. a work plane) to every scene patch, with
 /// occlusion by the scene patches: rows = receivers, `F_rj` (dimensionless, fraction of the
 /// receiver's hemispherical view, front side only), `n_receivers × n`.
+///
+/// A receiver floats in the room: it is refined toward the patches it touches, but not toward
+/// those it merely comes close to, so that all other pairs of its row share one rule and the
+/// row of a receiver in a closed room sums to 1 to rounding.
 pub fn receiver_form_factors(
     receivers: &[Patch],
     patches: &[Patch],
@@ -280,6 +297,7 @@ pub fn receiver_form_factors(
         gauss: gauss_rules(max_order(opts)),
         occluders,
         opts,
+        refine_gaps: false,
     };
     let bar = progress_bar(receivers.len(), opts.progress, "receivers");
     let rows: Vec<Vec<f64>> = (0..receivers.len())
