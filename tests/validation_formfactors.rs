@@ -733,3 +733,41 @@ fn c79_c109_closed_faceted_prisms_and_pyramids_close() {
     std::fs::remove_dir_all(&dir).ok();
     assert!(failures.is_empty(), "{}", failures.join("; "));
 }
+
+#[test]
+fn form_factor_table_reports_a_closed_room_and_lists_pairs_that_exchange_nothing() {
+    // Reference: closure. Every row of a closed room of planar faces sums to exactly 1, and a
+    // planar surface sees nothing of itself (F = 0, listed as such).
+    let dir = scratch("table");
+    let text = header(0.5)
+        + "[[room]]\nname = \"room\"\nmin = [0, 0, 0]\nmax = [2, 1.5, 1]\nmaterial = \"grey\"\n";
+    let path = write(&dir, "room.toml", &text);
+    let table = cli::form_factor_table(&path).unwrap();
+    let scene = scene::load(&path).unwrap();
+    let s = scene.surfaces.len();
+    assert_eq!(table.factors.len(), s * s, "every ordered pair is listed");
+    for surface in &scene.surfaces {
+        let own = table
+            .factors
+            .iter()
+            .find(|f| f.from == surface.name && f.to == surface.name)
+            .unwrap();
+        assert_eq!(own.value, 0.0, "{} sees itself", surface.name);
+    }
+    let h = &table.health;
+    assert_eq!(h.cavities.len(), 1, "{:?}", h.cavities);
+    let c = &h.cavities[0];
+    assert_eq!((c.patches, c.surfaces.len()), (scene.patches.len(), s));
+    println!(
+        "closed room, {} patches: row sums {:.8} .. {:.8}",
+        c.patches, c.row_sum_min, c.row_sum_max
+    );
+    assert!((c.row_sum_min - 1.0).abs() <= NEAR_TOLERANCE);
+    assert!((c.row_sum_max - 1.0).abs() <= NEAR_TOLERANCE);
+    assert!(h.warnings.is_empty(), "{:?}", h.warnings);
+    // The text lists the zero pairs and the cavity.
+    let text = cli::format_surface_form_factors(&table);
+    assert!(text.contains("0 (no exchange)"), "{text}");
+    assert!(text.contains("closed cavity of"), "{text}");
+    std::fs::remove_dir_all(&dir).ok();
+}
