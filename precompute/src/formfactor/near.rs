@@ -5,10 +5,11 @@
 //! The kernel `F_{dA→A_j}(x)` is analytic in `x` away from the target, and its nearest
 //! singularity lies on the target: a Gauss rule on a source cell converges at a rate set by
 //! the ratio of the cell's distance to the target to its size. So a cell is split until that
-//! ratio is at least [`super::pair`]'s `NEAR_RATIO`, whether the patches touch (distance 0: the
-//! split stops at a depth), nearly touch (a gap of 1 mm at a 1 m patch) or meet in a
-//! T-junction. Thin cells are first cut across their long side, so that the pieces the ratio is
-//! measured on are roughly round.
+//! ratio is at least a stated multiple (module `pair`), whether the patches touch (distance 0:
+//! the split stops at a depth), nearly touch (a gap of 1 mm at a 1 m patch) or meet in a
+//! T-junction. Only the target's outline is singular ([`outline_distance`]). Thin cells are
+//! first cut across their long side, so that the pieces the ratio is measured on are roughly
+//! round.
 
 use crate::geometry::Vec3;
 
@@ -97,34 +98,34 @@ fn projects_inside(p: Vec3, poly: &[Vec3], n: Vec3) -> bool {
         })
 }
 
-/// Distance between two convex planar polygons, metres (0 when they touch or cross).
-pub(super) fn polygon_distance(a: &[Vec3], b: &[Vec3]) -> f64 {
+/// Distance from the convex planar polygon `cell` to the outline (the edges) of the convex
+/// polygon `outline`, metres: 0 when an edge of the outline touches or crosses the cell.
+///
+/// This is the distance that sets how smooth the kernel toward `outline` is over the cell:
+/// Lambert's contour integral is analytic in the viewing point except on the target's edges,
+/// so a cell that faces the middle of a parallel target a millimetre away is smooth, and only
+/// cells near the target's edges need refining.
+pub(super) fn outline_distance(cell: &[Vec3], outline: &[Vec3]) -> f64 {
+    let n = normal_of(cell);
+    let Some(&o) = cell.first() else {
+        return f64::INFINITY;
+    };
     let mut d = f64::INFINITY;
-    for (poly, other) in [(a, b), (b, a)] {
-        let n = normal_of(other);
-        let Some(&o) = other.first() else {
-            return f64::INFINITY;
-        };
-        for (k, &p) in poly.iter().enumerate() {
-            if projects_inside(p, other, n) {
-                d = d.min(n.dot(p - o).abs());
-            }
-            // An edge that crosses the other polygon's interior.
-            let q = poly[(k + 1) % poly.len()];
-            let (sp, sq) = (n.dot(p - o), n.dot(q - o));
-            if (sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0) {
-                let x = p + (q - p) * (sp / (sp - sq));
-                if projects_inside(x, other, n) {
-                    return 0.0;
-                }
+    for (k, &p) in outline.iter().enumerate() {
+        if projects_inside(p, cell, n) {
+            d = d.min(n.dot(p - o).abs());
+        }
+        // An edge of the outline that crosses the cell's interior.
+        let q = outline[(k + 1) % outline.len()];
+        let (sp, sq) = (n.dot(p - o), n.dot(q - o));
+        if (sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0) {
+            let x = p + (q - p) * (sp / (sp - sq));
+            if projects_inside(x, cell, n) {
+                return 0.0;
             }
         }
-    }
-    for (i, &p1) in a.iter().enumerate() {
-        let q1 = a[(i + 1) % a.len()];
-        for (j, &p2) in b.iter().enumerate() {
-            let q2 = b[(j + 1) % b.len()];
-            d = d.min(segment_segment(p1, q1, p2, q2));
+        for (i, &p1) in cell.iter().enumerate() {
+            d = d.min(segment_segment(p1, cell[(i + 1) % cell.len()], p, q));
         }
     }
     d
@@ -210,6 +211,12 @@ fn split_thin_triangle(a: Vec3, b: Vec3, c: Vec3) -> [Vec<Vec3>; 2] {
 mod tests {
     use super::*;
 
+    /// Distance between two convex planar polygons (0 when they touch or cross): the nearer of
+    /// each one's distance to the other's outline.
+    fn polygon_distance(a: &[Vec3], b: &[Vec3]) -> f64 {
+        outline_distance(a, b).min(outline_distance(b, a))
+    }
+
     fn square(z: f64, x0: f64) -> Vec<Vec3> {
         vec![
             Vec3::new(x0, 0.0, z),
@@ -247,6 +254,20 @@ mod tests {
         ];
         let want = 2.0_f64.sqrt();
         assert!((polygon_distance(&square(0.0, 0.0), &far) - want).abs() < 1e-12);
+        // A quarter square facing the middle of a parallel unit square 1 mm away: 1 mm to the
+        // square, 0.25 m (in the plane) and 1 mm (across) to its outline.
+        let small = vec![
+            Vec3::new(0.25, 0.25, 0.0),
+            Vec3::new(0.75, 0.25, 0.0),
+            Vec3::new(0.75, 0.75, 0.0),
+            Vec3::new(0.25, 0.75, 0.0),
+        ];
+        let top = square(0.001, 0.0);
+        assert!((polygon_distance(&small, &top) - 0.001).abs() < 1e-15);
+        let want = (0.25_f64 * 0.25 + 0.001 * 0.001).sqrt();
+        assert!((outline_distance(&small, &top) - want).abs() < 1e-15);
+        // The outline of a wall crossing the cell.
+        assert_eq!(outline_distance(&square(0.0, 0.0), &touching), 0.0);
     }
 
     #[test]

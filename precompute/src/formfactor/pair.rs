@@ -40,7 +40,8 @@ const GAP_RATIO: f64 = 1.0;
 
 /// How a source is refined toward one target (`Context::integrate_near`).
 struct Refinement<'t> {
-    /// The target's corners, metres.
+    /// The corners of the part of the target in front of the source's plane, metres: its
+    /// outline is where the kernel is singular.
     target: &'t [Vec3],
     /// Distance up to which a cell touches the target, metres.
     tol: f64,
@@ -153,7 +154,7 @@ impl Context<'_> {
         halvings: u32,
         f: &mut dyn FnMut(Vec3, f64),
     ) {
-        let distance = near::polygon_distance(cell, r.target);
+        let distance = near::outline_distance(cell, r.target);
         let touching_cell = distance <= r.tol;
         let diameter = near::diameter(cell);
         if distance < r.ratio * diameter {
@@ -267,18 +268,23 @@ impl Context<'_> {
         // Touching, nearly touching or meeting in a T-junction: the kernel is singular on the
         // contact or varies on the scale of the gap, so the source is refined toward the target
         // until every cell is further from it than a multiple of its own size.
+        // The part of the target in front of the source: the kernel clips the target there, so
+        // that the clipping line is part of the outline it is singular on.
+        let seen =
+            kernel::SmallPolygon::<{ kernel::PATCH_CLIPPED }>::from_slice(tv).clip(s0, src.normal);
         let close = touches
             || self.refine_gaps
                 && (sources.bounds[i].centre - self.targets.bounds[j].centre).length()
                     - self.targets.bounds[j].radius
                     - sources.bounds[i].radius
                     < 2.0 * GAP_RATIO * sources.bounds[i].radius
-                && near::polygon_distance(region, tv) < GAP_RATIO * near::diameter(region);
+                && near::outline_distance(region, seen.corners())
+                    < GAP_RATIO * near::diameter(region);
         if src.area > 0.0 && close {
             // A target's width: twice its area over its diameter (√2 × the side of a square).
             let width = 2.0 * tgt.area / near::diameter(tv).max(f64::MIN_POSITIVE);
             let refinement = Refinement {
-                target: tv,
+                target: seen.corners(),
                 tol,
                 touching_size: width / f64::from(1u32 << (TOUCHING_DEPTH - 1)),
                 ratio: if touches { TOUCHING_RATIO } else { GAP_RATIO },
