@@ -140,8 +140,8 @@ pub const WORST_PAIRS: usize = 5;
 /// [`patch_form_factors`], [`receiver_form_factors`] or [`point_form_factors`] return for the
 /// same patches and options, so that a cache of form factors can key on it.
 ///
-/// 2: the outer integral is refined toward targets that come close without touching, and
-/// toward thin targets; thin source cells are halved across their long side.
+/// 2: the outer integral is refined toward the outline of targets that come close without
+/// touching, and toward thin targets; thin source cells are halved across their long side.
 pub const ALGORITHM_VERSION: u32 = 2;
 
 /// A progress bar on stderr, or a hidden one.
