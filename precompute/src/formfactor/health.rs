@@ -193,7 +193,7 @@ impl FormFactorHealth {
                     }
                 }
                 health.warnings.push(format!(
-                    "the closed cavity of {} surfaces ({}) does not close: the row of patch {} ({}) sums to {:.6}, {:.1e} from 1 (more than {CAVITY_TOLERANCE:.0e}); surfaces with rows that far off: {}",
+                    "the closed cavity of {} surfaces ({}) does not close: the row of patch {} ({}) sums to {:.6}, {:.1e} from 1 (more than {CAVITY_TOLERANCE:.0e}); surfaces with rows that far off: {} (a surface inside seen from its back, which has no patches, or a gap or contact finer than the form-factor rules resolve)",
                     cavity.surfaces.len(),
                     summary(&cavity.surfaces),
                     w.patch,
