@@ -487,3 +487,287 @@ fn a_blocker_never_increases_a_form_factor() {
     // The sideboard floats between floor and ceiling: it must shadow a good number of pairs.
     assert!(reduced > room, "only {reduced} pairs shadowed");
 }
+
+/// Goal of the cases where surfaces come close (issue 17): near-but-separate pairs, thin
+/// strips and closed faceted solids, at the default form-factor options.
+const NEAR_TOLERANCE: f64 = 1e-5;
+
+#[test]
+fn c11_squares_a_centimetre_and_a_millimetre_apart() {
+    // Reference: Howell C-11 (closed form above) at a gap of 1 cm and 1 mm between two unit
+    // squares, at one patch each and at max_edge 0.25 m.
+    let dir = scratch("c11-near");
+    println!("Howell C-11, unit squares close together:");
+    println!("      c  max_edge  reference     eigenrad    rel. error");
+    for c in [0.01, 0.001] {
+        for edge in [1.0, 0.25] {
+            let text = header(edge)
+                + &quad(
+                    "bottom",
+                    [
+                        [0.0, 0.0, 0.0],
+                        [1.0, 0.0, 0.0],
+                        [1.0, 1.0, 0.0],
+                        [0.0, 1.0, 0.0],
+                    ],
+                )
+                + &quad(
+                    "top",
+                    [[0.0, 0.0, c], [0.0, 1.0, c], [1.0, 1.0, c], [1.0, 0.0, c]],
+                );
+            let path = write(&dir, "c11.toml", &text);
+            let got = surface_factor(&path, "bottom", "top");
+            let want = howell_c11(1.0, 1.0, c);
+            let err = (got - want).abs() / want;
+            println!("{c:7} {edge:9} {want:10.7} {got:12.7} {err:12.2e}");
+            assert!(
+                err <= NEAR_TOLERANCE,
+                "C-11 c={c} max_edge={edge}: {got} vs {want}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn c14_wall_a_millimetre_above_the_floor() {
+    // Reference: form-factor algebra on Howell C-14. The floor (l × w) sees a wall of height
+    // δ + h standing on it as the strip [0, δ] plus the wall [δ, δ + h], and form factors from
+    // one surface add over the parts of the other: F(floor → gap wall) = C14(l, w, δ + h) −
+    // C14(l, w, δ). The other direction by reciprocity: F(wall → floor) = (l w)/(l h) F.
+    let dir = scratch("c14-gap");
+    let delta = 0.001;
+    println!("Howell C-14 by algebra, wall {delta} m above the floor:");
+    println!("    l     w     h  max_edge  direction    reference     eigenrad    rel. error");
+    for (l, w, h, edge) in [
+        (1.0, 1.0, 1.0, 1.0),
+        (1.0, 1.0, 1.0, 0.25),
+        (2.0, 1.0, 0.5, 0.5),
+    ] {
+        let text = header(edge)
+            + &quad(
+                "floor",
+                [[0.0, 0.0, 0.0], [l, 0.0, 0.0], [l, w, 0.0], [0.0, w, 0.0]],
+            )
+            + &quad(
+                "wall",
+                [
+                    [0.0, 0.0, delta],
+                    [0.0, 0.0, delta + h],
+                    [l, 0.0, delta + h],
+                    [l, 0.0, delta],
+                ],
+            );
+        let path = write(&dir, "c14.toml", &text);
+        let want = howell_c14(l, w, delta + h) - howell_c14(l, w, delta);
+        for (from, to, want) in [("floor", "wall", want), ("wall", "floor", want * w / h)] {
+            let got = surface_factor(&path, from, to);
+            let err = (got - want).abs() / want;
+            println!(
+                "{l:5} {w:5} {h:5} {edge:9}  {from:>5} -> {to:<5} {want:10.7} {got:12.7} {err:12.2e}"
+            );
+            assert!(
+                err <= NEAR_TOLERANCE,
+                "C-14 gap l={l} w={w} h={h} {from} -> {to}: {got} vs {want}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn c14_thin_strips_against_their_neighbour() {
+    // Reference: Howell C-14. A strip 0.025 m wide and 0.5 to 2 m long on the floor, against a
+    // wall 1 m high along its long edge (common edge l = length) and along its short edge
+    // (common edge l = 0.025 m, the strip running away from the wall), both directions (the
+    // wall's by reciprocity).
+    let dir = scratch("c14-strip");
+    let (width, h) = (0.025, 1.0);
+    println!("Howell C-14, strips {width} m wide against a wall {h} m high (max_edge 0.5 m):");
+    println!("     l      w  direction    reference     eigenrad    rel. error");
+    for length in [0.5, 1.0, 2.0] {
+        for (l, w) in [(length, width), (width, length)] {
+            let text = header(0.5)
+                + &quad(
+                    "strip",
+                    [[0.0, 0.0, 0.0], [l, 0.0, 0.0], [l, w, 0.0], [0.0, w, 0.0]],
+                )
+                + &quad(
+                    "wall",
+                    [[0.0, 0.0, 0.0], [0.0, 0.0, h], [l, 0.0, h], [l, 0.0, 0.0]],
+                );
+            let path = write(&dir, "strip.toml", &text);
+            let want = howell_c14(l, w, h);
+            for (from, to, want) in [("strip", "wall", want), ("wall", "strip", want * w / h)] {
+                let got = surface_factor(&path, from, to);
+                let err = (got - want).abs() / want;
+                println!("{l:6} {w:6}  {from:>5} -> {to:<5} {want:10.7} {got:12.7} {err:12.2e}");
+                assert!(
+                    err <= NEAR_TOLERANCE,
+                    "C-14 strip l={l} w={w} {from} -> {to}: {got} vs {want}"
+                );
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// An OBJ of a closed solid seen from inside: a regular `sides`-gon of radius `r` (m) at z = 0
+/// facing up (`base`), and either a top polygon at z = `h` facing down with rectangular sides
+/// (a prism, `apex = false`) or triangles up to an apex at (0, 0, h) (a pyramid). Every face
+/// faces into the solid.
+fn solid_obj(sides: usize, r: f64, h: f64, apex: bool) -> String {
+    let corner = |k: usize| {
+        let t = 2.0 * PI * k as f64 / sides as f64;
+        (r * t.cos(), r * t.sin())
+    };
+    let mut s = String::from("mtllib solid.mtl\n");
+    for k in 0..sides {
+        let (x, y) = corner(k);
+        s += &format!("v {x} {y} 0\n");
+    }
+    if apex {
+        s += &format!("v 0 0 {h}\n");
+    } else {
+        for k in 0..sides {
+            let (x, y) = corner(k);
+            s += &format!("v {x} {y} {h}\n");
+        }
+    }
+    // Seen from above the base's corners run counter-clockwise: it faces up, into the solid.
+    s += "g base\nusemtl grey\nf";
+    for k in 1..=sides {
+        s += &format!(" {k}");
+    }
+    s += "\ng lateral\nusemtl grey\n";
+    for k in 1..=sides {
+        let next = k % sides + 1;
+        // Inward: counter-clockwise seen from the axis.
+        if apex {
+            s += &format!("f {k} {} {next}\n", sides + 1);
+        } else {
+            s += &format!("f {k} {} {} {next}\n", sides + k, sides + next);
+        }
+    }
+    if !apex {
+        s += "g top\nusemtl grey\nf";
+        for k in (1..=sides).rev() {
+            s += &format!(" {}", sides + k);
+        }
+        s += "\n";
+    }
+    s
+}
+
+#[test]
+fn c79_c109_closed_faceted_prisms_and_pyramids_close() {
+    // References: closure (every row of a closed solid sums to 1) and, for the pyramid, form-
+    // factor algebra: the flat base sees nothing but the lateral surface, F(base → lateral) = 1,
+    // so by reciprocity F(lateral → base) = A_base / A_lateral, with the polygon's areas in
+    // closed form: A_base = N r² sin(2π/N) / 2, A_lateral = N e s / 2 with the side
+    // e = 2 r sin(π/N) and the slant height s = √(h² + (r cos(π/N))²). These are Howell's C-79
+    // (cylinder) and C-109 (cone) as the N-sided polygons a scene holds.
+    let (r, h) = (0.5, 1.0);
+    let dir = scratch("solids");
+    write(&dir, "solid.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n");
+    let scene_text =
+        "[scene]\nname = \"solid\"\nbands = \"photopic\"\nunit = \"m\"\nmax_edge = 5\n\n\
+                      [[obj]]\nfile = \"solid.obj\"\nname_by = \"group\"\n";
+    let path = write(&dir, "solid.toml", scene_text);
+    println!("Closed N-sided solids, r = {r} m, h = {h} m (max_edge 5 m):");
+    println!("  solid     N  patches  base row sums (worst |1 − Σ|)  all rows   cone to base (exact)    rel. error");
+    let mut failures = Vec::new();
+    for apex in [false, true] {
+        for sides in [32, 64, 128] {
+            write(&dir, "solid.obj", &solid_obj(sides, r, h, apex));
+            let scene = scene::load(&path).unwrap();
+            let ff = patch_form_factors(&scene.patches, &FormFactorOptions::default());
+            let surface = |name: &str| scene.surfaces.iter().position(|s| s.name == name).unwrap();
+            let (base, lateral) = (surface("base"), surface("lateral"));
+            let worst = |pick: &dyn Fn(usize) -> bool| {
+                (0..scene.patches.len())
+                    .filter(|&i| pick(scene.patches[i].surface))
+                    .map(|i| (ff.row_sums[i] - 1.0).abs())
+                    .fold(0.0f64, f64::max)
+            };
+            let worst_base = worst(&|s| s == base);
+            let worst_all = worst(&|_| true);
+            let name = if apex { "pyramid" } else { "prism" };
+            let mut line = format!(
+                "  {name:7} {sides:5} {:8}  {worst_base:30.2e}  {worst_all:8.2e}",
+                scene.patches.len()
+            );
+            if worst_base > NEAR_TOLERANCE {
+                failures.push(format!(
+                    "{name} N={sides}: a base row misses 1 by {worst_base:.2e}"
+                ));
+            }
+            if apex {
+                let n = sides as f64;
+                let a_base = 0.5 * n * r * r * (2.0 * PI / n).sin();
+                let e = 2.0 * r * (PI / n).sin();
+                let slant = (h * h + (r * (PI / n).cos()).powi(2)).sqrt();
+                let want = a_base / (0.5 * n * e * slant);
+                let mut g = 0.0;
+                let mut a_lat = 0.0;
+                for (i, p) in scene.patches.iter().enumerate() {
+                    if p.surface == lateral {
+                        a_lat += p.area;
+                        for (j, q) in scene.patches.iter().enumerate() {
+                            if q.surface == base {
+                                g += p.area * ff.matrix[(i, j)];
+                            }
+                        }
+                    }
+                }
+                let got = g / a_lat;
+                let err = (got - want).abs() / want;
+                line += &format!("   {got:.7} ({want:.7}) {err:12.2e}");
+                if err > NEAR_TOLERANCE {
+                    failures.push(format!("pyramid N={sides}: cone to base {got} vs {want}"));
+                }
+            }
+            println!("{line}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(failures.is_empty(), "{}", failures.join("; "));
+}
+
+#[test]
+fn form_factor_table_reports_a_closed_room_and_lists_pairs_that_exchange_nothing() {
+    // Reference: closure. Every row of a closed room of planar faces sums to exactly 1, and a
+    // planar surface sees nothing of itself (F = 0, listed as such).
+    let dir = scratch("table");
+    let text = header(0.5)
+        + "[[room]]\nname = \"room\"\nmin = [0, 0, 0]\nmax = [2, 1.5, 1]\nmaterial = \"grey\"\n";
+    let path = write(&dir, "room.toml", &text);
+    let table = cli::form_factor_table(&path).unwrap();
+    let scene = scene::load(&path).unwrap();
+    let s = scene.surfaces.len();
+    assert_eq!(table.factors.len(), s * s, "every ordered pair is listed");
+    for surface in &scene.surfaces {
+        let own = table
+            .factors
+            .iter()
+            .find(|f| f.from == surface.name && f.to == surface.name)
+            .unwrap();
+        assert_eq!(own.value, 0.0, "{} sees itself", surface.name);
+    }
+    let h = &table.health;
+    assert_eq!(h.cavities.len(), 1, "{:?}", h.cavities);
+    let c = &h.cavities[0];
+    assert_eq!((c.patches, c.surfaces.len()), (scene.patches.len(), s));
+    println!(
+        "closed room, {} patches: row sums {:.8} .. {:.8}",
+        c.patches, c.row_sum_min, c.row_sum_max
+    );
+    assert!((c.row_sum_min - 1.0).abs() <= NEAR_TOLERANCE);
+    assert!((c.row_sum_max - 1.0).abs() <= NEAR_TOLERANCE);
+    assert!(h.warnings.is_empty(), "{:?}", h.warnings);
+    // The text lists the zero pairs and the cavity.
+    let text = cli::format_surface_form_factors(&table);
+    assert!(text.contains("0 (no exchange)"), "{text}");
+    assert!(text.contains("closed cavity of"), "{text}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -115,7 +115,7 @@ enum Command {
     FormFactors {
         /// Scene file (TOML).
         scene: PathBuf,
-        /// Print `[{from, to, value}]` as JSON on stdout.
+        /// Print `{factors: [{from, to, value}], health: {...}}` as JSON on stdout.
         #[arg(long)]
         json: bool,
     },
@@ -262,7 +262,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             })?;
         }
         Command::FormFactors { scene, json } => {
-            let table = cli::surface_form_factors(&scene)?;
+            let table = cli::form_factor_table(&scene)?;
             cli::print(&if json {
                 cli::json(&table)?
             } else {

@@ -185,7 +185,8 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         formfactor::patch_form_factors_with(&scene.patches, &occluders, opts)
     });
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
-    let form_factor_health = FormFactorHealth::of(&ff, &area);
+    let names: Vec<String> = scene.surfaces.iter().map(|s| s.name.clone()).collect();
+    let form_factor_health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
     let g = exchange::exchange_areas(ff.matrix, &area);
     let output_rows = timed(&mut timings, "sensors and zones", || {
         outputs::output_rows(&scene, &g, &area, &occluders, opts)

@@ -14,7 +14,10 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 
-pub use form_factors::{format_surface_form_factors, surface_form_factors, SurfaceFactor};
+pub use form_factors::{
+    form_factor_table, format_health, format_surface_form_factors, surface_form_factors,
+    FormFactorTable, SurfaceFactor,
+};
 pub use inspect::{format_inspect, inspect, BasisInfo};
 pub use readout::{
     eval, format_readout, parse_levels, solve, Level, PatchReading, Reading, Readout,

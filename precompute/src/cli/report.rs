@@ -17,23 +17,7 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         "scene {}: {} patches, {} band(s) in {}",
         r.scene, r.patches, r.bands, r.unit
     );
-    let f = &r.form_factors;
-    let _ = writeln!(
-        s,
-        "form factors: before symmetrising, the two directions of a pair differ by at most {:.1e} of a patch's output ({:.1e} relative to the exchange, floored at 0.1 % of the output); row sums {:.5} .. {:.5}; {}",
-        f.reciprocity_share,
-        f.reciprocity_mismatch,
-        f.row_sum_min,
-        f.row_sum_max,
-        if f.closed {
-            "closed scene".to_owned()
-        } else {
-            format!(
-                "open scene: {:.2} % of the light leaving the surfaces escapes through openings",
-                100.0 * f.escaping
-            )
-        }
-    );
+    s += &super::form_factors::format_health(&r.form_factors);
     let _ = writeln!(
         s,
         "basis: {} modes, formulation {}, storage {}, {} bytes -> {}",

@@ -11,9 +11,11 @@
 //!   `x` (module `kernel`; Howell's catalogue, Modest eq. 4.36);
 //! - the outer integral (module `pair`) is a Gauss–Legendre rule on patch i (bilinear map for
 //!   quadrilaterals, collapsed map for triangles) whose order falls with the distance between
-//!   the patches ([`FormFactorOptions::quadrature_tolerance`]), rises for touching patches, is
-//!   one common rule for all pairs a blocker may cut, and covers only the front part of i when
-//!   j's plane cuts i;
+//!   the patches ([`FormFactorOptions::quadrature_tolerance`]), is one common rule for all pairs
+//!   a blocker may cut, and covers only the front part of i when j's plane cuts i. Where i
+//!   touches j, comes closer to it than its own size or meets it in a T-junction, i is cut
+//!   into cells refined toward j until each is further from j than its size (half of it next
+//!   to a contact; module `near`: thin cells are first halved across their long side);
 //! - `V_ij(x)` restricts the kernel to the part of j that no blocker hides from `x`. It is exact:
 //!   the shadows of the blockers that can cut the pair (shaft culling, [`Occluders`]) are cut
 //!   out of j, and the contour integral runs over the visible pieces (module `shadow`). Only when
@@ -24,9 +26,11 @@
 //! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `docs/math.md`).
 
 mod bvh;
+mod closure;
 pub mod exchange;
 mod health;
 mod kernel;
+mod near;
 pub mod outputs;
 mod pair;
 mod quadrature;
@@ -37,7 +41,10 @@ mod visibility;
 
 pub use bvh::Occluders;
 // The patch rules, for the direct light of sources that are not patches (`crate::sources`).
-pub use health::{FormFactorHealth, CLOSED_TOLERANCE};
+pub use health::{
+    CavityClosure, FormFactorHealth, PairDisagreement, RowMiss, CAVITY_TOLERANCE, CLOSED_TOLERANCE,
+    WORST_ROWS,
+};
 pub(crate) use quadrature::{for_each_on_cell, gauss_legendre, split_cell};
 
 use crate::geometry::{Patch, Vec3};
@@ -120,7 +127,22 @@ pub struct FormFactors {
     pub reciprocity_share: f64,
     /// Row sums of the symmetrised matrix (1 for every patch of a closed scene).
     pub row_sums: Vec<f64>,
+    /// The pairs whose two directions disagree most before symmetrising, worst first, at most
+    /// [`WORST_PAIRS`]: `(i, j, share)` with `i < j` and the share as in
+    /// [`FormFactors::reciprocity_share`]. Pairs that agree exactly are not listed.
+    pub worst_pairs: Vec<(usize, usize, f64)>,
 }
+
+/// How many of the worst pairs [`FormFactors::worst_pairs`] keeps.
+pub const WORST_PAIRS: usize = 5;
+
+/// Version of the form-factor algorithm: bumped whenever a change alters the numbers
+/// [`patch_form_factors`], [`receiver_form_factors`] or [`point_form_factors`] return for the
+/// same patches and options, so that a cache of form factors can key on it.
+///
+/// 2: the outer integral is refined toward the outline of targets that come close without
+/// touching, and toward thin targets; thin source cells are halved across their long side.
+pub const ALGORITHM_VERSION: u32 = 2;
 
 /// A progress bar on stderr, or a hidden one.
 fn progress_bar(len: usize, show: bool, what: &str) -> ProgressBar {
@@ -157,6 +179,7 @@ pub fn patch_form_factors_with(
         gauss: gauss_rules(max_order(opts)),
         occluders,
         opts,
+        refine_gaps: true,
     };
     let bar = progress_bar(n, opts.progress, "form factors");
     // Column i holds row i of the raw F, so that rows are filled in parallel contiguously.
@@ -173,24 +196,28 @@ pub fn patch_form_factors_with(
     });
     bar.finish_and_clear();
     let areas: Vec<f64> = patches.iter().map(|p| p.area).collect();
-    let (reciprocity_mismatch, reciprocity_share) = symmetrise_transposed(&mut m, &areas);
+    let (reciprocity_mismatch, reciprocity_share, worst_pairs) =
+        symmetrise_transposed(&mut m, &areas);
     let row_sums = row_sums(&m);
     FormFactors {
         matrix: m,
         reciprocity_mismatch,
         reciprocity_share,
         row_sums,
+        worst_pairs,
     }
 }
 
 /// Turns `m` holding the raw Fᵀ (`m[(j, i)] = F_ij`) into the symmetrised F in place:
 /// `G = A F`, `G_sym = (G + Gᵀ)/2`, `F = A⁻¹ G_sym` (docs/math.md). Returns the worst reciprocity
 /// mismatch of the raw matrix, relative and as a share of the output
-/// ([`FormFactors::reciprocity_mismatch`], [`FormFactors::reciprocity_share`]).
-fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> (f64, f64) {
+/// ([`FormFactors::reciprocity_mismatch`], [`FormFactors::reciprocity_share`]), and the worst
+/// pairs ([`FormFactors::worst_pairs`]).
+fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> (f64, f64, Vec<(usize, usize, f64)>) {
     let n = areas.len();
     let mut worst = 0.0_f64;
     let mut worst_share = 0.0_f64;
+    let mut worst_pairs: Vec<(usize, usize, f64)> = Vec::with_capacity(WORST_PAIRS + 1);
     for j in 0..n {
         for i in 0..j {
             let (ai, aj) = (areas[i], areas[j]);
@@ -199,14 +226,22 @@ fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> (f64, f64) {
             let big = gij.max(gji).max(RECIPROCITY_FLOOR * ai.min(aj));
             if big > 0.0 {
                 worst = worst.max((gij - gji).abs() / big);
-                worst_share = worst_share.max((gij - gji).abs() / ai.min(aj));
+                let share = (gij - gji).abs() / ai.min(aj);
+                worst_share = worst_share.max(share);
+                let last = worst_pairs.last().map_or(0.0, |w| w.2);
+                if share > 0.0 && (worst_pairs.len() < WORST_PAIRS || share > last) {
+                    // Kept sorted, worst first; ties keep the earlier pair (deterministic).
+                    let at = worst_pairs.partition_point(|w| w.2 >= share);
+                    worst_pairs.insert(at, (i, j, share));
+                    worst_pairs.truncate(WORST_PAIRS);
+                }
             }
             let g = 0.5 * (gij + gji);
             m[(i, j)] = if ai > 0.0 { g / ai } else { 0.0 };
             m[(j, i)] = if aj > 0.0 { g / aj } else { 0.0 };
         }
     }
-    (worst, worst_share)
+    (worst, worst_share, worst_pairs)
 }
 
 /// Row sums of a square matrix, summed column by column (contiguous in faer's layout).
@@ -238,6 +273,7 @@ pub fn point_form_factors(
         gauss: gauss_rules(max_order(&opts)),
         occluders,
         opts: &opts,
+        refine_gaps: false,
     };
     let normal = normal.normalized();
     let cone = half_angle.and_then(|a| Cone::new(normal, a));
@@ -267,6 +303,10 @@ pub fn point_form_factors(
 /// Receiving patches that do not block light (e.g. a work plane) to every scene patch, with
 /// occlusion by the scene patches: rows = receivers, `F_rj` (dimensionless, fraction of the
 /// receiver's hemispherical view, front side only), `n_receivers × n`.
+///
+/// A receiver floats in the room: it is refined toward the patches it touches, but not toward
+/// those it merely comes close to, so that all other pairs of its row share one rule and the
+/// row of a receiver in a closed room sums to 1 to rounding.
 pub fn receiver_form_factors(
     receivers: &[Patch],
     patches: &[Patch],
@@ -280,6 +320,7 @@ pub fn receiver_form_factors(
         gauss: gauss_rules(max_order(opts)),
         occluders,
         opts,
+        refine_gaps: false,
     };
     let bar = progress_bar(receivers.len(), opts.progress, "receivers");
     let rows: Vec<Vec<f64>> = (0..receivers.len())

@@ -4,7 +4,7 @@
 use super::bvh::Shaft;
 use super::kernel::{self, Cone};
 use super::quadrature::{self, SampleTable};
-use super::{shadow, visibility, FormFactorOptions, Occluders};
+use super::{near, shadow, visibility, FormFactorOptions, Occluders};
 use crate::geometry::{Patch, Vec3};
 
 /// Scale in the error model of the outer quadrature (see
@@ -12,8 +12,44 @@ use crate::geometry::{Patch, Vec3};
 /// 412-patch test room keeps its row sums within 1e-5 with it.
 const ORDER_SCALE: f64 = 0.5;
 
-/// Splits of a source cell toward a target it touches (`Context::integrate_toward`).
+/// Four-way splits of a source cell toward a target it touches (`Context::integrate_near`):
+/// the finest cells have 1/16 of the side of the (round) source.
 const TOUCHING_DEPTH: u32 = 4;
+
+/// Four-way splits of a source cell toward a target it comes close to without touching:
+/// enough for a gap of 1e-5 of the source's size to be resolved.
+const NEAR_DEPTH: u32 = 18;
+
+/// Halvings of a thin source cell across its long side on one branch of the refinement
+/// (aspect ratios up to 2^16 are brought down to [`near::ASPECT_BOUND`]).
+const MAX_HALVINGS: u32 = 16;
+
+/// In a pair that touches, a source cell closer to the target than this multiple of its
+/// diameter is split (dimensionless). Below 1/√2 so that, next to a contact, the cells one row
+/// away from it in a square grid (at a distance of their side) are left whole: they are
+/// integrated accurately by the near-pair rule, and touching pairs of round patches are
+/// integrated as they always were.
+const TOUCHING_RATIO: f64 = 0.5;
+
+/// In a pair that does not touch, a source closer to the target than this multiple of its
+/// diameter is refined, and its cells are split until each is at least this multiple of its
+/// diameter away from the target (dimensionless); further pairs keep the distance-based rule.
+/// At 1 the near-pair rule (order 5) leaves below 1e-6 relative on a cell; at 0.5 up to 2e-5
+/// (the needles of a 64-sided pyramid's base).
+const GAP_RATIO: f64 = 1.0;
+
+/// How a source is refined toward one target (`Context::integrate_near`).
+struct Refinement<'t> {
+    /// The corners of the part of the target in front of the source's plane, metres: its
+    /// outline is where the kernel is singular.
+    target: &'t [Vec3],
+    /// Distance up to which a cell touches the target, metres.
+    tol: f64,
+    /// Touching cells are split beyond `TOUCHING_DEPTH` while larger than this, metres.
+    touching_size: f64,
+    /// Cells closer to the target than this multiple of their diameter are split.
+    ratio: f64,
+}
 
 /// Per-patch data the pair loop needs, computed once.
 #[derive(Clone, Copy, Debug)]
@@ -76,6 +112,9 @@ pub(super) struct Context<'a> {
     pub(super) gauss: Vec<Vec<(f64, f64)>>,
     pub(super) occluders: &'a Occluders,
     pub(super) opts: &'a FormFactorOptions,
+    /// Refine the outer integral toward targets that come close without touching
+    /// ([`GAP_RATIO`]); touching targets are refined regardless.
+    pub(super) refine_gaps: bool,
 }
 
 /// A point (or differential area) that looks at the targets.
@@ -100,30 +139,56 @@ impl Context<'_> {
             )
     }
 
-    /// Integrates `f(point, weight in m²)` over the convex `cell` of a source, splitting cells
-    /// that touch `target` (within `tol` metres) `depth` more times; cells clear of it take the
-    /// near-pair rule (`gauss_order`), the finest touching cells `touching_order`.
-    fn integrate_toward(
+    /// Integrates `f(point, weight in m²)` over the convex `cell` of a source near the target
+    /// of `r`: a cell closer to the target than `r.ratio` times its diameter is split (thin
+    /// cells halved across their long side first, [`near::split`]) until it is not, down to
+    /// `TOUCHING_DEPTH` four-way splits for cells that touch the target (further while they are
+    /// larger than `r.touching_size`) and `NEAR_DEPTH` for cells that do not. Cells clear of
+    /// the target take the near-pair rule (`gauss_order`), the finest touching cells
+    /// `touching_order`.
+    fn integrate_near(
         &self,
         cell: &[Vec3],
-        target: &[Vec3],
-        tol: f64,
+        r: &Refinement,
         depth: u32,
+        halvings: u32,
         f: &mut dyn FnMut(Vec3, f64),
     ) {
-        let touching_cell = touching(cell, target, tol);
-        if depth == 0 || !touching_cell {
-            let order = if touching_cell {
-                self.opts.touching_order
+        let distance = near::outline_distance(cell, r.target);
+        let touching_cell = distance <= r.tol;
+        let diameter = near::diameter(cell);
+        if distance < r.ratio * diameter {
+            let limit = if !touching_cell {
+                NEAR_DEPTH
+            } else if diameter > r.touching_size {
+                // Next to a thin target the kernel varies on the scale of the target's width:
+                // the contact is resolved to a fraction of that width, not of the source's.
+                NEAR_DEPTH.min(depth + 1)
             } else {
-                self.opts.gauss_order
+                TOUCHING_DEPTH
             };
-            quadrature::for_each_on_cell(cell, self.gauss_rule(order), &mut *f);
-            return;
+            match near::split(cell) {
+                near::Split::Halves(halves) if halvings < MAX_HALVINGS => {
+                    for sub in halves {
+                        self.integrate_near(&sub, r, depth, halvings + 1, f);
+                    }
+                    return;
+                }
+                near::Split::Cells(cells) if depth < limit => {
+                    for sub in cells {
+                        self.integrate_near(&sub, r, depth + 1, halvings, f);
+                    }
+                    return;
+                }
+                _ => {}
+            }
         }
-        for sub in quadrature::split_cell(cell) {
-            self.integrate_toward(&sub, target, tol, depth - 1, f);
-        }
+        let order = if touching_cell {
+            self.opts.touching_order
+        } else {
+            self.opts.gauss_order
+        };
+        quadrature::for_each_on_cell(cell, self.gauss_rule(order), &mut *f);
     }
 
     /// Outer-quadrature order for a source patch (`bound`) towards target `j` (module docs).
@@ -200,14 +265,31 @@ impl Context<'_> {
             kernel::SmallPolygon::<{ kernel::PATCH_CLIPPED }>::from_slice(sv).clip(t0, tgt.normal)
         });
         let region = front.as_ref().map_or(sv.as_slice(), |f| f.corners());
-        if src.area > 0.0 && touches {
-            // The kernel is singular along the contact: cells that touch the target are split
-            // down to 1/2^TOUCHING_DEPTH of the source's side, so that a contact along part of
-            // an edge (a T-junction of the mesh) or at a corner is resolved as well as one
-            // along a whole edge.
-            self.integrate_toward(region, tv, tol, TOUCHING_DEPTH, &mut |p, w| {
-                add(p, w / src.area)
-            });
+        // Touching, nearly touching or meeting in a T-junction: the kernel is singular on the
+        // contact or varies on the scale of the gap, so the source is refined toward the target
+        // until every cell is further from it than a multiple of its own size.
+        // The part of the target in front of the source: the kernel clips the target there, so
+        // that the clipping line is part of the outline it is singular on.
+        let seen =
+            kernel::SmallPolygon::<{ kernel::PATCH_CLIPPED }>::from_slice(tv).clip(s0, src.normal);
+        let close = touches
+            || self.refine_gaps
+                && (sources.bounds[i].centre - self.targets.bounds[j].centre).length()
+                    - self.targets.bounds[j].radius
+                    - sources.bounds[i].radius
+                    < 2.0 * GAP_RATIO * sources.bounds[i].radius
+                && near::outline_distance(region, seen.corners())
+                    < GAP_RATIO * near::diameter(region);
+        if src.area > 0.0 && close {
+            // A target's width: twice its area over its diameter (√2 × the side of a square).
+            let width = 2.0 * tgt.area / near::diameter(tv).max(f64::MIN_POSITIVE);
+            let refinement = Refinement {
+                target: seen.corners(),
+                tol,
+                touching_size: width / f64::from(1u32 << (TOUCHING_DEPTH - 1)),
+                ratio: if touches { TOUCHING_RATIO } else { GAP_RATIO },
+            };
+            self.integrate_near(region, &refinement, 0, 0, &mut |p, w| add(p, w / src.area));
         } else if let Some(front) = front {
             let gl = self.gauss_rule(order);
             quadrature::for_each_on_polygon(front.corners(), gl, |p, w| add(p, w / src.area));
