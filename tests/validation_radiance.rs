@@ -36,10 +36,10 @@
 //!    with the mesh at 0.5 m.
 //!
 //! Both go through `cli::solve`, the code behind `eigenrad solve`. Radiance is found as
-//! `EIGENRAD_RADIANCE` (a folder holding `ies2rad`, `oconv` and `rtrace`; `RAYPATH` as set),
-//! on `PATH`, or in the `pyradiance` wheel (`pip install pyradiance`; its `bin/`, with its
-//! `lib/` as `RAYPATH`). Without it each test prints "SKIPPED" and passes: the project's other
-//! tests do not need Radiance.
+//! `EIGENRAD_RADIANCE` (a folder holding `ies2rad`, `oconv` and `rtrace`, `RAYPATH` as set;
+//! an error if rtrace does not run there), on `PATH`, or in the `pyradiance` wheel (`pip
+//! install pyradiance`; its `bin/`, with its `lib/` as `RAYPATH`). Without it each test prints
+//! "SKIPPED" and passes: the project's other tests do not need Radiance.
 //!
 //! Run with `cargo test --test validation_radiance -- --nocapture` to see the tables
 //! (docs/accuracy.md, "Against Radiance").
@@ -362,10 +362,17 @@ struct Radiance {
 impl Radiance {
     fn find() -> Option<Radiance> {
         if let Some(dir) = std::env::var_os("EIGENRAD_RADIANCE") {
-            return Some(Radiance {
+            let named = Radiance {
                 bin: Some(dir.into()),
                 raypath: None,
-            });
+            };
+            // Named on purpose: a folder where rtrace does not run is an error, not a skip.
+            assert!(
+                named.works(),
+                "EIGENRAD_RADIANCE: no working rtrace in {:?} (is RAYPATH set?)",
+                named.bin
+            );
+            return Some(named);
         }
         let on_path = Radiance {
             bin: None,
