@@ -10,9 +10,9 @@ step "toolchain components and targets"
 rustup component add rustfmt clippy >/dev/null 2>&1 || true
 rustup target add thumbv7em-none-eabihf thumbv6m-none-eabi
 
-step "reference programs (Radiance's ies2rad from the pyradiance wheel, for the photometry tests)"
+step "reference programs (Radiance's ies2rad, oconv and rtrace from the pyradiance wheel, for the photometry and Radiance tests)"
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore pyradiance ||
-    echo "SKIPPED: pyradiance unavailable; the comparison with ies2rad will skip"
+    echo "SKIPPED: pyradiance unavailable; the comparisons with Radiance will skip"
 
 step "formatting"
 cargo fmt --all -- --check

@@ -1,0 +1,718 @@
+//! eigenrad against an independent program on a shared scene: Radiance (`ies2rad`, `oconv`,
+//! `rtrace`), a Monte Carlo ray tracer written without any of eigenrad's code or method.
+//!
+//! The scene: a closed 4 m × 3 m room, 2.8 m high, with grey Lambertian surfaces (floor 0.2,
+//! walls 0.5, ceiling 0.7) lit by one recessed downlight in the ceiling, off the room's centre
+//! and turned by 30° about its axis. Its photometry is a synthetic LM-63-2002 file written by
+//! this test from a closed form (`downlight_ies`) that has no symmetry in C, so that a C plane
+//! taken for another (C90 for C270, a spin the wrong way) changes the readings. Both programs
+//! read that same file: eigenrad as a `[[luminaire]]`, Radiance through `ies2rad`. Readings:
+//! upward point sensors on the work plane (0.8 m) and two vertical sensors, one facing a wall
+//! with the luminaire behind it (it reads interreflected light only).
+//!
+//! How both programs see the luminaire (Radiance's `src/cv/ies2rad.c`, revision 2.35, and
+//! `lib/source.cal`; pyradiance 1.3 ships Radiance 6.0a): `ies2rad` puts the photometric centre at the origin, nadir along −z,
+//! the luminous opening a polygon 0.2 m along x (length) by 0.1 m along y (width) facing down,
+//! 0.25 mm below the origin (half its minimum height of 0.5 mm), and looks intensities up at
+//! `θ = acos(Dz)` from −z and `φ = atan2(−Dy, −Dx)` from +x towards +y (D the ray towards the
+//! source, −D the emitted direction): C0 along +x, C90 along +y, as in eigenrad
+//! (docs/scene.md, "Orientation"). The test places it with `xform -rz 30 -t x y z`, a turn
+//! counter-clockwise seen from above, which is eigenrad's `spin = 30`. The opening then lies
+//! 0.25 mm below the ceiling, emitting downwards only, so the ceiling receives none of its
+//! light in either program. `ies2rad` stores candela divided by Radiance's luminous efficacy of
+//! white light (179 lm/W), so `rtrace -I` answers in W/m² of that white, and illuminance is
+//! `179 (0.265 R + 0.670 G + 0.065 B)` lux (Radiance's `luminance()`, `src/common/color.h`;
+//! here R = G = B).
+//!
+//! Two comparisons:
+//!
+//! 1. Direct light only: every surface black, `rtrace -ab 0` (deterministic: no jitter) against
+//!    `eigenrad solve` of the black scene. This checks the geometry, units and orientation;
+//!    the same comparison with the luminaire mirrored, not turned or turned the other way
+//!    fails by far.
+//! 2. Direct and interreflected light: `rtrace -ab 16 -aa 0` (pure Monte Carlo, no ambient
+//!    cache), each point traced `REPEATS` times to measure the noise, against `eigenrad solve`
+//!    (the exact dense solve) at `max_edge` 0.25 m, whose mesh error is measured by comparing it
+//!    with the mesh at 0.5 m.
+//!
+//! Both go through `cli::solve`, the code behind `eigenrad solve`. Radiance is found as
+//! `EIGENRAD_RADIANCE` (a folder holding `ies2rad`, `oconv` and `rtrace`, `RAYPATH` as set;
+//! an error if rtrace does not run there), on `PATH`, or in the `pyradiance` wheel (`pip
+//! install pyradiance`; its `bin/`, with its `lib/` as `RAYPATH`). Without it each test prints
+//! "SKIPPED" and passes: the project's other tests do not need Radiance.
+//!
+//! Run with `cargo test --test validation_radiance -- --nocapture` to see the tables
+//! (docs/accuracy.md, "Against Radiance").
+
+use std::ffi::OsString;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use eigenrad::precompute::cli;
+
+/// Room, from the origin to here, m.
+const ROOM: [f64; 3] = [4.0, 3.0, 2.8];
+/// Reflectances of floor, walls and ceiling (grey, diffuse).
+const REFLECTANCE: Reflectance = Reflectance {
+    floor: 0.2,
+    wall: 0.5,
+    ceiling: 0.7,
+};
+/// The downlight's photometric centre, in the ceiling, m.
+const LUMINAIRE: [f64; 3] = [1.5, 1.2, 2.8];
+/// Its turn about the nadir axis, degrees counter-clockwise seen from above.
+const SPIN: f64 = 30.0;
+/// The luminous opening, m: length along C0, width along C90.
+const OPENING: (f64, f64) = (0.2, 0.1);
+/// Height of the work plane, m.
+const WORK_PLANE: f64 = 0.8;
+/// The patch size compared with Radiance, m, and the coarser one that measures its mesh error.
+const MAX_EDGE: f64 = 0.25;
+const MAX_EDGE_COARSE: f64 = 0.5;
+
+/// Radiance's luminous efficacy of white light, lm/W (`WHTEFFICACY`, `src/common/color.h`):
+/// `ies2rad` divides candela by it, `luminance()` multiplies by it.
+const WHITE_EFFICACY: f64 = 179.0;
+/// Radiance's luminance weights of its RGB primaries (`CIE_rf`, `CIE_gf`, `CIE_bf`,
+/// `src/common/color.h`), which `bright()` applies.
+const LUMINANCE_WEIGHTS: [f64; 3] = [0.265074126, 0.670114631, 0.064811243];
+
+/// How many times each point is traced in the interreflected comparison; the spread of these
+/// independent estimates (rtrace seeds its generator from the clock, `-u+`) gives the standard
+/// error of their mean.
+const REPEATS: usize = 16;
+/// `rtrace` options common to both comparisons. `-dj 0 -ds 0.05`: each light source cut into
+/// pieces smaller than 0.05 of their distance and sampled at their centres (no jitter);
+/// `-dt 0 -dc 1`: every source tested for every point; `-dr 0 -dp 0`: no virtual sources.
+const RTRACE_DIRECT: &[&str] = &[
+    "-h", "-I", "-dj", "0", "-ds", "0.05", "-dt", "0", "-dc", "1", "-dr", "0", "-dp", "0",
+];
+/// And for interreflection: 16 diffuse bounces, `-lr 20` so that the reflection limit does
+/// not cut them earlier, no ambient cache (`-aa 0`: pure Monte Carlo, nothing interpolated),
+/// 1024 hemisphere samples at the first bounce, no super-sampling, a ray weight floor of 1e-6,
+/// uncorrelated random sampling (`-u+`, rtrace's default; `-u-` is deterministic but its
+/// samples are correlated from one ray to the next, so repeated runs would not measure the
+/// noise). Cutting at 16 bounces loses nothing measurable: at the sensor facing the wall, 8
+/// bounces read 0.24 % below 16, and 32 bounces 0.08 % ± 0.06 % above them.
+const RTRACE_AMBIENT: &[&str] = &[
+    "-ab", "16", "-lr", "20", "-aa", "0", "-ad", "1024", "-as", "0", "-lw", "1e-6", "-u+",
+];
+
+/// Direct light, relative, at every lit sensor. The programs model the downlight's light
+/// differently near the opening: eigenrad as a point at the photometric centre at these
+/// distances (its opening is under a fifth of the distance, docs/math.md), Radiance as the
+/// opening's 0.2 m × 0.1 m of radiance `I / (A cos θ)`. Over the rectangle the point source
+/// is higher by about `3 ⟨s²⟩ / d²` with the cos³ profile (0.3 % straight below, `d` = 2 m),
+/// and both interpolate the same table bilinearly, so 1 % leaves room for the source model and
+/// nothing for a wrong orientation, position or unit (those cost 10 % and more, checked below).
+const DIRECT_TOLERANCE: f64 = 1e-2;
+/// A mirrored or unturned luminaire must miss Radiance at some sensor by more than this
+/// multiple of `DIRECT_TOLERANCE`, or the direct comparison could not tell orientations apart.
+const ORIENTATION_MARGIN: f64 = 5.0;
+
+/// The interreflected comparison is made on the interreflected part of each reading, the
+/// total less the direct light that each program computes without noise (`-ab 0`, and the
+/// black scene's solve): the direct part's source-model difference (`DIRECT_TOLERANCE`) then
+/// does not hide an error of the interreflection, about 5 % to 100 % of these readings.
+///
+/// Monte Carlo part of its tolerance: this many standard errors of rtrace's mean over
+/// `REPEATS` runs (a normal error exceeds 5σ with probability 6e-7).
+const MC_SIGMAS: f64 = 5.0;
+/// The standard error rtrace's mean may have, relative to the interreflected part: measured
+/// 0.2 % at most over the sensors, so that the Monte Carlo tolerance is as small as stated in
+/// docs/accuracy.md (checked on every run).
+const MC_NOISE: f64 = 4e-3;
+/// eigenrad's mesh error at `MAX_EDGE`, relative to the interreflected part (the direct light
+/// at a point does not depend on the mesh): measured as the change of each reading from
+/// `MAX_EDGE_COARSE` to `MAX_EDGE`, at most 1.1 % (work-plane points near the walls; checked on
+/// every run: the mesh is deterministic). The error of constant exitance per patch falls by 2
+/// to 4 when the patches halve, so this change bounds the finer mesh's error.
+const MESH_ERROR: f64 = 1.5e-2;
+
+struct Reflectance {
+    floor: f64,
+    wall: f64,
+    ceiling: f64,
+}
+
+const BLACK: Reflectance = Reflectance {
+    floor: 0.0,
+    wall: 0.0,
+    ceiling: 0.0,
+};
+
+/// A point sensor: name, position (m) and the normal it faces.
+struct Sensor {
+    name: String,
+    position: [f64; 3],
+    normal: [f64; 3],
+}
+
+/// A 4 × 3 grid of upward sensors on the work plane, one below the luminaire, one facing the
+/// wall at x = 4 m with the luminaire behind it, and one facing the wall at y = 0 and the
+/// luminaire.
+fn sensors() -> Vec<Sensor> {
+    let mut s = Vec::new();
+    for y in [0.5, 1.5, 2.5] {
+        for x in [0.5, 1.5, 2.5, 3.5] {
+            s.push(Sensor {
+                name: format!("wp_{x}_{y}"),
+                position: [x, y, WORK_PLANE],
+                normal: [0.0, 0.0, 1.0],
+            });
+        }
+    }
+    s.push(Sensor {
+        name: "nadir".into(),
+        position: [LUMINAIRE[0], LUMINAIRE[1], WORK_PLANE],
+        normal: [0.0, 0.0, 1.0],
+    });
+    s.push(Sensor {
+        name: "facing_wall_xmax".into(),
+        position: [3.0, 1.5, 1.5],
+        normal: [1.0, 0.0, 0.0],
+    });
+    s.push(Sensor {
+        name: "facing_wall_ymin".into(),
+        position: [2.5, 2.5, 1.2],
+        normal: [0.0, -1.0, 0.0],
+    });
+    s
+}
+
+/// The downlight's intensity, cd: `I(C, γ) = 1500 cos³γ (1 + sin γ (0.6 cos C + 0.4 sin C))`,
+/// γ from nadir, C counter-clockwise from C0 seen from above (degrees in, candela out). The C
+/// term vanishes at nadir, as it must for one direction, and tips the beam towards C ≈ 34°;
+/// the flux is `2π · 1500 / 4` ≈ 2356 lm (the C term integrates to zero).
+fn intensity(c: f64, gamma: f64) -> f64 {
+    let (c, g) = (c.to_radians(), gamma.to_radians());
+    1500.0 * g.cos().powi(3) * (1.0 + g.sin() * (0.6 * c.cos() + 0.4 * c.sin()))
+}
+
+/// `intensity` as an LM-63-2002 file: absolute photometry, γ 0°…90° every 5°, C 0°…360° every
+/// 15°, values to 0.01 cd, luminous opening `OPENING` in metres.
+fn downlight_ies() -> String {
+    let gammas: Vec<f64> = (0..=18).map(|k| 5.0 * f64::from(k)).collect();
+    let cs: Vec<f64> = (0..=24).map(|k| 15.0 * f64::from(k)).collect();
+    let join = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let mut text = String::from(
+        "IESNA:LM-63-2002\n\
+         [TEST] synthetic\n\
+         [MANUFAC] eigenrad test data\n\
+         [LUMINAIRE] synthetic asymmetric downlight, not a real product\n\
+         [OTHER] I = 1500 cd cos^3 g (1 + sin g (0.6 cos C + 0.4 sin C))\n\
+         TILT=NONE\n",
+    );
+    let (length, width) = OPENING;
+    writeln!(
+        text,
+        "1 -1 1 {} {} 1 2 {width} {length} 0",
+        gammas.len(),
+        cs.len()
+    )
+    .unwrap();
+    text.push_str("1 1 20\n");
+    writeln!(text, "{}", join(&gammas)).unwrap();
+    writeln!(text, "{}", join(&cs)).unwrap();
+    for &c in &cs {
+        let row: Vec<String> = gammas
+            .iter()
+            .map(|&g| format!("{:.2}", intensity(c, g).max(0.0)))
+            .collect();
+        writeln!(text, "{}", row.join(" ")).unwrap();
+    }
+    text
+}
+
+/// The scene as eigenrad TOML, reading `downlight.ies` next to it.
+fn eigenrad_scene(rho: &Reflectance, max_edge: f64) -> String {
+    let mut text = format!(
+        r#"[scene]
+name = "radiance room"
+bands = "photopic"
+unit = "m"
+max_edge = {max_edge}
+
+[materials]
+floor = {{ reflectance = {} }}
+wall = {{ reflectance = {} }}
+ceiling = {{ reflectance = {} }}
+
+[[room]]
+name = "room"
+min = [0, 0, 0]
+max = [{}, {}, {}]
+material = "wall"
+floor = "floor"
+ceiling = "ceiling"
+
+[[channel]]
+name = "downlight"
+
+[[luminaire]]
+name = "downlight"
+file = "downlight.ies"
+position = [{}, {}, {}]
+spin = {SPIN}
+channel = "downlight"
+"#,
+        rho.floor,
+        rho.wall,
+        rho.ceiling,
+        ROOM[0],
+        ROOM[1],
+        ROOM[2],
+        LUMINAIRE[0],
+        LUMINAIRE[1],
+        LUMINAIRE[2],
+    );
+    for s in sensors() {
+        let [x, y, z] = s.position;
+        let [nx, ny, nz] = s.normal;
+        write!(
+            text,
+            "\n[[sensor]]\nname = \"{}\"\nposition = [{x}, {y}, {z}]\nnormal = [{nx}, {ny}, {nz}]\n",
+            s.name
+        )
+        .unwrap();
+    }
+    text
+}
+
+/// The same room as Radiance primitives: `plastic` of the same grey with no specularity and
+/// no roughness (Lambertian), polygons wound to face into the room, and the `ies2rad` output
+/// `downlight.rad` placed by `transform` (xform arguments).
+fn radiance_scene(rho: &Reflectance, transform: &str) -> String {
+    let [x, y, z] = ROOM;
+    let mut text = String::new();
+    for (name, r) in [
+        ("floor_mat", rho.floor),
+        ("wall_mat", rho.wall),
+        ("ceiling_mat", rho.ceiling),
+    ] {
+        writeln!(text, "void plastic {name} 0 0 5 {r} {r} {r} 0 0").unwrap();
+    }
+    // Counter-clockwise seen from inside the room: Radiance's normal (right-hand rule) and
+    // eigenrad's room faces point inwards.
+    let polygons: [(&str, &str, [[f64; 3]; 4]); 6] = [
+        (
+            "floor_mat",
+            "floor",
+            [[0., 0., 0.], [x, 0., 0.], [x, y, 0.], [0., y, 0.]],
+        ),
+        (
+            "ceiling_mat",
+            "ceiling",
+            [[0., 0., z], [0., y, z], [x, y, z], [x, 0., z]],
+        ),
+        (
+            "wall_mat",
+            "wall_xmin",
+            [[0., 0., 0.], [0., y, 0.], [0., y, z], [0., 0., z]],
+        ),
+        (
+            "wall_mat",
+            "wall_xmax",
+            [[x, 0., 0.], [x, 0., z], [x, y, z], [x, y, 0.]],
+        ),
+        (
+            "wall_mat",
+            "wall_ymin",
+            [[0., 0., 0.], [0., 0., z], [x, 0., z], [x, 0., 0.]],
+        ),
+        (
+            "wall_mat",
+            "wall_ymax",
+            [[0., y, 0.], [x, y, 0.], [x, y, z], [0., y, z]],
+        ),
+    ];
+    for (material, name, corners) in polygons {
+        write!(text, "{material} polygon {name} 0 0 12").unwrap();
+        for [a, b, c] in corners {
+            write!(text, "  {a} {b} {c}").unwrap();
+        }
+        text.push('\n');
+    }
+    writeln!(text, "!xform {transform} downlight.rad").unwrap();
+    text
+}
+
+/// The xform arguments that place `ies2rad`'s luminaire as eigenrad's: turned by `spin`
+/// degrees about z (counter-clockwise seen from above), then moved to `LUMINAIRE`.
+fn placement(spin: f64) -> String {
+    let [x, y, z] = LUMINAIRE;
+    format!("-rz {spin} -t {x} {y} {z}")
+}
+
+/// Radiance's programs and the `RAYPATH` their function files (`source.cal`, `rayinit.cal`)
+/// need.
+struct Radiance {
+    /// Folder of the programs, `None` for `PATH`.
+    bin: Option<PathBuf>,
+    /// `RAYPATH` to set, `None` to keep the environment's.
+    raypath: Option<OsString>,
+}
+
+impl Radiance {
+    fn find() -> Option<Radiance> {
+        if let Some(dir) = std::env::var_os("EIGENRAD_RADIANCE") {
+            let named = Radiance {
+                bin: Some(dir.into()),
+                raypath: None,
+            };
+            // Named on purpose: a folder where rtrace does not run is an error, not a skip.
+            assert!(
+                named.works(),
+                "EIGENRAD_RADIANCE: no working rtrace in {:?} (is RAYPATH set?)",
+                named.bin
+            );
+            return Some(named);
+        }
+        let on_path = Radiance {
+            bin: None,
+            raypath: None,
+        };
+        if on_path.works() {
+            return Some(on_path);
+        }
+        let script = "import os, pyradiance; print(os.path.dirname(pyradiance.__file__))";
+        let out = Command::new("python3").args(["-c", script]).output().ok()?;
+        if !out.status.success() {
+            return None;
+        }
+        let package = PathBuf::from(String::from_utf8(out.stdout).ok()?.trim());
+        let wheel = Radiance {
+            bin: Some(package.join("bin")),
+            raypath: Some(std::env::join_paths([Path::new("."), &package.join("lib")]).ok()?),
+        };
+        wheel.works().then_some(wheel)
+    }
+
+    /// Whether `rtrace` runs (it fails without its `rayinit.cal`).
+    fn works(&self) -> bool {
+        self.command("rtrace", &std::env::temp_dir())
+            .arg("-version")
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+    }
+
+    fn command(&self, program: &str, dir: &Path) -> Command {
+        let mut command = Command::new(match &self.bin {
+            Some(bin) => bin.join(program),
+            None => program.into(),
+        });
+        command.current_dir(dir);
+        // The scene's `!xform` runs through the shell: the programs' folder goes on `PATH`.
+        if let Some(bin) = &self.bin {
+            let path = std::env::var_os("PATH").unwrap_or_default();
+            let paths = std::iter::once(bin.clone()).chain(std::env::split_paths(&path));
+            command.env("PATH", std::env::join_paths(paths).unwrap());
+        }
+        if let Some(raypath) = &self.raypath {
+            command.env("RAYPATH", raypath);
+        }
+        command
+    }
+
+    /// Runs `program` in `dir`, stdout to `stdout` (a file in `dir`) if given; panics with its
+    /// stderr if it fails or warns (a missing `!xform` is only a warning to oconv).
+    fn run(&self, program: &str, dir: &Path, args: &[&str], stdout: Option<&str>) {
+        let mut command = self.command(program, dir);
+        command.args(args);
+        if let Some(file) = stdout {
+            command.stdout(std::fs::File::create(dir.join(file)).unwrap());
+        }
+        let out = command.stderr(Stdio::piped()).output().unwrap();
+        assert!(
+            out.status.success() && out.stderr.is_empty(),
+            "{program} {args:?} failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+
+    /// Writes `downlight.ies` and its `ies2rad` conversion (metres, white lamp) into `dir`.
+    fn convert_luminaire(&self, dir: &Path) {
+        std::fs::write(dir.join("downlight.ies"), downlight_ies()).unwrap();
+        self.run(
+            "ies2rad",
+            dir,
+            &["-dm", "-t", "default", "-o", "downlight", "downlight.ies"],
+            None,
+        );
+    }
+
+    /// The octree `name.oct` of `scene` (Radiance text), in `dir`.
+    fn octree(&self, dir: &Path, name: &str, scene: &str) -> String {
+        let rad = format!("{name}.rad");
+        std::fs::write(dir.join(&rad), scene).unwrap();
+        let oct = format!("{name}.oct");
+        // Frozen (`-f`): rtrace reads the octree alone.
+        self.run("oconv", dir, &["-f", &rad], Some(&oct));
+        oct
+    }
+
+    /// `rtrace -I` at every sensor, `repeats` times over: per sensor the mean illuminance and
+    /// the standard error of that mean (0 for one repeat), lux.
+    fn trace(&self, dir: &Path, octree: &str, options: &[&str], repeats: usize) -> Vec<Estimate> {
+        let sensors = sensors();
+        let mut input = String::new();
+        for _ in 0..repeats {
+            for s in &sensors {
+                let [x, y, z] = s.position;
+                let [nx, ny, nz] = s.normal;
+                writeln!(input, "{x} {y} {z} {nx} {ny} {nz}").unwrap();
+            }
+        }
+        let points = dir.join(format!("{octree}.points"));
+        std::fs::write(&points, input).unwrap();
+        let out = self
+            .command("rtrace", dir)
+            .args(options)
+            .arg(octree)
+            .stdin(std::fs::File::open(&points).unwrap())
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success() && out.stderr.is_empty(),
+            "rtrace failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let lux: Vec<f64> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .map(|line| {
+                let rgb: Vec<f64> = line
+                    .split_whitespace()
+                    .map(|w| w.parse().unwrap())
+                    .collect();
+                assert_eq!(rgb.len(), 3, "rtrace line `{line}`");
+                WHITE_EFFICACY * (0..3).map(|k| LUMINANCE_WEIGHTS[k] * rgb[k]).sum::<f64>()
+            })
+            .collect();
+        assert_eq!(lux.len(), repeats * sensors.len(), "rtrace's output lines");
+        (0..sensors.len())
+            .map(|i| {
+                let runs: Vec<f64> = (0..repeats).map(|r| lux[r * sensors.len() + i]).collect();
+                Estimate::of(&runs)
+            })
+            .collect()
+    }
+}
+
+/// A Monte Carlo mean and its standard error, lux.
+#[derive(Clone, Copy)]
+struct Estimate {
+    mean: f64,
+    standard_error: f64,
+}
+
+impl Estimate {
+    fn of(runs: &[f64]) -> Estimate {
+        let n = runs.len() as f64;
+        let mean = runs.iter().sum::<f64>() / n;
+        let standard_error = if runs.len() < 2 {
+            0.0
+        } else {
+            (runs.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt()
+        };
+        Estimate {
+            mean,
+            standard_error,
+        }
+    }
+}
+
+/// A fresh folder for one test's files.
+fn scratch(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("eigenrad-radiance-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// eigenrad's exact solve (`cli::solve`, the code of `eigenrad solve`) of the scene in `dir`:
+/// every sensor's illuminance, lux, in `sensors()` order.
+fn eigenrad_readings(dir: &Path, rho: &Reflectance, max_edge: f64) -> Vec<f64> {
+    let path = dir.join(format!("scene-{max_edge}-{}.toml", rho.wall));
+    std::fs::write(&path, eigenrad_scene(rho, max_edge)).unwrap();
+    let readout = cli::solve(&path, &[], false).unwrap_or_else(|e| panic!("{e}"));
+    let names: Vec<String> = sensors().into_iter().map(|s| s.name).collect();
+    let read: Vec<&str> = readout.sensors.iter().map(|r| r.name.as_str()).collect();
+    assert_eq!(read, names, "sensor order");
+    readout.sensors.iter().map(|r| r.irradiance[0]).collect()
+}
+
+/// The largest relative difference of `theirs` from `ours` over the sensors that `ours` lights.
+fn worst_relative(ours: &[f64], theirs: &[f64]) -> f64 {
+    ours.iter()
+        .zip(theirs)
+        .filter(|(o, _)| **o > 0.0)
+        .map(|(o, t)| (t / o - 1.0).abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn direct_light_matches_rtrace_and_a_turned_luminaire_would_not() {
+    let Some(radiance) = Radiance::find() else {
+        eprintln!("SKIPPED: Radiance not found (pip install pyradiance, or set EIGENRAD_RADIANCE)");
+        return;
+    };
+    let dir = scratch("direct");
+    radiance.convert_luminaire(&dir);
+    let ours = eigenrad_readings(&dir, &BLACK, MAX_EDGE_COARSE);
+    let trace = |name: &str, transform: &str| -> Vec<f64> {
+        let oct = radiance.octree(&dir, name, &radiance_scene(&BLACK, transform));
+        let mut options = RTRACE_DIRECT.to_vec();
+        options.extend(["-ab", "0"]);
+        radiance
+            .trace(&dir, &oct, &options, 1)
+            .iter()
+            .map(|e| e.mean)
+            .collect()
+    };
+    let theirs = trace("direct", &placement(SPIN));
+
+    println!("Direct light, every surface black: eigenrad solve against rtrace -ab 0 (lux)");
+    println!("  sensor               eigenrad      rtrace   rel. diff");
+    for ((s, o), t) in sensors().iter().zip(&ours).zip(&theirs) {
+        let diff = if *o > 0.0 { t / o - 1.0 } else { 0.0 };
+        println!("  {:18} {o:10.3} {t:11.3} {diff:11.2e}", s.name);
+    }
+    for ((s, o), t) in sensors().iter().zip(&ours).zip(&theirs) {
+        if *o > 0.0 {
+            assert!(
+                (t / o - 1.0).abs() <= DIRECT_TOLERANCE,
+                "{}: eigenrad {o} lux, rtrace {t} lux",
+                s.name
+            );
+        } else {
+            // The luminaire is behind this sensor: no direct light in either program.
+            assert!(
+                *t == 0.0,
+                "{}: rtrace {t} lux where eigenrad has none",
+                s.name
+            );
+        }
+    }
+    assert!(
+        ours.iter().filter(|o| **o > 0.0).count() >= sensors().len() - 1,
+        "every sensor but the one facing away is lit"
+    );
+
+    // The comparison tells orientations apart: the luminaire mirrored (C90 for C270), not
+    // turned, or turned the other way, misses by far.
+    for (what, transform) in [
+        ("mirrored", format!("-my {}", placement(SPIN))),
+        ("not turned", placement(0.0)),
+        ("turned the other way", placement(-SPIN)),
+    ] {
+        let wrong = trace(&what.replace(' ', "_"), &transform);
+        let miss = worst_relative(&ours, &wrong);
+        println!("  luminaire {what}: worst rel. diff {miss:.2e}");
+        assert!(
+            miss > ORIENTATION_MARGIN * DIRECT_TOLERANCE,
+            "a luminaire {what} misses by only {miss}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn interreflected_illuminance_matches_rtrace_within_noise_and_mesh_error() {
+    let Some(radiance) = Radiance::find() else {
+        eprintln!("SKIPPED: Radiance not found (pip install pyradiance, or set EIGENRAD_RADIANCE)");
+        return;
+    };
+    let dir = scratch("interreflected");
+    radiance.convert_luminaire(&dir);
+    let fine = eigenrad_readings(&dir, &REFLECTANCE, MAX_EDGE);
+    let coarse = eigenrad_readings(&dir, &REFLECTANCE, MAX_EDGE_COARSE);
+    let direct = eigenrad_readings(&dir, &BLACK, MAX_EDGE_COARSE);
+    let oct = radiance.octree(
+        &dir,
+        "room",
+        &radiance_scene(&REFLECTANCE, &placement(SPIN)),
+    );
+    let mut options = RTRACE_DIRECT.to_vec();
+    options.extend(["-ab", "0"]);
+    let their_direct: Vec<f64> = radiance
+        .trace(&dir, &oct, &options, 1)
+        .iter()
+        .map(|e| e.mean)
+        .collect();
+    let mut options = RTRACE_DIRECT.to_vec();
+    options.extend_from_slice(RTRACE_AMBIENT);
+    let theirs = radiance.trace(&dir, &oct, &options, REPEATS);
+
+    println!(
+        "Direct and interreflected light: eigenrad solve at max_edge {MAX_EDGE} m (mesh change from \
+         {MAX_EDGE_COARSE} m) against rtrace -ab 16 -aa 0 -ad 1024, mean of {REPEATS} runs (lux)"
+    );
+    println!(
+        "  sensor              eigenrad     rtrace  rel. diff | interreflected: eigenrad  \
+         mesh chg.   rtrace  std. err.  rel. diff  tolerance"
+    );
+    for (i, s) in sensors().iter().enumerate() {
+        let (o, t) = (fine[i], theirs[i]);
+        let (ours_i, theirs_i) = (o - direct[i], t.mean - their_direct[i]);
+        let mesh = (coarse[i] - o).abs();
+        let tolerance = MESH_ERROR * ours_i + MC_SIGMAS * t.standard_error;
+        println!(
+            "  {:18} {o:9.3} {:10.3} {:10.2e} | {:25.3} {:10.2e} {:8.3} {:10.2e} {:10.2e} {:10.2e}",
+            s.name,
+            t.mean,
+            t.mean / o - 1.0,
+            ours_i,
+            mesh / ours_i,
+            theirs_i,
+            t.standard_error / theirs_i,
+            theirs_i / ours_i - 1.0,
+            tolerance / ours_i
+        );
+    }
+    for (i, s) in sensors().iter().enumerate() {
+        let (o, t) = (fine[i], theirs[i]);
+        let (ours_i, theirs_i) = (o - direct[i], t.mean - their_direct[i]);
+        // Interreflection adds light everywhere.
+        assert!(ours_i > 0.0, "{}: {o} lux, {} direct", s.name, direct[i]);
+        // The stated error budgets hold on this run.
+        let mesh = (coarse[i] - o).abs();
+        assert!(
+            mesh <= MESH_ERROR * ours_i,
+            "{}: mesh change {mesh} of {ours_i} lux interreflected",
+            s.name
+        );
+        assert!(
+            t.standard_error <= MC_NOISE * theirs_i,
+            "{}: rtrace standard error {} of {theirs_i} lux interreflected",
+            s.name,
+            t.standard_error
+        );
+        // The direct parts as in the black room; the interreflected parts within the mesh
+        // error and the noise.
+        assert!(
+            (their_direct[i] - direct[i]).abs() <= DIRECT_TOLERANCE * direct[i],
+            "{}: direct light, eigenrad {} lux, rtrace {} lux",
+            s.name,
+            direct[i],
+            their_direct[i]
+        );
+        let tolerance = MESH_ERROR * ours_i + MC_SIGMAS * t.standard_error;
+        assert!(
+            (theirs_i - ours_i).abs() <= tolerance,
+            "{}: interreflected light, eigenrad {ours_i} lux, rtrace {theirs_i} ± {} lux, \
+             tolerance {tolerance} lux",
+            s.name,
+            t.standard_error
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
