@@ -16,5 +16,5 @@ pub mod writer;
 
 pub use basis::{Basis, GridInfo, PatchInfo, SensorInfo, MIN_REFLECTANCE};
 pub use error::{Error, Result};
-pub use eval::{ChannelEvaluator, Evaluator, Figures, MAX_EXITANCE, MAX_LEVEL};
+pub use eval::{ChannelEvaluator, Evaluator, Figures, Reading, MAX_EXITANCE, MAX_LEVEL};
 pub use format::{Formulation, Precision, Quantity};

@@ -11,7 +11,7 @@ mod patches;
 
 pub use channels::ChannelEvaluator;
 pub(crate) use figures::Accumulator;
-pub use figures::Figures;
+pub use figures::{Figures, Reading};
 pub use patches::Evaluator;
 
 use crate::basis::Basis;
@@ -65,7 +65,7 @@ pub(crate) fn grid_figures<const BANDS: usize>(
     (start, len): (usize, usize),
     read: impl Fn(usize) -> Result<[f32; BANDS]>,
 ) -> Result<[Figures; BANDS]> {
-    let mut acc = [Accumulator::default(); BANDS];
+    let mut acc = [Accumulator::<f32>::default(); BANDS];
     for g in start..start.saturating_add(len) {
         for (a, v) in acc.iter_mut().zip(read(g)?) {
             a.add(v);
