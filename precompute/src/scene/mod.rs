@@ -10,6 +10,7 @@ mod channels;
 mod context;
 mod error;
 mod file;
+pub mod grid;
 mod inputs;
 mod limits;
 mod luminaires;
@@ -31,6 +32,7 @@ use crate::geometry::{Face, Patch, Vec3};
 use crate::scene::photometry::Photometry;
 
 pub use error::{Location, SceneError};
+pub use grid::Grid;
 pub use inputs::{inputs, SceneInputs};
 #[cfg(test)]
 pub(crate) use luminaires::frame as luminaire_frame;
@@ -156,6 +158,8 @@ pub struct Zone {
     pub name: String,
     /// What the zone is made of.
     pub kind: ZoneKind,
+    /// Its calculation grid, for a work plane (surface zones have none).
+    pub grid: Option<Grid>,
 }
 
 /// What a zone averages over.
