@@ -96,6 +96,10 @@ enum Command {
         /// Print one JSON document on stdout.
         #[arg(long)]
         json: bool,
+        /// Write every calculation grid point (zone, position in m, irradiance per band) to
+        /// this CSV file, atomically.
+        #[arg(long, value_name = "FILE")]
+        csv: Option<PathBuf>,
     },
     /// Evaluate a basis through the runtime crate: exactly what firmware computes.
     Eval {
@@ -110,6 +114,10 @@ enum Command {
         /// Print one JSON document on stdout.
         #[arg(long)]
         json: bool,
+        /// Write every calculation grid point (zone, position in m, irradiance per band) to
+        /// this CSV file, atomically.
+        #[arg(long, value_name = "FILE")]
+        csv: Option<PathBuf>,
     },
     /// Surface-to-surface form factors, area-weighted over each surface's patches.
     FormFactors {
@@ -238,8 +246,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             levels,
             patches,
             json,
+            csv,
         } => {
+            if let Some(csv) = &csv {
+                guard::check_file_output(csv)?;
+                guard::check_outputs(std::slice::from_ref(csv), &scene::inputs(&scene)?.files)?;
+            }
             let readout = cli::solve(&scene, &levels, patches)?;
+            if let Some(csv) = &csv {
+                atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
+            }
             cli::print(&if json {
                 cli::json(&readout)?
             } else {
@@ -251,10 +267,18 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             levels,
             patches,
             json,
+            csv,
         } => {
+            if let Some(csv) = &csv {
+                guard::check_file_output(csv)?;
+                guard::check_outputs(std::slice::from_ref(csv), std::slice::from_ref(&basis))?;
+            }
             let bytes = read(&basis)?;
             let readout = cli::eval(&basis, &bytes, &levels, patches)
                 .with_context(|| format!("evaluating {}", basis.display()))?;
+            if let Some(csv) = &csv {
+                atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
+            }
             cli::print(&if json {
                 cli::json(&readout)?
             } else {

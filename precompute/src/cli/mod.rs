@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 pub use form_factors::{format_surface_form_factors, surface_form_factors, SurfaceFactor};
 pub use inspect::{format_inspect, inspect, BasisInfo};
 pub use readout::{
-    eval, format_readout, parse_levels, solve, Level, PatchReading, Reading, Readout,
+    eval, format_readout, grids_csv, parse_levels, solve, Level, PatchReading, Reading, Readout,
 };
 pub use report::{format_build_report, verify_outputs, write_svgs};
 
