@@ -247,6 +247,28 @@ fn figures_of_solve_and_eval_match_the_exact_exitance_at_the_grid_points() {
     assert!((first[0] - 1.025).abs() < 1e-6 && (first[1] - 0.8).abs() < 1e-6);
     // A surface zone has no grid.
     assert!(eval.grids.iter().all(|g| g.zone != "walls"));
+
+    // Without the grids: no grid tables, the same sensor and zone readings to the bit, and
+    // smaller by each point's f32 position, modes, channel readings and view row.
+    let bare = BuildOptions {
+        grids: false,
+        ..opts
+    };
+    let (small, _) = pipeline::build(&path, &bare).unwrap();
+    let without = cli::eval(&path, &small, &levels, false).unwrap();
+    assert!(without.grids.is_empty());
+    for (a, b) in without.zones.iter().zip(&eval.zones) {
+        assert_eq!(a.irradiance, b.irradiance, "{}", a.name);
+    }
+    let scene = scene::load(&path).unwrap();
+    let points: usize = eval.grids.iter().map(|g| g.points.len()).sum();
+    let per_point = 4 * (3 + 16 + 2 + scene.patches.len());
+    let saved = bytes.len() - small.len();
+    // Besides the points, only the grid layout's floats and varint lengths differ.
+    assert!(
+        saved >= points * per_point && saved <= points * per_point + 128,
+        "{saved}"
+    );
 }
 
 #[test]

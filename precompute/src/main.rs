@@ -79,6 +79,10 @@ enum Command {
         /// Eigensolver.
         #[arg(long, value_enum, default_value = "auto")]
         solver: SolverArg,
+        /// Leave the zones' calculation grids out of the basis (smaller; each grid point
+        /// costs about 4 bytes per patch in f32).
+        #[arg(long)]
+        no_grids: bool,
         /// Print the report as one JSON document on stdout.
         #[arg(long)]
         json: bool,
@@ -200,9 +204,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             formulation,
             precision,
             solver,
+            no_grids,
             json,
         } => {
             let opts = BuildOptions {
+                grids: !no_grids,
                 modes: match (modes, tolerance) {
                     (Some(p), _) => ModeSelection::Count(p),
                     (None, Some(t)) => ModeSelection::Tolerance(t),

@@ -60,6 +60,9 @@ pub struct BuildOptions {
     pub form_factors: FormFactorOptions,
     /// Random emitter patterns used by `--tolerance` and the report.
     pub random_patterns: usize,
+    /// Store the zones' calculation grids (`--no-grids` leaves them out: a smaller basis,
+    /// the zones still read as area averages).
+    pub grids: bool,
 }
 
 impl Default for BuildOptions {
@@ -71,6 +74,7 @@ impl Default for BuildOptions {
             solver: Solver::Auto,
             form_factors: FormFactorOptions::default(),
             random_patterns: 4,
+            grids: true,
         }
     }
 }
@@ -226,15 +230,28 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
 pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)> {
     let prepared = prepare(path, &opts.form_factors)?;
     let Prepared {
-        scene,
+        mut scene,
         g,
         area: _,
-        output_rows,
-        lights,
+        mut output_rows,
+        mut lights,
         luminaire_flux,
         form_factor_health,
         mut timings,
     } = prepared;
+    if !opts.grids {
+        // The grid points are the outputs after the sensors and zones: drop them all.
+        let keep = outputs::grid_offset(&scene);
+        for zone in &mut scene.zones {
+            zone.grid = None;
+        }
+        output_rows.truncate(keep);
+        for light in &mut lights {
+            for band in &mut light.output_irradiance {
+                band.truncate(keep);
+            }
+        }
+    }
     let n = scene.patches.len();
     let p_max = match opts.modes {
         ModeSelection::Count(p) => p.min(n),
