@@ -150,14 +150,27 @@ fn channels_read_the_exact_solve_for_any_levels(scene: &str, patches: usize, cha
                 worst_exact = worst_exact.max(e);
             }
             let sensors = got.sensors.len();
-            let runtime_out: Vec<f64> =
-                got.sensors.iter().chain(&got.zones).map(|r| r[0]).collect();
+            let zones = got.zones.len();
+            // Sensors, zones, then every zone's grid points: the model's outputs.
+            let runtime_out: Vec<f64> = got
+                .sensors
+                .iter()
+                .chain(&got.zones)
+                .chain(&got.grid)
+                .map(|r| r[0])
+                .collect();
             assert_eq!(runtime_out.len(), outputs);
+            let points: Vec<(usize, usize)> = (0..zones)
+                .flat_map(|z| (0..basis.grid(z).unwrap().points).map(move |i| (z, i)))
+                .collect();
             for (o, &runtime) in runtime_out.iter().enumerate() {
                 let direct = if o < sensors {
                     evaluator.sensor_irradiance(o)
-                } else {
+                } else if o < sensors + zones {
                     evaluator.zone_irradiance(o - sensors)
+                } else {
+                    let (z, i) = points[o - sensors - zones];
+                    evaluator.grid_point_irradiance(z, i)
                 };
                 assert_eq!(direct.unwrap()[0] as f64, runtime, "output {o}");
                 let s = relative(runtime, combined_out[o]);

@@ -122,7 +122,11 @@ fn channel_tables(t: &mut BasisTables, model: &Model) {
     }
 }
 
-/// Sensor geometry, zone areas, and the outputs' modes, exact channel readings and view rows.
+/// Sensor geometry, zone areas, and the outputs' modes, exact channel readings and view rows;
+/// then the grids: their layout, and their points' positions, modes, readings and view rows.
+/// The model's outputs are the sensors, the zones, then the grid points
+/// ([`crate::formfactor::outputs`]); the basis keeps the first two in the output tables and
+/// the points in the grid tables.
 fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
     let model = modes.model;
     let (n, m, bands) = (
@@ -130,7 +134,7 @@ fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
         model.channel_count(),
         model.bands.len(),
     );
-    let outputs = model.output_rows.len();
+    let outputs = crate::formfactor::outputs::grid_offset(scene);
     for s in &scene.sensors {
         let half = s.half_angle.unwrap_or(std::f64::consts::PI);
         let (x, d) = (s.position, s.normal);
@@ -139,30 +143,53 @@ fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
     for z in &scene.zones {
         t.zone_area
             .push(crate::formfactor::outputs::zone_area(scene, z));
-    }
-    for row in &model.output_rows {
-        for b in 0..bands {
-            for k in 0..modes.p {
-                t.output_modes
-                    .push((0..n).map(|j| row[j] * modes.mode(b, j, k)).sum());
+        match &z.grid {
+            Some(g) => {
+                t.grid_counts.push([g.counts[0] as u32, g.counts[1] as u32]);
+                let d = g.normal;
+                t.grid_layout
+                    .push([g.spacing, g.cell[0], g.cell[1], g.border, d.x, d.y, d.z]);
+                t.grid_position
+                    .extend(g.points.iter().map(|p| [p.x, p.y, p.z]));
+            }
+            None => {
+                t.grid_counts.push([0, 0]);
+                t.grid_layout.push([0.0; 7]);
             }
         }
     }
+    let mut row_modes = Vec::new();
+    for row in &model.output_rows {
+        for b in 0..bands {
+            for k in 0..modes.p {
+                row_modes.push((0..n).map(|j| row[j] * modes.mode(b, j, k)).sum::<f64>());
+            }
+        }
+    }
+    let split = outputs * bands * modes.p;
+    t.grid_modes = row_modes.split_off(split);
+    t.output_modes = row_modes;
     // `O × B × m`: the exact readings of each channel alone at level 1.
     let readings: Vec<Vec<Vec<f64>>> = (0..m)
         .map(|c| (0..bands).map(|b| model.channel_readings(c, b)).collect())
         .collect();
-    for o in 0..outputs {
+    for o in 0..model.output_rows.len() {
+        let table = if o < outputs {
+            &mut t.output_channels
+        } else {
+            &mut t.grid_channels
+        };
         for b in 0..bands {
             for channel in &readings {
-                t.output_channels.push(channel[b][o]);
+                table.push(channel[b][o]);
             }
         }
     }
     t.output_view = vec![0.0; n * outputs];
-    for (o, row) in model.output_rows.iter().enumerate() {
+    for (o, row) in model.output_rows.iter().take(outputs).enumerate() {
         for (j, &v) in row.iter().enumerate() {
             t.output_view[j * outputs + o] = v;
         }
     }
+    t.grid_view = model.output_rows[outputs..].concat();
 }

@@ -79,6 +79,10 @@ enum Command {
         /// Eigensolver.
         #[arg(long, value_enum, default_value = "auto")]
         solver: SolverArg,
+        /// Leave the zones' calculation grids out of the basis (smaller; each grid point
+        /// costs about 4 bytes per patch in f32).
+        #[arg(long)]
+        no_grids: bool,
         /// Print the report as one JSON document on stdout.
         #[arg(long)]
         json: bool,
@@ -96,6 +100,10 @@ enum Command {
         /// Print one JSON document on stdout.
         #[arg(long)]
         json: bool,
+        /// Write every calculation grid point (zone, position in m, irradiance per band) to
+        /// this CSV file, atomically.
+        #[arg(long, value_name = "FILE")]
+        csv: Option<PathBuf>,
     },
     /// Evaluate a basis through the runtime crate: exactly what firmware computes.
     Eval {
@@ -110,6 +118,10 @@ enum Command {
         /// Print one JSON document on stdout.
         #[arg(long)]
         json: bool,
+        /// Write every calculation grid point (zone, position in m, irradiance per band) to
+        /// this CSV file, atomically.
+        #[arg(long, value_name = "FILE")]
+        csv: Option<PathBuf>,
     },
     /// Surface-to-surface form factors, area-weighted over each surface's patches.
     FormFactors {
@@ -192,9 +204,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             formulation,
             precision,
             solver,
+            no_grids,
             json,
         } => {
             let opts = BuildOptions {
+                grids: !no_grids,
                 modes: match (modes, tolerance) {
                     (Some(p), _) => ModeSelection::Count(p),
                     (None, Some(t)) => ModeSelection::Tolerance(t),
@@ -238,8 +252,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             levels,
             patches,
             json,
+            csv,
         } => {
+            if let Some(csv) = &csv {
+                guard::check_file_output(csv)?;
+                guard::check_outputs(std::slice::from_ref(csv), &scene::inputs(&scene)?.files)?;
+            }
             let readout = cli::solve(&scene, &levels, patches)?;
+            if let Some(csv) = &csv {
+                atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
+            }
             cli::print(&if json {
                 cli::json(&readout)?
             } else {
@@ -251,10 +273,18 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             levels,
             patches,
             json,
+            csv,
         } => {
+            if let Some(csv) = &csv {
+                guard::check_file_output(csv)?;
+                guard::check_outputs(std::slice::from_ref(csv), std::slice::from_ref(&basis))?;
+            }
             let bytes = read(&basis)?;
             let readout = cli::eval(&basis, &bytes, &levels, patches)
                 .with_context(|| format!("evaluating {}", basis.display()))?;
+            if let Some(csv) = &csv {
+                atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
+            }
             cli::print(&if json {
                 cli::json(&readout)?
             } else {

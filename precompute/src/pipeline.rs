@@ -60,6 +60,9 @@ pub struct BuildOptions {
     pub form_factors: FormFactorOptions,
     /// Random emitter patterns used by `--tolerance` and the report.
     pub random_patterns: usize,
+    /// Store the zones' calculation grids (`--no-grids` leaves them out: a smaller basis,
+    /// the zones still read as area averages).
+    pub grids: bool,
 }
 
 impl Default for BuildOptions {
@@ -71,6 +74,7 @@ impl Default for BuildOptions {
             solver: Solver::Auto,
             form_factors: FormFactorOptions::default(),
             random_patterns: 4,
+            grids: true,
         }
     }
 }
@@ -127,6 +131,11 @@ pub struct BuildReport {
     pub luminaires: Vec<LuminaireFlux>,
     /// Accuracy per case, through the runtime.
     pub accuracy: Vec<CaseAccuracy>,
+    /// Every zone's calculation grid with every channel at level 1, through the runtime.
+    pub grids: Vec<GridReadout>,
+    /// Largest relative difference of any grid figure (`E_avg`, `E_min`, `E_max`, `U_o`)
+    /// through the runtime from the same figure of the exact solve, every channel at level 1.
+    pub grid_figure_error: f64,
     /// Time per stage.
     pub timings: Vec<Stage>,
 }
@@ -222,15 +231,28 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
 pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)> {
     let prepared = prepare(path, &opts.form_factors)?;
     let Prepared {
-        scene,
+        mut scene,
         g,
         area: _,
-        output_rows,
-        lights,
+        mut output_rows,
+        mut lights,
         luminaire_flux,
         form_factor_health,
         mut timings,
     } = prepared;
+    if !opts.grids {
+        // The grid points are the outputs after the sensors and zones: drop them all.
+        let keep = outputs::grid_offset(&scene);
+        for zone in &mut scene.zones {
+            zone.grid = None;
+        }
+        output_rows.truncate(keep);
+        for light in &mut lights {
+            for band in &mut light.output_irradiance {
+                band.truncate(keep);
+            }
+        }
+    }
     let n = scene.patches.len();
     let p_max = match opts.modes {
         ModeSelection::Count(p) => p.min(n),
@@ -284,6 +306,9 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     let accuracy = timed(&mut timings, "verification through the runtime", || {
         verify(&model, &solvers, &cases, &bytes, &scene)
     })?;
+    let (grids, grid_figure_error) = timed(&mut timings, "grids through the runtime", || {
+        grid_report(&model, &solvers, &bytes, &scene)
+    })?;
     let report = BuildReport {
         scene: scene.name.clone(),
         patches: n,
@@ -296,17 +321,188 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         form_factors: form_factor_health,
         luminaires: luminaire_flux,
         accuracy,
+        grids,
+        grid_figure_error,
         timings,
     };
     Ok((bytes, report))
 }
 
-/// `sensor NAME` for every sensor, then `zone NAME` for every zone: the outputs in basis order.
+/// `sensor NAME` for every sensor, `zone NAME` for every zone, then `zone NAME point I` for
+/// every grid point: the outputs in the model's order.
 pub fn output_names(scene: &Scene) -> Vec<String> {
     let sensors = scene.sensors.iter().map(|s| format!("sensor {}", s.name));
+    let points = scene.zones.iter().flat_map(|z| {
+        let count = z.grid.as_ref().map_or(0, |g| g.points.len());
+        (0..count).map(move |i| format!("zone {} point {i}", z.name))
+    });
     sensors
         .chain(scene.zones.iter().map(|z| format!("zone {}", z.name)))
+        .chain(points)
         .collect()
+}
+
+/// One point of a calculation grid.
+#[derive(Clone, Debug, Serialize)]
+pub struct GridPoint {
+    /// Position, m.
+    pub position_m: [f64; 3],
+    /// Irradiance per band (W/m²) or illuminance (lux).
+    pub irradiance: Vec<f64>,
+}
+
+/// A zone's calculation grid (EN 12464-1:2021, 4.4) and its figures, per band.
+#[derive(Clone, Debug, Serialize)]
+pub struct GridReadout {
+    /// Zone name.
+    pub zone: String,
+    /// Points along the first (x) and second (y) side.
+    pub counts: [usize; 2],
+    /// Largest spacing the layout used, m.
+    pub spacing_m: f64,
+    /// Cell sides, m.
+    pub cell_m: [f64; 2],
+    /// Band left out at the walls, m.
+    pub border_m: f64,
+    /// `E_avg` per band: mean over the points.
+    pub average: Vec<f64>,
+    /// `E_min` per band.
+    pub minimum: Vec<f64>,
+    /// `E_max` per band.
+    pub maximum: Vec<f64>,
+    /// `U_o = E_min / E_avg` per band.
+    pub uniformity: Vec<f64>,
+    /// Every point, first side fastest.
+    pub points: Vec<GridPoint>,
+}
+
+impl GridReadout {
+    /// A grid's readout from its layout and its points' readings (`values[point][band]`).
+    /// The figures are [`eigenrad_runtime::Figures`], the one definition: `figures` as the
+    /// runtime read them (per band), or, when `None`, taken here of `values` in `f64`.
+    pub fn new(
+        zone: String,
+        layout: ([usize; 2], f64, [f64; 2], f64),
+        positions: Vec<[f64; 3]>,
+        values: &[Vec<f64>],
+        figures: Option<&[eigenrad_runtime::Figures]>,
+    ) -> GridReadout {
+        let (counts, spacing_m, cell_m, border_m) = layout;
+        let bands = values.first().map_or(0, Vec::len);
+        let figures: Vec<Option<eigenrad_runtime::Figures<f64>>> = match figures {
+            Some(read) => read
+                .iter()
+                .map(|f| {
+                    Some(eigenrad_runtime::Figures {
+                        average: f64::from(f.average),
+                        minimum: f64::from(f.minimum),
+                        maximum: f64::from(f.maximum),
+                        uniformity: f64::from(f.uniformity),
+                        points: f.points,
+                    })
+                })
+                .collect(),
+            None => (0..bands)
+                .map(|b| eigenrad_runtime::Figures::of(values.iter().map(|v| v[b])))
+                .collect(),
+        };
+        let pick = |f: fn(&eigenrad_runtime::Figures<f64>) -> f64| {
+            figures
+                .iter()
+                .map(|x| x.as_ref().map_or(f64::NAN, f))
+                .collect()
+        };
+        GridReadout {
+            zone,
+            counts,
+            spacing_m,
+            cell_m,
+            border_m,
+            average: pick(|f| f.average),
+            minimum: pick(|f| f.minimum),
+            maximum: pick(|f| f.maximum),
+            uniformity: pick(|f| f.uniformity),
+            points: positions
+                .into_iter()
+                .zip(values)
+                .map(|(position_m, v)| GridPoint {
+                    position_m,
+                    irradiance: v.clone(),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// The grids of `scene`'s zones from the model's outputs (`outputs[o][band]`: sensors, zones,
+/// then grid points).
+pub fn scene_grids(scene: &crate::scene::Scene, outputs: &[Vec<f64>]) -> Vec<GridReadout> {
+    let mut next = crate::formfactor::outputs::grid_offset(scene);
+    let mut grids = Vec::new();
+    for z in &scene.zones {
+        let Some(g) = &z.grid else { continue };
+        let values = &outputs[next..next + g.points.len()];
+        next += g.points.len();
+        grids.push(GridReadout::new(
+            z.name.clone(),
+            (g.counts, g.spacing, g.cell, g.border),
+            g.points.iter().map(|p| p.to_array()).collect(),
+            values,
+            None,
+        ));
+    }
+    grids
+}
+
+/// The grids with every channel at level 1 through the runtime, and the largest relative
+/// difference of their figures from those of the exact solve.
+fn grid_report(
+    model: &Model,
+    solvers: &[crate::radiosity::exact::ExactSolver],
+    bytes: &[u8],
+    scene: &Scene,
+) -> Result<(Vec<GridReadout>, f64)> {
+    let levels = vec![1.0; model.channel_count()];
+    let got = runtime_eval::evaluate(bytes, &vec![1.0f32; levels.len()], &[], false)?;
+    let basis = eigenrad_runtime::Basis::from_bytes(bytes)?;
+    let mut exact = vec![Vec::new(); model.output_rows.len()];
+    for (b, solver) in solvers.iter().enumerate() {
+        let m = model.exact_many(solver, b, &[(levels.as_slice(), &[][..])]);
+        for (slot, r) in exact.iter_mut().zip(model.readings(b, &m[0], &levels)) {
+            slot.push(r);
+        }
+    }
+    let reference = scene_grids(scene, &exact);
+    let mut grids = Vec::new();
+    let mut next = 0;
+    for (z, zone) in scene.zones.iter().enumerate() {
+        let Some(g) = &zone.grid else { continue };
+        let positions = (0..g.points.len())
+            .map(|i| basis.grid_point(z, i).map(|p| p.map(f64::from)))
+            .collect::<std::result::Result<Vec<_>, _>>()?;
+        grids.push(GridReadout::new(
+            zone.name.clone(),
+            (g.counts, g.spacing, g.cell, g.border),
+            positions,
+            &got.grid[next..next + g.points.len()],
+            got.figures[z].as_deref(),
+        ));
+        next += g.points.len();
+    }
+    let mut worst = 0.0f64;
+    for (r, e) in grids.iter().zip(&reference) {
+        for (x, y) in [
+            (&r.average, &e.average),
+            (&r.minimum, &e.minimum),
+            (&r.maximum, &e.maximum),
+            (&r.uniformity, &e.uniformity),
+        ] {
+            for (a, b) in x.iter().zip(y) {
+                worst = worst.max((a - b).abs() / b.abs().max(1e-12));
+            }
+        }
+    }
+    Ok((grids, worst))
 }
 
 /// Evaluates the encoded basis through the runtime for every case and compares with the
@@ -344,7 +540,13 @@ fn verify(
             let patches = accuracy::metric::patch_error(&model.area, &exitance, exact);
             patch_error = patch_error.max(patches);
             worst_patch = worst_patch.max(accuracy::metric::worst_reading(&exitance, exact));
-            let readings: Vec<f64> = got.sensors.iter().chain(&got.zones).map(|r| r[b]).collect();
+            let readings: Vec<f64> = got
+                .sensors
+                .iter()
+                .chain(&got.zones)
+                .chain(&got.grid)
+                .map(|r| r[b])
+                .collect();
             let exact_readings = model.readings(b, exact, &case.levels);
             worst_reading =
                 worst_reading.max(accuracy::metric::worst_reading(&readings, &exact_readings));

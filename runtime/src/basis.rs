@@ -59,6 +59,23 @@ pub struct SensorInfo {
     pub half_angle: f32,
 }
 
+/// A zone's calculation grid as stored (`grid_counts`, `grid_layout`; docs/format.md).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridInfo {
+    /// Points of the grid (0: the zone has none).
+    pub points: usize,
+    /// Points along its first and second side.
+    pub counts: [usize; 2],
+    /// Largest spacing between points the layout used, m.
+    pub spacing: f32,
+    /// Cell sides along the first and second side, m (points sit at cell centres).
+    pub cell: [f32; 2],
+    /// Band left out at the walls, m.
+    pub border: f32,
+    /// Unit normal every point faces.
+    pub normal: [f32; 3],
+}
+
 impl<'a> Basis<'a> {
     /// Decodes and validates a basis in place.
     ///
@@ -242,6 +259,60 @@ impl<'a> Basis<'a> {
     pub fn zone_area(&self, index: usize) -> Result<f32> {
         check_index("zone", index, self.counts.zone_count)?;
         Ok(f32_at(self.tables.zone_area, index))
+    }
+
+    /// Number of grid points over all zones.
+    pub fn grid_point_count(&self) -> usize {
+        self.counts.grid_point_count
+    }
+
+    /// The calculation grid of zone `zone`.
+    pub fn grid(&self, zone: usize) -> Result<GridInfo> {
+        check_index("zone", zone, self.counts.zone_count)?;
+        let t = &self.tables;
+        let g = |k: usize| f32_at(t.grid_layout, zone * 7 + k);
+        let counts = [
+            u32_at(t.grid_counts, 2 * zone) as usize,
+            u32_at(t.grid_counts, 2 * zone + 1) as usize,
+        ];
+        Ok(GridInfo {
+            points: counts[0].saturating_mul(counts[1]),
+            counts,
+            spacing: g(0),
+            cell: [g(1), g(2)],
+            border: g(3),
+            normal: [g(4), g(5), g(6)],
+        })
+    }
+
+    /// Position (m) of point `point` of zone `zone`'s grid (first side fastest).
+    pub fn grid_point(&self, zone: usize, point: usize) -> Result<[f32; 3]> {
+        let g = self.grid_index(zone, point)?;
+        let p = |k: usize| f32_at(self.tables.grid_position, g * 3 + k);
+        Ok([p(0), p(1), p(2)])
+    }
+
+    /// Where zone `zone`'s points start among all grid points, and how many it has.
+    pub(crate) fn grid_range(&self, zone: usize) -> Result<(usize, usize)> {
+        check_index("zone", zone, self.counts.zone_count)?;
+        let points = |z: usize| {
+            (u32_at(self.tables.grid_counts, 2 * z) as usize)
+                .saturating_mul(u32_at(self.tables.grid_counts, 2 * z + 1) as usize)
+        };
+        let start = (0..zone).map(points).fold(0usize, usize::saturating_add);
+        Ok((start, points(zone)))
+    }
+
+    /// Index among all grid points of point `point` of zone `zone`, checked.
+    pub(crate) fn grid_index(&self, zone: usize, point: usize) -> Result<usize> {
+        let (start, len) = self.grid_range(zone)?;
+        check_index("grid point", point, len)?;
+        Ok(start + point)
+    }
+
+    /// The `grid_view` matrix: `G × n`.
+    pub(crate) fn grid_view(&self) -> Matrix<'a> {
+        self.matrix(self.tables.grid_view, self.counts.grid_view_cols())
     }
 
     /// Position of patch `patch` in the black-patch list, if it is black in some band.

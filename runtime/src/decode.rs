@@ -1,6 +1,6 @@
 //! Decoding a basis, one function per section of `docs/format.md`: header
 //! ([`format::check_header`]), settings, counts, names, eigenvalues, patch tables, modes,
-//! black patches, channel tables, outputs.
+//! black patches, channel tables, outputs, grids.
 //!
 //! Each section checks its tables' lengths against the counts and every stored value against
 //! its range, so that the evaluator reads the tables without checking them again. Sections
@@ -47,6 +47,7 @@ pub(crate) fn basis(bytes: &[u8]) -> Result<Basis<'_>> {
     black_patches(&raw, &counts)?;
     channel_tables(&raw, &counts, precision)?;
     outputs(&raw, &counts, precision)?;
+    grids(&raw, &counts, precision)?;
     Ok(Basis {
         quantity,
         formulation,
@@ -101,6 +102,7 @@ fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
         channel_count: raw.channel_count as usize,
         sensor_count: raw.sensor_count as usize,
         zone_count: raw.zone_count as usize,
+        grid_point_count: 0,
     };
     if counts.surface_count > usize::from(u16::MAX) {
         return Err(Error::DecodeField {
@@ -120,7 +122,21 @@ fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
             value: raw.zone_count,
         });
     }
-    Ok(counts)
+    // The grid's counts come before its tables: every later length follows from `G`.
+    let count = mul(counts.zone_count, 2)?;
+    check_len("grid_counts", raw.grid_counts, count, 4)?;
+    let mut points = 0usize;
+    for z in 0..counts.zone_count {
+        let zone = mul(
+            u32_at(raw.grid_counts, 2 * z) as usize,
+            u32_at(raw.grid_counts, 2 * z + 1) as usize,
+        )?;
+        points = cols(points.checked_add(zone))?;
+    }
+    Ok(Counts {
+        grid_point_count: points,
+        ..counts
+    })
 }
 
 /// Names: the surfaces', channels', sensors' and zones' as consecutive postcard strings,
@@ -300,6 +316,45 @@ fn outputs(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
         precision,
         c.patch_count,
         cols,
+    )
+}
+
+/// Grids: `grid_layout` to the `grid_view` matrix (`grid_counts` was checked with the
+/// counts). A zone with points has a positive spacing and cells and a unit normal.
+fn grids(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
+    let g = c.grid_point_count;
+    f32_table("grid_layout", raw.grid_layout, mul(c.zone_count, 7)?, |v| {
+        bounded(v) && v >= -1.0
+    })?;
+    for z in 0..c.zone_count {
+        let points = u32_at(raw.grid_counts, 2 * z) != 0 && u32_at(raw.grid_counts, 2 * z + 1) != 0;
+        let at = |k: usize| f32_at(raw.grid_layout, 7 * z + k);
+        let norm = at(4) * at(4) + at(5) * at(5) + at(6) * at(6);
+        let ok = !points
+            || (at(0) > 0.0
+                && at(1) > 0.0
+                && at(2) > 0.0
+                && at(3) >= 0.0
+                && (norm - 1.0).abs() <= 1.0e-3);
+        if !ok {
+            return Err(Error::DecodeValue {
+                field: "grid_layout",
+                index: 7 * z,
+            });
+        }
+    }
+    f32_table("grid_position", raw.grid_position, mul(g, 3)?, bounded)?;
+    let bp = cols(c.modes_cols())?;
+    f32_table("grid_modes", raw.grid_modes, mul(g, bp)?, bounded)?;
+    let count = mul(mul(g, c.bands)?, c.channel_count)?;
+    f32_table("grid_channels", raw.grid_channels, count, bounded)?;
+    matrix(
+        "grid_view.data",
+        "grid_view.scales",
+        raw.grid_view,
+        precision,
+        g,
+        cols(c.grid_view_cols())?,
     )
 }
 

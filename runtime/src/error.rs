@@ -120,6 +120,12 @@ pub enum Error {
         /// The patch.
         patch: usize,
     },
+    /// A zone's grid figures were asked for, but the zone has no calculation grid (surface
+    /// zones have none) or a reading on it is not finite.
+    NoGrid {
+        /// The zone.
+        zone: usize,
+    },
     /// DALI arc power level 255 is "MASK" (no change), not a light level.
     DaliMask,
     /// A name the caller needs is not in the basis. The runtime's lookups
@@ -220,6 +226,12 @@ impl fmt::Display for Error {
                 f,
                 "patch {patch} has zero reflectance: its irradiance is not defined by its exitance"
             ),
+            Error::NoGrid { zone } => {
+                write!(
+                    f,
+                    "zone {zone} has no calculation grid with finite readings"
+                )
+            }
             Error::DaliMask => f.write_str("DALI arc power level 255 (MASK) is not a light level"),
             Error::UnknownName { what } => write!(f, "the basis has no {what} of that name"),
             Error::InvalidBound { bound } => {

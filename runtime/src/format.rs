@@ -1,4 +1,4 @@
-//! The serialized basis, format version 2: the wire types a writer fills and the reader
+//! The serialized basis, format version 3: the wire types a writer fills and the reader
 //! decodes in place. `docs/format.md` is the normative description; this module is its
 //! layout and header, the checks of the payload's sections are in `decode.rs`.
 //!
@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 /// The eight bytes every basis starts with.
 pub const MAGIC: [u8; 8] = *b"EIGENRAD";
 /// The format version this runtime writes and reads.
-pub const FORMAT_VERSION: u16 = 2;
+pub const FORMAT_VERSION: u16 = 3;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 20;
 /// `patch_channel` value of a patch that belongs to no channel.
@@ -111,8 +111,9 @@ pub struct MatrixBytes<'a> {
 /// The payload: settings, counts, names, then tables of little-endian numbers, in the order
 /// and with the names of `docs/format.md`'s payload table.
 ///
-/// `n` patches, `p` modes, `B` bands (1 or 3), `m` channels, `S` sensors, `Z` zones, and
-/// `O = S + Z` outputs (sensors first, then zones). Lengths are in values; see
+/// `n` patches, `p` modes, `B` bands (1 or 3), `m` channels, `S` sensors, `Z` zones,
+/// `O = S + Z` outputs (sensors first, then zones), and `G` grid points (every zone's, zone
+/// by zone: the sum of `grid_counts`' products). Lengths are in values; see
 /// `docs/format.md` for the byte layout and the meaning of every table. A decoded payload is
 /// only parsed; [`Basis::from_bytes`](crate::Basis::from_bytes) is what checks its tables.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, Default, PartialEq)]
@@ -193,6 +194,28 @@ pub struct Payload<'a> {
     /// area-averaged), for direct light from exitance set patch by patch.
     #[serde(borrow)]
     pub output_view: MatrixBytes<'a>,
+    /// `Z × 2` `u32`: points of each zone's calculation grid along its first and second side
+    /// (0 × 0 for a zone without a grid); the zone has their product.
+    #[serde(borrow)]
+    pub grid_counts: &'a [u8],
+    /// `Z × 7` `f32`: each zone's grid layout: largest spacing `p` (m), cell sides (m), band
+    /// left out at the walls (m), the unit normal its points face (zeros without a grid).
+    #[serde(borrow)]
+    pub grid_layout: &'a [u8],
+    /// `G × 3` `f32`: grid point positions, m.
+    #[serde(borrow)]
+    pub grid_position: &'a [u8],
+    /// `G × B × p` `f32`: each grid point's irradiance per unit mode amplitude.
+    #[serde(borrow)]
+    pub grid_modes: &'a [u8],
+    /// `G × B × m` `f32`: each grid point's exact irradiance from each channel alone at
+    /// level 1 (W/m² or lux).
+    #[serde(borrow)]
+    pub grid_channels: &'a [u8],
+    /// `G × n` matrix: view factor from each grid point to each patch, for direct light from
+    /// exitance set patch by patch.
+    #[serde(borrow)]
+    pub grid_view: MatrixBytes<'a>,
 }
 
 /// The dimensions every table's length follows from (`docs/format.md`, notation): the reader
@@ -217,6 +240,8 @@ pub(crate) struct Counts {
     pub sensor_count: usize,
     /// `Z`: `zone_count`.
     pub zone_count: usize,
+    /// `G`: grid points, the sum over zones of `grid_counts`' products.
+    pub grid_point_count: usize,
 }
 
 impl Counts {
@@ -238,6 +263,11 @@ impl Counts {
     /// Columns of `output_view`: `O`.
     pub fn output_view_cols(&self) -> Option<usize> {
         self.output_count()
+    }
+
+    /// Columns of `grid_view`: `n`.
+    pub fn grid_view_cols(&self) -> Option<usize> {
+        Some(self.patch_count)
     }
 }
 

@@ -16,7 +16,7 @@ use crate::format::{
 /// Every table of a basis, owned, in `f64`, with the counts implied by the lengths.
 ///
 /// Fields carry the names of `docs/format.md`'s payload. Notation as there: `n` patches, `p`
-/// modes, `B` bands, `m` channels, `O` outputs (sensors, then zones). Matrices are row-major.
+/// modes, `B` bands, `m` channels, `O` outputs (sensors, then zones), `G` grid points. Matrices are row-major.
 /// Three things of the payload have an owned form of their own: the counts are the lengths
 /// of the name lists and of `patch_area`, `names` is written from the four name lists, and
 /// `black_patches` is derived from `patch_reflectance`, so that they cannot disagree.
@@ -76,6 +76,20 @@ pub struct BasisTables {
     pub output_channels: Vec<f64>,
     /// `n × O`.
     pub output_view: Vec<f64>,
+    /// Per zone: grid points along its first and second side (`[0, 0]` without a grid).
+    /// Left empty together with `grid_layout`, no zone has a grid (both are written as
+    /// zeros, one entry per zone).
+    pub grid_counts: Vec<[u32; 2]>,
+    /// Per zone: spacing `p` (m), cell sides (m), border (m), unit normal.
+    pub grid_layout: Vec<[f64; 7]>,
+    /// `G` grid point positions, m.
+    pub grid_position: Vec<[f64; 3]>,
+    /// `G × B × p`.
+    pub grid_modes: Vec<f64>,
+    /// `G × B × m`.
+    pub grid_channels: Vec<f64>,
+    /// `G × n`.
+    pub grid_view: Vec<f64>,
 }
 
 /// `values` rounded to `f32`, little-endian.
@@ -203,6 +217,12 @@ impl BasisTables {
             output_modes: Vec::new(),
             output_channels: Vec::new(),
             output_view: Vec::new(),
+            grid_counts: Vec::new(),
+            grid_layout: Vec::new(),
+            grid_position: Vec::new(),
+            grid_modes: Vec::new(),
+            grid_channels: Vec::new(),
+            grid_view: Vec::new(),
         }
     }
 
@@ -216,6 +236,7 @@ impl BasisTables {
             channel_count: self.channel_names.len(),
             sensor_count: self.sensor_names.len(),
             zone_count: self.zone_names.len(),
+            grid_point_count: self.grid_position.len(),
         }
     }
 
@@ -237,6 +258,16 @@ impl BasisTables {
             names.extend_from_slice(buf.get(..used).unwrap_or(&[]));
         }
         Ok(names)
+    }
+
+    /// `grid_counts` and `grid_layout` as written: as given, or zeros for every zone when
+    /// both are empty (no zone has a grid).
+    fn grids(&self) -> (Vec<[u32; 2]>, Vec<[f64; 7]>) {
+        if self.grid_counts.is_empty() && self.grid_layout.is_empty() {
+            let z = self.zone_names.len();
+            return (vec![[0; 2]; z], vec![[0.0; 7]; z]);
+        }
+        (self.grid_counts.clone(), self.grid_layout.clone())
     }
 
     /// The `black_patches` table: ascending indices of the patches with ρ = 0 in some band.
@@ -291,6 +322,18 @@ impl BasisTables {
             output_modes: &f32_bytes(&self.output_modes),
             output_channels: &f32_bytes(&self.output_channels),
             output_view: matrix(&self.output_view, c.output_view_cols())?.bytes(),
+            grid_counts: &self
+                .grids()
+                .0
+                .iter()
+                .flatten()
+                .flat_map(|v| v.to_le_bytes())
+                .collect::<Vec<u8>>(),
+            grid_layout: &f32_bytes(self.grids().1.as_flattened()),
+            grid_position: &f32_bytes(self.grid_position.as_flattened()),
+            grid_modes: &f32_bytes(&self.grid_modes),
+            grid_channels: &f32_bytes(&self.grid_channels),
+            grid_view: matrix(&self.grid_view, c.grid_view_cols())?.bytes(),
         })
     }
 }

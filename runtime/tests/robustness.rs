@@ -113,6 +113,27 @@ fn evaluate_all<const B: usize>(basis: Basis<'_>, levels: &[f32], exitance: f32)
     }
     for z in 0..basis.zone_count() {
         finite(e.zone_irradiance(z));
+        let points = basis.grid(z).map_or(0, |g| g.points);
+        for point in 0..=points {
+            finite(e.grid_point_irradiance(z, point));
+        }
+        figures_finite(e.zone_figures(z));
+    }
+}
+
+/// Every figure of an `Ok` is finite; a zone without a grid (or with a reading that is not
+/// finite) is [`Error::NoGrid`].
+fn figures_finite<const B: usize>(r: eigenrad_runtime::Result<[eigenrad_runtime::Figures; B]>) {
+    match r {
+        Ok(f) => assert!(
+            f.iter()
+                .all(|x| [x.average, x.minimum, x.maximum, x.uniformity]
+                    .iter()
+                    .all(|v| v.is_finite())),
+            "non-finite figures {f:?}"
+        ),
+        Err(Error::NoGrid { .. } | Error::InvalidInput { .. }) => {}
+        Err(other) => panic!("unexpected {other:?}"),
     }
 }
 
@@ -144,6 +165,15 @@ fn evaluate_channels<const B: usize>(basis: Basis<'_>, levels: &[f32]) {
     }
     for z in 0..basis.zone_count() {
         finite(e.zone_irradiance(z));
+        let points = basis.grid(z).map_or(0, |g| g.points);
+        for point in 0..points {
+            finite(e.grid_point_irradiance(z, point));
+        }
+        assert!(matches!(
+            e.grid_point_irradiance(z, points),
+            Err(Error::IndexOutOfRange { .. })
+        ));
+        figures_finite(e.zone_figures(z));
     }
 }
 

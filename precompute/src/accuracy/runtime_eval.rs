@@ -1,7 +1,7 @@
 //! Evaluating a basis on the host through the runtime crate: exactly the arithmetic firmware
 //! performs, with capacities large enough for any basis the precompute writes.
 
-use eigenrad_runtime::{Basis, Evaluator};
+use eigenrad_runtime::{Basis, Evaluator, Figures};
 
 use crate::error::{Error, Result};
 
@@ -25,6 +25,11 @@ pub struct Readout {
     pub sensors: Vec<Vec<f64>>,
     /// `zones[z][b]`.
     pub zones: Vec<Vec<f64>>,
+    /// `grid[g][b]`: every zone's grid points, zone by zone.
+    pub grid: Vec<Vec<f64>>,
+    /// `figures[z][b]`: each zone's grid figures as the runtime streams them
+    /// (`zone_figures`), `None` for a zone without a grid.
+    pub figures: Vec<Option<Vec<Figures>>>,
 }
 
 /// Evaluates `bytes` for channel `levels` and per-patch exitance `extra` (`extra[b][i]`,
@@ -77,6 +82,16 @@ fn run<const B: usize>(
     }
     for z in 0..basis.zone_count() {
         out.zones.push(widen(eval.zone_irradiance(z)?));
+        let grid = basis.grid(z)?;
+        for point in 0..grid.points {
+            out.grid.push(widen(eval.grid_point_irradiance(z, point)?));
+        }
+        out.figures.push(
+            (grid.points > 0)
+                .then(|| eval.zone_figures(z))
+                .transpose()?
+                .map(Vec::from),
+        );
     }
     if patches {
         for i in 0..n {

@@ -36,6 +36,8 @@ pub struct BasisInfo {
     pub sensors: Vec<String>,
     /// Zone names with their areas (m²).
     pub zones: Vec<(String, f32)>,
+    /// Each zone's calculation grid: points along its two sides (`[0, 0]`: none).
+    pub grids: Vec<[usize; 2]>,
     /// Eigenvalues of the first band.
     pub eigenvalues: Vec<f32>,
 }
@@ -52,7 +54,9 @@ pub fn inspect(path: &Path, bytes: &[u8]) -> Result<BasisInfo> {
     let b = Basis::from_bytes(bytes).map_err(basis_error(path))?;
     let e = basis_error(path);
     let mut zones = Vec::new();
+    let mut grids = Vec::new();
     for z in 0..b.zone_count() {
+        grids.push(b.grid(z).map_err(&e)?.counts);
         zones.push((
             b.zone_name(z).map_err(&e)?.to_owned(),
             b.zone_area(z).map_err(&e)?,
@@ -71,6 +75,7 @@ pub fn inspect(path: &Path, bytes: &[u8]) -> Result<BasisInfo> {
         channels: names(b.channel_count(), |i| b.channel_name(i)).map_err(&e)?,
         sensors: names(b.sensor_count(), |i| b.sensor_name(i)).map_err(&e)?,
         zones,
+        grids,
         eigenvalues: (0..b.mode_count())
             .map(|k| b.eigenvalue(0, k))
             .collect::<std::result::Result<_, _>>()
@@ -107,7 +112,11 @@ pub fn format_inspect(i: &BasisInfo) -> String {
     let zones: Vec<String> = i
         .zones
         .iter()
-        .map(|(n, a)| format!("{n} ({a:.2} m²)"))
+        .zip(&i.grids)
+        .map(|((n, a), g)| match g {
+            [0, _] | [_, 0] => format!("{n} ({a:.2} m²)"),
+            [x, y] => format!("{n} ({a:.2} m², grid {x} × {y} points)"),
+        })
         .collect();
     let _ = writeln!(s, "zones ({}): {}", i.zones.len(), zones.join(", "));
     let head: Vec<String> = i

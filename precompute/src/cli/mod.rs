@@ -20,7 +20,7 @@ pub use form_factors::{
 };
 pub use inspect::{format_inspect, inspect, BasisInfo};
 pub use readout::{
-    eval, format_readout, parse_levels, solve, Level, PatchReading, Reading, Readout,
+    eval, format_readout, grids_csv, parse_levels, solve, Level, PatchReading, Reading, Readout,
 };
 pub use report::{format_build_report, verify_outputs, write_svgs};
 

@@ -11,7 +11,7 @@ use crate::accuracy::runtime_eval;
 use crate::error::{Error, Result};
 use crate::formfactor::exchange;
 use crate::formfactor::FormFactorOptions;
-use crate::pipeline;
+use crate::pipeline::{self, scene_grids, GridReadout};
 use crate::radiosity::exact::ExactSolver;
 use crate::radiosity::model;
 
@@ -64,6 +64,8 @@ pub struct Readout {
     pub sensors: Vec<Reading>,
     /// Zone readings (area-average irradiance).
     pub zones: Vec<Reading>,
+    /// Calculation grids of the zones that have one, with their figures.
+    pub grids: Vec<GridReadout>,
     /// Per patch, with `--patches`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub patches: Option<Vec<PatchReading>>,
@@ -184,6 +186,7 @@ pub fn solve(scene_path: &Path, level_args: &[String], patches: bool) -> Result<
                 irradiance: o.clone(),
             })
             .collect(),
+        grids: scene_grids(scene, &outputs),
         patches: patches.then(|| {
             scene
                 .patches
@@ -236,6 +239,28 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &[String], patches: bool) -> 
             irradiance: v.clone(),
         });
     }
+    let mut grids = Vec::new();
+    let mut next = 0;
+    for z in 0..basis.zone_count() {
+        let g = basis.grid(z).map_err(basis_error(path))?;
+        if g.points == 0 {
+            continue;
+        }
+        let mut positions = Vec::with_capacity(g.points);
+        for i in 0..g.points {
+            let at = basis.grid_point(z, i).map_err(basis_error(path))?;
+            positions.push(at.map(f64::from));
+        }
+        let wide = f64::from;
+        grids.push(GridReadout::new(
+            name(basis.zone_name(z))?,
+            (g.counts, wide(g.spacing), g.cell.map(wide), wide(g.border)),
+            positions,
+            &got.grid[next..next + g.points],
+            got.figures[z].as_deref(),
+        ));
+        next += g.points;
+    }
     let patch_list = if patches {
         let mut list = Vec::new();
         for (i, (m, e)) in got.exitance.iter().zip(&got.irradiance).enumerate() {
@@ -259,8 +284,61 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &[String], patches: bool) -> 
         levels: applied(&names, &levels),
         sensors,
         zones,
+        grids,
         patches: patch_list,
     })
+}
+
+/// Every grid point of `r` as CSV: a header naming the units, then one line per point, zones
+/// in basis order and points first side fastest, positions to 0.1 mm. Names are quoted
+/// (doubling any quote).
+pub fn grids_csv(r: &Readout) -> String {
+    let unit = match r.unit {
+        "lux" => "lux",
+        _ => "W_per_m2",
+    };
+    let mut s = String::from("zone,point,x_m,y_m,z_m");
+    for b in &r.bands {
+        let _ = write!(s, ",{b}_{unit}");
+    }
+    s.push('\n');
+    for g in &r.grids {
+        let zone = g.zone.replace('"', "\"\"");
+        for (i, p) in g.points.iter().enumerate() {
+            let [x, y, z] = p.position_m;
+            let _ = write!(s, "\"{zone}\",{i},{x:.4},{y:.4},{z:.4}");
+            for v in &p.irradiance {
+                let _ = write!(s, ",{v}");
+            }
+            s.push('\n');
+        }
+    }
+    s
+}
+
+/// Two lines per grid: its layout, then its figures (`unit`: lux or W/m²).
+pub(super) fn write_grids(s: &mut String, grids: &[GridReadout], unit: &str) {
+    let fmt = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x:.4}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    for g in grids {
+        let _ = writeln!(
+            s,
+            "grid   {:<20} {} × {} points, spacing ≤ {:.3} m, cells {:.3} × {:.3} m, border {:.2} m (EN 12464-1)",
+            g.zone, g.counts[0], g.counts[1], g.spacing_m, g.cell_m[0], g.cell_m[1], g.border_m
+        );
+        let _ = writeln!(
+            s,
+            "       E_avg {} {unit}, E_min {} {unit}, E_max {} {unit}, U_o {}",
+            fmt(&g.average),
+            fmt(&g.minimum),
+            fmt(&g.maximum),
+            fmt(&g.uniformity),
+        );
+    }
 }
 
 pub(super) fn unit(q: Quantity) -> &'static str {
@@ -301,6 +379,7 @@ pub fn format_readout(r: &Readout) -> String {
             r.unit
         );
     }
+    write_grids(&mut s, &r.grids, r.unit);
     if let Some(patches) = &r.patches {
         let _ = writeln!(
             s,

@@ -54,6 +54,14 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         "  (exitance: area-weighted RMS over the patches; a patch, sensor or zone against its own exact value, floored at {:.0e} of the largest)",
         crate::accuracy::metric::READING_FLOOR
     );
+    if !r.grids.is_empty() {
+        let _ = writeln!(
+            s,
+            "calculation grids, every channel at level 1, through the runtime (largest relative difference of a figure from the exact solve: {:.1e}):",
+            r.grid_figure_error
+        );
+        super::readout::write_grids(&mut s, &r.grids, r.unit);
+    }
     let _ = writeln!(s, "time per stage:");
     for t in &r.timings {
         let _ = writeln!(s, "  {:<34} {:>8.3} s", t.stage, t.seconds);

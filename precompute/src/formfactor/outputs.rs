@@ -1,10 +1,14 @@
-//! Sensors and zones as rows over the patches: the irradiance at output `o` is
+//! Sensors, zones and grid points as rows over the patches: the irradiance at output `o` is
 //! `Σ_j R_oj M_j` (docs/math.md, "Outputs people need").
+//!
+//! Outputs are in basis order: the sensors, then the zones, then every zone's grid points,
+//! zone by zone ([`grid_points`]).
 
 use faer::Mat;
 use rayon::prelude::*;
 
 use crate::formfactor::{self, FormFactorOptions, Occluders};
+use crate::geometry::Vec3;
 use crate::scene::{Scene, Zone, ZoneKind};
 
 /// Area of a zone, m².
@@ -15,8 +19,23 @@ pub fn zone_area(scene: &Scene, zone: &Zone) -> f64 {
     }
 }
 
+/// Every zone's grid points in output order: (zone index, position in m, unit normal).
+pub fn grid_points(scene: &Scene) -> impl Iterator<Item = (usize, Vec3, Vec3)> + '_ {
+    scene.zones.iter().enumerate().flat_map(|(z, zone)| {
+        zone.grid
+            .iter()
+            .flat_map(move |g| g.points.iter().map(move |&p| (z, p, g.normal)))
+    })
+}
+
+/// Number of sensors plus zones: the index of the first grid point among the outputs.
+pub fn grid_offset(scene: &Scene) -> usize {
+    scene.sensors.len() + scene.zones.len()
+}
+
 /// One row per sensor (point form factors with occlusion and field of view), then one per
-/// zone (area-weighted average of its patches' or receivers' form-factor rows).
+/// zone (area-weighted average of its patches' or receivers' form-factor rows), then one per
+/// grid point (a full-hemisphere point receiver facing its grid's normal, like a sensor).
 ///
 /// `g` is `A F` symmetrised, `area` the patch areas (m²).
 pub fn output_rows(
@@ -67,5 +86,9 @@ pub fn output_rows(
         };
         rows.push(row);
     }
+    let points: Vec<(usize, Vec3, Vec3)> = grid_points(scene).collect();
+    rows.par_extend(points.par_iter().map(|&(_, position, normal)| {
+        formfactor::point_form_factors(position, normal, None, &scene.patches, occluders)
+    }));
     rows
 }

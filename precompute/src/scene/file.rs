@@ -399,4 +399,29 @@ pub(crate) struct WorkPlaneDef {
     /// Longest receiver edge, in the scene's unit (default: `scene.max_edge`).
     #[serde(default)]
     pub max_edge: Option<Spanned<f64>>,
+    /// A task area: the plane restricted to this rectangle of the room's footprint.
+    #[serde(default)]
+    pub area: Option<Spanned<AreaDef>>,
+    /// The calculation grid's settings (default: the EN 12464-1 rule).
+    #[serde(default)]
+    pub grid: Option<Spanned<GridDef>>,
+}
+
+/// `zone.work_plane.area`: a rectangle of the floor plan, in the scene's unit.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct AreaDef {
+    /// Smallest x and y (two numbers).
+    pub min: Spanned<Vec<f64>>,
+    /// Largest x and y (two numbers).
+    pub max: Spanned<Vec<f64>>,
+}
+
+/// `zone.work_plane.grid`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct GridDef {
+    /// Largest spacing between points, in the scene's unit (default: the EN 12464-1 rule).
+    #[serde(default)]
+    pub spacing: Option<Spanned<f64>>,
 }

@@ -11,6 +11,7 @@ mod contacts;
 mod context;
 mod error;
 mod file;
+pub mod grid;
 mod inputs;
 mod limits;
 mod luminaires;
@@ -32,6 +33,7 @@ use crate::geometry::{Face, Patch, Vec3};
 use crate::scene::photometry::Photometry;
 
 pub use error::{Location, SceneError};
+pub use grid::Grid;
 pub use inputs::{inputs, SceneInputs};
 #[cfg(test)]
 pub(crate) use luminaires::frame as luminaire_frame;
@@ -157,6 +159,8 @@ pub struct Zone {
     pub name: String,
     /// What the zone is made of.
     pub kind: ZoneKind,
+    /// Its calculation grid, for a work plane (surface zones have none).
+    pub grid: Option<Grid>,
 }
 
 /// What a zone averages over.

@@ -5,6 +5,7 @@ use toml::Spanned;
 use super::context::{resolve_surfaces, unique, Ctx};
 use super::error::SceneError;
 use super::file::{SensorDef, WorkPlaneDef, ZoneDef};
+use super::grid::{self, Grid};
 use super::mesh::{estimate, mesh_face};
 use super::openings::CONTACT_TOLERANCE;
 use super::{Sensor, Surface, Zone, ZoneKind};
@@ -176,7 +177,7 @@ pub(crate) fn zones(
     for def in defs {
         let z = def.get_ref();
         let what = format!("zone `{}`", z.name);
-        let kind = match (&z.surfaces, &z.work_plane) {
+        let (kind, grid) = match (&z.surfaces, &z.work_plane) {
             (Some(refs), None) => {
                 let members = resolve_surfaces(ctx, surfaces, refs, &format!("{what}.surfaces"))?;
                 if members.is_empty() {
@@ -186,14 +187,16 @@ pub(crate) fn zones(
                         message: "names no surface: a zone averages over at least one".into(),
                     });
                 }
-                ZoneKind::Surfaces(
-                    members
-                        .iter()
-                        .flat_map(|&i| surfaces[i].patch_range.clone())
-                        .collect(),
-                )
+                let patches = members
+                    .iter()
+                    .flat_map(|&i| surfaces[i].patch_range.clone())
+                    .collect();
+                (ZoneKind::Surfaces(patches), None)
             }
-            (None, Some(wp)) => work_plane(ctx, &what, wp, rooms, surfaces, max_edge)?,
+            (None, Some(wp)) => {
+                let (kind, grid) = work_plane(ctx, &what, wp, rooms, surfaces, max_edge)?;
+                (kind, Some(grid))
+            }
             _ => {
                 return Err(SceneError::Invalid {
                     at: ctx.at(def),
@@ -205,13 +208,18 @@ pub(crate) fn zones(
         zones.push(Zone {
             name: z.name.clone(),
             kind,
+            grid,
         });
     }
 
     Ok(zones)
 }
 
-/// Receivers of a work plane: upward quads over the room's footprint less the margin.
+/// Default band left out at the walls, m (EN 12464-1:2021, 4.4: 0.5 m).
+pub(crate) const DEFAULT_MARGIN: f64 = 0.5;
+
+/// Receivers of a work plane: upward quads over the room's footprint less the margin (or
+/// over its task area), and its calculation grid.
 fn work_plane(
     ctx: &Ctx,
     what: &str,
@@ -219,7 +227,7 @@ fn work_plane(
     rooms: &[(String, Vec3, Vec3)],
     surfaces: &[Surface],
     default_edge: f64,
-) -> Result<ZoneKind, SceneError> {
+) -> Result<(ZoneKind, Grid), SceneError> {
     let wp = def.get_ref();
     let field = format!("{what}.work_plane.room");
     let room = match &wp.room {
@@ -259,7 +267,7 @@ fn work_plane(
             })
         }
         Some(m) => *m.get_ref() * ctx.unit,
-        None => 0.0,
+        None => DEFAULT_MARGIN,
     };
     if 2.0 * margin >= (hi.x - lo.x).min(hi.y - lo.y) {
         return Err(SceneError::OutOfRange {
@@ -277,7 +285,72 @@ fn work_plane(
         .position(|s| s.name == format!("{name}.floor"))
         .unwrap_or(0);
     let z = lo.z + height;
-    let (x0, y0, x1, y1) = (lo.x + margin, lo.y + margin, hi.x - margin, hi.y - margin);
+    let (mut x0, mut y0, mut x1, mut y1) =
+        (lo.x + margin, lo.y + margin, hi.x - margin, hi.y - margin);
+    let mut border = margin;
+    if let Some(area) = &wp.area {
+        let field = format!("{what}.work_plane.area");
+        let a = area.get_ref();
+        let corner = |c: &Spanned<Vec<f64>>, end: &str| match c.get_ref()[..] {
+            [x, y] => ctx.coordinates([x, y, 0.0], c, &format!("{field}.{end}")),
+            _ => Err(SceneError::BandCount {
+                at: ctx.at(c),
+                field: format!("{field}.{end}"),
+                expected: 2,
+                found: c.get_ref().len(),
+            }),
+        };
+        let (min, max) = (corner(&a.min, "min")?, corner(&a.max, "max")?);
+        let inside = lo.x <= min.x && lo.y <= min.y && max.x <= hi.x && max.y <= hi.y;
+        if !(min.x < max.x && min.y < max.y && inside) {
+            return Err(SceneError::OutOfRange {
+                at: ctx.at(area),
+                field,
+                message: format!(
+                    "must be a rectangle (min below max) inside room `{name}`'s footprint \
+                     {:?} to {:?}, found {:?} to {:?}",
+                    [lo.x / ctx.unit, lo.y / ctx.unit],
+                    [hi.x / ctx.unit, hi.y / ctx.unit],
+                    a.min.get_ref(),
+                    a.max.get_ref()
+                ),
+            });
+        }
+        // A task area is the area itself: no band is left out of it.
+        (x0, y0, x1, y1) = (min.x, min.y, max.x, max.y);
+        border = 0.0;
+    }
+    let spacing = match wp.grid.as_ref().and_then(|g| g.get_ref().spacing.as_ref()) {
+        Some(s) => {
+            let field = format!("{what}.work_plane.grid.spacing");
+            let value = ctx.length(s, &field)?;
+            if !(value > 0.0 && value <= grid::MAX_SPACING) {
+                return Err(SceneError::OutOfRange {
+                    at: ctx.at(s),
+                    field,
+                    message: format!(
+                        "must be positive and at most {} m, found {}",
+                        grid::MAX_SPACING,
+                        s.get_ref()
+                    ),
+                });
+            }
+            let [na, nb] = grid::counts(x1 - x0, y1 - y0, value);
+            if na.saturating_mul(nb) > grid::MAX_POINTS {
+                return Err(SceneError::OutOfRange {
+                    at: ctx.at(s),
+                    field,
+                    message: format!(
+                        "gives {na} × {nb} points, more than {} a zone may have",
+                        grid::MAX_POINTS
+                    ),
+                });
+            }
+            Some(value)
+        }
+        None => None,
+    };
+    let grid = grid::horizontal((x0, y0), (x1, y1), z, spacing, border);
     let corners = [
         Vec3::new(x0, y0, z),
         Vec3::new(x1, y0, z),
@@ -288,10 +361,11 @@ fn work_plane(
     check_receivers(ctx, what, def, estimate(&corners, edge_used), surfaces)?;
     let mut polygons: Vec<Polygon> = Vec::new();
     mesh_face(&corners, edge_used, &mut polygons);
-    Ok(ZoneKind::WorkPlane {
+    let kind = ZoneKind::WorkPlane {
         height,
         receivers: polygons.into_iter().map(|p| Patch::new(p, floor)).collect(),
-    })
+    };
+    Ok((kind, grid))
 }
 
 /// Refuses a work plane whose `receivers` (an estimate) would not fit in memory next to the

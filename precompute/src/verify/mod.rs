@@ -215,8 +215,8 @@ fn case_curve(
     case: &Case,
     modes: &[usize],
     sensors: usize,
+    outputs: usize,
 ) -> CaseCurve {
-    let outputs = model.output_rows.len();
     let mut curve = CaseCurve {
         case: case.name.clone(),
         kind,
@@ -228,7 +228,8 @@ fn case_curve(
         let t = pt.step;
         let e = metric::patch_error(&model.area, pt.exitance, pt.exact);
         curve.patches[t] = curve.patches[t].max(e);
-        let readings = metric::reading_errors(pt.outputs, pt.exact_outputs);
+        // Sensors and zones; grid points (past them) are not among the metrics.
+        let readings = metric::reading_errors(&pt.outputs[..outputs], &pt.exact_outputs[..outputs]);
         for (o, r) in readings.into_iter().enumerate() {
             let slot = if o < sensors {
                 &mut curve.sensors[o][t]
@@ -249,7 +250,8 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
     let bands = scene.bands.count();
     let m = scene.channels.len();
     let sensors = scene.sensors.len();
-    let outputs = prepared.output_rows.len();
+    // Sensors and zones: the outputs the tables report (grid points come after them).
+    let outputs = crate::formfactor::outputs::grid_offset(scene);
     let cases = cases(&prepared, opts);
 
     let mut formulations = Vec::new();
@@ -271,12 +273,14 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
         if modes.is_empty() {
             modes = accuracy::mode_ladder(accuracy::modes_held(&model).max(1));
             if m > 0 {
-                baseline_error = Some(superposition_error(&model, &solvers, &cases, sensors));
+                baseline_error = Some(superposition_error(
+                    &model, &solvers, &cases, sensors, outputs,
+                ));
             }
         }
         let curves = cases
             .iter()
-            .map(|(kind, case)| case_curve(&model, &solvers, *kind, case, &modes, sensors))
+            .map(|(kind, case)| case_curve(&model, &solvers, *kind, case, &modes, sensors, outputs))
             .collect();
         let mut basis_bytes = Vec::with_capacity(modes.len());
         for &p in &modes {
@@ -315,6 +319,7 @@ fn superposition_error(
     solvers: &[ExactSolver],
     cases: &[(CaseKind, Case)],
     sensors: usize,
+    outputs: usize,
 ) -> [f64; 3] {
     let m = model.channel_count();
     let mut worst = [0.0f64; 3];
@@ -337,7 +342,8 @@ fn superposition_error(
                 model.readings(b, &sum, &case.levels),
                 model.readings(b, &exact, &case.levels),
             );
-            for (o, r) in metric::reading_errors(&got, &want).into_iter().enumerate() {
+            let (got, want) = (&got[..outputs], &want[..outputs]);
+            for (o, r) in metric::reading_errors(got, want).into_iter().enumerate() {
                 let slot = if o < sensors { 2 } else { 1 };
                 worst[slot] = worst[slot].max(r);
             }

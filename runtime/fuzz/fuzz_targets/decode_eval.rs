@@ -30,8 +30,23 @@ fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
     for s in 0..basis.sensor_count() {
         check(e.sensor_irradiance(s));
     }
+    let figures = |r: eigenrad_runtime::Result<[eigenrad_runtime::Figures; B]>| {
+        if let Ok(f) = r {
+            for x in f {
+                assert!([x.average, x.minimum, x.maximum, x.uniformity]
+                    .iter()
+                    .all(|v| v.is_finite()));
+            }
+        }
+    };
     for z in 0..basis.zone_count() {
         check(e.zone_irradiance(z));
+        let points = basis.grid(z).map_or(0, |g| g.points);
+        for point in 0..=points.min(64) {
+            check(e.grid_point_irradiance(z, point));
+            let _ = basis.grid_point(z, point);
+        }
+        figures(e.zone_figures(z));
     }
     e.clear_patch_exitance();
     // The channel evaluator, driven with the same levels.
@@ -49,6 +64,11 @@ fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
         }
         for z in 0..basis.zone_count() {
             check(c.zone_irradiance(z));
+            let points = basis.grid(z).map_or(0, |g| g.points);
+            for point in 0..=points.min(64) {
+                check(c.grid_point_irradiance(z, point));
+            }
+            figures(c.zone_figures(z));
         }
     }
     let _ = basis.find_channel("main");

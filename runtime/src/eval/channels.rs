@@ -1,7 +1,7 @@
 //! The channel-only evaluator: one level per channel, readings from the stored exact
 //! responses.
 
-use super::{irradiance, luminance, MAX_LEVEL};
+use super::{grid_figures, irradiance, luminance, Figures, MAX_LEVEL};
 use crate::basis::{check_index, Basis};
 use crate::dali;
 use crate::error::{Error, Result};
@@ -229,5 +229,33 @@ impl<'a, const BANDS: usize, const CHANNELS: usize> ChannelEvaluator<'a, BANDS, 
     pub fn zone_irradiance(&self, zone: usize) -> Result<[f32; BANDS]> {
         check_index("zone", zone, self.basis.counts.zone_count)?;
         Ok(self.output(self.basis.counts.sensor_count + zone))
+    }
+
+    /// Irradiance of grid point `g` (among all grid points), already checked:
+    /// `Σ_c L_c · grid_channels[g][b][c]`. O(m) per band.
+    pub(super) fn grid_reading(&self, g: usize) -> [f32; BANDS] {
+        let levels = &self.levels;
+        let m = levels.len();
+        let mut out = [0.0f32; BANDS];
+        for (b, slot) in out.iter_mut().enumerate() {
+            let row = f32_row(self.basis.tables.grid_channels, g * BANDS + b, m);
+            *slot = dot_f32(row, levels);
+        }
+        out
+    }
+
+    /// Irradiance at point `point` of zone `zone`'s calculation grid (lux for a photopic
+    /// basis, W/m² per band otherwise), exact per channel as a sensor's. O(m) per band.
+    pub fn grid_point_irradiance(&self, zone: usize, point: usize) -> Result<[f32; BANDS]> {
+        let g = self.basis.grid_index(zone, point)?;
+        Ok(self.grid_reading(g))
+    }
+
+    /// `E_avg`, `E_min`, `E_max` and `U_o` over zone `zone`'s grid points per band, read
+    /// point by point without a buffer. O(points · m) per band. [`Error::NoGrid`] for a zone
+    /// without a grid.
+    pub fn zone_figures(&self, zone: usize) -> Result<[Figures; BANDS]> {
+        let range = self.basis.grid_range(zone)?;
+        grid_figures(zone, range, |g| Ok(self.grid_reading(g)))
     }
 }

@@ -6,9 +6,12 @@
 //! patch, which goes through the modes, and the per-patch state that needs.
 
 mod channels;
+mod figures;
 mod patches;
 
 pub use channels::ChannelEvaluator;
+pub(crate) use figures::Accumulator;
+pub use figures::{Figures, Reading};
 pub use patches::Evaluator;
 
 use crate::basis::Basis;
@@ -50,6 +53,27 @@ pub(crate) fn irradiance<const BANDS: usize>(
             return Err(Error::BlackPatch { patch });
         }
         *slot = (m - emitted(b)) / rho;
+    }
+    Ok(out)
+}
+
+/// The figures of grid points `start..start + len` (zone `zone`'s) per band, each point read
+/// once by `read` (its index among all grid points) and streamed: nothing is buffered.
+/// [`Error::NoGrid`] when the zone has no points or a reading is not finite.
+pub(crate) fn grid_figures<const BANDS: usize>(
+    zone: usize,
+    (start, len): (usize, usize),
+    read: impl Fn(usize) -> Result<[f32; BANDS]>,
+) -> Result<[Figures; BANDS]> {
+    let mut acc = [Accumulator::<f32>::default(); BANDS];
+    for g in start..start.saturating_add(len) {
+        for (a, v) in acc.iter_mut().zip(read(g)?) {
+            a.add(v);
+        }
+    }
+    let mut out = [Figures::default(); BANDS];
+    for (slot, a) in out.iter_mut().zip(&acc) {
+        *slot = a.figures().ok_or(Error::NoGrid { zone })?;
     }
     Ok(out)
 }

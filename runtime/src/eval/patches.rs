@@ -1,7 +1,7 @@
 //! The full evaluator: channels as in [`ChannelEvaluator`], plus exitance set patch by patch,
 //! which goes through the modes.
 
-use super::{fits, irradiance, luminance, ChannelEvaluator, MAX_EXITANCE};
+use super::{fits, grid_figures, irradiance, luminance, ChannelEvaluator, Figures, MAX_EXITANCE};
 use crate::basis::{check_index, Basis};
 use crate::error::{Error, Result};
 use crate::format::Formulation;
@@ -344,6 +344,50 @@ impl<
         let counts = &self.channels.basis.counts;
         check_index("zone", zone, counts.zone_count)?;
         self.output(counts.sensor_count + zone)
+    }
+
+    /// Irradiance of grid point `g` (among all grid points), already checked: the channels'
+    /// exact readings, plus, with patch exitance set, the modes and the direct light of the
+    /// patches carrying exitance exactly (`grid_view`, summed over the patches: the point
+    /// keeps no state of its own). O(m) per band, O(p + m + n) with patch exitance set.
+    fn grid_reading(&self, g: usize) -> Result<[f32; BANDS]> {
+        let mut out = self.channels.grid_reading(g);
+        if self.lit == 0 {
+            return Ok(out);
+        }
+        let basis = &self.channels.basis;
+        let p = self.p();
+        let n = basis.counts.patch_count;
+        for (b, slot) in out.iter_mut().enumerate() {
+            let modes = f32_row(basis.tables.grid_modes, g * BANDS + b, p);
+            let amp = self
+                .amplitude
+                .get(b)
+                .map_or(&[][..], |a| a.get(..p).unwrap_or(&[]));
+            let mut direct = 0.0f32;
+            basis.grid_view().for_each(g, 0, n, |j, f| {
+                let own = self.own(j, b);
+                if own != 0.0 && identity(basis, j, b) {
+                    direct += f * own;
+                }
+            });
+            *slot += dot_f32(modes, amp) + direct;
+        }
+        Self::checked(out)
+    }
+
+    /// Irradiance at point `point` of zone `zone`'s calculation grid (lux for a photopic
+    /// basis, W/m² per band otherwise). O(m) per band, O(p + m + n) with patch exitance set.
+    pub fn grid_point_irradiance(&self, zone: usize, point: usize) -> Result<[f32; BANDS]> {
+        let g = self.channels.basis.grid_index(zone, point)?;
+        self.grid_reading(g)
+    }
+
+    /// `E_avg`, `E_min`, `E_max` and `U_o` over zone `zone`'s grid points per band, read
+    /// point by point without a buffer. [`Error::NoGrid`] for a zone without a grid.
+    pub fn zone_figures(&self, zone: usize) -> Result<[Figures; BANDS]> {
+        let range = self.channels.basis.grid_range(zone)?;
+        grid_figures(zone, range, |g| self.grid_reading(g))
     }
 }
 

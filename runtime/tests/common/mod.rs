@@ -54,6 +54,13 @@ pub fn tiny() -> BasisTables {
         output_modes: vec![0.25, 0.5],
         output_channels: vec![100.0, 40.0],
         output_view: vec![0.0, 0.0, 0.1, 0.05],
+        // The zone's grid: 2 × 1 points at 0.8 m, facing up.
+        grid_counts: vec![[2, 1]],
+        grid_layout: vec![[0.2, 1.0, 1.0, 0.5, 0.0, 0.0, 1.0]],
+        grid_position: vec![[0.5, 1.0, 0.8], [1.5, 1.0, 0.8]],
+        grid_modes: vec![0.25, 0.3],
+        grid_channels: vec![110.0, 90.0],
+        grid_view: vec![0.0, 0.12, 0.0, 0.08],
     }
 }
 
@@ -145,5 +152,21 @@ pub fn random(
         .map(|_| rng.range(0.0, 60.0))
         .collect();
     t.output_view = (0..n * outputs).map(|_| rng.range(0.0, 0.05)).collect();
+    // The first zone has a 3 × 2 grid, the second none.
+    let g = 6;
+    t.grid_counts = vec![[3, 2], [0, 0]];
+    t.grid_layout = vec![[0.6, 0.5, 0.5, 0.5, 0.0, 0.0, 1.0], [0.0; 7]];
+    t.grid_position = (0..g)
+        .map(|k| {
+            [
+                0.75 + 0.5 * (k % 3) as f64,
+                0.75 + 0.5 * (k / 3) as f64,
+                0.8,
+            ]
+        })
+        .collect();
+    t.grid_modes = (0..g * bands * p).map(|_| rng.range(-0.5, 0.5)).collect();
+    t.grid_channels = (0..g * bands * m).map(|_| rng.range(0.0, 60.0)).collect();
+    t.grid_view = (0..g * n).map(|_| rng.range(0.0, 0.05)).collect();
     t
 }

@@ -251,3 +251,80 @@ fn scene_error_missing_scene_file_names_path() {
         "{m}"
     );
 }
+
+/// A room for the work-plane tests, then a zone whose `work_plane` is `wp`.
+fn work_plane_zone(wp: &str) -> String {
+    format!(
+        "\n[[room]]\nname = \"r\"\nmin = [0, 0, 0]\nmax = [4, 3, 2.5]\nmaterial = \"white\"\n\
+         \n[[zone]]\nname = \"z\"\nwork_plane = {{ height = 0.8, {wp} }}\n"
+    )
+}
+
+#[test]
+fn scene_error_grid_fields() {
+    for (wp, parts) in [
+        (
+            "grid = { spacing = -0.2 }",
+            &["zone `z`.work_plane.grid.spacing", "positive"][..],
+        ),
+        (
+            "grid = { spacing = 12 }",
+            &["zone `z`.work_plane.grid.spacing", "at most 10 m"][..],
+        ),
+        (
+            "grid = { spacing = 0.0001 }",
+            &["zone `z`.work_plane.grid.spacing", "more than 10000"][..],
+        ),
+        ("grid = { spacng = 0.3 }", &["spacng"][..]),
+        (
+            "area = { min = [1, 1], max = [5, 2] }",
+            &["zone `z`.work_plane.area", "inside room `r`"][..],
+        ),
+        (
+            "area = { min = [2, 1], max = [1, 2] }",
+            &["zone `z`.work_plane.area", "min below max"][..],
+        ),
+        (
+            "area = { min = [1, 1, 0], max = [2, 2] }",
+            &[
+                "zone `z`.work_plane.area.min",
+                "expected 2 value(s), found 3",
+            ][..],
+        ),
+        ("area = { min = [1, 1] }", &["max"][..]),
+    ] {
+        let extra = work_plane_zone(wp);
+        let m = error(&extra);
+        assert_names(&m, parts);
+        assert_names(&m, &[&format!(":{}:", line_of(&extra, "work_plane"))]);
+    }
+}
+
+#[test]
+fn work_plane_grid_follows_the_rule_and_the_scene() {
+    let zone = |wp: &str| {
+        let scene = parse(&format!("{BASE}{}", work_plane_zone(wp)), Path::new(FILE)).unwrap();
+        scene.zones[0]
+            .grid
+            .clone()
+            .expect("a work plane has a grid")
+    };
+    // 4 m × 3 m less the default 0.5 m border: 3 m × 2 m, p = 0.2 × 5^(log10 3) = 0.4310 m,
+    // 3/0.4310 = 6.96 → 7, 2/0.4310 = 4.64 → 5.
+    let g = zone("max_edge = 0.5");
+    assert_eq!((g.counts, g.border, g.explicit), ([7, 5], 0.5, false));
+    assert!((g.spacing - 0.43105).abs() < 1e-4, "{}", g.spacing);
+    assert!(g
+        .points
+        .iter()
+        .all(|p| p.x > 0.5 && p.x < 3.5 && p.y > 0.5 && p.y < 2.5));
+    let g = zone("margin = 1.0, grid = { spacing = 0.5 }");
+    assert_eq!((g.counts, g.border, g.explicit), ([4, 2], 1.0, true));
+    // A 1 m × 0.5 m task area, no border: d = 1 m gives p = 0.2 m, 5 × 3 points (0.5/0.2 =
+    // 2.5 → 3), cells 0.2 m × 1/6 m, the first at (1.1, 1 + 1/12).
+    let g = zone("area = { min = [1, 1], max = [2, 1.5] }");
+    assert_eq!((g.counts, g.border), ([5, 3], 0.0));
+    assert!(
+        (g.points[0].x - 1.1).abs() < 1e-12 && (g.points[0].y - (1.0 + 1.0 / 12.0)).abs() < 1e-12
+    );
+}

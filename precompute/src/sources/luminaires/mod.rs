@@ -94,8 +94,8 @@ impl Default for LuminaireOptions {
 pub const MAX_SPLIT: usize = 32;
 
 /// The light of every channel of `scene` from its luminaires, in channel order: zero emission,
-/// and as direct irradiance their illuminance (lux) on every patch and output (sensors, then
-/// zones). A channel without luminaires gets zeros. `occluders` are the scene's.
+/// and as direct irradiance their illuminance (lux) on every patch and output (sensors,
+/// zones, then grid points). A channel without luminaires gets zeros. `occluders` are the scene's.
 ///
 /// Luminaires are photometric (cd), so a scene with luminaires has one, photopic, band (the
 /// scene refuses others).
@@ -123,6 +123,8 @@ pub fn lights_and_flux(
     let mut patches = vec![vec![0.0; n]; m];
     let mut sensors = vec![vec![0.0; scene.sensors.len()]; m];
     let mut planes = vec![vec![0.0; scene.zones.len()]; m];
+    let points: Vec<_> = crate::formfactor::outputs::grid_points(scene).collect();
+    let mut on_points = vec![vec![0.0; points.len()]; m];
     let mut accounts = Vec::with_capacity(scene.luminaires.len());
     for lum in &scene.luminaires {
         let source = Source::new(lum, occluders, opts, &gl);
@@ -157,6 +159,13 @@ pub fn lights_and_flux(
                 *sum += lumens / receivers.iter().map(|r| r.area).sum::<f64>();
             }
         }
+        let at_points: Vec<f64> = points
+            .par_iter()
+            .map(|&(_, position, normal)| source.point(position, normal, None, &[]))
+            .collect();
+        for (sum, e) in on_points[c].iter_mut().zip(at_points) {
+            *sum += e;
+        }
     }
     let lights = (0..m)
         .map(|c| {
@@ -174,6 +183,7 @@ pub fn lights_and_flux(
                     ZoneKind::WorkPlane { .. } => planes[c][z],
                 });
             }
+            outputs.extend_from_slice(&on_points[c]);
             ChannelLight {
                 emission: vec![vec![0.0; n]; bands],
                 patch_irradiance: vec![patches[c].clone(); bands],
