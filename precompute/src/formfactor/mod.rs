@@ -47,6 +47,10 @@ use kernel::Cone;
 use pair::{gauss_rules, max_order, Context, Prepared, Viewer};
 use rayon::prelude::*;
 
+/// Version of the form-factor computation: raise it with any change that alters a form factor's
+/// bits, so that cached form factors of the old code ([`crate::cache`]) are not reused.
+pub const ALGORITHM_VERSION: u32 = 1;
+
 /// Options; `Default` gives the accurate defaults.
 #[derive(Clone, Debug)]
 pub struct FormFactorOptions {
@@ -57,6 +61,9 @@ pub struct FormFactorOptions {
     pub gauss_order: usize,
     /// Show an indicatif progress bar on stderr.
     pub progress: bool,
+    /// Folder of the form-factor cache ([`crate::cache`]) that [`crate::pipeline::prepare`]
+    /// reads and fills; `None` (the default) computes the form factors every time.
+    pub cache: Option<std::path::PathBuf>,
     /// Points per side on the emitting patch when the two patches touch (share an edge or a
     /// corner): the kernel is not smooth there, so more points are needed for the same
     /// accuracy. Default 6 (about 2e-6 relative on a shared edge).
@@ -87,6 +94,7 @@ impl Default for FormFactorOptions {
         FormFactorOptions {
             gauss_order: 5,
             progress: false,
+            cache: None,
             touching_order: 6,
             quadrature_tolerance: 1e-6,
             visibility_depth: 4,
