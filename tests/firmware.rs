@@ -115,6 +115,11 @@ fn eigenrad() -> &'static Path {
 /// Runs `eigenrad ARGS`, failing the test with its stderr when it fails.
 fn run_eigenrad(args: &[&std::ffi::OsStr]) -> Output {
     let output = Command::new(eigenrad())
+        // A form-factor cache of this run's own, never the user's.
+        .env(
+            "EIGENRAD_CACHE_DIR",
+            std::env::temp_dir().join(format!("eigenrad-firmware-cache-{}", std::process::id())),
+        )
         .args(args)
         .output()
         .expect("run eigenrad");

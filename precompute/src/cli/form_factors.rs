@@ -30,9 +30,13 @@ pub struct SurfaceFactor {
     pub value: f64,
 }
 
-/// `eigenrad form-factors`: surface-to-surface form factors (area-weighted), non-zero ones.
-pub fn surface_form_factors(scene_path: &Path) -> Result<Vec<SurfaceFactor>> {
-    let prepared = pipeline::prepare(scene_path, &FormFactorOptions::default())?;
+/// `eigenrad form-factors`: surface-to-surface form factors (area-weighted), non-zero ones,
+/// computed with `opts` (its progress bar and cache).
+pub fn surface_form_factors(
+    scene_path: &Path,
+    opts: &FormFactorOptions,
+) -> Result<Vec<SurfaceFactor>> {
+    let prepared = pipeline::prepare(scene_path, opts)?;
     let scene = &prepared.scene;
     let s = scene.surfaces.len();
     let mut sums = vec![vec![0.0f64; s]; s];

@@ -5,21 +5,25 @@
 
 pub mod atomic;
 mod form_factors;
+mod gains;
 pub mod guard;
 mod inspect;
 mod readout;
 mod report;
+pub mod units;
 
 use serde::Serialize;
 
 use crate::error::{Error, Result};
 
 pub use form_factors::{format_surface_form_factors, surface_form_factors, SurfaceFactor};
+pub use gains::{format_gains, gains, gains_csv, Gain, Gains};
 pub use inspect::{format_inspect, inspect, BasisInfo};
 pub use readout::{
-    eval, format_readout, parse_levels, solve, Level, PatchReading, Reading, Readout,
+    eval, format_readout, parse_levels, solve, Level, LevelArgs, PatchReading, Reading, Readout,
 };
 pub use report::{format_build_report, verify_outputs, write_svgs};
+pub use units::Units;
 
 /// `value` as one pretty-printed JSON document, with a final newline.
 pub fn json<T: Serialize>(value: &T) -> Result<String> {
