@@ -399,6 +399,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             let opts = verify::VerifyOptions {
                 form_factors: cache.form_factors(),
+                progress: std::io::stderr().is_terminal(),
                 ..verify::VerifyOptions::default()
             };
             let report = verify::verify(&scene, &opts)?;
