@@ -441,8 +441,11 @@ fn cli_cached_form_factors_give_the_same_bytes() {
         "solve, first",
     );
     let stored = entries(&cache_dir);
-    assert_eq!(stored.len(), 1, "one entry: {stored:?}");
-    let entry = std::fs::read(&stored[0]).expect("entry");
+    assert_eq!(stored.len(), 2, "patches and outputs: {stored:?}");
+    let before: Vec<Vec<u8>> = stored
+        .iter()
+        .map(|p| std::fs::read(p).expect("entry"))
+        .collect();
     let hit = ok(
         run_cached(&cache_dir, &["solve", scene, "--json", "--patches"]),
         "solve, second",
@@ -450,16 +453,19 @@ fn cli_cached_form_factors_give_the_same_bytes() {
     assert_eq!(miss.stdout, fresh.stdout);
     assert_eq!(hit.stdout, fresh.stdout);
     assert!(stderr(&hit).is_empty(), "{}", stderr(&hit));
-    assert_eq!(std::fs::read(&stored[0]).expect("entry"), entry);
+    let after: Vec<Vec<u8>> = stored
+        .iter()
+        .map(|p| std::fs::read(p).expect("entry"))
+        .collect();
+    assert_eq!(after, before, "a hit rewrote an entry");
 
-    // The entry is the library's key for this scene: the cache is keyed by content.
+    // The entries are the library's keys for this scene: the cache is keyed by content.
     let loaded = scene::load(Path::new(scene)).expect("scene");
-    let key = cache::key(
-        &loaded.patches,
-        &loaded.faces,
-        &FormFactorOptions::default(),
-    );
-    assert_eq!(stored[0], cache::entry_path(&cache_dir, &key));
+    let opts = FormFactorOptions::default();
+    let key = cache::key(&loaded.patches, &loaded.faces, &opts);
+    assert!(stored.contains(&cache::entry_path(&cache_dir, &key)));
+    let rows = cache::rows_key(&loaded, &opts);
+    assert!(stored.contains(&cache::entry_path(&cache_dir, &rows)));
 
     // build, verify and form-factors reuse it and print what they print without it.
     for (cmd, extra) in [("verify", vec![]), ("form-factors", vec!["--json"])] {
@@ -487,7 +493,7 @@ fn cli_cached_form_factors_give_the_same_bytes() {
         "build --no-cache",
     );
     assert_eq!(std::fs::read(&a).ok(), std::fs::read(&b).ok());
-    assert_eq!(entries(&cache_dir).len(), 1, "same scene, same entry");
+    assert_eq!(entries(&cache_dir).len(), 2, "same scene, same entries");
 }
 
 #[test]
@@ -510,7 +516,7 @@ fn cli_a_well_formed_entry_is_what_the_commands_use() {
     std::fs::create_dir_all(&cache_dir).expect("cache folder");
     std::fs::write(
         cache::entry_path(&cache_dir, &key),
-        cache::encode(&ff, &key),
+        cache::encode_form_factors(&ff, &key),
     )
     .expect("write");
     let scene = utf8(&scene);
@@ -541,28 +547,31 @@ fn cli_a_corrupt_cache_entry_is_recomputed_with_a_warning() {
         run_cached(&cache_dir, &["solve", scene, "--json"]),
         "solve, filling the cache",
     );
-    let path = entries(&cache_dir).pop().expect("an entry");
-    let good = std::fs::read(&path).expect("entry");
-    let mut flipped = good.clone();
-    let middle = flipped.len() / 2;
-    flipped[middle] ^= 0x01;
-    for (what, bad) in [
-        ("truncated", good[..good.len() - 7].to_vec()),
-        ("flipped", flipped),
-        ("empty", Vec::new()),
-    ] {
-        std::fs::write(&path, &bad).expect("damage the entry");
-        let o = ok(run_cached(&cache_dir, &["solve", scene, "--json"]), what);
-        let e = stderr(&o);
-        assert!(
-            e.contains("warning") && e.contains("unusable") && e.contains(utf8(&path)),
-            "{what}: {e}"
-        );
-        assert_eq!(o.stdout, reference.stdout, "{what}: result changed");
-        assert_eq!(
-            std::fs::read(&path).expect("entry"),
-            good,
-            "{what}: not rewritten"
-        );
+    let paths = entries(&cache_dir);
+    assert_eq!(paths.len(), 2, "patches and outputs: {paths:?}");
+    for path in &paths {
+        let good = std::fs::read(path).expect("entry");
+        let mut flipped = good.clone();
+        let middle = flipped.len() / 2;
+        flipped[middle] ^= 0x01;
+        for (what, bad) in [
+            ("truncated", good[..good.len() - 7].to_vec()),
+            ("flipped", flipped),
+            ("empty", Vec::new()),
+        ] {
+            std::fs::write(path, &bad).expect("damage the entry");
+            let o = ok(run_cached(&cache_dir, &["solve", scene, "--json"]), what);
+            let e = stderr(&o);
+            assert!(
+                e.contains("warning") && e.contains("unusable") && e.contains(utf8(path)),
+                "{what}: {e}"
+            );
+            assert_eq!(o.stdout, reference.stdout, "{what}: result changed");
+            assert_eq!(
+                std::fs::read(path).expect("entry"),
+                good,
+                "{what}: not rewritten"
+            );
+        }
     }
 }

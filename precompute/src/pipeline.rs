@@ -14,7 +14,7 @@ use crate::accuracy::{self, Case};
 use crate::basis;
 use crate::cache;
 use crate::error::{Error, Result};
-use crate::formfactor::{exchange, outputs};
+use crate::formfactor::exchange;
 use crate::formfactor::{FormFactorHealth, FormFactorOptions, Occluders};
 use crate::memory;
 use crate::radiosity::eigen::{Formulation, Solver};
@@ -189,7 +189,7 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let form_factor_health = FormFactorHealth::of(&ff, &area);
     let g = exchange::exchange_areas(ff.matrix, &area);
     let output_rows = timed(&mut timings, "sensors and zones", || {
-        outputs::output_rows(&scene, &g, &area, &occluders, opts)
+        cache::output_rows(&scene, &g, &area, &occluders, opts)
     });
     let (lights, luminaire_flux) = timed(&mut timings, "light sources", || {
         let surfaces = sources::surfaces::channel_lights(&scene, &g, &area, &output_rows);
