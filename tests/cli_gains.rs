@@ -282,6 +282,8 @@ fn cli_arc_levels_follow_the_iec_curve_on_host_and_runtime_alike() {
         // Host and firmware use the one conversion: the same level to the bit.
         assert_eq!(level(&solve, 0), got, "arc {arc}");
         assert_eq!(level(&eval, 1), 0.5);
+        assert_eq!(eval["levels"][0]["arc"], arc, "the arc level is reported");
+        assert!(eval["levels"][1].get("arc").is_none(), "no arc for --level");
     }
     // 254 is full output and 0 is off, exactly.
     for (arc, value) in [("254", "1"), ("0", "0")] {

@@ -22,6 +22,9 @@ pub struct Level {
     pub name: String,
     /// Relative level (1 = as built).
     pub level: f64,
+    /// The DALI arc power level it was given as (`--arc`), if it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub arc: Option<u8>,
 }
 
 /// One sensor or zone reading.
@@ -77,14 +80,24 @@ pub(super) fn band_names(count: usize) -> Vec<&'static str> {
     }
 }
 
-/// Each channel's name with the level applied to it.
-fn applied(names: &[String], levels: &[f64]) -> Vec<Level> {
+/// Each channel's name with the level applied to it, and the arc level it was given as.
+/// `args` are the arguments [`parse_levels`] accepted.
+fn applied(names: &[String], levels: &[f64], args: &LevelArgs) -> Vec<Level> {
     names
         .iter()
         .zip(levels)
         .map(|(name, &level)| Level {
             name: name.clone(),
             level,
+            // The last `--arc` naming the channel, as in `parse_levels`.
+            arc: args.arcs.iter().rev().find_map(|a| {
+                let (n, v) = a.split_once('=')?;
+                if n == name {
+                    v.trim().parse().ok()
+                } else {
+                    None
+                }
+            }),
         })
         .collect()
 }
@@ -248,7 +261,7 @@ pub fn solve(
     Ok(Readout {
         unit: scene.bands.unit(),
         bands: band_names(bands),
-        levels: applied(&names, &levels),
+        levels: applied(&names, &levels, level_args),
         sensors: scene
             .sensors
             .iter()
@@ -339,7 +352,7 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &LevelArgs, patches: bool) ->
     Ok(Readout {
         unit: unit(basis.quantity()),
         bands: band_names(basis.bands()),
-        levels: applied(&names, &levels),
+        levels: applied(&names, &levels, level_args),
         sensors,
         zones,
         patches: patch_list,
@@ -367,7 +380,10 @@ pub fn format_readout(r: &Readout) -> String {
         "levels: {}",
         r.levels
             .iter()
-            .map(|l| format!("{}={}", l.name, l.level))
+            .map(|l| match l.arc {
+                Some(arc) => format!("{}={} (arc {arc})", l.name, l.level),
+                None => format!("{}={}", l.name, l.level),
+            })
             .collect::<Vec<_>>()
             .join(", ")
     );
