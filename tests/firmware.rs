@@ -115,11 +115,8 @@ fn eigenrad() -> &'static Path {
 /// Runs `eigenrad ARGS`, failing the test with its stderr when it fails.
 fn run_eigenrad(args: &[&std::ffi::OsStr]) -> Output {
     let output = Command::new(eigenrad())
-        // A form-factor cache of this run's own, never the user's.
-        .env(
-            "EIGENRAD_CACHE_DIR",
-            std::env::temp_dir().join(format!("eigenrad-firmware-cache-{}", std::process::id())),
-        )
+        // The form-factor cache beside this test's other files, never the user's.
+        .env("EIGENRAD_CACHE_DIR", work_dir().join("form-factor-cache"))
         .args(args)
         .output()
         .expect("run eigenrad");
