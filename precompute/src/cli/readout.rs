@@ -1,5 +1,6 @@
 //! `eigenrad solve` and `eigenrad eval`: the readings of a scene's exact solve or of a basis
-//! evaluated through the runtime, for channel levels given as `NAME=VALUE`, and their table.
+//! evaluated through the runtime, for channel levels given as `NAME=VALUE` or as DALI arc
+//! levels `NAME=ARC`, and their table.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -111,16 +112,6 @@ pub struct LevelArgs {
     /// `NAME=ARC`, a DALI arc power level 0..=254 (IEC 62386-102), turned into a relative
     /// level by [`eigenrad_runtime::dali::arc_power_to_level`], as the firmware does.
     pub arcs: Vec<String>,
-}
-
-impl LevelArgs {
-    /// Only `--level` arguments.
-    pub fn levels(levels: &[String]) -> Self {
-        LevelArgs {
-            levels: levels.to_vec(),
-            arcs: Vec::new(),
-        }
-    }
 }
 
 /// The channel named in `argument` (`NAME=...`) and the text after `=`.
