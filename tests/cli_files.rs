@@ -4,10 +4,10 @@
 
 mod common;
 
-use std::process::{Command, Output};
+use std::process::Output;
 use std::time::Duration;
 
-use common::{build, eigenrad, good_basis, listing, run, scene, scratch, stderr};
+use common::{build, good_basis, listing, run, scene, scratch, stderr};
 
 #[test]
 fn cli_level_naming_an_unknown_channel_or_not_a_number_fails_and_says_so() {
@@ -104,7 +104,7 @@ fn cli_killed_build_leaves_no_partial_basis_and_no_stray_file() {
     // and eigensolve even in the release profile, killed after 0.5 s.
     let scene_path = dir.join("scene.toml");
     std::fs::write(&scene_path, scene(0.1)).expect("write scene");
-    let mut child = Command::new(eigenrad())
+    let mut child = common::command()
         .args([
             "build",
             scene_path.to_str().expect("utf-8 path"),
@@ -131,7 +131,7 @@ fn cli_killed_build_leaves_no_partial_basis_and_no_stray_file() {
 fn cli_build_removes_temporary_files_of_dead_processes_only() {
     let dir = scratch("stale-temp");
     // A process that has exited: its id names a stale temporary file.
-    let mut dead = Command::new(eigenrad())
+    let mut dead = common::command()
         .arg("--version")
         .stdout(std::process::Stdio::null())
         .spawn()

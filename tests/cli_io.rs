@@ -8,9 +8,9 @@ mod common;
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 
-use common::{eigenrad, good_basis, run, scene, scratch, stderr};
+use common::{good_basis, run, scene, scratch, stderr};
 
 /// The exit status of a command that stops quietly because its reader closed the pipe.
 const CLOSED_PIPE_STATUS: i32 = 141;
@@ -119,7 +119,7 @@ fn cli_stops_quietly_when_its_reader_closes_the_pipe() {
         vec!["form-factors", utf8(&scene)],
         vec!["inspect", utf8(&basis), "--json"],
     ] {
-        let mut child = Command::new(eigenrad())
+        let mut child = common::command()
             .args(&args)
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
@@ -151,7 +151,7 @@ fn cli_closed_pipe_on_a_long_output_ends_with_the_pipe_status() {
     let dir = scratch("io-pipe-long");
     let path = dir.join("scene.toml");
     std::fs::write(&path, scene(0.2)).expect("write scene");
-    let mut child = Command::new(eigenrad())
+    let mut child = common::command()
         .args(["solve", utf8(&path), "--patches", "--json"])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -170,7 +170,7 @@ fn cli_full_standard_output_is_an_error_naming_it() {
     let dir = scratch("io-full");
     let basis = good_basis(&dir);
     let full = std::fs::File::create("/dev/full").expect("/dev/full");
-    let o = Command::new(eigenrad())
+    let o = common::command()
         .args(["inspect", utf8(&basis)])
         .stdout(full)
         .output()

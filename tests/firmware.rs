@@ -117,6 +117,8 @@ fn eigenrad() -> &'static Path {
 /// Runs `eigenrad ARGS`, failing the test with its stderr when it fails.
 fn run_eigenrad(args: &[&std::ffi::OsStr]) -> Output {
     let output = Command::new(eigenrad())
+        // The form-factor cache beside this test's other files, never the user's.
+        .env("EIGENRAD_CACHE_DIR", work_dir().join("form-factor-cache"))
         .args(args)
         .output()
         .expect("run eigenrad");

@@ -18,7 +18,7 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use eigenrad::precompute::cli::{self, Readout};
-use eigenrad::precompute::formfactor::{self, Occluders};
+use eigenrad::precompute::formfactor::{self, FormFactorOptions, Occluders};
 use eigenrad::precompute::geometry::Vec3;
 use eigenrad::precompute::pipeline::{self, BuildOptions, ModeSelection};
 use eigenrad::precompute::radiosity::eigen::Solver;
@@ -207,8 +207,11 @@ fn figures_of_solve_and_eval_match_the_exact_exitance_at_the_grid_points() {
     let dir = scratch("room");
     let path = dir.join("room.toml");
     std::fs::write(&path, ROOM).unwrap();
-    let levels = ["lamp=0.8".to_string(), "panel=0.3".to_string()];
-    let exact = cli::solve(&path, &levels, true).unwrap();
+    let levels = cli::LevelArgs {
+        levels: vec!["lamp=0.8".to_string(), "panel=0.3".to_string()],
+        arcs: Vec::new(),
+    };
+    let exact = cli::solve(&path, &levels, true, &FormFactorOptions::default()).unwrap();
     let points = independent(&path, &exact);
     // Lamp, panel and walls light the plane unevenly: not the figures of a uniform field.
     let [avg, min, _, u] = figures(&points[0]);
@@ -306,13 +309,19 @@ work_plane = {{ height = 0.8 }}
     std::fs::write(&path, text).unwrap();
     // M = e / (1 − ρ) on every patch; an upward point inside sees E = M.
     let m = e / (1.0 - rho);
-    let exact = cli::solve(&path, &[], false).unwrap();
+    let exact = cli::solve(
+        &path,
+        &cli::LevelArgs::default(),
+        false,
+        &FormFactorOptions::default(),
+    )
+    .unwrap();
     let opts = BuildOptions {
         modes: ModeSelection::Count(8),
         ..BuildOptions::default()
     };
     let (bytes, _) = pipeline::build(&path, &opts).unwrap();
-    let eval = cli::eval(&path, &bytes, &[], false).unwrap();
+    let eval = cli::eval(&path, &bytes, &cli::LevelArgs::default(), false).unwrap();
     for (r, what) in [(&exact, "solve"), (&eval, "eval")] {
         let g = &r.grids[0];
         // 3 m × 3 m after the 0.5 m border: p = 0.2 × 5^(log10 3) = 0.4310 m, 6.96 → 7.

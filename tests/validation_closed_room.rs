@@ -92,7 +92,15 @@ fn cie_171_case_5_8_average_irradiance_in_a_cube() {
         let path = cube(&dir, rho, &channel);
         let want = flux / (SURFACE * (1.0 - rho));
 
-        let solved = cli::solve(&path, &[], false).unwrap().zones[0].irradiance[0];
+        let solved = cli::solve(
+            &path,
+            &cli::LevelArgs::default(),
+            false,
+            &FormFactorOptions::default(),
+        )
+        .unwrap()
+        .zones[0]
+            .irradiance[0];
         let basis = full_basis(&path);
         let evaluated = runtime_eval::evaluate(&basis, &[1.0], &[], false)
             .unwrap()
@@ -122,7 +130,13 @@ fn white_furnace() {
         let path = cube(&dir, rho, &channel);
         let want = e / (1.0 - rho);
 
-        let solved = cli::solve(&path, &[], true).unwrap();
+        let solved = cli::solve(
+            &path,
+            &cli::LevelArgs::default(),
+            true,
+            &FormFactorOptions::default(),
+        )
+        .unwrap();
         let patches = solved.patches.unwrap();
         let worst_solve = patches
             .iter()

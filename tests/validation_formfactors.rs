@@ -36,7 +36,7 @@ fn write(dir: &Path, file: &str, text: &str) -> PathBuf {
 
 /// `F_{from→to}` from `cli::surface_form_factors` (0 when the pair is not listed).
 fn surface_factor(path: &Path, from: &str, to: &str) -> f64 {
-    cli::surface_form_factors(path)
+    cli::surface_form_factors(path, &FormFactorOptions::default())
         .unwrap()
         .iter()
         .find(|f| f.from == from && f.to == to)
@@ -242,7 +242,13 @@ fn first_bounce_at_a_sensor_under_an_emitting_rectangle_is_exitance_times_b3() {
     println!("Direct illuminance under an emitting panel, M = {exitance} lux:");
     for (a, b, c) in [(1.0, 1.0, 1.0), (2.0, 1.0, 0.5), (0.5, 3.0, 2.0)] {
         let path = write(&dir, "bounce.toml", &b3_scene(a, b, c, 0.5, true));
-        let readout = cli::solve(&path, &[], false).unwrap();
+        let readout = cli::solve(
+            &path,
+            &cli::LevelArgs::default(),
+            false,
+            &FormFactorOptions::default(),
+        )
+        .unwrap();
         let got = readout.sensors[0].irradiance[0];
         let want = exitance * howell_b3(a, b, c);
         let err = (got - want).abs() / want;
@@ -742,7 +748,7 @@ fn form_factor_table_reports_a_closed_room_and_lists_pairs_that_exchange_nothing
     let text = header(0.5)
         + "[[room]]\nname = \"room\"\nmin = [0, 0, 0]\nmax = [2, 1.5, 1]\nmaterial = \"grey\"\n";
     let path = write(&dir, "room.toml", &text);
-    let table = cli::form_factor_table(&path).unwrap();
+    let table = cli::form_factor_table(&path, &FormFactorOptions::default()).unwrap();
     let scene = scene::load(&path).unwrap();
     let s = scene.surfaces.len();
     assert_eq!(table.factors.len(), s * s, "every ordered pair is listed");

@@ -50,6 +50,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 use eigenrad::precompute::cli;
+use eigenrad::precompute::formfactor::FormFactorOptions;
 
 /// Room, from the origin to here, m.
 const ROOM: [f64; 3] = [4.0, 3.0, 2.8];
@@ -543,7 +544,13 @@ fn scratch(test: &str) -> PathBuf {
 fn eigenrad_readings(dir: &Path, rho: &Reflectance, max_edge: f64) -> Vec<f64> {
     let path = dir.join(format!("scene-{max_edge}-{}.toml", rho.wall));
     std::fs::write(&path, eigenrad_scene(rho, max_edge)).unwrap();
-    let readout = cli::solve(&path, &[], false).unwrap_or_else(|e| panic!("{e}"));
+    let readout = cli::solve(
+        &path,
+        &cli::LevelArgs::default(),
+        false,
+        &FormFactorOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let names: Vec<String> = sensors().into_iter().map(|s| s.name).collect();
     let read: Vec<&str> = readout.sensors.iter().map(|r| r.name.as_str()).collect();
     assert_eq!(read, names, "sensor order");

@@ -48,9 +48,11 @@ pub enum Error {
     /// Standard output was closed by its reader (`| head`): the command stops quietly.
     #[error("standard output closed")]
     ClosedPipe,
-    /// A `--level NAME=VALUE` argument is wrong.
-    #[error("--level {argument}: {reason}")]
+    /// A `--level NAME=VALUE` or `--arc NAME=ARC` argument is wrong.
+    #[error("{flag} {argument}: {reason}")]
     Level {
+        /// `--level` or `--arc`.
+        flag: &'static str,
         /// The argument as given.
         argument: String,
         /// What is wrong with it.
@@ -65,6 +67,14 @@ pub enum Error {
         modes: usize,
         /// Best error reached.
         best: f64,
+    },
+    /// Readings cannot be given in the units asked for (footcandles of a radiometric basis).
+    #[error("--units {units}: {reason}")]
+    Units {
+        /// The units asked for.
+        units: &'static str,
+        /// Why not.
+        reason: String,
     },
     /// The scene is too large for this machine.
     #[error("{0}")]

@@ -9,6 +9,7 @@
 //! | [`memory`] | what a build of n patches holds, the solvers' size thresholds, the machine's memory |
 //! | [`scene`] | scene files, OBJ/MTL, meshing |
 //! | [`formfactor`] | form factors with occlusion, sensor and zone rows, their health |
+//! | [`cache`] | the patch form factors and sensor and zone rows kept on disk between runs, keyed by their content |
 //! | [`sources`] | what emits light: per channel, its emission and direct irradiance |
 //! | [`radiosity`] | the model (`G`, `ρ`, `b`), exact solves, eigenmodes |
 //! | [`basis`] | a model and its modes as the runtime's tables |
@@ -18,6 +19,7 @@
 //! | [`cli`] | what the commands compute and print, atomic file writes |
 pub mod accuracy;
 pub mod basis;
+pub mod cache;
 pub mod cli;
 mod error;
 pub mod formfactor;

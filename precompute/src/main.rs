@@ -6,12 +6,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use eigenrad_precompute::cli::{self, atomic, guard};
 use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline::{self, BuildOptions, ModeSelection};
 use eigenrad_precompute::radiosity::eigen::{Formulation, Solver};
-use eigenrad_precompute::{scene, verify, Error};
+use eigenrad_precompute::{cache, scene, verify, Error};
 use eigenrad_runtime::Precision;
 
 /// Real-time radiosity for lighting controllers: precompute a room's eigenbasis, evaluate it
@@ -51,6 +51,48 @@ enum SolverArg {
     Partial,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum UnitsArg {
+    /// Lux for a photometric basis or scene (W/m² for a radiometric one, whatever is asked).
+    Lux,
+    /// Footcandles: 1 fc = 1 lm/ft² = 10.7639 lx (photometric only).
+    Fc,
+}
+
+impl From<UnitsArg> for cli::Units {
+    fn from(u: UnitsArg) -> Self {
+        match u {
+            UnitsArg::Lux => cli::Units::Native,
+            UnitsArg::Fc => cli::Units::Footcandles,
+        }
+    }
+}
+
+/// The form-factor cache of the commands that compute form factors.
+#[derive(Args)]
+struct CacheArgs {
+    /// Compute the form factors without reading or writing the form-factor cache
+    /// ($EIGENRAD_CACHE_DIR, else $XDG_CACHE_HOME/eigenrad, else ~/.cache/eigenrad).
+    #[arg(long)]
+    no_cache: bool,
+}
+
+impl CacheArgs {
+    /// Form-factor settings for a command: the defaults, a progress bar only where someone
+    /// watches (never in logs, pipes or tests), and the cache unless `--no-cache`.
+    fn form_factors(&self) -> FormFactorOptions {
+        FormFactorOptions {
+            progress: std::io::stderr().is_terminal(),
+            cache: if self.no_cache {
+                None
+            } else {
+                cache::default_dir()
+            },
+            ..FormFactorOptions::default()
+        }
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Build a basis from a scene and report patches, modes, size, form-factor health,
@@ -86,6 +128,8 @@ enum Command {
         /// Print the report as one JSON document on stdout.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        cache: CacheArgs,
     },
     /// Exact dense solve of a scene (LU), for reference.
     Solve {
@@ -94,9 +138,16 @@ enum Command {
         /// Channel level, relative (1 = as in the scene); repeatable. Channels default to 1.
         #[arg(long = "level", value_name = "NAME=VALUE")]
         levels: Vec<String>,
+        /// Channel level as a DALI arc power level, 0 (off) to 254 (100 %) on the IEC 62386-102
+        /// curve, as the firmware converts it; repeatable. Not with --level for one channel.
+        #[arg(long = "arc", value_name = "NAME=ARC")]
+        arcs: Vec<String>,
         /// Also print every patch.
         #[arg(long)]
         patches: bool,
+        /// Unit of illuminance (and exitance) printed.
+        #[arg(long, value_enum, default_value = "lux")]
+        units: UnitsArg,
         /// Print one JSON document on stdout.
         #[arg(long)]
         json: bool,
@@ -104,6 +155,8 @@ enum Command {
         /// this CSV file, atomically.
         #[arg(long, value_name = "FILE")]
         csv: Option<PathBuf>,
+        #[command(flatten)]
+        cache: CacheArgs,
     },
     /// Evaluate a basis through the runtime crate: exactly what firmware computes.
     Eval {
@@ -112,9 +165,16 @@ enum Command {
         /// Channel level, relative (1 = as built); repeatable. Channels default to 1.
         #[arg(long = "level", value_name = "NAME=VALUE")]
         levels: Vec<String>,
+        /// Channel level as a DALI arc power level, 0 (off) to 254 (100 %) on the IEC 62386-102
+        /// curve, through the runtime's conversion; repeatable. Not with --level for one channel.
+        #[arg(long = "arc", value_name = "NAME=ARC")]
+        arcs: Vec<String>,
         /// Also print every patch.
         #[arg(long)]
         patches: bool,
+        /// Unit of illuminance (and exitance) printed.
+        #[arg(long, value_enum, default_value = "lux")]
+        units: UnitsArg,
         /// Print one JSON document on stdout.
         #[arg(long)]
         json: bool,
@@ -130,11 +190,24 @@ enum Command {
         /// Print `{factors: [{from, to, value}], health: {...}}` as JSON on stdout.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        cache: CacheArgs,
     },
-    /// Describe a basis: dimensions, names, sizes.
+    /// Describe a basis: dimensions, names, sizes; or, with --gains, what every sensor and
+    /// zone reads per channel.
     Inspect {
         /// Basis file.
         basis: PathBuf,
+        /// Instead: for every sensor and zone, its reading per channel at level 1 with the
+        /// other channels off (lux, fc or W/m² per band), through the runtime.
+        #[arg(long)]
+        gains: bool,
+        /// With --gains: also write the gains as CSV to this file (atomically).
+        #[arg(long, value_name = "FILE", requires = "gains")]
+        csv: Option<PathBuf>,
+        /// With --gains: unit of illuminance.
+        #[arg(long, value_enum, default_value = "lux", requires = "gains")]
+        units: UnitsArg,
         /// Print one JSON document on stdout.
         #[arg(long)]
         json: bool,
@@ -150,6 +223,8 @@ enum Command {
         /// Print the report as one JSON document on stdout instead of the tables.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        cache: CacheArgs,
     },
 }
 
@@ -206,6 +281,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             solver,
             no_grids,
             json,
+            cache,
         } => {
             let opts = BuildOptions {
                 grids: !no_grids,
@@ -228,11 +304,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     SolverArg::Dense => Solver::Dense,
                     SolverArg::Partial => Solver::Partial,
                 },
-                // A progress bar only where someone watches: never in logs or pipes.
-                form_factors: FormFactorOptions {
-                    progress: std::io::stderr().is_terminal(),
-                    ..FormFactorOptions::default()
-                },
+                form_factors: cache.form_factors(),
                 ..BuildOptions::default()
             };
             // Before any work: the basis must be writable and must not replace the scene or a
@@ -250,15 +322,20 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Solve {
             scene,
             levels,
+            arcs,
             patches,
+            units,
             json,
             csv,
+            cache,
         } => {
             if let Some(csv) = &csv {
                 guard::check_file_output(csv)?;
                 guard::check_outputs(std::slice::from_ref(csv), &scene::inputs(&scene)?.files)?;
             }
-            let readout = cli::solve(&scene, &levels, patches)?;
+            let levels = cli::LevelArgs { levels, arcs };
+            let readout = cli::solve(&scene, &levels, patches, &cache.form_factors())?;
+            let readout = cli::units::readout_in(readout, units.into())?;
             if let Some(csv) = &csv {
                 atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
             }
@@ -271,7 +348,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Eval {
             basis,
             levels,
+            arcs,
             patches,
+            units,
             json,
             csv,
         } => {
@@ -280,8 +359,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 guard::check_outputs(std::slice::from_ref(csv), std::slice::from_ref(&basis))?;
             }
             let bytes = read(&basis)?;
+            let levels = cli::LevelArgs { levels, arcs };
             let readout = cli::eval(&basis, &bytes, &levels, patches)
                 .with_context(|| format!("evaluating {}", basis.display()))?;
+            let readout = cli::units::readout_in(readout, units.into())?;
             if let Some(csv) = &csv {
                 atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
             }
@@ -291,15 +372,43 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 cli::format_readout(&readout)
             })?;
         }
-        Command::FormFactors { scene, json } => {
-            let table = cli::form_factor_table(&scene)?;
+        Command::FormFactors { scene, json, cache } => {
+            let table = cli::form_factor_table(&scene, &cache.form_factors())?;
             cli::print(&if json {
                 cli::json(&table)?
             } else {
                 cli::format_surface_form_factors(&table)
             })?;
         }
-        Command::Inspect { basis, json } => {
+        Command::Inspect {
+            basis,
+            gains: true,
+            csv,
+            units,
+            json,
+        } => {
+            if let Some(csv) = &csv {
+                guard::check_file_output(csv)?;
+                guard::check_outputs(std::slice::from_ref(csv), std::slice::from_ref(&basis))?;
+            }
+            let bytes = read(&basis)?;
+            let gains = cli::gains(&basis, &bytes, units.into())?;
+            if let Some(csv) = csv {
+                atomic::write(&csv, cli::gains_csv(&gains).as_bytes())?;
+                note_written(&csv);
+            }
+            cli::print(&if json {
+                cli::json(&gains)?
+            } else {
+                cli::format_gains(&gains)
+            })?;
+        }
+        Command::Inspect {
+            basis,
+            gains: false,
+            json,
+            ..
+        } => {
             let bytes = read(&basis)?;
             let info = cli::inspect(&basis, &bytes)?;
             cli::print(&if json {
@@ -308,12 +417,22 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 cli::format_inspect(&info)
             })?;
         }
-        Command::Verify { scene, out, json } => {
+        Command::Verify {
+            scene,
+            out,
+            json,
+            cache,
+        } => {
             if let Some(dir) = &out {
                 let inputs = scene::inputs(&scene)?;
                 guard::check_outputs(&cli::verify_outputs(dir, &inputs.name), &inputs.files)?;
             }
-            let report = verify::verify(&scene, &verify::VerifyOptions::default())?;
+            let opts = verify::VerifyOptions {
+                form_factors: cache.form_factors(),
+                progress: std::io::stderr().is_terminal(),
+                ..verify::VerifyOptions::default()
+            };
+            let report = verify::verify(&scene, &opts)?;
             let tables = verify::markdown(&report);
             if let Some(dir) = out {
                 for path in cli::write_svgs(&report, &dir)? {

@@ -12,9 +12,10 @@ use crate::accuracy::metric::Worst;
 use crate::accuracy::runtime_eval;
 use crate::accuracy::{self, Case};
 use crate::basis;
+use crate::cache;
 use crate::error::{Error, Result};
-use crate::formfactor::{self, FormFactorHealth, FormFactorOptions, Occluders};
 use crate::formfactor::{exchange, outputs};
+use crate::formfactor::{FormFactorHealth, FormFactorOptions, Occluders};
 use crate::memory;
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::radiosity::model::Model;
@@ -191,14 +192,14 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     }
     let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
     let ff = timed(&mut timings, "form factors", || {
-        formfactor::patch_form_factors_with(&scene.patches, &occluders, opts)
+        cache::form_factors(&scene.patches, &scene.faces, &occluders, opts)
     });
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
     let names: Vec<String> = scene.surfaces.iter().map(|s| s.name.clone()).collect();
     let form_factor_health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
     let g = exchange::exchange_areas(ff.matrix, &area);
     let output_rows = timed(&mut timings, "sensors and zones", || {
-        outputs::output_rows(&scene, &g, &area, &occluders, opts)
+        cache::output_rows(&scene, &g, &area, &occluders, opts)
     });
     let (lights, luminaire_flux) = timed(&mut timings, "light sources", || {
         let surfaces = sources::surfaces::channel_lights(&scene, &g, &area, &output_rows);

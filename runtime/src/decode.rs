@@ -323,9 +323,12 @@ fn outputs(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
 /// counts). A zone with points has a positive spacing and cells and a unit normal.
 fn grids(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
     let g = c.grid_point_count;
-    f32_table("grid_layout", raw.grid_layout, mul(c.zone_count, 7)?, |v| {
-        bounded(v) && v >= -1.0
-    })?;
+    f32_table(
+        "grid_layout",
+        raw.grid_layout,
+        mul(c.zone_count, 7)?,
+        Allowed::NotBelowMinusOne,
+    )?;
     for z in 0..c.zone_count {
         let points = u32_at(raw.grid_counts, 2 * z) != 0 && u32_at(raw.grid_counts, 2 * z + 1) != 0;
         let at = |k: usize| f32_at(raw.grid_layout, 7 * z + k);
@@ -343,11 +346,16 @@ fn grids(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
             });
         }
     }
-    f32_table("grid_position", raw.grid_position, mul(g, 3)?, bounded)?;
+    f32_table(
+        "grid_position",
+        raw.grid_position,
+        mul(g, 3)?,
+        Allowed::Bounded,
+    )?;
     let bp = cols(c.modes_cols())?;
-    f32_table("grid_modes", raw.grid_modes, mul(g, bp)?, bounded)?;
+    f32_table("grid_modes", raw.grid_modes, mul(g, bp)?, Allowed::Bounded)?;
     let count = mul(mul(g, c.bands)?, c.channel_count)?;
-    f32_table("grid_channels", raw.grid_channels, count, bounded)?;
+    f32_table("grid_channels", raw.grid_channels, count, Allowed::Bounded)?;
     matrix(
         "grid_view.data",
         "grid_view.scales",
@@ -410,6 +418,8 @@ enum Allowed {
     Mu,
     /// A seed eigenvalue: bounded and at least [`MIN_LAMBDA`].
     Lambda,
+    /// Bounded and ≥ −1 (a grid's layout: its normal's components and its sizes).
+    NotBelowMinusOne,
 }
 
 impl Allowed {
@@ -422,6 +432,7 @@ impl Allowed {
             Allowed::Reflectance => v == 0.0 || (MIN_REFLECTANCE..1.0).contains(&v),
             Allowed::Mu => v.abs() <= MAX_MU,
             Allowed::Lambda => bounded && v >= MIN_LAMBDA,
+            Allowed::NotBelowMinusOne => bounded && v >= -1.0,
         }
     }
 }

@@ -83,11 +83,21 @@ normal = [0, 0, 1]
     )
 }
 
+/// The form-factor cache of this test run: a folder of its own under the temporary folder,
+/// so that tests neither read nor fill the user's cache.
+pub fn cache_dir() -> PathBuf {
+    std::env::temp_dir().join(format!("eigenrad-cli-cache-{}", std::process::id()))
+}
+
+/// The `eigenrad` command, with its form-factor cache in [`cache_dir`].
+pub fn command() -> Command {
+    let mut command = Command::new(eigenrad());
+    command.env("EIGENRAD_CACHE_DIR", cache_dir());
+    command
+}
+
 pub fn run(args: &[&str]) -> Output {
-    Command::new(eigenrad())
-        .args(args)
-        .output()
-        .expect("run eigenrad")
+    command().args(args).output().expect("run eigenrad")
 }
 
 pub fn stderr(o: &Output) -> String {

@@ -9,7 +9,8 @@ use crate::error::{Error, Result};
 pub const MAX_PATCHES: usize = 1 << 17;
 /// Mode capacity of the host evaluator: the most modes a basis the build verifies may have.
 pub const MAX_MODES: usize = 2048;
-const MAX_CHANNELS: usize = 1024;
+/// Channel capacity of the host evaluators.
+pub const MAX_CHANNELS: usize = 1024;
 const MAX_OUTPUTS: usize = 1024;
 
 type Host<'a, const B: usize> = Evaluator<'a, B, MAX_PATCHES, MAX_MODES, MAX_CHANNELS, MAX_OUTPUTS>;

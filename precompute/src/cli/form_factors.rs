@@ -107,17 +107,21 @@ pub struct SurfaceFactor {
 }
 
 /// `eigenrad form-factors`: surface-to-surface form factors (area-weighted), the non-zero
-/// ones (see [`form_factor_table`] for every pair and the health).
-pub fn surface_form_factors(scene_path: &Path) -> Result<Vec<SurfaceFactor>> {
-    let mut table = form_factor_table(scene_path)?;
+/// ones (see [`form_factor_table`] for every pair and the health), computed with `opts` (its
+/// progress bar and cache).
+pub fn surface_form_factors(
+    scene_path: &Path,
+    opts: &FormFactorOptions,
+) -> Result<Vec<SurfaceFactor>> {
+    let mut table = form_factor_table(scene_path, opts)?;
     table.factors.retain(|f| f.value != 0.0);
     Ok(table.factors)
 }
 
 /// `eigenrad form-factors`: every surface-to-surface form factor (area-weighted; pairs that
-/// exchange nothing as 0) and the health of the patch form factors.
-pub fn form_factor_table(scene_path: &Path) -> Result<FormFactorTable> {
-    let prepared = pipeline::prepare(scene_path, &FormFactorOptions::default())?;
+/// exchange nothing as 0) and the health of the patch form factors, computed with `opts`.
+pub fn form_factor_table(scene_path: &Path, opts: &FormFactorOptions) -> Result<FormFactorTable> {
+    let prepared = pipeline::prepare(scene_path, opts)?;
     let scene = &prepared.scene;
     let s = scene.surfaces.len();
     let mut sums = vec![vec![0.0f64; s]; s];

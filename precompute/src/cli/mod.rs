@@ -5,10 +5,12 @@
 
 pub mod atomic;
 mod form_factors;
+mod gains;
 pub mod guard;
 mod inspect;
 mod readout;
 mod report;
+pub mod units;
 
 use serde::Serialize;
 
@@ -18,11 +20,14 @@ pub use form_factors::{
     form_factor_table, format_health, format_surface_form_factors, surface_form_factors,
     FormFactorTable, SurfaceFactor,
 };
+pub use gains::{format_gains, gains, gains_csv, Gain, Gains};
 pub use inspect::{format_inspect, inspect, BasisInfo};
 pub use readout::{
-    eval, format_readout, grids_csv, parse_levels, solve, Level, PatchReading, Reading, Readout,
+    eval, format_readout, grids_csv, parse_levels, solve, Level, LevelArgs, PatchReading, Reading,
+    Readout,
 };
 pub use report::{format_build_report, verify_outputs, write_svgs};
+pub use units::Units;
 
 /// `value` as one pretty-printed JSON document, with a final newline.
 pub fn json<T: Serialize>(value: &T) -> Result<String> {

@@ -1,5 +1,6 @@
 //! `eigenrad solve` and `eigenrad eval`: the readings of a scene's exact solve or of a basis
-//! evaluated through the runtime, for channel levels given as `NAME=VALUE`, and their table.
+//! evaluated through the runtime, for channel levels given as `NAME=VALUE` or as DALI arc
+//! levels `NAME=ARC`, and their table.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -22,6 +23,9 @@ pub struct Level {
     pub name: String,
     /// Relative level (1 = as built).
     pub level: f64,
+    /// The DALI arc power level it was given as (`--arc`), if it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub arc: Option<u8>,
 }
 
 /// One sensor or zone reading.
@@ -79,35 +83,80 @@ pub(super) fn band_names(count: usize) -> Vec<&'static str> {
     }
 }
 
-/// Each channel's name with the level applied to it.
-fn applied(names: &[String], levels: &[f64]) -> Vec<Level> {
+/// Each channel's name with the level applied to it, and the arc level it was given as.
+/// `args` are the arguments [`parse_levels`] accepted.
+fn applied(names: &[String], levels: &[f64], args: &LevelArgs) -> Vec<Level> {
     names
         .iter()
         .zip(levels)
         .map(|(name, &level)| Level {
             name: name.clone(),
             level,
+            // The last `--arc` naming the channel, as in `parse_levels`.
+            arc: args.arcs.iter().rev().find_map(|a| {
+                let (n, v) = a.split_once('=')?;
+                if n == name {
+                    v.trim().parse().ok()
+                } else {
+                    None
+                }
+            }),
         })
         .collect()
 }
 
-/// Parses `NAME=VALUE` arguments against the channel names; unnamed channels stay at 1.
-pub fn parse_levels(arguments: &[String], channels: &[String]) -> Result<Vec<f64>> {
+/// Channel levels as given on the command line: relative levels (`--level NAME=VALUE`) and
+/// DALI arc power levels (`--arc NAME=ARC`). Channels named in neither stay at 1.
+#[derive(Clone, Debug, Default)]
+pub struct LevelArgs {
+    /// `NAME=VALUE`, the relative level (1 = as built), 0 to [`eigenrad_runtime::MAX_LEVEL`].
+    pub levels: Vec<String>,
+    /// `NAME=ARC`, a DALI arc power level 0..=254 (IEC 62386-102), turned into a relative
+    /// level by [`eigenrad_runtime::dali::arc_power_to_level`], as the firmware does.
+    pub arcs: Vec<String>,
+}
+
+/// The channel named in `argument` (`NAME=...`) and the text after `=`.
+fn split_argument<'a>(
+    flag: &'static str,
+    argument: &'a str,
+    channels: &[String],
+) -> Result<(usize, &'a str)> {
+    let bad = |reason: String| Error::Level {
+        flag,
+        argument: argument.to_owned(),
+        reason,
+    };
+    let expected = if flag == "--arc" {
+        "expected NAME=ARC"
+    } else {
+        "expected NAME=VALUE"
+    };
+    let (name, value) = argument
+        .split_once('=')
+        .ok_or_else(|| bad(expected.into()))?;
+    let index = channels.iter().position(|c| c == name).ok_or_else(|| {
+        bad(format!(
+            "no channel named `{name}` (channels: {})",
+            channels.join(", ")
+        ))
+    })?;
+    Ok((index, value))
+}
+
+/// Parses `--level NAME=VALUE` and `--arc NAME=ARC` arguments against the channel names;
+/// unnamed channels stay at 1. A channel given by both `--level` and `--arc` is an error
+/// naming it; given twice by the same flag, the last value counts.
+pub fn parse_levels(arguments: &LevelArgs, channels: &[String]) -> Result<Vec<f64>> {
     let mut levels = vec![1.0; channels.len()];
-    for argument in arguments {
+    let mut by_level = vec![false; channels.len()];
+    for argument in &arguments.levels {
+        let (index, value) = split_argument("--level", argument, channels)?;
         let bad = |reason: String| Error::Level {
+            flag: "--level",
             argument: argument.clone(),
             reason,
         };
-        let (name, value) = argument
-            .split_once('=')
-            .ok_or_else(|| bad("expected NAME=VALUE".into()))?;
-        let index = channels.iter().position(|c| c == name).ok_or_else(|| {
-            bad(format!(
-                "no channel named `{name}` (channels: {})",
-                channels.join(", ")
-            ))
-        })?;
         let value: f64 = value
             .trim()
             .parse()
@@ -119,13 +168,51 @@ pub fn parse_levels(arguments: &[String], channels: &[String]) -> Result<Vec<f64
             )));
         }
         levels[index] = value;
+        by_level[index] = true;
+    }
+    for argument in &arguments.arcs {
+        let (index, value) = split_argument("--arc", argument, channels)?;
+        let bad = |reason: String| Error::Level {
+            flag: "--arc",
+            argument: argument.clone(),
+            reason,
+        };
+        if by_level[index] {
+            return Err(bad(format!(
+                "channel `{}` is also given by --level; give each channel one way",
+                channels[index]
+            )));
+        }
+        let arc: u8 = match value.trim().parse::<u32>() {
+            Ok(255) => {
+                return Err(bad(
+                    "255 is DALI's MASK (\"no change\"), not a light level; arc power levels are 0 (off) to 254 (100 %)".into(),
+                ))
+            }
+            Ok(n) if n <= 254 => n as u8,
+            _ => {
+                return Err(bad(format!(
+                    "`{value}` is not a DALI arc power level (a whole number 0 to 254)"
+                )))
+            }
+        };
+        let level =
+            eigenrad_runtime::dali::arc_power_to_level(arc).map_err(|e| bad(e.to_string()))?;
+        levels[index] = f64::from(level);
     }
     Ok(levels)
 }
 
 /// `eigenrad solve`: the exact dense solution.
-pub fn solve(scene_path: &Path, level_args: &[String], patches: bool) -> Result<Readout> {
-    let prepared = pipeline::prepare(scene_path, &FormFactorOptions::default())?;
+///
+/// `form_factors` sets the form-factor computation, its progress bar and cache.
+pub fn solve(
+    scene_path: &Path,
+    level_args: &LevelArgs,
+    patches: bool,
+    form_factors: &FormFactorOptions,
+) -> Result<Readout> {
+    let prepared = pipeline::prepare(scene_path, form_factors)?;
     let scene = &prepared.scene;
     let names: Vec<String> = scene.channels.iter().map(|c| c.name.clone()).collect();
     let levels = parse_levels(level_args, &names)?;
@@ -167,7 +254,7 @@ pub fn solve(scene_path: &Path, level_args: &[String], patches: bool) -> Result<
     Ok(Readout {
         unit: scene.bands.unit(),
         bands: band_names(bands),
-        levels: applied(&names, &levels),
+        levels: applied(&names, &levels, level_args),
         sensors: scene
             .sensors
             .iter()
@@ -213,7 +300,7 @@ pub(super) fn basis_error(path: &Path) -> impl Fn(eigenrad_runtime::Error) -> Er
 }
 
 /// `eigenrad eval`: the basis evaluated through the runtime.
-pub fn eval(path: &Path, bytes: &[u8], level_args: &[String], patches: bool) -> Result<Readout> {
+pub fn eval(path: &Path, bytes: &[u8], level_args: &LevelArgs, patches: bool) -> Result<Readout> {
     let basis = Basis::from_bytes(bytes).map_err(basis_error(path))?;
     let names: Vec<String> = (0..basis.channel_count())
         .map(|c| basis.channel_name(c).map(str::to_owned))
@@ -281,7 +368,7 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &[String], patches: bool) -> 
     Ok(Readout {
         unit: unit(basis.quantity()),
         bands: band_names(basis.bands()),
-        levels: applied(&names, &levels),
+        levels: applied(&names, &levels, level_args),
         sensors,
         zones,
         grids,
@@ -362,7 +449,10 @@ pub fn format_readout(r: &Readout) -> String {
         "levels: {}",
         r.levels
             .iter()
-            .map(|l| format!("{}={}", l.name, l.level))
+            .map(|l| match l.arc {
+                Some(arc) => format!("{}={} (arc {arc})", l.name, l.level),
+                None => format!("{}={}", l.name, l.level),
+            })
             .collect::<Vec<_>>()
             .join(", ")
     );

@@ -64,6 +64,9 @@ pub struct FormFactorOptions {
     pub gauss_order: usize,
     /// Show an indicatif progress bar on stderr.
     pub progress: bool,
+    /// Folder of the form-factor cache ([`crate::cache`]) that [`crate::pipeline::prepare`]
+    /// reads and fills; `None` (the default) computes the form factors every time.
+    pub cache: Option<std::path::PathBuf>,
     /// Points per side on the emitting patch when the two patches touch (share an edge or a
     /// corner): the kernel is not smooth there, so more points are needed for the same
     /// accuracy. Default 6 (about 2e-6 relative on a shared edge).
@@ -94,6 +97,7 @@ impl Default for FormFactorOptions {
         FormFactorOptions {
             gauss_order: 5,
             progress: false,
+            cache: None,
             touching_order: 6,
             quadrature_tolerance: 1e-6,
             visibility_depth: 4,

@@ -44,6 +44,9 @@ pub struct VerifyOptions {
     pub random_patterns: usize,
     /// Form-factor settings.
     pub form_factors: FormFactorOptions,
+    /// Show the stages after the form factors (eigenmodes, curves, basis sizes per
+    /// formulation) as an indicatif progress bar on stderr.
+    pub progress: bool,
 }
 
 impl Default for VerifyOptions {
@@ -52,6 +55,7 @@ impl Default for VerifyOptions {
             random_mixes: 4,
             random_patterns: 4,
             form_factors: FormFactorOptions::default(),
+            progress: false,
         }
     }
 }
@@ -257,7 +261,10 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
     let mut formulations = Vec::new();
     let mut modes = Vec::new();
     let mut baseline_error: Option<[f64; 3]> = None;
-    for formulation in [Formulation::Split, Formulation::Seed] {
+    let formulation_list = [Formulation::Split, Formulation::Seed];
+    let bar = stage_bar(opts.progress, 3 * formulation_list.len());
+    for formulation in formulation_list {
+        bar.set_message(format!("verify, {}: eigenmodes", formulation.name()));
         let model = Model::new(
             scene,
             prepared.g.clone(),
@@ -278,21 +285,27 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
                 ));
             }
         }
+        bar.inc(1);
+        bar.set_message(format!("verify, {}: error curves", formulation.name()));
         let curves = cases
             .iter()
             .map(|(kind, case)| case_curve(&model, &solvers, *kind, case, &modes, sensors, outputs))
             .collect();
+        bar.inc(1);
+        bar.set_message(format!("verify, {}: basis sizes", formulation.name()));
         let mut basis_bytes = Vec::with_capacity(modes.len());
         for &p in &modes {
             let bytes = basis::basis_tables(scene, &model, p, Precision::F32).to_bytes()?;
             basis_bytes.push(bytes.len());
         }
+        bar.inc(1);
         formulations.push(FormulationReport {
             formulation: formulation.name(),
             basis_bytes,
             cases: curves,
         });
     }
+    bar.finish_and_clear();
     Ok(VerifyReport {
         path: path.display().to_string(),
         scene: scene.name.clone(),
@@ -310,6 +323,20 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
             output_bytes: 4 * outputs * m * bands,
         },
     })
+}
+
+/// A bar of `steps` stages on stderr, or a hidden one.
+fn stage_bar(show: bool, steps: usize) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    if !show {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} stages, {elapsed}")
+    {
+        bar.set_style(style);
+    }
+    bar
 }
 
 /// The per-channel superposition `Σ_c l_c (I − R F)⁻¹ e_c` against the direct solve of each
