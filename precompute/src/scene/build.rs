@@ -103,7 +103,13 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         channel_of_patch.push(emitters.channel_of_surface[p.surface]);
     }
 
-    let sensors = observers::sensors(&ctx, &file.sensor, &geometry.rooms, &geometry.blocks)?;
+    let sensors = observers::sensors(
+        &ctx,
+        &file.sensor,
+        &geometry.rooms,
+        &geometry.blocks,
+        extent(raw),
+    )?;
     let zones = observers::zones(
         &ctx,
         &file.zone,
@@ -281,21 +287,22 @@ struct Meshed {
     material_emission: Vec<Vec<f64>>,
 }
 
+/// The box around every face of the scene (m), `None` for a scene without faces.
+fn extent(raw: &[RawSurface]) -> Option<(Vec3, Vec3)> {
+    let mut points = raw.iter().flat_map(|s| s.faces.iter().flatten());
+    let first = *points.next()?;
+    Some(points.fold((first, first), |(lo, hi), p| {
+        (
+            Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
+            Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
+        )
+    }))
+}
+
 /// [`CONTACT_TOLERANCE`] of the diagonal of everything in the scene, metres: how far an OBJ
 /// object's edge may be from a face and still stand on it.
 fn contact_tolerance(raw: &[RawSurface]) -> f64 {
-    let mut lo = Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY);
-    let mut hi = Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
-    for p in raw.iter().flat_map(|s| s.faces.iter().flatten()) {
-        lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
-        hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
-    }
-    let diagonal = (hi - lo).length();
-    if diagonal.is_finite() {
-        CONTACT_TOLERANCE * diagonal
-    } else {
-        0.0
-    }
+    extent(raw).map_or(0.0, |(lo, hi)| CONTACT_TOLERANCE * (hi - lo).length())
 }
 
 /// Resolves each surface's material, checks its faces (flat within `planarity`) and meshes

@@ -18,6 +18,7 @@ pub(crate) fn sensors(
     defs: &[Spanned<SensorDef>],
     rooms: &[(String, Vec3, Vec3)],
     blocks: &[(String, Vec3, Vec3)],
+    extent: Option<(Vec3, Vec3)>,
 ) -> Result<Vec<Sensor>, SceneError> {
     unique(
         "sensor",
@@ -49,7 +50,7 @@ pub(crate) fn sensors(
             None => None,
         };
         let normal = normal.normalized();
-        placement(ctx, s, &what, position, normal, rooms, blocks)?;
+        placement(ctx, s, &what, position, normal, rooms, blocks, extent)?;
         sensors.push(Sensor {
             name: s.name.clone(),
             position,
@@ -74,8 +75,10 @@ const BLOCK_FACES: [[&str; 2]; 3] = [
 ];
 
 /// Checks that a sensor (position in metres, unit normal) can see the room: it is inside a
-/// room (when the scene has rooms), not inside a block, and not lying on a room or block face
-/// while facing into it.
+/// room (when the scene has rooms) or, in a scene without rooms (OBJ geometry, quads), inside
+/// the box around its faces (`extent`); not inside a block, and not lying on a room or block
+/// face while facing into it.
+#[allow(clippy::too_many_arguments)]
 fn placement(
     ctx: &Ctx,
     s: &SensorDef,
@@ -84,6 +87,7 @@ fn placement(
     n: Vec3,
     rooms: &[(String, Vec3, Vec3)],
     blocks: &[(String, Vec3, Vec3)],
+    extent: Option<(Vec3, Vec3)>,
 ) -> Result<(), SceneError> {
     let written = |v: Vec3| (v / ctx.unit).to_array();
     let position_error = |message: String| SceneError::OutOfRange {
@@ -101,6 +105,18 @@ fn placement(
             n.to_array()
         ),
     };
+    if let (true, Some((lo, hi))) = (rooms.is_empty(), extent) {
+        let tol = CONTACT_TOLERANCE * (hi - lo).length();
+        if (0..3).any(|k| p.axis(k) < lo.axis(k) - tol || p.axis(k) > hi.axis(k) + tol) {
+            return Err(position_error(format!(
+                "{:?} is outside the scene, whose faces span {:?} to {:?}; a sensor there \
+                 would see the scene from outside, if at all (a unit or `translate` mistake?)",
+                written(p),
+                written(lo),
+                written(hi)
+            )));
+        }
+    }
     if !rooms.is_empty() {
         let within = |lo: &Vec3, hi: &Vec3, tol: f64| {
             (0..3).all(|k| p.axis(k) >= lo.axis(k) - tol && p.axis(k) <= hi.axis(k) + tol)

@@ -123,3 +123,42 @@ fn scene_obj_ke_meaning_and_y_up_axes() {
     };
     assert!(m.contains("m.mtl") && m.contains("Ke (radiance"), "{m}");
 }
+
+/// In a scene without rooms a sensor must lie within the box around the faces: one 10 m
+/// away (a `translate` or unit slip) is an error naming it, its line and the scene's extent.
+#[test]
+fn scene_error_sensor_outside_an_obj_scene() {
+    let dir = scratch("obj-sensor");
+    std::fs::write(
+        dir.join("model.obj"),
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+         g box\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n",
+    )
+    .expect("write obj");
+    let base = "[scene]\nname = \"o\"\nbands = \"photopic\"\nunit = \"m\"\nmax_edge = 1\n\n\
+                [materials.default]\nreflectance = 0.5\n\n\
+                [[obj]]\nfile = \"model.obj\"\n\n[surfaces.box]\nmaterial = \"default\"\n\n";
+    let sensor =
+        |at: &str| format!("[[sensor]]\nname = \"s\"\nposition = {at}\nnormal = [0, 0, 1]\n");
+    parse(
+        &format!("{base}{}", sensor("[0.5, 0.5, 0.2]")),
+        &dir.join("test-scene.toml"),
+    )
+    .expect("a sensor inside the box loads");
+    let m = match parse(
+        &format!("{base}{}", sensor("[0.5, 10.5, 0.2]")),
+        &dir.join("test-scene.toml"),
+    ) {
+        Ok(_) => panic!("a sensor 10 m outside accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert_names(
+        &m,
+        &[
+            "sensor `s`.position",
+            ":18:",
+            "outside the scene",
+            "[0.0, 0.0, 0.0]",
+        ],
+    );
+}
