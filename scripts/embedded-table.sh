@@ -125,10 +125,10 @@ if [[ -n ${last_sizes:-} ]]; then
     printf "\n### The runtime's own code\n\n"
     printf '| what the firmware links | .text (bytes) | .rodata (bytes) |\n'
     printf '|---|---|---|\n'
-    printf '| decoding + every `ChannelEvaluator` operation | %s | %s |\n' \
+    printf '| decoding + every `ChannelEvaluator` operation, grid figures included | %s | %s |\n' \
         "$(field "$last_sizes" text size runtime_channels)" \
         "$(field "$last_sizes" rodata size runtime_channels)"
-    printf '| decoding + every `Evaluator` operation | %s | %s |\n' \
+    printf '| decoding + every `Evaluator` operation but the grids | %s | %s |\n' \
         "$(field "$last_sizes" text size runtime_patches)" \
         "$(field "$last_sizes" rodata size runtime_patches)"
     printf '| decoding + channel levels + outputs + `LevelProblem` (levels for a target) | %s | %s |\n' \

@@ -407,9 +407,32 @@ pub(crate) fn check_header(bytes: &[u8]) -> Result<&[u8]> {
 }
 
 /// Decodes the postcard payload that fills `body` exactly, borrowing its tables.
+///
+/// The payload is postcard's encoding of [`Payload`]: its fields in order, each `u8` as a
+/// byte, each `u32` as a varint, each table as a varint length and its bytes. They are read
+/// here in three loops (settings, counts, tables) rather than through `Payload`'s derived
+/// `Deserialize`, whose code per field is several times larger in flash; the bytes read are
+/// the same (`decode_payload_reads_what_postcard_derives` in the tests).
 pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
-    let (payload, rest) =
-        postcard::take_from_bytes::<Payload<'_>>(body).map_err(|_| Error::DecodePayload)?;
+    fn take<'a, T: Deserialize<'a>>(rest: &mut &'a [u8]) -> Result<T> {
+        let (value, tail) =
+            postcard::take_from_bytes::<T>(rest).map_err(|_| Error::DecodePayload)?;
+        *rest = tail;
+        Ok(value)
+    }
+    let mut rest = body;
+    let mut settings = [0u8; 4];
+    for slot in &mut settings {
+        *slot = take(&mut rest)?;
+    }
+    let mut counts = [0u32; 6];
+    for slot in &mut counts {
+        *slot = take(&mut rest)?;
+    }
+    let mut tables: [&[u8]; 27] = [&[]; 27];
+    for slot in &mut tables {
+        *slot = take(&mut rest)?;
+    }
     if !rest.is_empty() {
         return Err(Error::DecodeLength {
             field: "payload length",
@@ -417,7 +440,46 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
             found: body.len(),
         });
     }
-    Ok(payload)
+    let [bands, quantity, formulation, precision] = settings;
+    let [patch_count, mode_count, surface_count, channel_count, sensor_count, zone_count] = counts;
+    let matrix = |scales, data| MatrixBytes { scales, data };
+    let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_counts, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
+        tables;
+    Ok(Payload {
+        bands,
+        quantity,
+        formulation,
+        precision,
+        patch_count,
+        mode_count,
+        surface_count,
+        channel_count,
+        sensor_count,
+        zone_count,
+        names,
+        eigenvalues,
+        patch_area,
+        patch_centroid,
+        patch_surface,
+        patch_channel,
+        patch_reflectance,
+        patch_emission,
+        modes: matrix(modes_scales, modes_data),
+        black_patches,
+        black_projection,
+        channel_response: matrix(response_scales, response_data),
+        sensor_geometry,
+        zone_area,
+        output_modes,
+        output_channels,
+        output_view: matrix(view_scales, view_data),
+        grid_counts,
+        grid_layout,
+        grid_position,
+        grid_modes,
+        grid_channels,
+        grid_view: matrix(grid_view_scales, grid_view_data),
+    })
 }
 
 fn byte(bytes: &[u8], at: usize) -> u8 {
@@ -486,4 +548,81 @@ pub fn f32_to_f16(value: f32) -> u16 {
         h += 1; // may carry into the exponent, which is the correct rounding
     }
     sign | h
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
+    use super::*;
+
+    /// Every field set to a value of its own (tables of distinct lengths and contents, counts
+    /// that need multi-byte varints), encoded by postcard from the struct, reads back equal
+    /// through `decode_payload`, and equal to what `Payload`'s derived `Deserialize` reads:
+    /// the three loops take the fields in the struct's order.
+    #[test]
+    fn decode_payload_reads_what_postcard_derives() {
+        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..27u8)
+            .map(|k| {
+                (0..=k)
+                    .map(|i| k.wrapping_mul(31).wrapping_add(i))
+                    .collect()
+            })
+            .collect();
+        let t = |k: usize| store[k].as_slice();
+        let m = |k: usize| MatrixBytes {
+            scales: t(k),
+            data: t(k + 1),
+        };
+        let payload = Payload {
+            bands: 3,
+            quantity: 1,
+            formulation: 2,
+            precision: 7,
+            patch_count: 1,
+            mode_count: 300,
+            surface_count: 70_000,
+            channel_count: 5,
+            sensor_count: u32::MAX,
+            zone_count: 129,
+            names: t(0),
+            eigenvalues: t(1),
+            patch_area: t(2),
+            patch_centroid: t(3),
+            patch_surface: t(4),
+            patch_channel: t(5),
+            patch_reflectance: t(6),
+            patch_emission: t(7),
+            modes: m(8),
+            black_patches: t(10),
+            black_projection: t(11),
+            channel_response: m(12),
+            sensor_geometry: t(14),
+            zone_area: t(15),
+            output_modes: t(16),
+            output_channels: t(17),
+            output_view: m(18),
+            grid_counts: t(20),
+            grid_layout: t(21),
+            grid_position: t(22),
+            grid_modes: t(23),
+            grid_channels: t(24),
+            grid_view: m(25),
+        };
+        let mut buffer = [0u8; 1024];
+        let body = postcard::to_slice(&payload, &mut buffer).unwrap();
+        assert_eq!(decode_payload(body).unwrap(), payload);
+        assert_eq!(postcard::from_bytes::<Payload<'_>>(body).unwrap(), payload);
+        // One byte short or one byte over is an error, as before.
+        let len = body.len();
+        assert_eq!(
+            decode_payload(&body[..len - 1]).unwrap_err(),
+            Error::DecodePayload
+        );
+        let mut longer = buffer;
+        longer[len] = 0;
+        assert!(matches!(
+            decode_payload(&longer[..len + 1]),
+            Err(Error::DecodeLength { .. })
+        ));
+    }
 }

@@ -179,9 +179,10 @@ const INSTRUCTIONS: [&str; 9] = [
 /// that exceeds a budget fails here rather than in a later table.
 const BUDGET_FULL_UPDATE_READ_OUTPUTS: u64 = 1000;
 const BUDGET_CHANNEL_UPDATE: u64 = 300;
-/// Flash the runtime's own code may take (`.text`, bytes): decoding plus every operation of
-/// the full `Evaluator`, as the code-size probes of the firmware example measure it
-/// (`scripts/firmware.sh`, docs/embedded.md). A controller that only dims channels links less.
+/// Flash the runtime's own code may take (`.text`, bytes), as the code-size probes of the
+/// firmware example measure it (`scripts/firmware.sh`, docs/embedded.md): decoding plus every
+/// operation of the full `Evaluator` but the calculation grids', and decoding plus every
+/// operation of the `ChannelEvaluator`, grids included. The level solver comes on top.
 const BUDGET_RUNTIME_TEXT: usize = 12 * 1024;
 
 #[test]
@@ -206,14 +207,13 @@ fn firmware_matches_eval_office_f32() {
         one <= BUDGET_CHANNEL_UPDATE,
         "one channel: {one} instructions, budget {BUDGET_CHANNEL_UPDATE}"
     );
-    let channels = run.sizes["runtime_channels"]["text"];
-    let all = run.sizes["runtime_patches"]["text"];
-    assert!(
-        all <= BUDGET_RUNTIME_TEXT,
-        "runtime .text {all} bytes, budget {BUDGET_RUNTIME_TEXT}"
-    );
-    // The channel-only probe exercises a subset of the full one.
-    assert!(0 < channels && channels < all, "{channels} vs {all}");
+    for probe in ["runtime_channels", "runtime_patches"] {
+        let text = run.sizes[probe]["text"];
+        assert!(
+            0 < text && text <= BUDGET_RUNTIME_TEXT,
+            "{probe} .text {text} bytes, budget {BUDGET_RUNTIME_TEXT}"
+        );
+    }
 }
 
 /// Mode vectors, channel responses and view rows in f16: the patch exitances read them.

@@ -4,13 +4,22 @@
 //! for the exact solve.
 
 /// A reading the figures can be taken of: `f32` (the evaluators) or `f64` (host tools).
-pub trait Reading: Copy + PartialOrd + sealed::Sealed {
+/// The arithmetic stays in the reading's own type, so that a controller's `f32` figures link
+/// no double-precision code (soft float on a single-precision FPU).
+pub trait Reading:
+    Copy
+    + PartialOrd
+    + core::ops::Add<Output = Self>
+    + core::ops::Sub<Output = Self>
+    + core::ops::Div<Output = Self>
+    + sealed::Sealed
+{
     /// Zero.
     const ZERO: Self;
-    /// The value as `f64` (exact for both).
-    fn to_f64(self) -> f64;
-    /// The nearest value to `x`.
-    fn from_f64(x: f64) -> Self;
+    /// Whether the value is finite.
+    fn finite(self) -> bool;
+    /// A count of points as a value (exact up to 2²⁴ points in `f32`).
+    fn count(n: usize) -> Self;
 }
 
 mod sealed {
@@ -21,21 +30,21 @@ mod sealed {
 
 impl Reading for f32 {
     const ZERO: Self = 0.0;
-    fn to_f64(self) -> f64 {
-        f64::from(self)
+    fn finite(self) -> bool {
+        self.is_finite()
     }
-    fn from_f64(x: f64) -> Self {
-        x as f32
+    fn count(n: usize) -> Self {
+        n as f32
     }
 }
 
 impl Reading for f64 {
     const ZERO: Self = 0.0;
-    fn to_f64(self) -> f64 {
-        self
+    fn finite(self) -> bool {
+        self.is_finite()
     }
-    fn from_f64(x: f64) -> Self {
-        x
+    fn count(n: usize) -> Self {
+        n as f64
     }
 }
 
@@ -68,10 +77,14 @@ impl<T: Reading> Figures<T> {
 }
 
 /// The running sums of [`Figures`]: what a streaming pass over a grid keeps per band. The
-/// sum is kept in `f64`, so that the mean of many `f32` points keeps its digits.
+/// sum is compensated (Kahan summation: the rounding error of each addition is carried into
+/// the next), so that the mean of many points is within a few roundings of the exact mean in
+/// the readings' own precision, whatever their number.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Accumulator<T> {
-    sum: f64,
+    sum: T,
+    /// The rounding error of the last addition to `sum` (what it lost, negated).
+    compensation: T,
     minimum: T,
     maximum: T,
     points: usize,
@@ -81,7 +94,8 @@ pub(crate) struct Accumulator<T> {
 impl<T: Reading> Default for Accumulator<T> {
     fn default() -> Self {
         Accumulator {
-            sum: 0.0,
+            sum: T::ZERO,
+            compensation: T::ZERO,
             minimum: T::ZERO,
             maximum: T::ZERO,
             points: 0,
@@ -93,9 +107,11 @@ impl<T: Reading> Default for Accumulator<T> {
 impl<T: Reading> Accumulator<T> {
     /// Adds one point's reading.
     pub(crate) fn add(&mut self, v: T) {
-        let x = v.to_f64();
-        self.finite &= x.is_finite();
-        self.sum += x;
+        self.finite &= v.finite();
+        let y = v - self.compensation;
+        let t = self.sum + y;
+        self.compensation = (t - self.sum) - y;
+        self.sum = t;
         if self.points == 0 || v < self.minimum {
             self.minimum = v;
         }
@@ -110,17 +126,17 @@ impl<T: Reading> Accumulator<T> {
         if self.points == 0 || !self.finite {
             return None;
         }
-        let mean = self.sum / self.points as f64;
-        let uniformity = if mean > 0.0 {
-            self.minimum.to_f64() / mean
+        let mean = self.sum / T::count(self.points);
+        let uniformity = if mean > T::ZERO {
+            self.minimum / mean
         } else {
-            0.0
+            T::ZERO
         };
         Some(Figures {
-            average: T::from_f64(mean),
+            average: mean,
             minimum: self.minimum,
             maximum: self.maximum,
-            uniformity: T::from_f64(uniformity),
+            uniformity,
             points: self.points,
         })
     }

@@ -1,5 +1,6 @@
 //! Code-size probe of a controller that only dims channels: decoding the basis and every
-//! operation of a `ChannelEvaluator`, with inputs the optimiser cannot see through.
+//! operation of a `ChannelEvaluator`, calculation grids included, with inputs the optimiser
+//! cannot see through.
 #![no_std]
 #![no_main]
 #![deny(unsafe_code)]
@@ -31,9 +32,12 @@ fn exercise() -> Result<(), Error> {
         e.luminance(patch)?,
         e.sensor_irradiance(output)?,
         e.zone_irradiance(output)?,
+        e.grid_point_irradiance(output, black_box(0))?,
     ] {
         keep(v[0]);
     }
+    let [figures] = e.zone_figures(output)?;
+    keep(figures.average + figures.minimum + figures.maximum + figures.uniformity);
     let mut all = [[0.0f32; 1]; 4];
     let n = e.basis().patch_count().min(all.len());
     let out = all.get_mut(..n).unwrap_or_default();

@@ -1,6 +1,7 @@
 //! Code-size probe of a controller that also sets exitance patch by patch: decoding the basis
-//! and every operation of an `Evaluator` (which holds a `ChannelEvaluator`), with inputs the
-//! optimiser cannot see through.
+//! and every operation of an `Evaluator` (which holds a `ChannelEvaluator`) but the
+//! calculation grids' (the channel probe reads those), with inputs the optimiser cannot see
+//! through.
 #![no_std]
 #![no_main]
 #![deny(unsafe_code)]
