@@ -62,6 +62,10 @@ pub(crate) fn sensors(
     Ok(sensors)
 }
 
+/// In a scene without rooms, how far a sensor may lie from the box around the faces, in
+/// diagonals of that box.
+const FAR_OUTSIDE: f64 = 10.0;
+
 /// Face names of a box by axis and side (min, max): a room's, then a block's.
 const ROOM_FACES: [[&str; 2]; 3] = [
     ["wall_xmin", "wall_xmax"],
@@ -75,8 +79,8 @@ const BLOCK_FACES: [[&str; 2]; 3] = [
 ];
 
 /// Checks that a sensor (position in metres, unit normal) can see the room: it is inside a
-/// room (when the scene has rooms) or, in a scene without rooms (OBJ geometry, quads), inside
-/// the box around its faces (`extent`); not inside a block, and not lying on a room or block
+/// room (when the scene has rooms) or, in a scene without rooms (OBJ geometry, quads), within
+/// [`FAR_OUTSIDE`] diagonals of the box around its faces (`extent`); not inside a block, and not lying on a room or block
 /// face while facing into it.
 #[allow(clippy::too_many_arguments)]
 fn placement(
@@ -106,12 +110,21 @@ fn placement(
         ),
     };
     if let (true, Some((lo, hi))) = (rooms.is_empty(), extent) {
-        let tol = CONTACT_TOLERANCE * (hi - lo).length();
-        if (0..3).any(|k| p.axis(k) < lo.axis(k) - tol || p.axis(k) > hi.axis(k) + tol) {
+        // Distance from the box around the faces; a sensor may look at a panel from a few of
+        // its sizes away, but not from many: that is a unit or `translate` slip.
+        let outside = Vec3::new(
+            (lo.x - p.x).max(p.x - hi.x).max(0.0),
+            (lo.y - p.y).max(p.y - hi.y).max(0.0),
+            (lo.z - p.z).max(p.z - hi.z).max(0.0),
+        )
+        .length();
+        let diagonal = (hi - lo).length();
+        if outside > FAR_OUTSIDE * diagonal {
             return Err(position_error(format!(
-                "{:?} is outside the scene, whose faces span {:?} to {:?}; a sensor there \
-                 would see the scene from outside, if at all (a unit or `translate` mistake?)",
+                "{:?} is {:.3e} m from the scene, whose faces span {:?} to {:?}: more than \
+                 {FAR_OUTSIDE} times the scene's size (a unit or `translate` mistake?)",
                 written(p),
+                outside,
                 written(lo),
                 written(hi)
             )));
