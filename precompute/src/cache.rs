@@ -12,7 +12,7 @@
 //! or the settings is another key. Channel levels, reflectances and luminaires do not enter:
 //! the form factors do not read them.
 //!
-//! The cache is only ever a copy: it is written atomically (`cli/atomic.rs`), may be deleted at
+//! The cache is only ever a copy: it is written atomically (`atomic.rs`), may be deleted at
 //! any time, and an entry that fails any check (length, SHA-256 checksum, magic, version, kind,
 //! key, dimensions) is reported on standard error and recomputed, never used. Entries hold
 //! `f64`s, so results with and without the cache are the same to the bit. Entries larger than
@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 use faer::Mat;
 use sha2::{Digest, Sha256};
 
-use crate::cli::atomic;
+use crate::atomic;
 use crate::formfactor::{self, outputs, FormFactorOptions, FormFactors, Occluders, WORST_PAIRS};
 use crate::geometry::{Face, Patch, Vec3};
 use crate::scene::{Scene, ZoneKind};

@@ -18,6 +18,7 @@
 //! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
 //! | [`cli`] | what the commands compute and print, atomic file writes |
 pub mod accuracy;
+pub mod atomic;
 pub mod basis;
 pub mod cache;
 pub mod cli;

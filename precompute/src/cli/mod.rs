@@ -3,10 +3,11 @@
 //! `eval`), the build and verify outputs in `report.rs`, and what every command shares:
 //! atomic writes, the check that no output replaces an input, JSON and standard output.
 
-pub mod atomic;
 mod form_factors;
 mod gains;
 pub mod guard;
+/// Atomic writes ([`crate::atomic`]), which every command's output goes through.
+pub use crate::atomic;
 mod inspect;
 mod readout;
 mod report;
