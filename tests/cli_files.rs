@@ -238,3 +238,40 @@ exitance = 100
     assert_eq!(ff["closed"].as_bool(), Some(false), "{ff}");
     assert!(dir.join("open.basis").is_file());
 }
+
+/// Output rows are counted before they are allocated: a scene whose calculation grids (10 000
+/// points a zone, the most a zone may have) would need more memory for their rows than the
+/// machine can spare is refused with the counts, before any form factor, and writes nothing.
+/// The zone count is derived from this machine's budget, so the test holds on any machine.
+#[test]
+fn cli_build_refuses_output_rows_beyond_memory_before_computing_them() {
+    use eigenrad::precompute::memory;
+    let dir = scratch("output-rows");
+    // A 10 × 10 × 3 m room at 0.4 m: about 2 000 patches (form factors 32 MB).
+    let patches = 2000.0;
+    let per_zone = memory::output_bytes(10_000.0, patches);
+    let zones = (memory::budget_bytes() / per_zone).ceil() as usize + 1;
+    let mut text = String::from(
+        "[scene]\nname = \"big\"\nbands = \"photopic\"\nunit = \"m\"\nmax_edge = 0.4\n\n\
+         [materials]\nwall = { reflectance = 0.5 }\n\n\
+         [[room]]\nname = \"room\"\nmin = [0, 0, 0]\nmax = [10, 10, 3]\nmaterial = \"wall\"\n\n\
+         [[channel]]\nname = \"all\"\nsurfaces = [\"room.ceiling\"]\nflux = 1000\n\n",
+    );
+    for z in 0..zones {
+        text += &format!(
+            "[[zone]]\nname = \"plane{z}\"\nwork_plane = {{ room = \"room\", height = 0.8, \
+             margin = 0.5, max_edge = 3, grid = {{ spacing = 0.09 }} }}\n\n"
+        );
+    }
+    let o = build(&dir, &text, "big.basis", &[]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("scene.toml")
+            && e.contains(&format!("{zones} zones"))
+            && e.contains("calculation-grid points")
+            && e.contains("can spare"),
+        "{e}"
+    );
+    assert!(!dir.join("big.basis").exists());
+}

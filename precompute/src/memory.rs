@@ -92,6 +92,12 @@ pub fn receiver_bytes(receivers: f64, patches: f64) -> f64 {
     receivers * patches * ENTRY_BYTES
 }
 
+/// Bytes of the output rows (`outputs × patches` f64): one row per sensor, zone and grid
+/// point, held from the form factors to the basis.
+pub fn output_bytes(outputs: f64, patches: f64) -> f64 {
+    outputs * patches * ENTRY_BYTES
+}
+
 /// Physical memory in bytes, read once (Linux `/proc/meminfo`; 8 GB assumed elsewhere).
 pub fn physical_bytes() -> f64 {
     static PHYSICAL: OnceLock<f64> = OnceLock::new();

@@ -190,6 +190,21 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
             available / 1e9
         )));
     }
+    // And before the output rows are: one per sensor, zone and grid point.
+    let points = outputs::grid_points(&scene).count();
+    let rows = outputs::grid_offset(&scene) + points;
+    let rows_needed = memory::output_bytes(rows as f64, n as f64);
+    if needed + rows_needed > available {
+        return Err(Error::TooLarge(format!(
+            "{}: {} sensors, {} zones and {points} calculation-grid points over {n} patches need about {:.1} GB for their rows on top of {:.1} GB for the form factors, more than the {:.1} GB this machine can spare; use fewer sensors or zones, a coarser `grid.spacing`, or `max_edge`",
+            path.display(),
+            scene.sensors.len(),
+            scene.zones.len(),
+            rows_needed / 1e9,
+            needed / 1e9,
+            available / 1e9
+        )));
+    }
     let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
     let ff = timed(&mut timings, "form factors", || {
         cache::form_factors(&scene.patches, &scene.faces, &occluders, opts)
