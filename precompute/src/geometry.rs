@@ -115,8 +115,92 @@ impl Neg for Vec3 {
     }
 }
 
+/// Axis-aligned bounding box, metres.
+#[derive(Clone, Copy, Debug)]
+pub struct Aabb {
+    /// Lowest corner.
+    pub min: Vec3,
+    /// Highest corner.
+    pub max: Vec3,
+}
+
+impl Aabb {
+    /// The box around nothing: growing it by a point gives that point.
+    pub const EMPTY: Aabb = Aabb {
+        min: Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+        max: Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+    };
+
+    /// The box around `points` ([`Aabb::EMPTY`] for none).
+    pub fn of(points: &[Vec3]) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for &p in points {
+            b.grow(p);
+        }
+        b
+    }
+
+    /// Grows the box to hold `p`.
+    pub fn grow(&mut self, p: Vec3) {
+        self.min = Vec3::new(
+            self.min.x.min(p.x),
+            self.min.y.min(p.y),
+            self.min.z.min(p.z),
+        );
+        self.max = Vec3::new(
+            self.max.x.max(p.x),
+            self.max.y.max(p.y),
+            self.max.z.max(p.z),
+        );
+    }
+
+    /// The box around both.
+    pub fn union(self, o: Aabb) -> Aabb {
+        let mut b = self;
+        b.grow(o.min);
+        b.grow(o.max);
+        b
+    }
+
+    /// The box grown by `by` metres on every side.
+    pub fn expanded(self, by: f64) -> Aabb {
+        let d = Vec3::new(by, by, by);
+        Aabb {
+            min: self.min - d,
+            max: self.max + d,
+        }
+    }
+
+    /// Whether the two boxes share a point.
+    pub fn overlaps(&self, o: &Aabb) -> bool {
+        self.min.x <= o.max.x
+            && o.min.x <= self.max.x
+            && self.min.y <= o.max.y
+            && o.min.y <= self.max.y
+            && self.min.z <= o.max.z
+            && o.min.z <= self.max.z
+    }
+
+    /// The centre.
+    pub fn center(&self) -> Vec3 {
+        (self.min + self.max) * 0.5
+    }
+}
+
 /// A planar convex polygon (a triangle or a quadrilateral after meshing).
 ///
+/// Twice the vector area of the polygon with corners `vertices` (Newell's method): its
+/// direction is the normal, its length twice the area (m²; 0 for fewer than three corners).
+/// Exact for planar polygons, robust for nearly degenerate ones.
+pub fn doubled_vector_area(vertices: &[Vec3]) -> Vec3 {
+    let n = vertices.len();
+    let mut acc = Vec3::ZERO;
+    for (i, &a) in vertices.iter().enumerate() {
+        acc += a.cross(vertices[(i + 1) % n]);
+    }
+    acc
+}
+
 /// Vertices run counter-clockwise seen from the side the polygon faces, so the normal follows
 /// the right-hand rule. One-sided: light leaves and arrives on the front only.
 #[derive(Clone, Debug, PartialEq)]
@@ -131,17 +215,9 @@ impl Polygon {
         Polygon { vertices }
     }
 
-    /// Twice the vector area (Newell's method): its direction is the normal, its length
-    /// twice the area. Exact for planar polygons, robust for nearly degenerate ones.
+    /// Twice the vector area ([`doubled_vector_area`]).
     fn doubled_vector_area(&self) -> Vec3 {
-        let n = self.vertices.len();
-        let mut acc = Vec3::ZERO;
-        for i in 0..n {
-            let a = self.vertices[i];
-            let b = self.vertices[(i + 1) % n];
-            acc += a.cross(b);
-        }
-        acc
+        doubled_vector_area(&self.vertices)
     }
 
     /// Unit normal (right-hand rule), or zero for a degenerate polygon.

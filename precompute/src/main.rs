@@ -237,6 +237,26 @@ fn positive_fraction(text: &str) -> Result<f64, String> {
     }
 }
 
+/// What `solve` and `eval` end with: the readings in the asked units, their grid points to
+/// `csv` (checked against the inputs beforehand) and the readout on standard output.
+fn show_readout(
+    readout: cli::Readout,
+    units: cli::units::Units,
+    csv: Option<&std::path::Path>,
+    json: bool,
+) -> anyhow::Result<()> {
+    let readout = cli::units::readout_in(readout, units)?;
+    if let Some(csv) = csv {
+        atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
+    }
+    cli::print(&if json {
+        cli::json(&readout)?
+    } else {
+        cli::format_readout(&readout)
+    })?;
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
@@ -335,15 +355,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
             let levels = cli::LevelArgs { levels, arcs };
             let readout = cli::solve(&scene, &levels, patches, &cache.form_factors())?;
-            let readout = cli::units::readout_in(readout, units.into())?;
-            if let Some(csv) = &csv {
-                atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
-            }
-            cli::print(&if json {
-                cli::json(&readout)?
-            } else {
-                cli::format_readout(&readout)
-            })?;
+            show_readout(readout, units.into(), csv.as_deref(), json)?;
         }
         Command::Eval {
             basis,
@@ -362,15 +374,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let levels = cli::LevelArgs { levels, arcs };
             let readout = cli::eval(&basis, &bytes, &levels, patches)
                 .with_context(|| format!("evaluating {}", basis.display()))?;
-            let readout = cli::units::readout_in(readout, units.into())?;
-            if let Some(csv) = &csv {
-                atomic::write(csv, cli::grids_csv(&readout).as_bytes())?;
-            }
-            cli::print(&if json {
-                cli::json(&readout)?
-            } else {
-                cli::format_readout(&readout)
-            })?;
+            show_readout(readout, units.into(), csv.as_deref(), json)?;
         }
         Command::FormFactors { scene, json, cache } => {
             let table = cli::form_factor_table(&scene, &cache.form_factors())?;

@@ -13,7 +13,7 @@ use super::mesh::{check_face, mesh_face, triangulate};
 use super::openings::CONTACT_TOLERANCE;
 use super::{channels, limits, luminaires, obj, observers, openings, primitives, winding};
 use super::{Bands, Scene, Surface};
-use crate::geometry::{Face, Patch, Polygon, Vec3};
+use crate::geometry::{Aabb, Face, Patch, Polygon, Vec3};
 
 /// Default planarity tolerance: a corner may sit 0.1 % of the face's diagonal off its plane.
 const PLANARITY: f64 = 1e-3;
@@ -289,20 +289,21 @@ struct Meshed {
 
 /// The box around every face of the scene (m), `None` for a scene without faces.
 fn extent(raw: &[RawSurface]) -> Option<(Vec3, Vec3)> {
-    let mut points = raw.iter().flat_map(|s| s.faces.iter().flatten());
-    let first = *points.next()?;
-    Some(points.fold((first, first), |(lo, hi), p| {
-        (
-            Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z)),
-            Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z)),
-        )
-    }))
+    let mut b = Aabb::EMPTY;
+    for p in raw.iter().flat_map(|s| s.faces.iter().flatten()) {
+        b.grow(*p);
+    }
+    (b.min.x <= b.max.x).then_some((b.min, b.max))
 }
 
 /// [`CONTACT_TOLERANCE`] of the diagonal of everything in the scene, metres: how far an OBJ
 /// object's edge may be from a face and still stand on it.
 fn contact_tolerance(raw: &[RawSurface]) -> f64 {
-    extent(raw).map_or(0.0, |(lo, hi)| CONTACT_TOLERANCE * (hi - lo).length())
+    // A non-finite coordinate is refused when its face is checked; until then, no contacts.
+    extent(raw)
+        .map(|(lo, hi)| CONTACT_TOLERANCE * (hi - lo).length())
+        .filter(|t| t.is_finite())
+        .unwrap_or(0.0)
 }
 
 /// Resolves each surface's material, checks its faces (flat within `planarity`) and meshes

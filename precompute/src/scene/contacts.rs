@@ -14,7 +14,7 @@
 //! object is closed above it, and a dark patch there costs nothing but a patch.
 
 use super::context::RawSurface;
-use crate::geometry::{Polygon, Vec3};
+use crate::geometry::{doubled_vector_area, Aabb, Polygon, Vec3};
 
 /// A piece smaller than this fraction of its patch is not cut off: the patch stays whole
 /// (the straddled part is then at most this fraction of it), rather than leaving a sliver
@@ -46,11 +46,11 @@ pub(crate) fn footprints(raw: &[RawSurface], objects: &[usize], tol: f64) -> Vec
             let origin = face[0];
             let on_plane = |p: Vec3| (p - origin).dot(normal).abs() <= tol;
             let inside = |p: Vec3| inside_convex(face, normal, p, tol);
-            let host_box = Bounds::of(face).grown(tol);
+            let host_box = Aabb::of(face).expanded(tol);
             let mut edges: Vec<(Vec3, Vec3)> = Vec::new();
             for &o in objects.iter().filter(|&&o| o != s) {
                 for g in &raw[o].faces {
-                    if g.len() < 3 || !host_box.overlaps(&Bounds::of(g)) {
+                    if g.len() < 3 || !host_box.overlaps(&Aabb::of(g)) {
                         continue;
                     }
                     let n = Polygon::new(g.clone()).normal();
@@ -77,43 +77,6 @@ pub(crate) fn footprints(raw: &[RawSurface], objects: &[usize], tol: f64) -> Vec
         }
     }
     out
-}
-
-/// An axis-aligned box, to pass over faces far from a host face quickly.
-struct Bounds {
-    lo: Vec3,
-    hi: Vec3,
-}
-
-impl Bounds {
-    fn of(points: &[Vec3]) -> Self {
-        let mut b = Bounds {
-            lo: Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
-            hi: Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
-        };
-        for p in points {
-            b.lo = Vec3::new(b.lo.x.min(p.x), b.lo.y.min(p.y), b.lo.z.min(p.z));
-            b.hi = Vec3::new(b.hi.x.max(p.x), b.hi.y.max(p.y), b.hi.z.max(p.z));
-        }
-        b
-    }
-
-    fn grown(self, by: f64) -> Self {
-        let d = Vec3::new(by, by, by);
-        Bounds {
-            lo: self.lo - d,
-            hi: self.hi + d,
-        }
-    }
-
-    fn overlaps(&self, o: &Bounds) -> bool {
-        self.lo.x <= o.hi.x
-            && o.lo.x <= self.hi.x
-            && self.lo.y <= o.hi.y
-            && o.lo.y <= self.hi.y
-            && self.lo.z <= o.hi.z
-            && o.lo.z <= self.hi.z
-    }
 }
 
 /// Cuts convex `patch` (a polygon in the plane of `footprint`) along the footprint: the
@@ -189,14 +152,7 @@ fn dedup(points: Vec<Vec3>) -> Vec<Vec3> {
 
 /// Area of a planar polygon (m²); 0 for fewer than three corners.
 fn polygon_area(p: &[Vec3]) -> f64 {
-    if p.len() < 3 {
-        return 0.0;
-    }
-    let mut sum = Vec3::new(0.0, 0.0, 0.0);
-    for k in 1..p.len() - 1 {
-        sum += (p[k] - p[0]).cross(p[k + 1] - p[0]);
-    }
-    sum.length() / 2.0
+    0.5 * doubled_vector_area(p).length()
 }
 
 /// Whether `p` lies in convex `face` (within `tol` of its edges), in the face's plane.

@@ -10,72 +10,12 @@
 
 mod shaft;
 
-use crate::geometry::{Face, Patch, Vec3};
+use crate::geometry::{Aabb, Face, Patch, Vec3};
 
 pub(crate) use shaft::Shaft;
 
-/// Axis-aligned bounding box, metres.
-#[derive(Clone, Copy, Debug)]
-struct Aabb {
-    min: Vec3,
-    max: Vec3,
-}
-
+/// What the hierarchy needs of a box besides [`Aabb`]'s own: planes and segments.
 impl Aabb {
-    const EMPTY: Aabb = Aabb {
-        min: Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
-        max: Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
-    };
-
-    fn of(points: &[Vec3]) -> Aabb {
-        let mut b = Aabb::EMPTY;
-        for &p in points {
-            b.grow(p);
-        }
-        b
-    }
-
-    fn grow(&mut self, p: Vec3) {
-        self.min = Vec3::new(
-            self.min.x.min(p.x),
-            self.min.y.min(p.y),
-            self.min.z.min(p.z),
-        );
-        self.max = Vec3::new(
-            self.max.x.max(p.x),
-            self.max.y.max(p.y),
-            self.max.z.max(p.z),
-        );
-    }
-
-    fn union(self, o: Aabb) -> Aabb {
-        let mut b = self;
-        b.grow(o.min);
-        b.grow(o.max);
-        b
-    }
-
-    fn expanded(self, by: f64) -> Aabb {
-        let d = Vec3::new(by, by, by);
-        Aabb {
-            min: self.min - d,
-            max: self.max + d,
-        }
-    }
-
-    fn overlaps(&self, o: &Aabb) -> bool {
-        self.min.x <= o.max.x
-            && o.min.x <= self.max.x
-            && self.min.y <= o.max.y
-            && o.min.y <= self.max.y
-            && self.min.z <= o.max.z
-            && o.min.z <= self.max.z
-    }
-
-    fn center(&self) -> Vec3 {
-        (self.min + self.max) * 0.5
-    }
-
     /// Largest signed distance of a corner above the plane `normal · p = offset`.
     fn max_height(&self, normal: Vec3, offset: f64) -> f64 {
         let pick = |n: f64, lo: f64, hi: f64| if n >= 0.0 { hi } else { lo };
