@@ -41,57 +41,11 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// A 3 m × 2 m × 2.5 m room with a desk that shades part of the floor, a ceiling lamp and a
-/// wall panel as emitting surfaces, and a work plane (with grid) and a task area on the desk.
-const ROOM: &str = r#"
-[scene]
-name = "grids"
-bands = "photopic"
-unit = "m"
-max_edge = 0.5
-
-[materials]
-wall = { reflectance = 0.5 }
-floor = { reflectance = 0.25 }
-desk = { reflectance = 0.4 }
-lamp = { reflectance = 0.0 }
-panel = { reflectance = 0.3 }
-
-[[room]]
-name = "room"
-min = [0, 0, 0]
-max = [3, 2, 2.5]
-material = "wall"
-floor = "floor"
-openings = ["lamp", "panel"]
-
-[[block]]
-name = "desk"
-min = [0.8, 0.6, 0]
-max = [2.0, 1.4, 0.7]
-material = "desk"
-bottom = false
-
-[[quad]]
-name = "lamp"
-material = "lamp"
-corners = [[1.2, 0.7, 2.5], [1.2, 1.3, 2.5], [1.8, 1.3, 2.5], [1.8, 0.7, 2.5]]
-
-[[quad]]
-name = "panel"
-material = "panel"
-corners = [[0, 1.5, 0.8], [0, 1.5, 1.8], [0, 0.5, 1.8], [0, 0.5, 0.8]]
-
-[[channel]]
-name = "lamp"
-surfaces = ["lamp"]
-flux = 3000
-
-[[channel]]
-name = "panel"
-surfaces = ["panel"]
-flux = 800
-
+/// `common::two_channel_room` with a work plane (with grid), a task area on the desk and
+/// the walls as zones.
+fn room() -> String {
+    common::two_channel_room("grids", 0.5)
+        + r#"
 [[zone]]
 name = "work_plane"
 work_plane = { room = "room", height = 0.8, max_edge = 0.5 }
@@ -103,7 +57,8 @@ work_plane = { height = 0.75, area = { min = [0.9, 0.7], max = [1.9, 1.3] }, gri
 [[zone]]
 name = "walls"
 surfaces = ["room.wall*"]
-"#;
+"#
+}
 
 /// The figures of `values` computed here: mean, minimum, maximum, minimum / mean.
 fn figures(values: &[f64]) -> [f64; 4] {
@@ -206,7 +161,7 @@ fn check(r: &Readout, points: &[Vec<f64>], rtol: f64, what: &str) {
 fn figures_of_solve_and_eval_match_the_exact_exitance_at_the_grid_points() {
     let dir = scratch("room");
     let path = dir.join("room.toml");
-    std::fs::write(&path, ROOM).unwrap();
+    std::fs::write(&path, room()).unwrap();
     let levels = cli::LevelArgs {
         levels: vec!["lamp=0.8".to_string(), "panel=0.3".to_string()],
         arcs: Vec::new(),

@@ -8,6 +8,8 @@
 //!    exact solve, the readings, and the basis evaluated through the runtime agree with the
 //!    emitting-surface model, up to the emitters' own exitance.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use eigenrad::precompute::accuracy::runtime_eval;
@@ -19,57 +21,11 @@ use eigenrad::precompute::radiosity::model::Model;
 use eigenrad::precompute::sources::ChannelLight;
 use eigenrad::runtime::Precision;
 
-/// Two channels: a black ceiling lamp (ρ = 0) and a reflecting wall panel (ρ = 0.3), a desk
-/// that shadows part of the floor, a sensor, a surface zone and a work plane.
-const SCENE: &str = r#"
-[scene]
-name = "sources"
-bands = "photopic"
-unit = "m"
-max_edge = 0.8
-
-[materials]
-wall = { reflectance = 0.5 }
-floor = { reflectance = 0.25 }
-desk = { reflectance = 0.4 }
-lamp = { reflectance = 0.0 }
-panel = { reflectance = 0.3 }
-
-[[room]]
-name = "room"
-min = [0, 0, 0]
-max = [3, 2, 2.5]
-material = "wall"
-floor = "floor"
-openings = ["lamp", "panel"]
-
-[[block]]
-name = "desk"
-min = [0.8, 0.6, 0]
-max = [2.0, 1.4, 0.7]
-material = "desk"
-bottom = false
-
-[[quad]]
-name = "lamp"
-material = "lamp"
-corners = [[1.2, 0.7, 2.5], [1.2, 1.3, 2.5], [1.8, 1.3, 2.5], [1.8, 0.7, 2.5]]
-
-[[quad]]
-name = "panel"
-material = "panel"
-corners = [[0, 1.5, 0.8], [0, 1.5, 1.8], [0, 0.5, 1.8], [0, 0.5, 0.8]]
-
-[[channel]]
-name = "lamp"
-surfaces = ["lamp"]
-flux = 3000
-
-[[channel]]
-name = "panel"
-surfaces = ["panel"]
-flux = 800
-
+/// `common::two_channel_room` (a black ceiling lamp and a reflecting wall panel, a desk that
+/// shadows part of the floor) with a sensor, a surface zone and a work plane.
+fn scene_text() -> String {
+    common::two_channel_room("sources", 0.8)
+        + r#"
 [[sensor]]
 name = "desk"
 position = [1.4, 1.0, 0.7]
@@ -82,7 +38,8 @@ surfaces = ["room.floor"]
 [[zone]]
 name = "work_plane"
 work_plane = { room = "room", height = 0.8, margin = 0.3, max_edge = 0.5 }
-"#;
+"#
+}
 
 /// Sums of a few hundred f64 terms taken in another order: 1e-12 relative.
 const F64_TOLERANCE: f64 = 1e-12;
@@ -102,7 +59,7 @@ fn prepared(test: &str) -> Prepared {
     let dir = std::env::temp_dir().join(format!("eigenrad-{test}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path: PathBuf = dir.join("scene.toml");
-    std::fs::write(&path, SCENE).unwrap();
+    std::fs::write(&path, scene_text()).unwrap();
     let prepared = prepare(Path::new(&path), &FormFactorOptions::default());
     std::fs::remove_dir_all(&dir).ok();
     prepared.unwrap_or_else(|e| panic!("{e}"))

@@ -137,3 +137,61 @@ pub fn listing(dir: &Path) -> Vec<String> {
     names.sort();
     names
 }
+
+/// A 3 m × 2 m × 2.5 m room (walls ρ 0.5, floor 0.25) with a desk (ρ 0.4, no bottom face)
+/// that shades part of the floor, and two channels: a black ceiling lamp (ρ 0, 3000 lm) and a
+/// reflecting wall panel (ρ 0.3, 800 lm), both flush openings. `name` and `max_edge` (m) are
+/// the scene's; callers append their sensors and zones.
+pub fn two_channel_room(name: &str, max_edge: f64) -> String {
+    format!(
+        r#"
+[scene]
+name = "{name}"
+bands = "photopic"
+unit = "m"
+max_edge = {max_edge}
+
+[materials]
+wall = {{ reflectance = 0.5 }}
+floor = {{ reflectance = 0.25 }}
+desk = {{ reflectance = 0.4 }}
+lamp = {{ reflectance = 0.0 }}
+panel = {{ reflectance = 0.3 }}
+
+[[room]]
+name = "room"
+min = [0, 0, 0]
+max = [3, 2, 2.5]
+material = "wall"
+floor = "floor"
+openings = ["lamp", "panel"]
+
+[[block]]
+name = "desk"
+min = [0.8, 0.6, 0]
+max = [2.0, 1.4, 0.7]
+material = "desk"
+bottom = false
+
+[[quad]]
+name = "lamp"
+material = "lamp"
+corners = [[1.2, 0.7, 2.5], [1.2, 1.3, 2.5], [1.8, 1.3, 2.5], [1.8, 0.7, 2.5]]
+
+[[quad]]
+name = "panel"
+material = "panel"
+corners = [[0, 1.5, 0.8], [0, 1.5, 1.8], [0, 0.5, 1.8], [0, 0.5, 0.8]]
+
+[[channel]]
+name = "lamp"
+surfaces = ["lamp"]
+flux = 3000
+
+[[channel]]
+name = "panel"
+surfaces = ["panel"]
+flux = 800
+"#
+    )
+}
