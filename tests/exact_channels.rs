@@ -161,7 +161,7 @@ fn channels_read_the_exact_solve_for_any_levels(scene: &str, patches: usize, cha
                 .collect();
             assert_eq!(runtime_out.len(), outputs);
             let points: Vec<(usize, usize)> = (0..zones)
-                .flat_map(|z| (0..basis.grid(z).unwrap().points).map(move |i| (z, i)))
+                .flat_map(|z| (0..basis.grid_points(z).unwrap()).map(move |i| (z, i)))
                 .collect();
             for (o, &runtime) in runtime_out.iter().enumerate() {
                 let direct = if o < sensors {

@@ -9,7 +9,8 @@
 //!   upward point anywhere inside sees `E = M` (its form factors to the enclosure sum to 1),
 //!   and with every surface emitting `e` at reflectance `ρ`, `M = e/(1 − ρ)` (the white
 //!   furnace of docs/math.md, "Exact results");
-//! - the grid's layout as the scene states it (counts, border, task area, explicit spacing);
+//! - the grid's layout as the scene states it (counts, border, task area, explicit spacing,
+//!   the band around a task area, surface grids with the holes of their openings);
 //! - `eigenrad eval` and `solve` with `--json` and `--csv FILE`: the same points and values,
 //!   the CSV written only where it overwrites no input.
 
@@ -41,8 +42,9 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// `common::two_channel_room` with a work plane (with grid), a task area on the desk and
-/// the walls as zones.
+/// `common::two_channel_room` with a work plane (with grid), a task area on the desk and its
+/// 0.5 m surrounding, the walls as a zone without a grid, and the ceiling and the walls as
+/// zones with grids (the lamp and the panel are openings in them).
 fn room() -> String {
     common::two_channel_room("grids", 0.5)
         + r#"
@@ -57,6 +59,20 @@ work_plane = { height = 0.75, area = { min = [0.9, 0.7], max = [1.9, 1.3] }, gri
 [[zone]]
 name = "walls"
 surfaces = ["room.wall*"]
+
+[[zone]]
+name = "desk_surrounding"
+work_plane = { height = 0.75, area = { min = [0.9, 0.7], max = [1.9, 1.3] }, band = 0.5 }
+
+[[zone]]
+name = "ceiling"
+surfaces = ["room.ceiling"]
+grid = {}
+
+[[zone]]
+name = "wall_grid"
+surfaces = ["room.wall*"]
+grid = { spacing = 0.4 }
 "#
 }
 
@@ -69,7 +85,7 @@ fn figures(values: &[f64]) -> [f64; 4] {
 }
 
 /// Every grid point's irradiance from the readout's patch exitance (`--patches`) and point
-/// form factors computed here, per zone with a grid.
+/// form factors computed here, each facing its piece's normal, per zone with a grid.
 fn independent(path: &Path, exact: &Readout) -> Vec<Vec<f64>> {
     let scene = scene::load(path).unwrap();
     let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
@@ -84,13 +100,18 @@ fn independent(path: &Path, exact: &Readout) -> Vec<Vec<f64>> {
         .grids
         .iter()
         .map(|g| {
+            let normals = g.pieces.iter().flat_map(|p| {
+                let [x, y, z] = p.normal;
+                std::iter::repeat_n(Vec3::new(x, y, z), p.points)
+            });
             g.points
                 .iter()
-                .map(|p| {
+                .zip(normals)
+                .map(|(p, normal)| {
                     let [x, y, z] = p.position_m;
                     let f = formfactor::point_form_factors(
                         Vec3::new(x, y, z),
-                        Vec3::new(0.0, 0.0, 1.0),
+                        normal,
                         None,
                         &scene.patches,
                         &occluders,
@@ -182,7 +203,7 @@ fn figures_of_solve_and_eval_match_the_exact_exitance_at_the_grid_points() {
     let eval = cli::eval(&path, &bytes, &levels, false).unwrap();
     check(&eval, &points, RUNTIME_RTOL, "eval");
     // The build report's figures (every channel at level 1) against its own exact solve.
-    assert_eq!(report.grids.len(), 2);
+    assert_eq!(report.grids.len(), 5);
     assert!(
         report.grid_figure_error < RUNTIME_RTOL,
         "{}",
@@ -191,20 +212,93 @@ fn figures_of_solve_and_eval_match_the_exact_exitance_at_the_grid_points() {
 
     // The layout as stated: the room less the default 0.5 m border is 2 m × 1 m:
     // p = 0.2 × 5^(log10 2) = 0.3247 m, 2/0.3247 = 6.2 → 7 and 1/0.3247 = 3.1 → 4 points.
-    let plane = &eval.grids[0];
-    assert_eq!((plane.counts, plane.border_m), ([7, 4], 0.5));
-    assert!((plane.spacing_m - 0.32468).abs() < 1e-4);
+    let plane = &eval.grids[0].pieces[..];
+    assert_eq!(
+        (plane.len(), plane[0].counts, plane[0].border_m),
+        (1, [7, 4], 0.5)
+    );
+    assert!((plane[0].spacing_m - 0.32468).abs() < 1e-4);
     // The task area: 1 m × 0.6 m at an explicit 0.25 m: 4 × 3 points, no border.
     let task = &eval.grids[1];
     assert_eq!(
-        (task.zone.as_str(), task.counts, task.border_m),
+        (
+            task.zone.as_str(),
+            task.pieces[0].counts,
+            task.pieces[0].border_m
+        ),
         ("desk_task", [4, 3], 0.0)
     );
-    assert!((task.spacing_m - 0.25).abs() < 1e-6);
+    assert!((task.pieces[0].spacing_m - 0.25).abs() < 1e-6);
     let first = task.points[0].position_m;
     assert!((first[0] - 1.025).abs() < 1e-6 && (first[1] - 0.8).abs() < 1e-6);
-    // A surface zone has no grid.
+    // A surface zone has no grid unless it asks for one.
     assert!(eval.grids.iter().all(|g| g.zone != "walls"));
+    // The surrounding: the band 0.5 m out from the task area ([0.4, 2.4] × [0.2, 1.8] less
+    // [0.9, 1.9] × [0.7, 1.3]) as four strips, every point in it and none in the task area.
+    let band = &eval.grids[2];
+    assert_eq!(
+        (band.zone.as_str(), band.pieces.len()),
+        ("desk_surrounding", 4)
+    );
+    let inside =
+        |p: [f64; 3], [x0, y0, x1, y1]: [f64; 4]| p[0] > x0 && p[0] < x1 && p[1] > y0 && p[1] < y1;
+    for p in &band.points {
+        assert!(
+            inside(p.position_m, [0.4, 0.2, 2.4, 1.8]),
+            "{:?}",
+            p.position_m
+        );
+        assert!(
+            !inside(p.position_m, [0.9, 0.7, 1.9, 1.3]),
+            "{:?}",
+            p.position_m
+        );
+    }
+    // The ceiling (3 m × 2 m: p = 0.2 × 5^(log10 3) = 0.4310 m, 7 × 5 cells of 3/7 m × 0.4 m)
+    // facing down, without the one cell centre in the lamp's opening ([1.2, 1.8] × [0.7, 1.3]:
+    // x = 1.5, y = 1; the next ones, x = 1.5 ± 3/7 and y = 1 ± 0.4, lie outside it).
+    let ceiling = &eval.grids[3];
+    assert_eq!(ceiling.pieces.len(), 1);
+    let piece = ceiling.pieces[0];
+    assert_eq!(piece.normal, [0.0, 0.0, -1.0]);
+    assert_eq!(piece.counts[0] * piece.counts[1], 35);
+    assert_eq!(piece.points, 34);
+    assert!(ceiling
+        .points
+        .iter()
+        .all(|p| p.position_m[2] == 2.5 && !inside(p.position_m, [1.2, 0.7, 1.8, 1.3])));
+    // The walls: four planes, four pieces, each facing into the room; the wall x = 0 keeps no
+    // point in the panel's opening ([0.5, 1.5] in y, [0.8, 1.8] in z).
+    let walls = &eval.grids[4];
+    assert_eq!(walls.pieces.len(), 4);
+    let mut next = 0;
+    for piece in &walls.pieces {
+        let points = &walls.points[next..next + piece.points];
+        next += piece.points;
+        let [nx, ny, _] = piece.normal;
+        for p in points {
+            let [x, y, z] = p.position_m;
+            // Into the room: at the wall x = 0 the normal is +x, and so on.
+            let toward_centre = nx * (1.5 - x) + ny * (1.0 - y);
+            assert!(
+                toward_centre > 0.0,
+                "{:?} faces {:?}",
+                p.position_m,
+                piece.normal
+            );
+            if x == 0.0 {
+                assert!(
+                    !(y > 0.5 && y < 1.5 && z > 0.8 && z < 1.8),
+                    "{:?}",
+                    p.position_m
+                );
+            }
+        }
+    }
+    assert!(walls
+        .pieces
+        .iter()
+        .any(|p| p.points < p.counts[0] * p.counts[1]));
 
     // Without the grids: no grid tables, the same sensor and zone readings to the bit, and
     // smaller by each point's f32 position, modes, channel readings and view row.
@@ -222,9 +316,12 @@ fn figures_of_solve_and_eval_match_the_exact_exitance_at_the_grid_points() {
     let points: usize = eval.grids.iter().map(|g| g.points.len()).sum();
     let per_point = 4 * (3 + 16 + 2 + scene.patches.len());
     let saved = bytes.len() - small.len();
-    // Besides the points, only the grid layout's floats and varint lengths differ.
+    // Besides the points, only the pieces' lattices and layouts (40 bytes each) and varint
+    // lengths differ.
+    let pieces: usize = eval.grids.iter().map(|g| g.pieces.len()).sum();
     assert!(
-        saved >= points * per_point && saved <= points * per_point + 128,
+        saved >= points * per_point + 40 * pieces
+            && saved <= points * per_point + 40 * pieces + 128,
         "{saved}"
     );
 }
@@ -280,7 +377,7 @@ work_plane = {{ height = 0.8 }}
     for (r, what) in [(&exact, "solve"), (&eval, "eval")] {
         let g = &r.grids[0];
         // 3 m × 3 m after the 0.5 m border: p = 0.2 × 5^(log10 3) = 0.4310 m, 6.96 → 7.
-        assert_eq!(g.counts, [7, 7], "{what}");
+        assert_eq!(g.pieces[0].counts, [7, 7], "{what}");
         for p in &g.points {
             close(p.irradiance[0], m, FURNACE_RTOL, m, what);
         }

@@ -143,19 +143,17 @@ fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
     for z in &scene.zones {
         t.zone_area
             .push(crate::formfactor::outputs::zone_area(scene, z));
-        match &z.grid {
-            Some(g) => {
-                t.grid_counts.push([g.counts[0] as u32, g.counts[1] as u32]);
-                let d = g.normal;
-                t.grid_layout
-                    .push([g.spacing, g.cell[0], g.cell[1], g.border, d.x, d.y, d.z]);
-                t.grid_position
-                    .extend(g.points.iter().map(|p| [p.x, p.y, p.z]));
-            }
-            None => {
-                t.grid_counts.push([0, 0]);
-                t.grid_layout.push([0.0; 7]);
-            }
+        let pieces = z.grid.as_ref().map_or(&[][..], |g| &g.pieces);
+        t.grid_pieces.push(pieces.len() as u32);
+        for g in pieces {
+            let kept = g.points.len();
+            t.grid_lattice
+                .push([g.counts[0] as u32, g.counts[1] as u32, kept as u32]);
+            let d = g.normal;
+            t.grid_layout
+                .push([g.spacing, g.cell[0], g.cell[1], g.border, d.x, d.y, d.z]);
+            t.grid_position
+                .extend(g.points.iter().map(|p| [p.x, p.y, p.z]));
         }
     }
     let mut row_modes = Vec::new();

@@ -349,7 +349,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
 pub fn output_names(scene: &Scene) -> Vec<String> {
     let sensors = scene.sensors.iter().map(|s| format!("sensor {}", s.name));
     let points = scene.zones.iter().flat_map(|z| {
-        let count = z.grid.as_ref().map_or(0, |g| g.points.len());
+        let count = z.grid.as_ref().map_or(0, |g| g.len());
         (0..count).map(move |i| format!("zone {} point {i}", z.name))
     });
     sensors
@@ -367,19 +367,58 @@ pub struct GridPoint {
     pub irradiance: Vec<f64>,
 }
 
-/// A zone's calculation grid (EN 12464-1:2021, 4.4) and its figures, per band.
-#[derive(Clone, Debug, Serialize)]
-pub struct GridReadout {
-    /// Zone name.
-    pub zone: String,
-    /// Points along the first (x) and second (y) side.
+/// One piece of a calculation grid's layout (a lattice over a rectangle of a plane).
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct PieceLayout {
+    /// Cells along the piece's first and second side.
     pub counts: [usize; 2],
+    /// Points the piece keeps: the cell centres on its area.
+    pub points: usize,
     /// Largest spacing the layout used, m.
     pub spacing_m: f64,
     /// Cell sides, m.
     pub cell_m: [f64; 2],
     /// Band left out at the walls, m.
     pub border_m: f64,
+    /// Unit normal the piece's points face.
+    pub normal: [f64; 3],
+}
+
+impl From<&crate::scene::grid::GridPiece> for PieceLayout {
+    fn from(g: &crate::scene::grid::GridPiece) -> Self {
+        PieceLayout {
+            counts: g.counts,
+            points: g.points.len(),
+            spacing_m: g.spacing,
+            cell_m: g.cell,
+            border_m: g.border,
+            normal: g.normal.to_array(),
+        }
+    }
+}
+
+impl From<eigenrad_runtime::GridPiece> for PieceLayout {
+    fn from(g: eigenrad_runtime::GridPiece) -> Self {
+        let wide = f64::from;
+        PieceLayout {
+            counts: g.counts,
+            points: g.points,
+            spacing_m: wide(g.spacing),
+            cell_m: g.cell.map(wide),
+            border_m: wide(g.border),
+            normal: g.normal.map(wide),
+        }
+    }
+}
+
+/// A zone's calculation grid (EN 12464-1:2021, 4.4) and its figures, per band.
+#[derive(Clone, Debug, Serialize)]
+pub struct GridReadout {
+    /// Zone name.
+    pub zone: String,
+    /// The lattices the grid is made of: one for a work plane or a task area, up to four for
+    /// the band around a task area, one per plane of a surface zone.
+    pub pieces: Vec<PieceLayout>,
     /// `E_avg` per band: mean over the points.
     pub average: Vec<f64>,
     /// `E_min` per band.
@@ -398,12 +437,11 @@ impl GridReadout {
     /// runtime read them (per band), or, when `None`, taken here of `values` in `f64`.
     pub fn new(
         zone: String,
-        layout: ([usize; 2], f64, [f64; 2], f64),
+        pieces: Vec<PieceLayout>,
         positions: Vec<[f64; 3]>,
         values: &[Vec<f64>],
         figures: Option<&[eigenrad_runtime::Figures]>,
     ) -> GridReadout {
-        let (counts, spacing_m, cell_m, border_m) = layout;
         let bands = values.first().map_or(0, Vec::len);
         let figures: Vec<Option<eigenrad_runtime::Figures<f64>>> = match figures {
             Some(read) => read
@@ -430,10 +468,7 @@ impl GridReadout {
         };
         GridReadout {
             zone,
-            counts,
-            spacing_m,
-            cell_m,
-            border_m,
+            pieces,
             average: pick(|f| f.average),
             minimum: pick(|f| f.minimum),
             maximum: pick(|f| f.maximum),
@@ -457,12 +492,12 @@ pub fn scene_grids(scene: &crate::scene::Scene, outputs: &[Vec<f64>]) -> Vec<Gri
     let mut grids = Vec::new();
     for z in &scene.zones {
         let Some(g) = &z.grid else { continue };
-        let values = &outputs[next..next + g.points.len()];
-        next += g.points.len();
+        let values = &outputs[next..next + g.len()];
+        next += g.len();
         grids.push(GridReadout::new(
             z.name.clone(),
-            (g.counts, g.spacing, g.cell, g.border),
-            g.points.iter().map(|p| p.to_array()).collect(),
+            g.pieces.iter().map(PieceLayout::from).collect(),
+            g.points().map(|(p, _)| p.to_array()).collect(),
             values,
             None,
         ));
@@ -493,17 +528,17 @@ fn grid_report(
     let mut next = 0;
     for (z, zone) in scene.zones.iter().enumerate() {
         let Some(g) = &zone.grid else { continue };
-        let positions = (0..g.points.len())
+        let positions = (0..g.len())
             .map(|i| basis.grid_point(z, i).map(|p| p.map(f64::from)))
             .collect::<std::result::Result<Vec<_>, _>>()?;
         grids.push(GridReadout::new(
             zone.name.clone(),
-            (g.counts, g.spacing, g.cell, g.border),
+            g.pieces.iter().map(PieceLayout::from).collect(),
             positions,
-            &got.grid[next..next + g.points.len()],
+            &got.grid[next..next + g.len()],
             got.figures[z].as_deref(),
         ));
-        next += g.points.len();
+        next += g.len();
     }
     let mut worst = 0.0f64;
     for (r, e) in grids.iter().zip(&reference) {

@@ -59,12 +59,15 @@ pub struct SensorInfo {
     pub half_angle: f32,
 }
 
-/// A zone's calculation grid as stored (`grid_counts`, `grid_layout`; docs/format.md).
+/// One piece of a zone's calculation grid as stored (`grid_lattice`, `grid_layout`;
+/// docs/format.md): a rectangular lattice of cells whose centres on the piece's area are
+/// its points. A work plane has one piece, its band around a task area up to four, a
+/// surface zone one per surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GridInfo {
-    /// Points of the grid (0: the zone has none).
+pub struct GridPiece {
+    /// Points the piece keeps: the cell centres on its area (at most the cells).
     pub points: usize,
-    /// Points along its first and second side.
+    /// Cells along its first and second side.
     pub counts: [usize; 2],
     /// Largest spacing between points the layout used, m.
     pub spacing: f32,
@@ -72,7 +75,7 @@ pub struct GridInfo {
     pub cell: [f32; 2],
     /// Band left out at the walls, m.
     pub border: f32,
-    /// Unit normal every point faces.
+    /// Unit normal every point of the piece faces.
     pub normal: [f32; 3],
 }
 
@@ -266,23 +269,32 @@ impl<'a> Basis<'a> {
         self.counts.grid_point_count
     }
 
-    /// The calculation grid of zone `zone`.
-    pub fn grid(&self, zone: usize) -> Result<GridInfo> {
-        check_index("zone", zone, self.counts.zone_count)?;
+    /// Number of pieces of zone `zone`'s calculation grid (0: the zone has none).
+    pub fn grid_piece_count(&self, zone: usize) -> Result<usize> {
+        Ok(self.piece_range(zone)?.1)
+    }
+
+    /// Piece `piece` of zone `zone`'s calculation grid.
+    pub fn grid_piece(&self, zone: usize, piece: usize) -> Result<GridPiece> {
+        let (first, len) = self.piece_range(zone)?;
+        check_index("grid piece", piece, len)?;
+        let q = first + piece;
         let t = &self.tables;
-        let g = |k: usize| f32_at(t.grid_layout, zone * 7 + k);
-        let counts = [
-            u32_at(t.grid_counts, 2 * zone) as usize,
-            u32_at(t.grid_counts, 2 * zone + 1) as usize,
-        ];
-        Ok(GridInfo {
-            points: counts[0].saturating_mul(counts[1]),
-            counts,
+        let g = |k: usize| f32_at(t.grid_layout, q * 7 + k);
+        let n = |k: usize| u32_at(t.grid_lattice, q * 3 + k) as usize;
+        Ok(GridPiece {
+            points: n(2),
+            counts: [n(0), n(1)],
             spacing: g(0),
             cell: [g(1), g(2)],
             border: g(3),
             normal: [g(4), g(5), g(6)],
         })
+    }
+
+    /// Number of points of zone `zone`'s calculation grid, over all its pieces.
+    pub fn grid_points(&self, zone: usize) -> Result<usize> {
+        Ok(self.grid_range(zone)?.1)
     }
 
     /// Position (m) of point `point` of zone `zone`'s grid (first side fastest).
@@ -292,15 +304,20 @@ impl<'a> Basis<'a> {
         Ok([p(0), p(1), p(2)])
     }
 
+    /// Where zone `zone`'s pieces start among all grid pieces, and how many it has.
+    fn piece_range(&self, zone: usize) -> Result<(usize, usize)> {
+        check_index("zone", zone, self.counts.zone_count)?;
+        let pieces = |z: usize| u32_at(self.tables.grid_pieces, z) as usize;
+        let start = (0..zone).map(pieces).fold(0usize, usize::saturating_add);
+        Ok((start, pieces(zone)))
+    }
+
     /// Where zone `zone`'s points start among all grid points, and how many it has.
     pub(crate) fn grid_range(&self, zone: usize) -> Result<(usize, usize)> {
-        check_index("zone", zone, self.counts.zone_count)?;
-        let points = |z: usize| {
-            (u32_at(self.tables.grid_counts, 2 * z) as usize)
-                .saturating_mul(u32_at(self.tables.grid_counts, 2 * z + 1) as usize)
-        };
-        let start = (0..zone).map(points).fold(0usize, usize::saturating_add);
-        Ok((start, points(zone)))
+        let (first, len) = self.piece_range(zone)?;
+        let kept = |q: usize| u32_at(self.tables.grid_lattice, 3 * q + 2) as usize;
+        let sum = |r: core::ops::Range<usize>| r.map(kept).fold(0usize, usize::saturating_add);
+        Ok((sum(0..first), sum(first..first + len)))
     }
 
     /// Index among all grid points of point `point` of zone `zone`, checked.

@@ -102,6 +102,7 @@ fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
         channel_count: raw.channel_count as usize,
         sensor_count: raw.sensor_count as usize,
         zone_count: raw.zone_count as usize,
+        grid_piece_count: 0,
         grid_point_count: 0,
     };
     if counts.surface_count > usize::from(u16::MAX) {
@@ -122,18 +123,31 @@ fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
             value: raw.zone_count,
         });
     }
-    // The grid's counts come before its tables: every later length follows from `G`.
-    let count = mul(counts.zone_count, 2)?;
-    check_len("grid_counts", raw.grid_counts, count, 4)?;
-    let mut points = 0usize;
+    // The grid's pieces and lattices come before its tables: every later length follows
+    // from `Q` and `G`.
+    check_len("grid_pieces", raw.grid_pieces, counts.zone_count, 4)?;
+    let mut pieces = 0usize;
     for z in 0..counts.zone_count {
-        let zone = mul(
-            u32_at(raw.grid_counts, 2 * z) as usize,
-            u32_at(raw.grid_counts, 2 * z + 1) as usize,
+        pieces = cols(pieces.checked_add(u32_at(raw.grid_pieces, z) as usize))?;
+    }
+    check_len("grid_lattice", raw.grid_lattice, mul(pieces, 3)?, 4)?;
+    let mut points = 0usize;
+    for q in 0..pieces {
+        let cells = mul(
+            u32_at(raw.grid_lattice, 3 * q) as usize,
+            u32_at(raw.grid_lattice, 3 * q + 1) as usize,
         )?;
-        points = cols(points.checked_add(zone))?;
+        let kept = u32_at(raw.grid_lattice, 3 * q + 2) as usize;
+        if kept == 0 || kept > cells {
+            return Err(Error::DecodeValue {
+                field: "grid_lattice",
+                index: 3 * q + 2,
+            });
+        }
+        points = cols(points.checked_add(kept))?;
     }
     Ok(Counts {
+        grid_piece_count: pieces,
         grid_point_count: points,
         ..counts
     })
@@ -319,30 +333,29 @@ fn outputs(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
     )
 }
 
-/// Grids: `grid_layout` to the `grid_view` matrix (`grid_counts` was checked with the
-/// counts). A zone with points has a positive spacing and cells and a unit normal.
+/// Grids: `grid_layout` to the `grid_view` matrix (`grid_pieces` and `grid_lattice` were
+/// checked with the counts). Every piece has points, so a positive spacing and cells and a
+/// unit normal.
 fn grids(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
     let g = c.grid_point_count;
     f32_table(
         "grid_layout",
         raw.grid_layout,
-        mul(c.zone_count, 7)?,
+        mul(c.grid_piece_count, 7)?,
         Allowed::NotBelowMinusOne,
     )?;
-    for z in 0..c.zone_count {
-        let points = u32_at(raw.grid_counts, 2 * z) != 0 && u32_at(raw.grid_counts, 2 * z + 1) != 0;
-        let at = |k: usize| f32_at(raw.grid_layout, 7 * z + k);
+    for q in 0..c.grid_piece_count {
+        let at = |k: usize| f32_at(raw.grid_layout, 7 * q + k);
         let norm = at(4) * at(4) + at(5) * at(5) + at(6) * at(6);
-        let ok = !points
-            || (at(0) > 0.0
-                && at(1) > 0.0
-                && at(2) > 0.0
-                && at(3) >= 0.0
-                && (norm - 1.0).abs() <= 1.0e-3);
+        let ok = at(0) > 0.0
+            && at(1) > 0.0
+            && at(2) > 0.0
+            && at(3) >= 0.0
+            && (norm - 1.0).abs() <= 1.0e-3;
         if !ok {
             return Err(Error::DecodeValue {
                 field: "grid_layout",
-                index: 7 * z,
+                index: 7 * q,
             });
         }
     }

@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 /// The eight bytes every basis starts with.
 pub const MAGIC: [u8; 8] = *b"EIGENRAD";
 /// The format version this runtime writes and reads.
-pub const FORMAT_VERSION: u16 = 3;
+pub const FORMAT_VERSION: u16 = 4;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 20;
 /// `patch_channel` value of a patch that belongs to no channel.
@@ -113,7 +113,7 @@ pub struct MatrixBytes<'a> {
 ///
 /// `n` patches, `p` modes, `B` bands (1 or 3), `m` channels, `S` sensors, `Z` zones,
 /// `O = S + Z` outputs (sensors first, then zones), and `G` grid points (every zone's, zone
-/// by zone: the sum of `grid_counts`' products). Lengths are in values; see
+/// by zone, piece by piece: the sum of `grid_lattice`'s kept points). Lengths are in values; see
 /// `docs/format.md` for the byte layout and the meaning of every table. A decoded payload is
 /// only parsed; [`Basis::from_bytes`](crate::Basis::from_bytes) is what checks its tables.
 #[derive(Serialize, Deserialize, Clone, Copy, Debug, Default, PartialEq)]
@@ -194,12 +194,16 @@ pub struct Payload<'a> {
     /// area-averaged), for direct light from exitance set patch by patch.
     #[serde(borrow)]
     pub output_view: MatrixBytes<'a>,
-    /// `Z × 2` `u32`: points of each zone's calculation grid along its first and second side
-    /// (0 × 0 for a zone without a grid); the zone has their product.
+    /// `Z` `u32`: the pieces of each zone's calculation grid (0: the zone has none). `Q` is
+    /// their sum.
     #[serde(borrow)]
-    pub grid_counts: &'a [u8],
-    /// `Z × 7` `f32`: each zone's grid layout: largest spacing `p` (m), cell sides (m), band
-    /// left out at the walls (m), the unit normal its points face (zeros without a grid).
+    pub grid_pieces: &'a [u8],
+    /// `Q × 3` `u32`: each piece's lattice, cells along its first and second side, and the
+    /// points it keeps (the cell centres on the piece's area, at most the product).
+    #[serde(borrow)]
+    pub grid_lattice: &'a [u8],
+    /// `Q × 7` `f32`: each piece's layout: largest spacing `p` (m), cell sides (m), band
+    /// left out at the walls (m), the unit normal its points face.
     #[serde(borrow)]
     pub grid_layout: &'a [u8],
     /// `G × 3` `f32`: grid point positions, m.
@@ -240,7 +244,9 @@ pub(crate) struct Counts {
     pub sensor_count: usize,
     /// `Z`: `zone_count`.
     pub zone_count: usize,
-    /// `G`: grid points, the sum over zones of `grid_counts`' products.
+    /// `Q`: grid pieces, the sum of `grid_pieces`.
+    pub grid_piece_count: usize,
+    /// `G`: grid points, the sum of the pieces' kept points.
     pub grid_point_count: usize,
 }
 
@@ -429,7 +435,7 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     for slot in &mut counts {
         *slot = take(&mut rest)?;
     }
-    let mut tables: [&[u8]; 27] = [&[]; 27];
+    let mut tables: [&[u8]; 28] = [&[]; 28];
     for slot in &mut tables {
         *slot = take(&mut rest)?;
     }
@@ -443,7 +449,7 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     let [bands, quantity, formulation, precision] = settings;
     let [patch_count, mode_count, surface_count, channel_count, sensor_count, zone_count] = counts;
     let matrix = |scales, data| MatrixBytes { scales, data };
-    let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_counts, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
+    let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_pieces, grid_lattice, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
         tables;
     Ok(Payload {
         bands,
@@ -473,7 +479,8 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         output_modes,
         output_channels,
         output_view: matrix(view_scales, view_data),
-        grid_counts,
+        grid_pieces,
+        grid_lattice,
         grid_layout,
         grid_position,
         grid_modes,
@@ -561,7 +568,7 @@ mod tests {
     /// the three loops take the fields in the struct's order.
     #[test]
     fn decode_payload_reads_what_postcard_derives() {
-        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..27u8)
+        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..28u8)
             .map(|k| {
                 (0..=k)
                     .map(|i| k.wrapping_mul(31).wrapping_add(i))
@@ -601,12 +608,13 @@ mod tests {
             output_modes: t(16),
             output_channels: t(17),
             output_view: m(18),
-            grid_counts: t(20),
-            grid_layout: t(21),
-            grid_position: t(22),
-            grid_modes: t(23),
-            grid_channels: t(24),
-            grid_view: m(25),
+            grid_pieces: t(20),
+            grid_lattice: t(21),
+            grid_layout: t(22),
+            grid_position: t(23),
+            grid_modes: t(24),
+            grid_channels: t(25),
+            grid_view: m(26),
         };
         let mut buffer = [0u8; 1024];
         let body = postcard::to_slice(&payload, &mut buffer).unwrap();

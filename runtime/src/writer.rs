@@ -76,11 +76,12 @@ pub struct BasisTables {
     pub output_channels: Vec<f64>,
     /// `n × O`.
     pub output_view: Vec<f64>,
-    /// Per zone: grid points along its first and second side (`[0, 0]` without a grid).
-    /// Left empty together with `grid_layout`, no zone has a grid (both are written as
-    /// zeros, one entry per zone).
-    pub grid_counts: Vec<[u32; 2]>,
-    /// Per zone: spacing `p` (m), cell sides (m), border (m), unit normal.
+    /// Per zone: the pieces of its grid (0 without a grid). Left empty, no zone has a grid
+    /// (written as a 0 per zone).
+    pub grid_pieces: Vec<u32>,
+    /// Per piece: cells along its first and second side, points kept.
+    pub grid_lattice: Vec<[u32; 3]>,
+    /// Per piece: spacing `p` (m), cell sides (m), border (m), unit normal.
     pub grid_layout: Vec<[f64; 7]>,
     /// `G` grid point positions, m.
     pub grid_position: Vec<[f64; 3]>,
@@ -165,6 +166,11 @@ fn u16_bytes(values: impl Iterator<Item = u16>) -> Vec<u8> {
     values.flat_map(u16::to_le_bytes).collect()
 }
 
+/// `values` as little-endian `u32`.
+fn u32_bytes(values: &[u32]) -> Vec<u8> {
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
 /// Channel indices as `u16`, [`NO_CHANNEL`] for none.
 fn channel_bytes(channels: &[Option<u16>]) -> Vec<u8> {
     u16_bytes(channels.iter().map(|c| c.unwrap_or(NO_CHANNEL)))
@@ -217,7 +223,8 @@ impl BasisTables {
             output_modes: Vec::new(),
             output_channels: Vec::new(),
             output_view: Vec::new(),
-            grid_counts: Vec::new(),
+            grid_pieces: Vec::new(),
+            grid_lattice: Vec::new(),
             grid_layout: Vec::new(),
             grid_position: Vec::new(),
             grid_modes: Vec::new(),
@@ -236,6 +243,7 @@ impl BasisTables {
             channel_count: self.channel_names.len(),
             sensor_count: self.sensor_names.len(),
             zone_count: self.zone_names.len(),
+            grid_piece_count: self.grid_lattice.len(),
             grid_point_count: self.grid_position.len(),
         }
     }
@@ -260,14 +268,13 @@ impl BasisTables {
         Ok(names)
     }
 
-    /// `grid_counts` and `grid_layout` as written: as given, or zeros for every zone when
-    /// both are empty (no zone has a grid).
-    fn grids(&self) -> (Vec<[u32; 2]>, Vec<[f64; 7]>) {
-        if self.grid_counts.is_empty() && self.grid_layout.is_empty() {
-            let z = self.zone_names.len();
-            return (vec![[0; 2]; z], vec![[0.0; 7]; z]);
+    /// `grid_pieces` as written: as given, or a 0 for every zone when empty (no zone has a
+    /// grid).
+    fn grid_pieces(&self) -> Vec<u32> {
+        if self.grid_pieces.is_empty() {
+            return vec![0; self.zone_names.len()];
         }
-        (self.grid_counts.clone(), self.grid_layout.clone())
+        self.grid_pieces.clone()
     }
 
     /// The `black_patches` table: ascending indices of the patches with ρ = 0 in some band.
@@ -322,14 +329,9 @@ impl BasisTables {
             output_modes: &f32_bytes(&self.output_modes),
             output_channels: &f32_bytes(&self.output_channels),
             output_view: matrix(&self.output_view, c.output_view_cols())?.bytes(),
-            grid_counts: &self
-                .grids()
-                .0
-                .iter()
-                .flatten()
-                .flat_map(|v| v.to_le_bytes())
-                .collect::<Vec<u8>>(),
-            grid_layout: &f32_bytes(self.grids().1.as_flattened()),
+            grid_pieces: &u32_bytes(&self.grid_pieces()),
+            grid_lattice: &u32_bytes(self.grid_lattice.as_flattened()),
+            grid_layout: &f32_bytes(self.grid_layout.as_flattened()),
             grid_position: &f32_bytes(self.grid_position.as_flattened()),
             grid_modes: &f32_bytes(&self.grid_modes),
             grid_channels: &f32_bytes(&self.grid_channels),

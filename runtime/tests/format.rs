@@ -14,15 +14,15 @@ use eigenrad_runtime::{Basis, Error, Formulation, Precision, Quantity};
 /// The tiny basis of `common::tiny`, encoded. Changing the layout changes these bytes: that
 /// is a format change and needs a new `FORMAT_VERSION`.
 const TINY_GOLDEN: &str = concat!(
-    "454947454e524144030000003001000015cd496a010100000201020101011b05666c6f6f72046c61",
+    "454947454e5241440400000039010000229015e0010100000201020101011b05666c6f6f72046c61",
     "6d70046d61696e046465736b05706c616e65040000003f08000000400000803e180000803f000080",
     "3f000000000000803f0000803f00002040040000010004ffff0000080000003f0000000008000000",
     "0000007a4400080000003f000000000401000000040000c84100080000964200007a441c0000803f",
     "0000803fcdcc4c3f00000000000000000000803fdb0f49400400000040080000803e0000003f0800",
-    "00c8420000204200100000000000000000cdcccc3dcdcc4c3d0802000000010000001ccdcc4c3e00",
-    "00803f0000803f0000003f00000000000000000000803f180000003f0000803fcdcc4c3f0000c03f",
-    "0000803fcdcc4c3f080000803e9a99993e080000dc420000b4420010000000008fc2f53d00000000",
-    "0ad7a33d",
+    "00c8420000204200100000000000000000cdcccc3dcdcc4c3d04010000000c020000000100000002",
+    "0000001ccdcc4c3e0000803f0000803f0000003f00000000000000000000803f180000003f000080",
+    "3fcdcc4c3f0000c03f0000803fcdcc4c3f080000803e9a99993e080000dc420000b4420010000000",
+    "008fc2f53d000000000ad7a33d",
 );
 
 fn hex(bytes: &[u8]) -> String {
@@ -108,8 +108,8 @@ fn round_trip_of_the_tiny_basis() {
     assert_eq!(basis.zone_area(0).unwrap(), 2.0);
     assert_eq!(basis.grid_point_count(), 2);
     assert_eq!(
-        basis.grid(0).unwrap(),
-        eigenrad_runtime::GridInfo {
+        basis.grid_piece(0, 0).unwrap(),
+        eigenrad_runtime::GridPiece {
             points: 2,
             counts: [2, 1],
             spacing: 0.2,
@@ -198,62 +198,42 @@ fn bad_magic() {
 #[test]
 fn newer_version() {
     let mut bytes = common::tiny().to_bytes().unwrap();
-    bytes[8..10].copy_from_slice(&4u16.to_le_bytes());
+    bytes[8..10].copy_from_slice(&(FORMAT_VERSION + 1).to_le_bytes());
     assert_eq!(
         Basis::from_bytes(&bytes).unwrap_err(),
         Error::DecodeVersion {
-            found: 4,
-            supported: 3
+            found: FORMAT_VERSION + 1,
+            supported: FORMAT_VERSION
         }
     );
 }
 
+/// Bases of the older formats, kept byte for byte as each version wrote the tiny basis
+/// (`runtime/tests/data/tiny-v1.basis`, `-v2` before the grid tables of version 3, `-v3`
+/// before the grid pieces of version 4), are refused with both versions named.
 #[test]
-fn a_version_1_basis_is_refused_naming_both_versions() {
-    // The tiny basis as format version 1 wrote it (`runtime/tests/data/tiny.basis` before
-    // the version 2 change, kept byte for byte).
-    let v1 = std::fs::read(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/tiny-v1.basis"
-    ))
-    .unwrap();
-    assert_eq!(&v1[..8], b"EIGENRAD");
-    assert_eq!(u16::from_le_bytes([v1[8], v1[9]]), 1);
-    let err = Basis::from_bytes(&v1).unwrap_err();
-    assert_eq!(
-        err,
-        Error::DecodeVersion {
-            found: 1,
-            supported: 3
+fn older_versions_are_refused_naming_both_versions() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data");
+    for version in 1..FORMAT_VERSION {
+        let old = std::fs::read(format!("{dir}/tiny-v{version}.basis")).unwrap();
+        assert_eq!(&old[..8], b"EIGENRAD");
+        assert_eq!(u16::from_le_bytes([old[8], old[9]]), version);
+        let err = Basis::from_bytes(&old).unwrap_err();
+        assert_eq!(
+            err,
+            Error::DecodeVersion {
+                found: version,
+                supported: FORMAT_VERSION
+            }
+        );
+        let message = err.to_string();
+        let (found, supported) = (
+            format!("version {version}"),
+            format!("version {FORMAT_VERSION}"),
+        );
+        for part in [found.as_str(), supported.as_str(), "eigenrad build"] {
+            assert!(message.contains(part), "`{part}` missing: {message}");
         }
-    );
-    let message = err.to_string();
-    for part in ["version 1", "version 3", "eigenrad build"] {
-        assert!(message.contains(part), "`{part}` missing: {message}");
-    }
-}
-
-#[test]
-fn a_version_2_basis_is_refused_naming_both_versions() {
-    // The tiny basis as format version 2 wrote it (`runtime/tests/data/tiny.basis` before
-    // the grid tables of version 3, kept byte for byte).
-    let v2 = std::fs::read(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/tiny-v2.basis"
-    ))
-    .unwrap();
-    assert_eq!(u16::from_le_bytes([v2[8], v2[9]]), 2);
-    let err = Basis::from_bytes(&v2).unwrap_err();
-    assert_eq!(
-        err,
-        Error::DecodeVersion {
-            found: 2,
-            supported: 3
-        }
-    );
-    let message = err.to_string();
-    for part in ["version 2", "version 3", "eigenrad build"] {
-        assert!(message.contains(part), "`{part}` missing: {message}");
     }
 }
 
@@ -378,7 +358,8 @@ fn table_length_mismatches() {
         ("output_modes", Box::new(|t| t.output_modes.push(0.0))),
         ("output_channels", Box::new(|t| t.output_channels.push(0.0))),
         ("output_view.data", Box::new(|t| t.output_view.push(0.0))),
-        ("grid_counts", Box::new(|t| t.grid_counts.push([1, 1]))),
+        ("grid_pieces", Box::new(|t| t.grid_pieces.push(1))),
+        ("grid_lattice", Box::new(|t| t.grid_lattice.push([1, 1, 1]))),
         ("grid_layout", Box::new(|t| t.grid_layout.push([0.0; 7]))),
         (
             "grid_position",
@@ -388,7 +369,9 @@ fn table_length_mismatches() {
         ("grid_channels", Box::new(|t| t.grid_channels.push(0.0))),
         ("grid_view.data", Box::new(|t| t.grid_view.push(0.0))),
         // One more point counted than the tables hold.
-        ("grid_position", Box::new(|t| t.grid_counts[0] = [3, 1])),
+        ("grid_position", Box::new(|t| t.grid_lattice[0] = [3, 1, 3])),
+        // One more piece counted than the lattice table holds.
+        ("grid_lattice", Box::new(|t| t.grid_pieces[0] = 2)),
     ];
     for (field, edit) in cases {
         let r = decode_edited(|t| edit(t));
@@ -469,6 +452,9 @@ fn values_out_of_range() {
             "output_view.data",
             Box::new(|t| t.output_view[3] = f64::NAN),
         ),
+        // A piece that keeps no point, or more points than it has cells.
+        ("grid_lattice", Box::new(|t| t.grid_lattice[0] = [2, 1, 0])),
+        ("grid_lattice", Box::new(|t| t.grid_lattice[0] = [2, 1, 3])),
         ("grid_layout", Box::new(|t| t.grid_layout[0][0] = -0.2)),
         ("grid_layout", Box::new(|t| t.grid_layout[0][6] = 0.5)),
         (

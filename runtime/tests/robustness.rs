@@ -113,7 +113,7 @@ fn evaluate_all<const B: usize>(basis: Basis<'_>, levels: &[f32], exitance: f32)
     }
     for z in 0..basis.zone_count() {
         finite(e.zone_irradiance(z));
-        let points = basis.grid(z).map_or(0, |g| g.points);
+        let points = basis.grid_points(z).unwrap_or(0);
         for point in 0..=points {
             finite(e.grid_point_irradiance(z, point));
         }
@@ -165,7 +165,7 @@ fn evaluate_channels<const B: usize>(basis: Basis<'_>, levels: &[f32]) {
     }
     for z in 0..basis.zone_count() {
         finite(e.zone_irradiance(z));
-        let points = basis.grid(z).map_or(0, |g| g.points);
+        let points = basis.grid_points(z).unwrap_or(0);
         for point in 0..points {
             finite(e.grid_point_irradiance(z, point));
         }

@@ -83,12 +83,12 @@ fn run<const B: usize>(
     }
     for z in 0..basis.zone_count() {
         out.zones.push(widen(eval.zone_irradiance(z)?));
-        let grid = basis.grid(z)?;
-        for point in 0..grid.points {
+        let points = basis.grid_points(z)?;
+        for point in 0..points {
             out.grid.push(widen(eval.grid_point_irradiance(z, point)?));
         }
         out.figures.push(
-            (grid.points > 0)
+            (points > 0)
                 .then(|| eval.zone_figures(z))
                 .transpose()?
                 .map(Vec::from),

@@ -36,8 +36,8 @@ pub struct BasisInfo {
     pub sensors: Vec<String>,
     /// Zone names with their areas (m²).
     pub zones: Vec<(String, f32)>,
-    /// Each zone's calculation grid: points along its two sides (`[0, 0]`: none).
-    pub grids: Vec<[usize; 2]>,
+    /// Each zone's calculation grid: its points over all pieces (0: none).
+    pub grids: Vec<usize>,
     /// Eigenvalues of the first band.
     pub eigenvalues: Vec<f32>,
 }
@@ -56,7 +56,7 @@ pub fn inspect(path: &Path, bytes: &[u8]) -> Result<BasisInfo> {
     let mut zones = Vec::new();
     let mut grids = Vec::new();
     for z in 0..b.zone_count() {
-        grids.push(b.grid(z).map_err(&e)?.counts);
+        grids.push(b.grid_points(z).map_err(&e)?);
         zones.push((
             b.zone_name(z).map_err(&e)?.to_owned(),
             b.zone_area(z).map_err(&e)?,
@@ -114,8 +114,8 @@ pub fn format_inspect(i: &BasisInfo) -> String {
         .iter()
         .zip(&i.grids)
         .map(|((n, a), g)| match g {
-            [0, _] | [_, 0] => format!("{n} ({a:.2} m²)"),
-            [x, y] => format!("{n} ({a:.2} m², grid {x} × {y} points)"),
+            0 => format!("{n} ({a:.2} m²)"),
+            g => format!("{n} ({a:.2} m², grid of {g} points)"),
         })
         .collect();
     let _ = writeln!(s, "zones ({}): {}", i.zones.len(), zones.join(", "));

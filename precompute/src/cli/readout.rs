@@ -12,7 +12,7 @@ use crate::accuracy::runtime_eval;
 use crate::error::{Error, Result};
 use crate::formfactor::exchange;
 use crate::formfactor::FormFactorOptions;
-use crate::pipeline::{self, scene_grids, GridReadout};
+use crate::pipeline::{self, scene_grids, GridReadout, PieceLayout};
 use crate::radiosity::exact::ExactSolver;
 use crate::radiosity::model;
 
@@ -329,24 +329,28 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &LevelArgs, patches: bool) ->
     let mut grids = Vec::new();
     let mut next = 0;
     for z in 0..basis.zone_count() {
-        let g = basis.grid(z).map_err(basis_error(path))?;
-        if g.points == 0 {
+        let points = basis.grid_points(z).map_err(basis_error(path))?;
+        if points == 0 {
             continue;
         }
-        let mut positions = Vec::with_capacity(g.points);
-        for i in 0..g.points {
+        let mut pieces = Vec::new();
+        for k in 0..basis.grid_piece_count(z).map_err(basis_error(path))? {
+            let piece = basis.grid_piece(z, k).map_err(basis_error(path))?;
+            pieces.push(PieceLayout::from(piece));
+        }
+        let mut positions = Vec::with_capacity(points);
+        for i in 0..points {
             let at = basis.grid_point(z, i).map_err(basis_error(path))?;
             positions.push(at.map(f64::from));
         }
-        let wide = f64::from;
         grids.push(GridReadout::new(
             name(basis.zone_name(z))?,
-            (g.counts, wide(g.spacing), g.cell.map(wide), wide(g.border)),
+            pieces,
             positions,
-            &got.grid[next..next + g.points],
+            &got.grid[next..next + points],
             got.figures[z].as_deref(),
         ));
-        next += g.points;
+        next += points;
     }
     let patch_list = if patches {
         let mut list = Vec::new();
@@ -411,12 +415,35 @@ pub(super) fn write_grids(s: &mut String, grids: &[GridReadout], unit: &str) {
             .collect::<Vec<_>>()
             .join(" ")
     };
+    let layout = |p: &PieceLayout| {
+        let kept = if p.points < p.counts[0] * p.counts[1] {
+            format!(" ({} on the area)", p.points)
+        } else {
+            String::new()
+        };
+        format!(
+            "{} × {} points{kept}, spacing ≤ {:.3} m, cells {:.3} × {:.3} m, border {:.2} m",
+            p.counts[0], p.counts[1], p.spacing_m, p.cell_m[0], p.cell_m[1], p.border_m
+        )
+    };
     for g in grids {
-        let _ = writeln!(
-            s,
-            "grid   {:<20} {} × {} points, spacing ≤ {:.3} m, cells {:.3} × {:.3} m, border {:.2} m (EN 12464-1)",
-            g.zone, g.counts[0], g.counts[1], g.spacing_m, g.cell_m[0], g.cell_m[1], g.border_m
-        );
+        match &g.pieces[..] {
+            [one] => {
+                let _ = writeln!(s, "grid   {:<20} {} (EN 12464-1)", g.zone, layout(one));
+            }
+            pieces => {
+                let _ = writeln!(
+                    s,
+                    "grid   {:<20} {} points in {} pieces (EN 12464-1)",
+                    g.zone,
+                    g.points.len(),
+                    pieces.len()
+                );
+                for (k, p) in pieces.iter().enumerate() {
+                    let _ = writeln!(s, "       piece {:<14} {}", k + 1, layout(p));
+                }
+            }
+        }
         let _ = writeln!(
             s,
             "       E_avg {} {unit}, E_min {} {unit}, E_max {} {unit}, U_o {}",

@@ -24,7 +24,7 @@ pub fn grid_points(scene: &Scene) -> impl Iterator<Item = (usize, Vec3, Vec3)> +
     scene.zones.iter().enumerate().flat_map(|(z, zone)| {
         zone.grid
             .iter()
-            .flat_map(move |g| g.points.iter().map(move |&p| (z, p, g.normal)))
+            .flat_map(move |g| g.points().map(move |(p, normal)| (z, p, normal)))
     })
 }
 

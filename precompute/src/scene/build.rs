@@ -115,6 +115,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         &file.zone,
         &geometry.rooms,
         &meshed.surfaces,
+        &meshed.patches,
         max_edge,
     )?;
 

@@ -382,6 +382,9 @@ pub(crate) struct ZoneDef {
     pub surfaces: Option<Spanned<Vec<String>>>,
     #[serde(default)]
     pub work_plane: Option<Spanned<WorkPlaneDef>>,
+    /// A surface zone's calculation grid (none unless given; `grid = {}` for the rule).
+    #[serde(default)]
+    pub grid: Option<Spanned<GridDef>>,
 }
 
 /// `zone.work_plane`.
@@ -402,6 +405,10 @@ pub(crate) struct WorkPlaneDef {
     /// A task area: the plane restricted to this rectangle of the room's footprint.
     #[serde(default)]
     pub area: Option<Spanned<AreaDef>>,
+    /// With `area`: the band around the task area instead (its surrounding), in the scene's
+    /// unit.
+    #[serde(default)]
+    pub band: Option<Spanned<BandDef>>,
     /// The calculation grid's settings (default: the EN 12464-1 rule).
     #[serde(default)]
     pub grid: Option<Spanned<GridDef>>,
@@ -417,7 +424,17 @@ pub(crate) struct AreaDef {
     pub max: Spanned<Vec<f64>>,
 }
 
-/// `zone.work_plane.grid`.
+/// `zone.work_plane.band`: a width from the task area's edges, or two distances from them.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(crate) enum BandDef {
+    /// The band from the area's edges out to this distance.
+    Width(f64),
+    /// The band between these two distances from the area's edges.
+    Between(Vec<f64>),
+}
+
+/// `zone.work_plane.grid` and `zone.grid`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct GridDef {

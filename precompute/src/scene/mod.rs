@@ -159,7 +159,7 @@ pub struct Zone {
     pub name: String,
     /// What the zone is made of.
     pub kind: ZoneKind,
-    /// Its calculation grid, for a work plane (surface zones have none).
+    /// Its calculation grid: always for a work plane, when asked for a surface zone.
     pub grid: Option<Grid>,
 }
 

@@ -4,7 +4,7 @@ use toml::Spanned;
 
 use super::context::{resolve_surfaces, unique, Ctx};
 use super::error::SceneError;
-use super::file::{SensorDef, WorkPlaneDef, ZoneDef};
+use super::file::{BandDef, GridDef, SensorDef, WorkPlaneDef, ZoneDef};
 use super::grid::{self, Grid};
 use super::mesh::{estimate, mesh_face};
 use super::openings::CONTACT_TOLERANCE;
@@ -189,13 +189,14 @@ fn placement(
     Ok(())
 }
 
-/// Reads and checks the zones; `rooms` are (name, min, max) in metres, `max_edge` (m) the
-/// scene's default.
+/// Reads and checks the zones; `rooms` are (name, min, max) in metres, `patch_list` the
+/// scene's patches (the surfaces' `patch_range`s index it), `max_edge` (m) the scene's default.
 pub(crate) fn zones(
     ctx: &Ctx,
     defs: &[Spanned<ZoneDef>],
     rooms: &[(String, Vec3, Vec3)],
     surfaces: &[Surface],
+    patch_list: &[Patch],
     max_edge: f64,
 ) -> Result<Vec<Zone>, SceneError> {
     unique(
@@ -216,13 +217,24 @@ pub(crate) fn zones(
                         message: "names no surface: a zone averages over at least one".into(),
                     });
                 }
-                let patches = members
+                let patches: Vec<usize> = members
                     .iter()
                     .flat_map(|&i| surfaces[i].patch_range.clone())
                     .collect();
-                (ZoneKind::Surfaces(patches), None)
+                let grid = match &z.grid {
+                    Some(g) => Some(surface_grid(ctx, &what, g, &patches, patch_list)?),
+                    None => None,
+                };
+                (ZoneKind::Surfaces(patches), grid)
             }
             (None, Some(wp)) => {
+                if let Some(g) = &z.grid {
+                    return Err(SceneError::Invalid {
+                        at: ctx.at(g),
+                        field: format!("{what}.grid"),
+                        message: "a work plane's grid is set as `work_plane.grid`".into(),
+                    });
+                }
                 let (kind, grid) = work_plane(ctx, &what, wp, rooms, surfaces, max_edge)?;
                 (kind, Some(grid))
             }
@@ -349,52 +361,193 @@ fn work_plane(
         (x0, y0, x1, y1) = (min.x, min.y, max.x, max.y);
         border = 0.0;
     }
-    let spacing = match wp.grid.as_ref().and_then(|g| g.get_ref().spacing.as_ref()) {
-        Some(s) => {
-            let field = format!("{what}.work_plane.grid.spacing");
-            let value = ctx.length(s, &field)?;
-            if !(value > 0.0 && value <= grid::MAX_SPACING) {
-                return Err(SceneError::OutOfRange {
-                    at: ctx.at(s),
+    let spacing = explicit_spacing(ctx, what, "work_plane.grid", wp.grid.as_ref())?;
+    // The plane's rectangles: the area (or the room less its margin), or the band around it.
+    let rects = match &wp.band {
+        None => vec![[x0, y0, x1, y1]],
+        Some(band) => {
+            let field = format!("{what}.work_plane.band");
+            if wp.area.is_none() {
+                return Err(SceneError::Invalid {
+                    at: ctx.at(band),
                     field,
-                    message: format!(
-                        "must be positive and at most {} m, found {}",
-                        grid::MAX_SPACING,
-                        s.get_ref()
-                    ),
+                    message: "a band surrounds a task area: give `area` too".into(),
                 });
             }
-            let [na, nb] = grid::counts(x1 - x0, y1 - y0, value);
-            if na.saturating_mul(nb) > grid::MAX_POINTS {
+            let [from, to] = band_widths(ctx, band, &field)?;
+            let grown = |by: f64| {
+                [
+                    (x0 - by).max(lo.x),
+                    (y0 - by).max(lo.y),
+                    (x1 + by).min(hi.x),
+                    (y1 + by).min(hi.y),
+                ]
+            };
+            let rects = grid::ring(grown(from), grown(to));
+            if rects.is_empty() {
                 return Err(SceneError::OutOfRange {
-                    at: ctx.at(s),
+                    at: ctx.at(band),
                     field,
-                    message: format!(
-                        "gives {na} × {nb} points, more than {} a zone may have",
-                        grid::MAX_POINTS
-                    ),
+                    message: format!("leaves nothing inside room `{name}`'s walls"),
                 });
             }
-            Some(value)
+            rects
         }
-        None => None,
     };
-    let grid = grid::horizontal((x0, y0), (x1, y1), z, spacing, border);
-    let corners = [
-        Vec3::new(x0, y0, z),
-        Vec3::new(x1, y0, z),
-        Vec3::new(x1, y1, z),
-        Vec3::new(x0, y1, z),
-    ];
+    let rule = |[x0, y0, x1, y1]: [f64; 4]| {
+        let p = spacing.unwrap_or_else(|| grid::rule_spacing((x1 - x0).max(y1 - y0)));
+        let [na, nb] = grid::counts(x1 - x0, y1 - y0, p);
+        na.saturating_mul(nb)
+    };
+    let cells = rects
+        .iter()
+        .map(|&r| rule(r))
+        .fold(0usize, usize::saturating_add);
+    if cells > grid::MAX_POINTS {
+        let g = wp.grid.as_ref();
+        return Err(too_many_points(
+            ctx,
+            what,
+            "work_plane.grid",
+            g,
+            ctx.at(def),
+            cells,
+        ));
+    }
+    let grid = Grid {
+        pieces: rects
+            .iter()
+            .map(|&[x0, y0, x1, y1]| grid::horizontal((x0, y0), (x1, y1), z, spacing, border))
+            .collect(),
+    };
     let edge_used = edge.unwrap_or(default_edge);
-    check_receivers(ctx, what, def, estimate(&corners, edge_used), surfaces)?;
+    let corners = |[x0, y0, x1, y1]: [f64; 4]| {
+        [
+            Vec3::new(x0, y0, z),
+            Vec3::new(x1, y0, z),
+            Vec3::new(x1, y1, z),
+            Vec3::new(x0, y1, z),
+        ]
+    };
+    let receivers = rects
+        .iter()
+        .map(|&r| estimate(&corners(r), edge_used))
+        .sum();
+    check_receivers(ctx, what, def, receivers, surfaces)?;
     let mut polygons: Vec<Polygon> = Vec::new();
-    mesh_face(&corners, edge_used, &mut polygons);
+    for &r in &rects {
+        mesh_face(&corners(r), edge_used, &mut polygons);
+    }
     let kind = ZoneKind::WorkPlane {
         height,
         receivers: polygons.into_iter().map(|p| Patch::new(p, floor)).collect(),
     };
     Ok((kind, grid))
+}
+
+/// The widths `[from, to]` of `zone.work_plane.band` in m: a number `w` is `[0, w]`, two
+/// numbers the distances from the task area's edges between which the band lies.
+fn band_widths(ctx: &Ctx, band: &Spanned<BandDef>, field: &str) -> Result<[f64; 2], SceneError> {
+    let [from, to] = match band.get_ref() {
+        BandDef::Width(w) => [0.0, *w],
+        BandDef::Between(v) => match v[..] {
+            [a, b] => [a, b],
+            _ => {
+                return Err(SceneError::BandCount {
+                    at: ctx.at(band),
+                    field: field.into(),
+                    expected: 2,
+                    found: v.len(),
+                })
+            }
+        },
+    };
+    if !(from.is_finite() && to.is_finite() && 0.0 <= from && from < to) {
+        return Err(SceneError::OutOfRange {
+            at: ctx.at(band),
+            field: field.into(),
+            message: format!(
+                "must be a width > 0 or two distances 0 ≤ from < to, found {from} to {to}"
+            ),
+        });
+    }
+    Ok([from * ctx.unit, to * ctx.unit])
+}
+
+/// The spacing a grid's settings `grid` give (`field` under the zone), m, checked; `None`
+/// for the rule.
+fn explicit_spacing(
+    ctx: &Ctx,
+    what: &str,
+    field: &str,
+    grid: Option<&Spanned<GridDef>>,
+) -> Result<Option<f64>, SceneError> {
+    let Some(s) = grid.and_then(|g| g.get_ref().spacing.as_ref()) else {
+        return Ok(None);
+    };
+    let field = format!("{what}.{field}.spacing");
+    let value = ctx.length(s, &field)?;
+    if !(value > 0.0 && value <= grid::MAX_SPACING) {
+        return Err(SceneError::OutOfRange {
+            at: ctx.at(s),
+            field,
+            message: format!(
+                "must be positive and at most {} m, found {}",
+                grid::MAX_SPACING,
+                s.get_ref()
+            ),
+        });
+    }
+    Ok(Some(value))
+}
+
+/// The error for a grid of more than [`grid::MAX_POINTS`] cells (`field` under the zone: its
+/// settings `grid`), at its spacing if the scene gave one, else at the settings or `fallback`.
+fn too_many_points(
+    ctx: &Ctx,
+    what: &str,
+    field: &str,
+    grid: Option<&Spanned<GridDef>>,
+    fallback: crate::scene::error::Location,
+    cells: usize,
+) -> SceneError {
+    let spacing = grid.and_then(|g| g.get_ref().spacing.as_ref());
+    let (at, field) = match (spacing, grid) {
+        (Some(s), _) => (ctx.at(s), format!("{what}.{field}.spacing")),
+        (None, Some(g)) => (ctx.at(g), format!("{what}.{field}")),
+        (None, None) => (fallback, format!("{what}.{field}")),
+    };
+    SceneError::OutOfRange {
+        at,
+        field,
+        message: format!(
+            "gives {cells} points, more than {} a zone may have",
+            grid::MAX_POINTS
+        ),
+    }
+}
+
+/// A surface zone's grid (`zone.grid`): one piece per plane of its `patches` (indices into
+/// `patch_list`), no border.
+fn surface_grid(
+    ctx: &Ctx,
+    what: &str,
+    def: &Spanned<GridDef>,
+    patches: &[usize],
+    patch_list: &[Patch],
+) -> Result<Grid, SceneError> {
+    let spacing = explicit_spacing(ctx, what, "grid", Some(def))?;
+    let members: Vec<&Patch> = patches.iter().map(|&i| &patch_list[i]).collect();
+    let pieces = grid::on_patches(&members, spacing, grid::MAX_POINTS)
+        .map_err(|cells| too_many_points(ctx, what, "grid", Some(def), ctx.at(def), cells))?;
+    if pieces.is_empty() {
+        return Err(SceneError::Invalid {
+            at: ctx.at(def),
+            field: format!("{what}.grid"),
+            message: "no cell centre of the grid lies on the zone's surfaces".into(),
+        });
+    }
+    Ok(Grid { pieces })
 }
 
 /// Refuses a work plane whose `receivers` (an estimate) would not fit in memory next to the

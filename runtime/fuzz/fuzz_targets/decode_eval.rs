@@ -41,7 +41,7 @@ fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
     };
     for z in 0..basis.zone_count() {
         check(e.zone_irradiance(z));
-        let points = basis.grid(z).map_or(0, |g| g.points);
+        let points = basis.grid_points(z).unwrap_or(0);
         for point in 0..=points.min(64) {
             check(e.grid_point_irradiance(z, point));
             let _ = basis.grid_point(z, point);
@@ -64,7 +64,7 @@ fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
         }
         for z in 0..basis.zone_count() {
             check(c.zone_irradiance(z));
-            let points = basis.grid(z).map_or(0, |g| g.points);
+            let points = basis.grid_points(z).unwrap_or(0);
             for point in 0..=points.min(64) {
                 check(c.grid_point_irradiance(z, point));
             }

@@ -54,8 +54,9 @@ pub fn tiny() -> BasisTables {
         output_modes: vec![0.25, 0.5],
         output_channels: vec![100.0, 40.0],
         output_view: vec![0.0, 0.0, 0.1, 0.05],
-        // The zone's grid: 2 × 1 points at 0.8 m, facing up.
-        grid_counts: vec![[2, 1]],
+        // The zone's grid: one piece of 2 × 1 points at 0.8 m, facing up.
+        grid_pieces: vec![1],
+        grid_lattice: vec![[2, 1, 2]],
         grid_layout: vec![[0.2, 1.0, 1.0, 0.5, 0.0, 0.0, 1.0]],
         grid_position: vec![[0.5, 1.0, 0.8], [1.5, 1.0, 0.8]],
         grid_modes: vec![0.25, 0.3],
@@ -152,10 +153,15 @@ pub fn random(
         .map(|_| rng.range(0.0, 60.0))
         .collect();
     t.output_view = (0..n * outputs).map(|_| rng.range(0.0, 0.05)).collect();
-    // The first zone has a 3 × 2 grid, the second none.
-    let g = 6;
-    t.grid_counts = vec![[3, 2], [0, 0]];
-    t.grid_layout = vec![[0.6, 0.5, 0.5, 0.5, 0.0, 0.0, 1.0], [0.0; 7]];
+    // The first zone has a grid of two pieces, a 3 × 2 lattice and a 2 × 2 one keeping 3 of
+    // its cells (a band around a task area, say); the second zone has none.
+    let g = 9;
+    t.grid_pieces = vec![2, 0];
+    t.grid_lattice = vec![[3, 2, 6], [2, 2, 3]];
+    t.grid_layout = vec![
+        [0.6, 0.5, 0.5, 0.5, 0.0, 0.0, 1.0],
+        [0.6, 0.5, 0.5, 0.0, 0.0, 0.0, 1.0],
+    ];
     t.grid_position = (0..g)
         .map(|k| {
             [

@@ -292,6 +292,26 @@ fn scene_error_grid_fields() {
             ][..],
         ),
         ("area = { min = [1, 1] }", &["max"][..]),
+        (
+            "band = 0.5",
+            &["zone `z`.work_plane.band", "give `area` too"][..],
+        ),
+        (
+            "area = { min = [1, 1], max = [2, 2] }, band = [1, 0.5]",
+            &["zone `z`.work_plane.band", "0 ≤ from < to"][..],
+        ),
+        (
+            "area = { min = [1, 1], max = [2, 2] }, band = -0.5",
+            &["zone `z`.work_plane.band", "0 ≤ from < to"][..],
+        ),
+        (
+            "area = { min = [1, 1], max = [2, 2] }, band = [0, 1, 2]",
+            &["zone `z`.work_plane.band", "expected 2 value(s), found 3"][..],
+        ),
+        (
+            "area = { min = [0, 0], max = [4, 3] }, band = 0.5",
+            &["zone `z`.work_plane.band", "leaves nothing inside room `r`"][..],
+        ),
     ] {
         let extra = work_plane_zone(wp);
         let m = error(&extra);
@@ -302,12 +322,17 @@ fn scene_error_grid_fields() {
 
 #[test]
 fn work_plane_grid_follows_the_rule_and_the_scene() {
-    let zone = |wp: &str| {
+    let grid = |wp: &str| {
         let scene = parse(&format!("{BASE}{}", work_plane_zone(wp)), Path::new(FILE)).unwrap();
         scene.zones[0]
             .grid
             .clone()
             .expect("a work plane has a grid")
+    };
+    let zone = |wp: &str| {
+        let g = grid(wp);
+        assert_eq!(g.pieces.len(), 1, "{wp}");
+        g.pieces[0].clone()
     };
     // 4 m × 3 m less the default 0.5 m border: 3 m × 2 m, p = 0.2 × 5^(log10 3) = 0.4310 m,
     // 3/0.4310 = 6.96 → 7, 2/0.4310 = 4.64 → 5.
@@ -327,4 +352,30 @@ fn work_plane_grid_follows_the_rule_and_the_scene() {
     assert!(
         (g.points[0].x - 1.1).abs() < 1e-12 && (g.points[0].y - (1.0 + 1.0 / 12.0)).abs() < 1e-12
     );
+    // Its 0.5 m surrounding, by hand: the strips below and above, 2 m × 0.5 m each
+    // (p = 0.3247 m: 2/0.3247 = 6.16 → 7, 0.5/0.3247 = 1.54 → 2), and left and right of the
+    // task area, 0.5 m × 0.5 m each (p = 0.2 × 5^(log10 0.5) = 0.1232 m: 4.06 → 5 × 5).
+    let band = grid("area = { min = [1, 1], max = [2, 1.5] }, band = 0.5");
+    let counts: Vec<[usize; 2]> = band.pieces.iter().map(|p| p.counts).collect();
+    assert_eq!(counts, [[7, 2], [7, 2], [5, 5], [5, 5]]);
+    assert_eq!(band.len(), 78);
+    let inside =
+        |p: &Vec3, [x0, y0, x1, y1]: [f64; 4]| p.x > x0 && p.x < x1 && p.y > y0 && p.y < y1;
+    for (p, normal) in band.points() {
+        assert!(inside(&p, [0.5, 0.5, 2.5, 2.0]), "{p:?} outside the band");
+        assert!(!inside(&p, [1.0, 1.0, 2.0, 1.5]), "{p:?} in the task area");
+        assert_eq!((p.z, normal), (0.8, Vec3::new(0.0, 0.0, 1.0)));
+    }
+    // At the walls the band stops: a task area in the corner keeps the strips above and to
+    // its right; between 0.5 and 1 m from its edges, the background band, also four strips.
+    let corner = grid("area = { min = [0, 0], max = [1, 1] }, band = 0.5");
+    assert_eq!(corner.pieces.len(), 2);
+    assert!(corner
+        .points()
+        .all(|(p, _)| inside(&p, [0.0, 0.0, 1.5, 1.5]) && !inside(&p, [0.0, 0.0, 1.0, 1.0])));
+    let background = grid("area = { min = [1.5, 1], max = [2.5, 2] }, band = [0.5, 1.0]");
+    assert_eq!(background.pieces.len(), 4);
+    assert!(background
+        .points()
+        .all(|(p, _)| inside(&p, [0.5, 0.0, 3.5, 3.0]) && !inside(&p, [1.0, 0.5, 3.0, 2.5])));
 }
