@@ -65,6 +65,15 @@ fn row(table: &[[f32; 4]; 8], conditions: &Conditions, water: f32) -> Result<[f3
             max: 10.0,
         });
     }
+    if !(conditions.zenith.is_finite()
+        && (0.0..=core::f32::consts::FRAC_PI_2).contains(&conditions.zenith))
+    {
+        return Err(Error::OutOfRange {
+            what: "sun zenith angle (rad)",
+            min: 0.0,
+            max: core::f32::consts::FRAC_PI_2,
+        });
+    }
     if !(conditions.brightness > 0.0 && conditions.brightness.is_finite()) {
         return Err(Error::OutOfRange {
             what: "sky brightness Δ",

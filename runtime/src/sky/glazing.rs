@@ -262,6 +262,25 @@ mod tests {
         assert!((ours - want).abs() <= 1.0e-5, "{ours} against {want}");
     }
 
+    /// The absorption solved for against Radiance's published conversion from normal
+    /// transmittance T_n to the `glass` material's transmissivity (Radiance reference manual,
+    /// "Glass"): `t_n = (sqrt(0.8402528435 + 0.0072522239 T_n²) − 0.9166530661) /
+    /// 0.0036261119 / T_n`, the same single pane with n = 1.52. Tolerance 10⁻⁵ (f32).
+    #[test]
+    fn internal_transmittance_is_radiance_glass_transmissivity() {
+        for tau_n in [0.88f64, 0.8, 0.6, 0.3] {
+            let radiance = ((0.8402528435 + 0.0072522239 * tau_n * tau_n).sqrt() - 0.9166530661)
+                / 0.0036261119
+                / tau_n;
+            let g = Glazing::clear(tau_n as f32, 1).unwrap();
+            let ours = f64::from(g.internal_transmittance());
+            assert!(
+                (ours - radiance).abs() <= 1.0e-5,
+                "τ_n {tau_n}: {ours} against {radiance}"
+            );
+        }
+    }
+
     #[test]
     fn diffusing_keeps_the_angular_law() {
         let c = Glazing::clear(0.7, 2).unwrap();
