@@ -154,6 +154,20 @@ impl CieSky {
         self.kind
     }
 
+    /// Diffuse horizontal illuminance (lux) of the unobstructed sky whose zenith luminance
+    /// is `zenith_luminance` (cd/m²): `L_z ∫ (L/L_z) cos Z dω`, the integral by
+    /// [`super::horizontal_illuminance`]. `Err` for a negative or non-finite luminance.
+    pub fn diffuse_horizontal_for(&self, zenith_luminance: f32) -> Result<f32> {
+        if !(zenith_luminance.is_finite() && zenith_luminance >= 0.0) {
+            return Err(Error::OutOfRange {
+                what: "zenith luminance (cd/m²)",
+                min: 0.0,
+                max: f32::MAX,
+            });
+        }
+        Ok(zenith_luminance * super::horizontal_illuminance(self))
+    }
+
     /// Zenith luminance (cd/m²) that gives the unobstructed sky the diffuse horizontal
     /// illuminance `diffuse_horizontal` (lux): `E_dh / ∫ (L/L_z) cos Z dω`, the integral by
     /// [`super::horizontal_illuminance`]. `Err` for a negative or non-finite illuminance.
@@ -260,9 +274,16 @@ mod tests {
         let sun = direction(0.4, 2.5);
         let uniform = horizontal_illuminance(&CieSky::standard(5, sun).unwrap());
         assert!((uniform - PI).abs() <= 2.0e-6 * PI, "{uniform}");
-        let overcast = horizontal_illuminance(&CieSky::traditional_overcast(sun).unwrap());
+        let traditional = CieSky::traditional_overcast(sun).unwrap();
+        let overcast = horizontal_illuminance(&traditional);
         let seven_ninths = 7.0 * PI / 9.0;
         assert!((overcast - seven_ninths).abs() <= 2.0e-6 * seven_ninths);
+        // Both ways of scaling: E_h = 7π/9 L_z, and back.
+        let e = traditional.diffuse_horizontal_for(9000.0).unwrap();
+        assert!((e - 7000.0 * PI).abs() <= 2.0e-6 * e);
+        let lz = traditional.zenith_luminance_for(7000.0 * PI).unwrap();
+        assert!((lz - 9000.0).abs() <= 2.0e-6 * 9000.0);
+        assert!(traditional.diffuse_horizontal_for(-1.0).is_err());
 
         let n = 200_000;
         let phi0 = 1.0 + 4.0 * (-0.7f64).exp();
