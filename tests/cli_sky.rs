@@ -66,6 +66,28 @@ fn uniform_sky_json() {
     }
 }
 
+/// A CIE sky with a sun: the direct horizontal illuminance is the direct normal one times
+/// the sine of the sun's altitude, and the global one adds the diffuse.
+#[test]
+fn cie_sky_with_the_sun() {
+    let o = sky(&[
+        "--cie",
+        "12",
+        "--dhi-lux",
+        "15000",
+        "--dni-lux",
+        "80000",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let h = v["sun"]["altitude"].as_f64().unwrap().to_radians();
+    let direct = v["direct_horizontal_lux"].as_f64().unwrap();
+    assert!((direct - 80_000.0 * h.sin()).abs() < 1e-6 * direct);
+    let global = v["global_horizontal_lux"].as_f64().unwrap();
+    assert!((global - 15_000.0 - direct).abs() < 1e-6 * global);
+}
+
 #[test]
 fn bad_flags_are_errors_naming_them() {
     for (extra, flag) in [

@@ -234,7 +234,7 @@ enum Command {
 
 /// `eigenrad sky`: the site, the time and one sky.
 #[derive(Args)]
-#[command(group(clap::ArgGroup::new("model").required(true).args(["cie", "dni", "dni_lux"])))]
+#[command(group(clap::ArgGroup::new("model").required(true).multiple(true).args(["cie", "dni", "dni_lux"])))]
 struct SkyArgs {
     /// Latitude, degrees north (−90 to 90).
     #[arg(long, allow_hyphen_values = true)]
