@@ -112,8 +112,8 @@ pub const QUADRATURE_ZENITHS: usize = 16;
 /// overcast skies) the rule is within 3 × 10⁻⁷ of the exact integral, f32 rounding adding up
 /// to 2 × 10⁻⁶; the sun's circumsolar peak, `exp(d χ)` with a corner at the sun, limits clear
 /// skies to 2 × 10⁻⁴ relative (measured against fine midpoint rules in f64: 4000 × 4000 for
-/// types 1, 5, 12, 13 and 15, and 800 × 1600 for all 15 types and four Perez states at sun
-/// altitudes 5° to 85° in the tests; `docs/math.md`, "Sun and sky").
+/// types 1, 5, 12, 13 and 15; 800 × 1600 in the tests for all 15 types at sun altitudes 5°
+/// to 85° and four Perez states with the sun at 10° to 60°; `docs/math.md`, "Sun and sky").
 pub fn horizontal_illuminance<S: RelativeSky + ?Sized>(sky: &S) -> f32 {
     let sun = sky.sun();
     // Azimuths are measured from the sun's azimuth; a sun at the zenith has none, and any
