@@ -133,10 +133,8 @@ pub enum Error {
     OutOfRange {
         /// Which input, with its unit.
         what: &'static str,
-        /// Least value allowed.
-        min: f32,
-        /// Greatest value allowed.
-        max: f32,
+        /// What it must be, in words (`"from 1 to 15"`): the runtime formats no floats.
+        range: &'static str,
     },
     /// A name the caller needs is not in the basis. The runtime's lookups
     /// ([`Basis::find_channel`](crate::Basis::find_channel) and the like) return `None`; a
@@ -243,14 +241,7 @@ impl fmt::Display for Error {
                 )
             }
             Error::DaliMask => f.write_str("DALI arc power level 255 (MASK) is not a light level"),
-            Error::OutOfRange { what, min, max } => match (min, max) {
-                (f32::MIN_POSITIVE, f32::MAX) => write!(f, "{what} must be a number above 0"),
-                (f32::MIN, f32::MAX) => write!(f, "{what} must be a finite number"),
-                (f32::MIN, max) => write!(f, "{what} must be a number at most {max}"),
-                (min, f32::MAX) => write!(f, "{what} must be a number of at least {min}"),
-                (min, max) if min == max => write!(f, "{what} must be {min}"),
-                (min, max) => write!(f, "{what} must be a number from {min} to {max}"),
-            },
+            Error::OutOfRange { what, range } => write!(f, "{what} must be {range}"),
             Error::UnknownName { what } => write!(f, "the basis has no {what} of that name"),
             Error::InvalidBound { bound } => {
                 write!(f, "bound {bound}: its lower bound is above its upper bound")

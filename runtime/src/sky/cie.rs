@@ -105,8 +105,7 @@ impl CieSky {
         let index = usize::from(sky_type).wrapping_sub(1);
         let parameters = *STANDARD_TYPES.get(index).ok_or(Error::OutOfRange {
             what: "CIE standard sky type",
-            min: 1.0,
-            max: 15.0,
+            range: "from 1 to 15",
         })?;
         Self::general(parameters, sun)
     }
@@ -119,8 +118,7 @@ impl CieSky {
         if ![a, b, c, d, e].iter().all(|x| x.is_finite()) {
             return Err(Error::OutOfRange {
                 what: "CIE sky parameter",
-                min: f32::MIN,
-                max: f32::MAX,
+                range: "finite",
             });
         }
         let zenith_sun = libm::acosf(sun[2].clamp(-1.0, 1.0));
@@ -128,8 +126,7 @@ impl CieSky {
         if !(norm > 0.0 && norm.is_finite()) {
             return Err(Error::OutOfRange {
                 what: "CIE sky zenith luminance f(Z_s) φ(0)",
-                min: f32::MIN_POSITIVE,
-                max: f32::MAX,
+                range: "above 0",
             });
         }
         Ok(Self {
@@ -161,8 +158,7 @@ impl CieSky {
         if !(zenith_luminance.is_finite() && zenith_luminance >= 0.0) {
             return Err(Error::OutOfRange {
                 what: "zenith luminance (cd/m²)",
-                min: 0.0,
-                max: f32::MAX,
+                range: "finite and at least 0",
             });
         }
         Ok(zenith_luminance * super::horizontal_illuminance(self))
@@ -175,8 +171,7 @@ impl CieSky {
         if !(diffuse_horizontal.is_finite() && diffuse_horizontal >= 0.0) {
             return Err(Error::OutOfRange {
                 what: "diffuse horizontal illuminance (lux)",
-                min: 0.0,
-                max: f32::MAX,
+                range: "finite and at least 0",
             });
         }
         Ok(diffuse_horizontal / super::horizontal_illuminance(self))

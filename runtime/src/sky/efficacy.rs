@@ -61,8 +61,7 @@ fn row(table: &[[f32; 4]; 8], conditions: &Conditions, water: f32) -> Result<[f3
     if !(water.is_finite() && (0.0..=10.0).contains(&water)) {
         return Err(Error::OutOfRange {
             what: "precipitable water (cm)",
-            min: 0.0,
-            max: 10.0,
+            range: "from 0 to 10",
         });
     }
     if !(conditions.zenith.is_finite()
@@ -70,15 +69,13 @@ fn row(table: &[[f32; 4]; 8], conditions: &Conditions, water: f32) -> Result<[f3
     {
         return Err(Error::OutOfRange {
             what: "sun zenith angle (rad)",
-            min: 0.0,
-            max: core::f32::consts::FRAC_PI_2,
+            range: "from 0 to π/2",
         });
     }
     if !(conditions.brightness > 0.0 && conditions.brightness.is_finite()) {
         return Err(Error::OutOfRange {
             what: "sky brightness Δ",
-            min: f32::MIN_POSITIVE,
-            max: f32::MAX,
+            range: "finite and above 0",
         });
     }
     // `clearness_bin` is at most 7; the fallback is never taken.

@@ -66,15 +66,13 @@ pub(crate) fn check_sun(sun: [f32; 3]) -> Result<[f32; 3]> {
     if !(norm2.is_finite() && (norm2 - 1.0).abs() <= 2.0e-3) {
         return Err(Error::OutOfRange {
             what: "sun direction length",
-            min: 1.0,
-            max: 1.0,
+            range: "1 (a unit vector, to 10⁻³)",
         });
     }
     if sun[2].is_nan() || sun[2] < 0.0 {
         return Err(Error::OutOfRange {
             what: "sun direction z (sin of the altitude)",
-            min: 0.0,
-            max: 1.0,
+            range: "from 0 to 1 (the sun at or above the horizon)",
         });
     }
     Ok(sun)

@@ -60,8 +60,7 @@ impl SkyPatches {
         } else {
             Err(Error::OutOfRange {
                 what: "Reinhart sky subdivision MF",
-                min: 1.0,
-                max: MAX_SUBDIVISION as f32,
+                range: "from 1 to 8",
             })
         }
     }

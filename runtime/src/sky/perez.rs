@@ -169,18 +169,21 @@ impl Conditions {
             "diffuse horizontal irradiance (W/m²)",
             1.0e-6,
             2000.0,
+            "above 0 and at most 2000",
         )?;
         check_range(
             direct_normal,
             "direct normal irradiance (W/m²)",
             0.0,
             2000.0,
+            "from 0 to 2000",
         )?;
         check_range(
             zenith,
             "sun zenith angle (rad)",
             0.0,
             core::f32::consts::FRAC_PI_2,
+            "from 0 to π/2",
         )?;
         let z3 = KAPPA * zenith * zenith * zenith;
         let clearness =
@@ -212,8 +215,15 @@ impl Conditions {
             "diffuse horizontal illuminance (lux)",
             1.0e-3,
             2.0e5,
+            "from 0.001 to 200000",
         )?;
-        check_range(direct_normal, "direct normal illuminance (lux)", 0.0, 2.0e5)?;
+        check_range(
+            direct_normal,
+            "direct normal illuminance (lux)",
+            0.0,
+            2.0e5,
+            "from 0 to 200000",
+        )?;
         let mut dhi = diffuse_horizontal * SOLAR_CONSTANT / 127_500.0;
         let mut dni = direct_normal * SOLAR_CONSTANT / 127_500.0;
         let mut conditions = Self::from_irradiance(dhi, dni, zenith, day_of_year)?;
@@ -264,11 +274,13 @@ impl Conditions {
     }
 }
 
-fn check_range(x: f32, what: &'static str, min: f32, max: f32) -> Result<()> {
+/// `x` in [min, max] (NaN is not), else [`Error::OutOfRange`] with `what` and `range`, the
+/// same bounds in words (no float formatting on the controller).
+fn check_range(x: f32, what: &'static str, min: f32, max: f32, range: &'static str) -> Result<()> {
     if x >= min && x <= max {
         Ok(())
     } else {
-        Err(Error::OutOfRange { what, min, max })
+        Err(Error::OutOfRange { what, range })
     }
 }
 
@@ -289,8 +301,7 @@ impl PerezSky {
         if !coefficients.iter().all(|x| x.is_finite()) || coefficients[1] > 0.0 {
             return Err(Error::OutOfRange {
                 what: "Perez coefficient b (from the clearness and brightness)",
-                min: f32::MIN,
-                max: 0.0,
+                range: "at most 0 (else the horizon brightens without bound)",
             });
         }
         Ok(Self { coefficients, sun })
@@ -310,13 +321,13 @@ impl PerezSky {
             "diffuse horizontal illuminance (lux)",
             0.0,
             f32::MAX,
+            "finite and at least 0",
         )?;
         let integral = super::horizontal_illuminance(self);
         if !(integral > 0.0 && integral.is_finite()) {
             return Err(Error::OutOfRange {
                 what: "Perez sky integral ∫ l cos ζ dω (sr)",
-                min: f32::MIN_POSITIVE,
-                max: f32::MAX,
+                range: "above 0",
             });
         }
         Ok(diffuse_horizontal / integral)
