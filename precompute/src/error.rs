@@ -82,6 +82,14 @@ pub enum Error {
     /// A report could not be written as JSON.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),
+    /// A site, time, sun or sky input (`eigenrad sky`, [`crate::daylight`]) is wrong.
+    #[error("{what}: {reason}")]
+    Daylight {
+        /// The input: a command-line flag or a named quantity.
+        what: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// The thread that runs the runtime's evaluator could not start, or panicked.
     #[error("evaluator thread: {0}")]
     Thread(String),

@@ -16,12 +16,14 @@
 //! | [`accuracy`] | test cases, the error figures, the truncation sweep, evaluation through the runtime |
 //! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
 //! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
+//! | [`daylight`] | the sun's position from date, time and site; the site's and the room's frames (the sky models are the runtime's) |
 //! | [`cli`] | what the commands compute and print, atomic file writes |
 pub mod accuracy;
 pub mod atomic;
 pub mod basis;
 pub mod cache;
 pub mod cli;
+pub mod daylight;
 mod error;
 pub mod formfactor;
 pub mod geometry;

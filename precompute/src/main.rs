@@ -212,6 +212,10 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// The sun's position and a sky (CIE standard general sky or Perez all-weather sky) for a
+    /// site, a time and a weather state: sun altitude and azimuth, efficacies, zenith
+    /// luminance, horizontal illuminances, and with --json every sky patch's luminance.
+    Sky(SkyArgs),
     /// Accuracy report: relative error against the exact solve as the mode count grows, for
     /// both formulations and the per-channel baseline, as markdown tables and SVG curves.
     Verify {
@@ -226,6 +230,104 @@ enum Command {
         #[command(flatten)]
         cache: CacheArgs,
     },
+}
+
+/// `eigenrad sky`: the site, the time and one sky.
+#[derive(Args)]
+#[command(group(clap::ArgGroup::new("model").required(true).multiple(true).args(["cie", "dni", "dni_lux"])))]
+struct SkyArgs {
+    /// Latitude, degrees north (−90 to 90).
+    #[arg(long, allow_hyphen_values = true)]
+    lat: f64,
+    /// Longitude, degrees east (−180 to 180).
+    #[arg(long, allow_hyphen_values = true)]
+    lon: f64,
+    /// Height above sea level, m.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    elevation: f64,
+    /// Date and time with its UTC offset, e.g. 2026-06-21T12:00+02:00 or 2026-06-21T10:00Z.
+    #[arg(long)]
+    time: String,
+    /// Compass bearing of the scene's +y axis, degrees clockwise from true north.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    north: f64,
+    /// CIE standard general sky type 1 to 15, or `overcast` for the traditional CIE
+    /// overcast sky; needs --dhi-lux (and takes --dni-lux for the sun).
+    #[arg(long, value_name = "TYPE", value_parser = cie_type)]
+    cie: Option<u8>,
+    /// Perez sky: direct normal irradiance, W/m² (with --dhi).
+    #[arg(long, requires = "dhi", conflicts_with_all = ["cie", "dni_lux", "dhi_lux"], allow_hyphen_values = true)]
+    dni: Option<f64>,
+    /// Perez sky: diffuse horizontal irradiance, W/m² (with --dni).
+    #[arg(long, requires = "dni", allow_hyphen_values = true)]
+    dhi: Option<f64>,
+    /// Direct normal illuminance, lux: the Perez sky with --dhi-lux, or the sun of a CIE sky.
+    #[arg(long, allow_hyphen_values = true)]
+    dni_lux: Option<f64>,
+    /// Diffuse horizontal illuminance, lux (a CIE sky, or the Perez sky with --dni-lux).
+    #[arg(long, allow_hyphen_values = true)]
+    dhi_lux: Option<f64>,
+    /// Atmospheric precipitable water, cm, for the Perez efficacies.
+    #[arg(long, default_value_t = 2.0, allow_hyphen_values = true)]
+    water: f64,
+    /// Sky patches: Reinhart subdivision MF:n, 1 (Tregenza, 145 patches) to 8.
+    #[arg(long, default_value_t = 1)]
+    mf: u8,
+    /// Print one JSON document on stdout, with every sky patch.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `--cie`: 1 to 15, or `overcast` (the traditional CIE overcast sky, 0 here).
+fn cie_type(text: &str) -> Result<u8, String> {
+    match text.trim() {
+        "overcast" => Ok(0),
+        t => match t.parse::<u8>() {
+            Ok(n) if (1..=15).contains(&n) => Ok(n),
+            _ => Err(format!(
+                "`{text}` is not a CIE standard sky type: 1 to 15, or `overcast`"
+            )),
+        },
+    }
+}
+
+impl SkyArgs {
+    fn request(&self) -> anyhow::Result<cli::SkyRequest> {
+        let input = match (self.cie, self.dni, self.dhi, self.dni_lux, self.dhi_lux) {
+            (Some(sky_type), None, None, dni, Some(dhi)) => cli::SkyInput::Cie {
+                sky_type,
+                diffuse_horizontal: dhi,
+                direct_normal: dni.unwrap_or(0.0),
+            },
+            (Some(_), _, _, _, None) => anyhow::bail!("--cie needs --dhi-lux (lux)"),
+            (None, Some(dni), Some(dhi), None, None) => cli::SkyInput::PerezIrradiance {
+                direct_normal: dni,
+                diffuse_horizontal: dhi,
+            },
+            (None, None, None, Some(dni), Some(dhi)) => cli::SkyInput::PerezIlluminance {
+                direct_normal: dni,
+                diffuse_horizontal: dhi,
+            },
+            (None, None, None, Some(_), None) => {
+                anyhow::bail!("--dni-lux needs --dhi-lux (the Perez sky from illuminances)")
+            }
+            _ => anyhow::bail!(
+                "give one sky: --cie TYPE --dhi-lux LUX, --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX"
+            ),
+        };
+        Ok(cli::SkyRequest {
+            site: eigenrad_precompute::daylight::sun::Site {
+                latitude: self.lat,
+                longitude: self.lon,
+                elevation: self.elevation,
+            },
+            time: self.time.clone(),
+            north: self.north,
+            input,
+            water: self.water,
+            subdivision: self.mf,
+        })
+    }
 }
 
 /// A relative error a build can aim for: a number in (0, 1].
@@ -419,6 +521,14 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 cli::json(&info)?
             } else {
                 cli::format_inspect(&info)
+            })?;
+        }
+        Command::Sky(args) => {
+            let report = cli::sky(&args.request()?)?;
+            cli::print(&if args.json {
+                cli::json(&report)?
+            } else {
+                cli::format_sky(&report)
             })?;
         }
         Command::Verify {

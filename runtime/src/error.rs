@@ -128,6 +128,14 @@ pub enum Error {
     },
     /// DALI arc power level 255 is "MASK" (no change), not a light level.
     DaliMask,
+    /// A sun, sky or glazing input (module [`sky`](crate::sky)) is NaN or outside the range
+    /// its model is defined on.
+    OutOfRange {
+        /// Which input, with its unit.
+        what: &'static str,
+        /// What it must be, in words (`"from 1 to 15"`): the runtime formats no floats.
+        range: &'static str,
+    },
     /// A name the caller needs is not in the basis. The runtime's lookups
     /// ([`Basis::find_channel`](crate::Basis::find_channel) and the like) return `None`; a
     /// controller that cannot run without the name reports it with this.
@@ -233,6 +241,7 @@ impl fmt::Display for Error {
                 )
             }
             Error::DaliMask => f.write_str("DALI arc power level 255 (MASK) is not a light level"),
+            Error::OutOfRange { what, range } => write!(f, "{what} must be {range}"),
             Error::UnknownName { what } => write!(f, "the basis has no {what} of that name"),
             Error::InvalidBound { bound } => {
                 write!(f, "bound {bound}: its lower bound is above its upper bound")

@@ -10,6 +10,7 @@ mod decode;
 mod error;
 mod eval;
 pub mod format;
+pub mod sky;
 mod storage;
 pub mod target;
 #[cfg(any(test, feature = "alloc"))]

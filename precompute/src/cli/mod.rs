@@ -11,6 +11,7 @@ pub use crate::atomic;
 mod inspect;
 mod readout;
 mod report;
+mod sky;
 pub mod units;
 
 use serde::Serialize;
@@ -28,6 +29,7 @@ pub use readout::{
     Readout,
 };
 pub use report::{format_build_report, verify_outputs, write_svgs};
+pub use sky::{format_sky, sky, PatchReport, PerezReport, SkyInput, SkyReport, SkyRequest};
 pub use units::Units;
 
 /// `value` as one pretty-printed JSON document, with a final newline.

@@ -1,0 +1,162 @@
+//! `eigenrad sky` end to end: its JSON against closed forms, every bad flag an error naming
+//! it (never a panic), a closed pipe ending quietly.
+
+mod common;
+
+use std::process::Stdio;
+
+use common::{run, stderr};
+
+const VIENNA: [&str; 6] = ["sky", "--lat", "48.2", "--lon", "16.4", "--time"];
+
+fn sky(extra: &[&str]) -> std::process::Output {
+    let mut args: Vec<&str> = VIENNA.to_vec();
+    args.push("2026-06-21T12:00+02:00");
+    args.extend_from_slice(extra);
+    run(&args)
+}
+
+/// A uniform sky (CIE type 5) of 10 000 lux has luminance E/π everywhere (the cosine law),
+/// so every patch reads 10 000/π cd/m² (f32, 10⁻⁵); the 145 Tregenza solid angles add up to
+/// 2π sr; the sun's direction in scene axes is a unit vector turned by `--north` about z.
+#[test]
+fn uniform_sky_json() {
+    let o = sky(&[
+        "--cie",
+        "5",
+        "--dhi-lux",
+        "10000",
+        "--north",
+        "90",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let patches = v["patches"].as_array().expect("patches");
+    assert_eq!(patches.len(), 145);
+    let l = 10_000.0 / std::f64::consts::PI;
+    let mut omega = 0.0;
+    for p in patches {
+        let lp = p["luminance_cd_m2"].as_f64().unwrap();
+        assert!((lp - l).abs() <= 1e-5 * l, "{lp} against {l}");
+        omega += p["solid_angle_sr"].as_f64().unwrap();
+    }
+    assert!((omega - 2.0 * std::f64::consts::PI).abs() < 1e-4);
+    let zl = v["zenith_luminance_cd_m2"].as_f64().unwrap();
+    assert!((zl - l).abs() <= 1e-5 * l);
+    // North = 90: the scene's +y points east, so the sun (south-east, azimuth A) has scene
+    // components (sin(A − 90°) cos h, cos(A − 90°) cos h, sin h).
+    let (h, a) = (
+        v["sun"]["altitude"].as_f64().unwrap().to_radians(),
+        v["sun"]["azimuth"].as_f64().unwrap().to_radians(),
+    );
+    let d: Vec<f64> = v["sun_direction_room"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let want = [
+        (a - std::f64::consts::FRAC_PI_2).sin() * h.cos(),
+        (a - std::f64::consts::FRAC_PI_2).cos() * h.cos(),
+        h.sin(),
+    ];
+    for (x, y) in d.iter().zip(want) {
+        assert!((x - y).abs() < 1e-9);
+    }
+}
+
+/// A CIE sky with a sun: the direct horizontal illuminance is the direct normal one times
+/// the sine of the sun's altitude, and the global one adds the diffuse.
+#[test]
+fn cie_sky_with_the_sun() {
+    let o = sky(&[
+        "--cie",
+        "12",
+        "--dhi-lux",
+        "15000",
+        "--dni-lux",
+        "80000",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let h = v["sun"]["altitude"].as_f64().unwrap().to_radians();
+    let direct = v["direct_horizontal_lux"].as_f64().unwrap();
+    assert!((direct - 80_000.0 * h.sin()).abs() < 1e-6 * direct);
+    let global = v["global_horizontal_lux"].as_f64().unwrap();
+    assert!((global - 15_000.0 - direct).abs() < 1e-6 * global);
+}
+
+#[test]
+fn bad_flags_are_errors_naming_them() {
+    for (extra, flag) in [
+        (vec!["--dni", "700", "--dhi", "-1"], "--dhi"),
+        (vec!["--dni", "-700", "--dhi", "100"], "--dni"),
+        (vec!["--cie", "16", "--dhi-lux", "100"], "--cie"),
+        (vec!["--cie", "3"], "--dhi-lux"),
+        (vec!["--cie", "3", "--dhi-lux", "100", "--mf", "0"], "--mf"),
+        (
+            vec!["--cie", "3", "--dhi-lux", "100", "--north", "nan"],
+            "--north",
+        ),
+        (vec!["--dni-lux", "100", "--dhi-lux", "1e9"], "--dhi-lux"),
+    ] {
+        let o = sky(&extra);
+        assert_ne!(
+            o.status.code(),
+            Some(101),
+            "{extra:?} panicked: {}",
+            stderr(&o)
+        );
+        assert!(!o.status.success(), "{extra:?}");
+        assert!(stderr(&o).contains(flag), "{extra:?}: {}", stderr(&o));
+    }
+    let mut args: Vec<&str> = VIENNA.to_vec();
+    args.extend_from_slice(&["2026-06-21 12:00", "--cie", "3", "--dhi-lux", "100"]);
+    let o = run(&args);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--time"), "{}", stderr(&o));
+    let o = run(&[
+        "sky",
+        "--lat",
+        "91",
+        "--lon",
+        "0",
+        "--time",
+        "2026-06-21T12:00Z",
+        "--cie",
+        "3",
+        "--dhi-lux",
+        "100",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--lat"), "{}", stderr(&o));
+}
+
+/// 9217 patches of JSON (MF:8) are far more than a pipe's buffer: closing it ends the
+/// command with status 141 and nothing on standard error.
+#[test]
+fn closed_pipe_ends_quietly() {
+    let mut args: Vec<&str> = VIENNA.to_vec();
+    args.extend_from_slice(&[
+        "2026-06-21T12:00+02:00",
+        "--cie",
+        "12",
+        "--dhi-lux",
+        "10000",
+        "--mf",
+        "8",
+        "--json",
+    ]);
+    let mut child = common::command()
+        .args(&args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start eigenrad");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("wait");
+    assert_eq!(o.status.code(), Some(141), "{}", stderr(&o));
+    assert!(o.stderr.is_empty(), "{}", stderr(&o));
+}
