@@ -10,6 +10,12 @@
 /// colour read back from a picture names its bin.
 pub const LEVELS: usize = 128;
 
+/// Values that differ by at most this fraction of their magnitude are drawn as one value:
+/// centred on the scale, without isolux lines. 1 %: about the uncertainty of a good
+/// illuminance meter (DIN 5032-7 class A: 3 %), and far more than the form factors' closure
+/// error that makes a white furnace's exact values differ (1e-4).
+pub const UNIFORM: f64 = 0.01;
+
 /// An 8-bit sRGB colour.
 pub type Rgb = [u8; 3];
 
@@ -180,10 +186,17 @@ fn round_step(raw: f64) -> f64 {
 }
 
 impl Scale {
+    /// Whether values from `lo` to `hi` are one value for a picture: they differ by at most
+    /// [`UNIFORM`] of the larger magnitude (less than any eye or meter tells apart).
+    pub fn is_uniform(lo: f64, hi: f64) -> bool {
+        hi - lo <= UNIFORM * hi.abs().max(lo.abs())
+    }
+
     /// The scale of values from `lo` to `hi` (`lo ≤ hi`, finite): a round step giving about
-    /// six intervals, and the bounds rounded out to multiples of it. Equal values (a uniform
-    /// field) get a step of about a fifth of their magnitude and one step on either side, so
-    /// they sit in the middle of the bar. A scale of non-negative values starts at 0 or above.
+    /// six intervals, and the bounds rounded out to multiples of it. A uniform field
+    /// ([`Scale::is_uniform`]) gets a step of about a fifth of its magnitude and one step on
+    /// either side, so it sits in the middle of the bar. A scale of non-negative values starts
+    /// at 0 or above.
     pub fn around(lo: f64, hi: f64, unit: &'static str) -> Scale {
         let (lo, hi) = if lo.is_finite() && hi.is_finite() && lo <= hi {
             (lo, hi)
@@ -191,17 +204,18 @@ impl Scale {
             (0.0, 1.0)
         };
         let range = hi - lo;
-        let uniform = range <= 1e-9 * hi.abs().max(lo.abs()).max(1e-30);
+        let uniform = Scale::is_uniform(lo, hi);
         let step = if uniform {
             round_step(if hi.abs() > 0.0 { hi.abs() / 5.0 } else { 1.0 })
         } else {
             round_step(range / 6.0)
         };
-        let (mut min, mut max) = ((lo / step).floor() * step, (hi / step).ceil() * step);
-        if uniform {
-            min -= step;
-            max += step;
-        }
+        let (mut min, max) = if uniform {
+            let centre = ((lo + hi) / 2.0 / step).round() * step;
+            (centre - step, centre + step)
+        } else {
+            ((lo / step).floor() * step, (hi / step).ceil() * step)
+        };
         if lo >= 0.0 {
             min = min.max(0.0);
         }
@@ -305,6 +319,10 @@ mod tests {
         assert_eq!((s.min, s.max, s.step), (400.0, 600.0, 100.0));
         let s = Scale::around(0.0, 0.0, "lux");
         assert!(s.min == 0.0 && s.max > 0.0);
+        // Within 1 %: one value, centred; beyond it a scale of its own.
+        assert!(Scale::is_uniform(199.0, 201.0) && !Scale::is_uniform(197.0, 201.0));
+        let s = Scale::around(199.9, 200.1, "lux");
+        assert_eq!((s.min, s.max, s.step), (150.0, 250.0, 50.0));
     }
 
     /// Every value maps to a colour that maps back to within half a bin, and the bins

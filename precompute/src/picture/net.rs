@@ -12,6 +12,7 @@
 //! wall behind it, as seen from inside the room.
 
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::colour::Scale;
 use super::draw::{self, failed, rgb, Extras, Frame};
@@ -224,8 +225,8 @@ impl Net {
     fn panel_label(&self, panel: Panel) -> String {
         let [lo, hi] = self.bounds;
         match panel {
-            Panel::Floor => "floor, from above".into(),
-            Panel::Ceiling => "ceiling, from below".into(),
+            Panel::Floor => "floor".into(),
+            Panel::Ceiling => "ceiling, seen from below".into(),
             Panel::South => format!("wall y = {:.2} m", lo[1]),
             Panel::North => format!("wall y = {:.2} m", hi[1]),
             Panel::West => format!("wall x = {:.2} m", lo[0]),
@@ -237,7 +238,12 @@ impl Net {
     fn range(&self) -> ([f64; 2], [f64; 2]) {
         let (w, d, h) = self.sides();
         let pad = 0.02 * (2.0 * w + 2.0 * h);
-        ([-h - pad, 2.0 * w + h + pad], [-h - pad, d + h + pad])
+        // Room for a line of text above and below the net.
+        let text = 0.07 * (d + 2.0 * h);
+        (
+            [-h - pad, 2.0 * w + h + pad],
+            [-h - pad - text, d + h + pad + text],
+        )
     }
 
     fn plot_size(&self) -> (u32, u32) {
@@ -270,7 +276,7 @@ impl Net {
     fn caption(&self) -> Vec<String> {
         let mut lines = vec![
             format!(
-                "{} per patch ({}); walls folded out around the floor's edges, ceiling beyond the wall x = {:.2} m",
+                "{} per patch ({}); the floor in the middle seen from above, the walls folded out around its edges, the ceiling beyond the wall x = {:.2} m",
                 self.input.quantity, self.input.unit, self.bounds[1][0]
             ),
             "the scale spans the patches that do not emit; each patch on the side it faces most, nearest on top".into(),
@@ -357,10 +363,29 @@ impl Net {
             .map_err(failed)?;
         let frame = Frame::of(&chart, xr, yr);
         let (ox, oy) = root.get_base_pixel();
+        // Labels beside the panels, never over a patch: the wall y = lowest under its panel,
+        // the others above theirs (the floor's is the caption's).
         for p in PANELS {
             let [a, b] = self.panel_rect(p);
-            let (c, r) = chart.backend_coord(&((a[0] + b[0]) / 2.0, b[1]));
-            draw::boxed_label(root, &self.panel_label(p), (c - ox, r - oy + 12), 12)?;
+            let mid = (a[0] + b[0]) / 2.0;
+            let (c, r, dy) = match p {
+                Panel::Floor => continue,
+                Panel::South => {
+                    let (c, r) = chart.backend_coord(&(mid, a[1]));
+                    (c, r, 12)
+                }
+                _ => {
+                    let (c, r) = chart.backend_coord(&(mid, b[1]));
+                    (c, r, -12)
+                }
+            };
+            let at = (c - ox, r - oy + dy);
+            root.draw(&Text::new(
+                self.panel_label(p),
+                at,
+                draw::text(13).pos(Pos::new(HPos::Center, VPos::Center)),
+            ))
+            .map_err(failed)?;
         }
         // A 1 m scale bar in the free corner below the wall at the lowest x.
         let (_, d, hgt) = self.sides();

@@ -51,7 +51,8 @@ pub struct Plan {
     /// The value-to-colour map, over the grid's values in round numbers.
     pub scale: Scale,
     /// The isolux lines: each round value of the scale strictly between the grid's lowest and
-    /// highest value, with its polylines (m).
+    /// highest value, with its polylines (m); none for a uniform grid
+    /// ([`Scale::is_uniform`]).
     pub isolux: Vec<(f64, Vec<Vec<[f64; 2]>>)>,
 }
 
@@ -73,6 +74,7 @@ impl Plan {
         let (lo, hi) = if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
         let scale = Scale::around(lo, hi, input.unit);
         let isolux = match input.points.first() {
+            Some(_) if Scale::is_uniform(lo, hi) => Vec::new(),
             Some(&origin) => {
                 let lattice = Lattice {
                     counts: input.counts,
