@@ -529,6 +529,16 @@ fn errors_name_what_is_wrong() {
         !o.status.success() && e.contains("plan.jpg") && e.contains(".png or .svg"),
         "{e}"
     );
+    let twice = dir.join("twice.svg");
+    let o = common::run(&[
+        "render",
+        cube.to_str().unwrap(),
+        "--surfaces",
+        twice.to_str().unwrap(),
+        "--surfaces",
+        twice.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success() && common::stderr(&o).contains("named twice"));
     // Never over an input: a scene file that happens to be named .svg.
     let odd = dir.join("scene.svg");
     std::fs::write(&odd, common::scene(1.0)).unwrap();

@@ -447,6 +447,14 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
                 guard::check_file_output(path)?;
             }
+            for (k, path) in outputs.iter().enumerate() {
+                if outputs[..k].contains(path) {
+                    anyhow::bail!(
+                        "{}: named twice; give each picture its own file",
+                        path.display()
+                    );
+                }
+            }
             let mut inputs = scene::inputs(&scene)?.files;
             inputs.extend(basis.iter().cloned());
             guard::check_outputs(&outputs, &inputs)?;
