@@ -90,6 +90,15 @@ pub enum Error {
         /// What is wrong with it.
         reason: String,
     },
+    /// A picture cannot be drawn (`eigenrad render`): no work plane, a basis of another
+    /// scene, a drawing failure.
+    #[error("render {}: {reason}", scene.display())]
+    Render {
+        /// The scene file.
+        scene: PathBuf,
+        /// What is wrong.
+        reason: String,
+    },
     /// The thread that runs the runtime's evaluator could not start, or panicked.
     #[error("evaluator thread: {0}")]
     Thread(String),

@@ -15,6 +15,7 @@
 //! | [`basis`] | a model and its modes as the runtime's tables |
 //! | [`accuracy`] | test cases, the error figures, the truncation sweep, evaluation through the runtime |
 //! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
+//! | [`picture`] | false-colour pictures: a work plane's plan with isolux lines, the surfaces unfolded (`eigenrad render`) |
 //! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
 //! | [`daylight`] | the sun's position from date, time and site; the site's and the room's frames (the sky models are the runtime's) |
 //! | [`cli`] | what the commands compute and print, atomic file writes |
@@ -28,6 +29,7 @@ mod error;
 pub mod formfactor;
 pub mod geometry;
 pub mod memory;
+pub mod picture;
 pub mod pipeline;
 pub mod radiosity;
 pub mod scene;

@@ -11,7 +11,7 @@ use eigenrad_precompute::cli::{self, atomic, guard};
 use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline::{self, BuildOptions, ModeSelection};
 use eigenrad_precompute::radiosity::eigen::{Formulation, Solver};
-use eigenrad_precompute::{cache, scene, verify, Error};
+use eigenrad_precompute::{cache, picture, scene, verify, Error};
 use eigenrad_runtime::Precision;
 
 /// Real-time radiosity for lighting controllers: precompute a room's eigenbasis, evaluate it
@@ -49,6 +49,14 @@ enum SolverArg {
     Dense,
     /// Partial eigensolver for the strongest modes only.
     Partial,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum QuantityArg {
+    /// Irradiance E arriving at each patch (lux or fc; W/m²).
+    Illuminance,
+    /// Luminance L = M/π leaving each patch (cd/m²; W/(m²·sr)).
+    Luminance,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -182,6 +190,43 @@ enum Command {
         /// this CSV file, atomically.
         #[arg(long, value_name = "FILE")]
         csv: Option<PathBuf>,
+    },
+    /// False-colour pictures (PNG or SVG, by the file's extension): the plan of a work plane
+    /// with isolux lines, and the room's surfaces unfolded; from the exact solve of the scene,
+    /// or with --basis from a basis built from it, evaluated as the firmware does.
+    Render {
+        /// Scene file (TOML): the geometry, and what is solved without --basis.
+        scene: PathBuf,
+        /// Evaluate this basis (built from the scene) through the runtime instead of solving
+        /// the scene: what the controller would see.
+        #[arg(long)]
+        basis: Option<PathBuf>,
+        /// Channel level, relative (1 = as built); repeatable. Channels default to 1.
+        #[arg(long = "level", value_name = "NAME=VALUE")]
+        levels: Vec<String>,
+        /// Channel level as a DALI arc power level, 0 (off) to 254 (100 %) on the IEC 62386-102
+        /// curve, as the firmware converts it; repeatable. Not with --level for one channel.
+        #[arg(long = "arc", value_name = "NAME=ARC")]
+        arcs: Vec<String>,
+        /// Write the plan of the work plane (its calculation grid in false colour, isolux
+        /// lines, a scale in lux or fc) to this .png or .svg file, atomically; repeatable.
+        #[arg(long, value_name = "FILE")]
+        plan: Vec<PathBuf>,
+        /// Write the room's surfaces unfolded (floor in the middle, walls folded out, ceiling
+        /// beside) to this .png or .svg file, atomically; repeatable.
+        #[arg(long, value_name = "FILE")]
+        surfaces: Vec<PathBuf>,
+        /// The work-plane zone of the plan [default: the scene's only one].
+        #[arg(long, value_name = "NAME")]
+        zone: Option<String>,
+        /// What colours the surfaces.
+        #[arg(long, value_enum, default_value = "illuminance")]
+        quantity: QuantityArg,
+        /// Unit of illuminance (luminance is in cd/m² either way).
+        #[arg(long, value_enum, default_value = "lux")]
+        units: UnitsArg,
+        #[command(flatten)]
+        cache: CacheArgs,
     },
     /// Surface-to-surface form factors, area-weighted over each surface's patches.
     FormFactors {
@@ -477,6 +522,81 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let readout = cli::eval(&basis, &bytes, &levels, patches)
                 .with_context(|| format!("evaluating {}", basis.display()))?;
             show_readout(readout, units.into(), csv.as_deref(), json)?;
+        }
+        Command::Render {
+            scene,
+            basis,
+            levels,
+            arcs,
+            plan,
+            surfaces,
+            zone,
+            quantity,
+            units,
+            cache,
+        } => {
+            if plan.is_empty() && surfaces.is_empty() {
+                anyhow::bail!("render: nothing to draw; name a --plan FILE, a --surfaces FILE or both (.png or .svg)");
+            }
+            // Before any work: every output a .png or .svg that can be written, none an input.
+            let outputs: Vec<PathBuf> = plan.iter().chain(&surfaces).cloned().collect();
+            for path in &outputs {
+                if picture::Format::of(path).is_none() {
+                    anyhow::bail!(
+                        "{}: a picture is written as .png or .svg, by its extension",
+                        path.display()
+                    );
+                }
+                guard::check_file_output(path)?;
+            }
+            for (k, path) in outputs.iter().enumerate() {
+                if outputs[..k].contains(path) {
+                    anyhow::bail!(
+                        "{}: named twice; give each picture its own file",
+                        path.display()
+                    );
+                }
+            }
+            let mut inputs = scene::inputs(&scene)?.files;
+            inputs.extend(basis.iter().cloned());
+            guard::check_outputs(&outputs, &inputs)?;
+            let bytes = basis.as_deref().map(read).transpose()?;
+            let levels = cli::LevelArgs { levels, arcs };
+            let pictures = cli::render(&cli::RenderRequest {
+                scene: &scene,
+                basis: basis.as_deref().zip(bytes.as_deref()),
+                levels: &levels,
+                units: units.into(),
+                zone: zone.as_deref(),
+                plan: !plan.is_empty(),
+                surfaces: (!surfaces.is_empty()).then_some(match quantity {
+                    QuantityArg::Illuminance => cli::SurfaceQuantity::Illuminance,
+                    QuantityArg::Luminance => cli::SurfaceQuantity::Luminance,
+                }),
+                form_factors: &cache.form_factors(),
+            })?;
+            let files = plan
+                .iter()
+                .map(|p| (p, true))
+                .chain(surfaces.iter().map(|p| (p, false)));
+            for (path, is_plan) in files {
+                let Some(format) = picture::Format::of(path) else {
+                    continue;
+                };
+                let drawn = if is_plan {
+                    pictures.plan_file(format)
+                } else {
+                    pictures.surfaces_file(format)
+                };
+                if let Some(drawn) = drawn {
+                    let bytes = drawn.map_err(|reason| Error::Render {
+                        scene: scene.clone(),
+                        reason: format!("drawing {}: {reason}", path.display()),
+                    })?;
+                    atomic::write(path, &bytes)?;
+                    note_written(path);
+                }
+            }
         }
         Command::FormFactors { scene, json, cache } => {
             let table = cli::form_factor_table(&scene, &cache.form_factors())?;

@@ -10,6 +10,7 @@ pub mod guard;
 pub use crate::atomic;
 mod inspect;
 mod readout;
+mod render;
 mod report;
 mod sky;
 pub mod units;
@@ -28,6 +29,7 @@ pub use readout::{
     eval, format_readout, grids_csv, parse_levels, solve, Level, LevelArgs, PatchReading, Reading,
     Readout,
 };
+pub use render::{render, Pictures, RenderRequest, SurfaceQuantity};
 pub use report::{format_build_report, verify_outputs, write_svgs};
 pub use sky::{format_sky, sky, PatchReport, PerezReport, SkyInput, SkyReport, SkyRequest};
 pub use units::Units;

@@ -75,6 +75,7 @@ fn plot(r: &VerifyReport, metric: Metric) -> std::result::Result<String, String>
         r.scene,
         metric.label()
     );
+    crate::picture::register_font();
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (800, 520)).into_drawing_area();

@@ -1,0 +1,17 @@
+//! False-colour pictures (`eigenrad render`): the plan of a work plane with isolux lines
+//! ([`plan`]) and the room's surfaces unfolded ([`net`]), as PNG or SVG, through plotters.
+//!
+//! One value-to-colour map serves every picture, its colour bar and the tests
+//! ([`colour::Scale`]); isolux lines come from marching squares on the grid ([`contour`]).
+//! The bytes depend only on what is drawn: one embedded font, no system fonts, no dates.
+
+pub mod colour;
+pub mod contour;
+mod draw;
+pub mod net;
+pub mod plan;
+
+pub use colour::Scale;
+pub use draw::{format_value, register_font, Format, Frame};
+pub use net::{Net, NetInput, NetPatch, Panel};
+pub use plan::{Plan, PlanInput};

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Regenerates the pictures of docs/pictures/ (shown in docs/pictures.md and the README) with
+# `eigenrad render`, from the example office:
+#
+#   office-plan.png       the work plane's plan, every channel at level 1, exact solve
+#   office-surfaces.png   the surfaces' illuminance, the same solve
+#   office-luminance.png  the surfaces' luminance (cd/m²), the same solve
+#   office-dimmed.png     the work plane's plan through a basis (what the controller reads),
+#                         luminaire lum1 at DALI arc 200, the others at 170, the window at 0.3
+#
+# Usage: scripts/pictures.sh [SCENE]      (default examples/office/scene.toml)
+#
+# Environment:
+#   PICTURES_DIR   where the basis goes (default target/pictures)
+#
+# The form factors come from the form-factor cache when an earlier run left them (README,
+# "The form-factor cache"). Progress goes to stderr.
+set -euo pipefail
+
+root="$(cd "$(dirname "$0")/.." && pwd)"
+# Paths as the pictures' captions name them: relative to the workspace.
+cd "$root"
+scene="${1:-examples/office/scene.toml}"
+work="${PICTURES_DIR:-target/pictures}"
+out="docs/pictures"
+
+log() { printf '== %s\n' "$*" >&2; }
+
+mkdir -p "$work" "$out"
+log "building the eigenrad command (release)"
+cargo build --release --quiet -p eigenrad-precompute --bin eigenrad >&2
+# Where cargo put it: CARGO_TARGET_DIR when set (relative to the workspace), else target/.
+target="${CARGO_TARGET_DIR:-target}"
+[[ $target == /* ]] || target="$root/$target"
+eigenrad="$target/release/eigenrad"
+
+log "exact solve of $scene: plan and surfaces"
+"$eigenrad" render "$scene" --plan "$out/office-plan.png" --surfaces "$out/office-surfaces.png"
+"$eigenrad" render "$scene" --surfaces "$out/office-luminance.png" --quantity luminance
+
+log "basis of $scene, evaluated through the runtime with dimmed channels"
+"$eigenrad" build "$scene" -o "$work/office.basis" >"$work/office.report"
+"$eigenrad" render "$scene" --basis "$work/office.basis" \
+    --arc lum1=200 --arc lum2=170 --arc lum3=170 --arc lum4=170 --level window=0.3 \
+    --plan "$out/office-dimmed.png"
+
+for f in office-plan office-surfaces office-luminance office-dimmed; do
+    bytes=$(stat -c %s "$out/$f.png")
+    log "$f.png: $bytes bytes"
+    if ((bytes >= 200 * 1024)); then
+        log "$f.png is larger than 200 KiB"
+        exit 1
+    fi
+done

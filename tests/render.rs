@@ -1,0 +1,583 @@
+//! `eigenrad render`: the pictures show the values `solve` and `eval` give.
+//!
+//! References:
+//! - the plan's colours against the exact solve's grid values (`cli::solve`), and the
+//!   surfaces' against the runtime's patch values (`cli::eval` of a basis built from the
+//!   scene), read back from the decoded PNG through the inverse of the colour map
+//!   (`Scale::value_of`): within half a colour bin, the map's quantisation;
+//! - the SVG's isolux lines on a linear field, whose isolines are straight lines at known
+//!   positions, within a pixel (the SVG's coordinates are whole pixels);
+//! - a hand-checked case: the white furnace (every surface emitting `e` at reflectance `ρ`,
+//!   `M = e/(1 − ρ)` everywhere, docs/math.md), drawn in the one colour of `M` without
+//!   isolux lines;
+//! - the same bytes from the same input, PNG and SVG; and the command's errors.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use eigenrad::precompute::cli::{self, LevelArgs, RenderRequest, SurfaceQuantity, Units};
+use eigenrad::precompute::formfactor::FormFactorOptions;
+use eigenrad::precompute::picture::{colour, Frame, Panel, Plan, PlanInput, Scale};
+use eigenrad::precompute::pipeline::{self, BuildOptions, ModeSelection};
+use eigenrad::precompute::scene;
+
+/// The white furnace's exact values differ from `e/(1 − ρ)` by the form factors' closure
+/// (tests/grids.rs, FURNACE_RTOL).
+const FURNACE_RTOL: f64 = 1e-3;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("eigenrad-render-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// `common::two_channel_room` with a work plane and its grid.
+fn room(dir: &Path) -> PathBuf {
+    let text = common::two_channel_room("render", 0.5)
+        + r#"
+[[zone]]
+name = "work_plane"
+work_plane = { room = "room", height = 0.8, margin = 0.3 }
+"#;
+    let path = dir.join("room.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn request<'a>(
+    scene: &'a Path,
+    levels: &'a LevelArgs,
+    ff: &'a FormFactorOptions,
+) -> RenderRequest<'a> {
+    RenderRequest {
+        scene,
+        basis: None,
+        levels,
+        units: Units::Native,
+        zone: None,
+        plan: true,
+        surfaces: Some(SurfaceQuantity::Illuminance),
+        form_factors: ff,
+    }
+}
+
+/// A decoded PNG: width, height, RGB rows.
+struct Image {
+    width: usize,
+    height: usize,
+    rgb: Vec<u8>,
+}
+
+fn decode(bytes: &[u8]) -> Image {
+    let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    let mut reader = decoder.read_info().unwrap();
+    let mut rgb = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut rgb).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    Image {
+        width: info.width as usize,
+        height: info.height as usize,
+        rgb,
+    }
+}
+
+impl Image {
+    fn at(&self, (c, r): (i32, i32)) -> colour::Rgb {
+        assert!(c >= 0 && r >= 0 && (c as usize) < self.width && (r as usize) < self.height);
+        let i = 3 * (r as usize * self.width + c as usize);
+        [self.rgb[i], self.rgb[i + 1], self.rgb[i + 2]]
+    }
+
+    /// The colour most pixels of the rectangle between two pixels have (the cell's own, where
+    /// an isolux line or its label crosses a few of them).
+    fn majority(&self, a: (i32, i32), b: (i32, i32)) -> colour::Rgb {
+        let mut counts: Vec<(colour::Rgb, usize)> = Vec::new();
+        for r in a.1.min(b.1)..=a.1.max(b.1) {
+            for c in a.0.min(b.0)..=a.0.max(b.0) {
+                let p = self.at((c, r));
+                match counts.iter_mut().find(|(q, _)| *q == p) {
+                    Some((_, n)) => *n += 1,
+                    None => counts.push((p, 1)),
+                }
+            }
+        }
+        counts.into_iter().max_by_key(|&(_, n)| n).unwrap().0
+    }
+}
+
+/// The value the picture shows in the cell around `(x, y)` (m) of half-sides `half` (m),
+/// inset by 3 pixels from its edges.
+fn cell_value(
+    img: &Image,
+    frame: &Frame,
+    scale: &Scale,
+    (x, y): (f64, f64),
+    half: [f64; 2],
+) -> Option<f64> {
+    let a = frame.pixel(x - half[0], y - half[1]);
+    let b = frame.pixel(x + half[0], y + half[1]);
+    let inset = |p: i32, q: i32| {
+        if p < q {
+            (p + 3, q - 3)
+        } else {
+            (p - 3, q + 3)
+        }
+    };
+    let (c0, c1) = inset(a.0, b.0);
+    let (r0, r1) = inset(a.1, b.1);
+    scale.value_of(img.majority((c0, r0), (c1, r1)))
+}
+
+#[test]
+fn the_plan_shows_the_exact_grid_values() {
+    let dir = scratch("plan");
+    let path = room(&dir);
+    let levels = LevelArgs {
+        levels: vec!["panel=0.4".into()],
+        arcs: vec!["lamp=230".into()],
+    };
+    let ff = FormFactorOptions::default();
+    let pictures = cli::render(&request(&path, &levels, &ff)).unwrap();
+    let plan = pictures.plan.as_ref().unwrap();
+    let exact = cli::solve(&path, &levels, false, &ff).unwrap();
+    let grid = &exact.grids[0];
+    assert_eq!(grid.zone, "work_plane");
+    let (bytes, frame) = plan.png().unwrap();
+    let img = decode(&bytes);
+    let half = plan.scale.bin_width() / 2.0;
+    let cell = [grid.cell_m[0] / 2.0, grid.cell_m[1] / 2.0];
+    assert!(grid.points.len() >= 12, "{} points", grid.points.len());
+    for p in &grid.points {
+        let [x, y, _] = p.position_m;
+        let shown = cell_value(&img, &frame, &plan.scale, (x, y), cell)
+            .unwrap_or_else(|| panic!("({x}, {y}): not a colour of the scale"));
+        let e = p.irradiance[0];
+        assert!(
+            (shown - e).abs() <= half * (1.0 + 1e-9),
+            "({x:.3}, {y:.3}): drawn {shown:.3} lx, exact {e:.3} lx, half a bin {half:.3} lx"
+        );
+    }
+    // The caption carries the exact figures; the scale spans the values.
+    assert_eq!(plan.input.figures[0], grid.average[0]);
+    assert_eq!(plan.input.figures[3], grid.uniformity[0]);
+    assert!(plan.scale.min <= grid.minimum[0] && grid.maximum[0] <= plan.scale.max);
+    // Isolux lines at the scale's round values inside the grid's range, each where the
+    // values cross it: between a point below and one above.
+    assert!(!plan.isolux.is_empty());
+    for (level, _) in &plan.isolux {
+        assert!(*level > grid.minimum[0] && *level < grid.maximum[0]);
+        assert_eq!((level / plan.scale.step).round() * plan.scale.step, *level);
+    }
+}
+
+#[test]
+fn the_surfaces_show_what_the_runtime_reads() {
+    let dir = scratch("surfaces");
+    let path = room(&dir);
+    let opts = BuildOptions {
+        modes: ModeSelection::Count(8),
+        ..BuildOptions::default()
+    };
+    let (bytes, _) = pipeline::build(&path, &opts).unwrap();
+    let basis = dir.join("room.basis");
+    std::fs::write(&basis, &bytes).unwrap();
+    let levels = LevelArgs {
+        levels: vec!["lamp=0.7".into()],
+        arcs: vec![],
+    };
+    let ff = FormFactorOptions::default();
+    let eval = cli::eval(&basis, &bytes, &levels, true).unwrap();
+    let patches = eval.patches.as_ref().unwrap();
+    let scene = scene::load(&path).unwrap();
+    for quantity in [SurfaceQuantity::Illuminance, SurfaceQuantity::Luminance] {
+        let mut r = request(&path, &levels, &ff);
+        r.basis = Some((&basis, &bytes));
+        r.plan = false;
+        r.surfaces = Some(quantity);
+        let pictures = cli::render(&r).unwrap();
+        assert!(pictures.plan.is_none());
+        let net = pictures.surfaces.as_ref().unwrap();
+        let (png, frame) = net.png().unwrap();
+        let img = decode(&png);
+        let half = net.scale.bin_width() / 2.0;
+        let (mut checked, mut grey) = (0, 0);
+        for (i, p) in scene.patches.iter().enumerate() {
+            // Patches nothing stands in front of: the ceiling's, and the walls' above the
+            // desk (0.7 m high).
+            let panel = net.panels[i];
+            if panel == Panel::Floor || (panel != Panel::Ceiling && p.centroid.z < 0.8) {
+                continue;
+            }
+            let [u, v] = net.centre(i);
+            let (c, r) = frame.pixel(u, v);
+            let colour = img.majority((c - 2, r - 2), (c + 2, r + 2));
+            let expected = match quantity {
+                SurfaceQuantity::Illuminance => patches[i].irradiance.as_ref().map(|e| e[0]),
+                SurfaceQuantity::Luminance => Some(patches[i].exitance[0] / std::f64::consts::PI),
+            };
+            match expected {
+                // A black patch's illuminance the runtime cannot tell: drawn "no value".
+                None => {
+                    assert_eq!(colour, colour::NO_VALUE, "patch {i}");
+                    grey += 1;
+                }
+                Some(x) if net.scale.bin(x).is_none() => {
+                    assert_eq!(colour, colour::ABOVE, "patch {i}")
+                }
+                Some(x) => {
+                    let shown = net
+                        .scale
+                        .value_of(colour)
+                        .unwrap_or_else(|| panic!("patch {i}: {colour:?}"));
+                    assert!(
+                        (shown - x).abs() <= half * (1.0 + 1e-9),
+                        "{quantity:?} patch {i}: drawn {shown}, runtime {x}, half a bin {half}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 20, "{checked} patches checked");
+        if quantity == SurfaceQuantity::Illuminance {
+            // The lamp (ρ = 0) has no illuminance through the runtime.
+            assert!(grey > 0);
+        }
+    }
+}
+
+/// A linear field `E = 100 x` lux on a 9 × 5 grid of 0.5 m cells: the scale runs 0–500 lx
+/// in steps of 100, and the isolux lines of 100, 200, 300 and 400 lx are the straight lines
+/// x = 1, 2, 3, 4 m (linear interpolation is exact on a linear field).
+fn linear_plan() -> Plan {
+    let counts = [9, 5];
+    let mut points = Vec::new();
+    for j in 0..counts[1] {
+        for i in 0..counts[0] {
+            points.push([0.25 + 0.5 * i as f64, 0.25 + 0.5 * j as f64]);
+        }
+    }
+    let values: Vec<f64> = points.iter().map(|p| 100.0 * p[0]).collect();
+    Plan::new(PlanInput {
+        title: "linear".into(),
+        notes: vec![],
+        unit: "lux",
+        counts,
+        cell: [0.5, 0.5],
+        border: 0.0,
+        values,
+        points,
+        room: [[0.0, 0.0], [4.5, 2.5]],
+        figures: [225.0, 25.0, 425.0, 25.0 / 225.0],
+        luminaires: vec![],
+        luminaire_points: vec![],
+    })
+}
+
+/// `name="value"` of an SVG element's text.
+fn attribute<'a>(element: &'a str, name: &str) -> Option<&'a str> {
+    let start = element.find(&format!(" {name}=\""))? + name.len() + 3;
+    let end = element[start..].find('"')? + start;
+    Some(&element[start..end])
+}
+
+#[test]
+fn the_svg_has_isolux_lines_at_their_levels_and_cells_in_their_colours() {
+    let plan = linear_plan();
+    assert_eq!(
+        (plan.scale.min, plan.scale.max, plan.scale.step),
+        (0.0, 500.0, 100.0)
+    );
+    let levels: Vec<f64> = plan.isolux.iter().map(|(l, _)| *l).collect();
+    assert_eq!(levels, vec![100.0, 200.0, 300.0, 400.0]);
+    let (svg, frame) = plan.svg().unwrap();
+    // One metre in pixels: the tolerance of a whole-pixel coordinate is half of 1/that.
+    let (a, b) = (frame.pixel(0.0, 0.0), frame.pixel(1.0, 0.0));
+    let pixel_m = 1.0 / f64::from(b.0 - a.0);
+    let mut found = vec![0; levels.len()];
+    for element in svg.split('<').filter(|e| e.starts_with("polyline")) {
+        if attribute(element, "stroke") != Some("#141414") {
+            continue;
+        }
+        let points: Vec<[f64; 2]> = attribute(element, "points")
+            .unwrap()
+            .split_whitespace()
+            .map(|xy| {
+                let (c, r) = xy.split_once(',').unwrap();
+                frame.position(c.parse().unwrap(), r.parse().unwrap())
+            })
+            .collect();
+        // A vertical line x = level / 100 from the first row of points to the last.
+        let x = points[0][0];
+        let k = levels
+            .iter()
+            .position(|l| (l / 100.0 - x).abs() <= pixel_m)
+            .unwrap_or_else(|| panic!("an isolux line at x = {x} m"));
+        for p in &points {
+            assert!((p[0] - levels[k] / 100.0).abs() <= pixel_m, "{p:?}");
+        }
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[1]), b.max(p[1]))
+            });
+        assert!(
+            (lo - 0.25).abs() <= pixel_m && (hi - 2.25).abs() <= pixel_m,
+            "{lo} {hi}"
+        );
+        found[k] += 1;
+    }
+    assert_eq!(found, vec![1; 4], "one line per level");
+    let texts: Vec<&str> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| Some(t[t.find('>')? + 1..t.find("</text>")?].trim()))
+        .collect();
+    for level in ["100", "200", "300", "400"] {
+        assert!(texts.contains(&level), "label {level}: {texts:?}");
+    }
+    // The colour of the topmost rectangle over each grid point maps back to its value.
+    let half = plan.scale.bin_width() / 2.0;
+    let rects: Vec<(i32, i32, i32, i32, colour::Rgb)> = svg
+        .split('<')
+        .filter(|e| e.starts_with("rect"))
+        .filter_map(|e| {
+            let n = |k| attribute(e, k)?.parse::<i32>().ok();
+            let fill = attribute(e, "fill")?.strip_prefix('#')?;
+            let hex = |i| u8::from_str_radix(&fill[i..i + 2], 16).ok();
+            Some((
+                n("x")?,
+                n("y")?,
+                n("width")?,
+                n("height")?,
+                [hex(0)?, hex(2)?, hex(4)?],
+            ))
+        })
+        .collect();
+    for (p, v) in plan.input.points.iter().zip(&plan.input.values) {
+        let (c, r) = frame.pixel(p[0], p[1]);
+        let top = rects
+            .iter()
+            .rev()
+            .find(|(x, y, w, h, _)| *x <= c && c <= x + w && *y <= r && r <= y + h)
+            .unwrap();
+        let shown = plan.scale.value_of(top.4).unwrap();
+        assert!(
+            (shown - v).abs() <= half * (1.0 + 1e-9),
+            "{p:?}: {shown} against {v}"
+        );
+    }
+}
+
+#[test]
+fn a_white_furnace_is_one_colour_without_isolux_lines() {
+    let (rho, e) = (0.5, 100.0);
+    let dir = scratch("furnace");
+    let path = dir.join("furnace.toml");
+    let text = format!(
+        r#"
+[scene]
+name = "furnace"
+bands = "photopic"
+unit = "m"
+max_edge = 1.0
+
+[materials]
+surface = {{ reflectance = {rho} }}
+
+[[room]]
+name = "room"
+min = [0, 0, 0]
+max = [4, 4, 4]
+material = "surface"
+
+[[channel]]
+name = "all"
+surfaces = ["room*"]
+exitance = {e}
+
+[[zone]]
+name = "plane"
+work_plane = {{ height = 0.8 }}
+"#
+    );
+    std::fs::write(&path, text).unwrap();
+    // M = e / (1 − ρ) on every patch, and every upward point sees E = M.
+    let m = e / (1.0 - rho);
+    let levels = LevelArgs::default();
+    let ff = FormFactorOptions::default();
+    let pictures = cli::render(&request(&path, &levels, &ff)).unwrap();
+    let plan = pictures.plan.as_ref().unwrap();
+    assert!(plan.isolux.is_empty());
+    // The scale centred on M: 150–250 lx in steps of 50.
+    assert_eq!(
+        (plan.scale.min, plan.scale.max, plan.scale.step),
+        (150.0, 250.0, 50.0)
+    );
+    let tolerance = plan.scale.bin_width() / 2.0 + FURNACE_RTOL * m;
+    let (bytes, frame) = plan.png().unwrap();
+    let img = decode(&bytes);
+    for [x, y] in &plan.input.points {
+        // The very pixel of the point: nothing is drawn over a uniform plan's cells.
+        let shown = plan.scale.value_of(img.at(frame.pixel(*x, *y))).unwrap();
+        assert!(
+            (shown - m).abs() <= tolerance,
+            "({x}, {y}): {shown} lx against {m} lx"
+        );
+    }
+    let net = pictures.surfaces.as_ref().unwrap();
+    let (bytes, frame) = net.png().unwrap();
+    let img = decode(&bytes);
+    for i in 0..net.panels.len() {
+        let [u, v] = net.centre(i);
+        let shown = net.scale.value_of(img.at(frame.pixel(u, v))).unwrap();
+        assert!(
+            (shown - m).abs() <= net.scale.bin_width() / 2.0 + FURNACE_RTOL * m,
+            "patch {i}: {shown}"
+        );
+    }
+}
+
+#[test]
+fn the_same_input_gives_the_same_bytes() {
+    let dir = scratch("bytes");
+    let path = room(&dir);
+    let levels = LevelArgs::default();
+    let ff = FormFactorOptions::default();
+    let one = cli::render(&request(&path, &levels, &ff)).unwrap();
+    let two = cli::render(&request(&path, &levels, &ff)).unwrap();
+    let (p1, n1) = (one.plan.as_ref().unwrap(), one.surfaces.as_ref().unwrap());
+    let (p2, n2) = (two.plan.as_ref().unwrap(), two.surfaces.as_ref().unwrap());
+    assert_eq!(p1.png().unwrap().0, p2.png().unwrap().0);
+    assert_eq!(p1.svg().unwrap().0, p2.svg().unwrap().0);
+    assert_eq!(n1.png().unwrap().0, n2.png().unwrap().0);
+    assert_eq!(n1.svg().unwrap().0, n2.svg().unwrap().0);
+    // And through the command, into files, twice.
+    let out = |name: &str| dir.join(name);
+    let mut written = Vec::new();
+    for run in 0..2 {
+        let (plan, surfaces) = (
+            out(&format!("plan{run}.png")),
+            out(&format!("surfaces{run}.svg")),
+        );
+        let o = common::run(&[
+            "render",
+            path.to_str().unwrap(),
+            "--plan",
+            plan.to_str().unwrap(),
+            "--surfaces",
+            surfaces.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", common::stderr(&o));
+        written.push((
+            std::fs::read(&plan).unwrap(),
+            std::fs::read(&surfaces).unwrap(),
+        ));
+    }
+    assert_eq!(written[0], written[1]);
+    assert_eq!(
+        written[0].0,
+        p1.png().unwrap().0,
+        "the command draws what the library does"
+    );
+    for (bytes, _) in &written {
+        assert!(bytes.len() < 200_000);
+    }
+}
+
+#[test]
+fn errors_name_what_is_wrong() {
+    let dir = scratch("errors");
+    // A scene without a work plane has no plan, but its surfaces.
+    let cube = dir.join("cube.toml");
+    std::fs::write(&cube, common::scene(1.0)).unwrap();
+    let plan = dir.join("plan.png");
+    let o = common::run(&[
+        "render",
+        cube.to_str().unwrap(),
+        "--plan",
+        plan.to_str().unwrap(),
+    ]);
+    let e = common::stderr(&o);
+    assert!(
+        !o.status.success() && e.contains("no work-plane zone") && e.contains("cube.toml"),
+        "{e}"
+    );
+    assert!(!plan.exists());
+    let surfaces = dir.join("surfaces.png");
+    let o = common::run(&[
+        "render",
+        cube.to_str().unwrap(),
+        "--surfaces",
+        surfaces.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    decode(&std::fs::read(&surfaces).unwrap());
+    // Nothing to draw; a format by an unknown extension.
+    let o = common::run(&["render", cube.to_str().unwrap()]);
+    assert!(!o.status.success() && common::stderr(&o).contains("nothing to draw"));
+    let jpeg = dir.join("plan.jpg");
+    let o = common::run(&[
+        "render",
+        cube.to_str().unwrap(),
+        "--surfaces",
+        jpeg.to_str().unwrap(),
+    ]);
+    let e = common::stderr(&o);
+    assert!(
+        !o.status.success() && e.contains("plan.jpg") && e.contains(".png or .svg"),
+        "{e}"
+    );
+    let twice = dir.join("twice.svg");
+    let o = common::run(&[
+        "render",
+        cube.to_str().unwrap(),
+        "--surfaces",
+        twice.to_str().unwrap(),
+        "--surfaces",
+        twice.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success() && common::stderr(&o).contains("named twice"));
+    // Never over an input: a scene file that happens to be named .svg.
+    let odd = dir.join("scene.svg");
+    std::fs::write(&odd, common::scene(1.0)).unwrap();
+    let o = common::run(&[
+        "render",
+        odd.to_str().unwrap(),
+        "--surfaces",
+        odd.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success() && common::stderr(&o).contains("refusing to write over"));
+    assert_eq!(std::fs::read_to_string(&odd).unwrap(), common::scene(1.0));
+    // A zone that is not there; a basis of another scene.
+    let room = room(&dir);
+    let o = common::run(&[
+        "render",
+        room.to_str().unwrap(),
+        "--zone",
+        "desk",
+        "--plan",
+        plan.to_str().unwrap(),
+    ]);
+    let e = common::stderr(&o);
+    assert!(
+        !o.status.success() && e.contains("no zone named `desk`") && e.contains("work_plane"),
+        "{e}"
+    );
+    let basis = common::good_basis(&dir);
+    let o = common::run(&[
+        "render",
+        room.to_str().unwrap(),
+        "--basis",
+        basis.to_str().unwrap(),
+        "--plan",
+        plan.to_str().unwrap(),
+    ]);
+    let e = common::stderr(&o);
+    assert!(
+        !o.status.success() && e.contains("was not built from this scene"),
+        "{e}"
+    );
+    assert!(!plan.exists());
+}
