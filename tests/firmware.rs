@@ -12,9 +12,9 @@
 //!
 //! The bases, all written by `eigenrad build` except the last:
 //!
-//! - the office example (`examples/office/scene.toml`, 1101 patches, 5 channels, 2 sensors,
+//! - the office example (`examples/office/scene.toml`, 1070 patches, 5 channels, 2 sensors,
 //!   2 zones) at 32 modes, f32 storage;
-//! - the same office on a coarser mesh (`max_edge` 0.7 m instead of 0.35 m: 337 patches) at
+//! - the same office on a coarser mesh (`max_edge` 0.7 m instead of 0.35 m) at
 //!   16 modes in f16 and at 64 modes in i16. A build's form factors cost grows as the square
 //!   of the patch count, so the coarse mesh keeps the test's run time down while the
 //!   precisions and mode counts still differ from the f32 basis;
@@ -144,9 +144,10 @@ fn office_scene() -> PathBuf {
 const OFFICE_MAX_EDGE: &str = "max_edge = 0.35";
 const COARSE_MAX_EDGE: &str = "max_edge = 0.7";
 
-/// The office scene with `max_edge` 0.7 m (337 patches instead of 1101), written next to
-/// the test's bases. Everything else (geometry, materials, channels, sensors, zones) is
-/// the example's.
+/// The office scene with `max_edge` 0.7 m instead of 0.35 m, written next to the test's
+/// bases. Everything else (geometry, materials, channels, luminaires, sensors, zones) is the
+/// example's; the luminaires' photometric files are named by absolute path, since the scene
+/// is written elsewhere.
 fn coarse_office_scene() -> PathBuf {
     let text = std::fs::read_to_string(office_scene()).unwrap();
     let matches: Vec<usize> = text
@@ -160,10 +161,22 @@ fn coarse_office_scene() -> PathBuf {
         1,
         "examples/office/scene.toml: expected one line starting `{OFFICE_MAX_EDGE}`"
     );
-    let coarse: Vec<&str> = text
+    let office_dir = root().join("examples/office");
+    let coarse: Vec<String> = text
         .lines()
         .enumerate()
-        .map(|(i, l)| if i == matches[0] { COARSE_MAX_EDGE } else { l })
+        .map(|(i, l)| {
+            if i == matches[0] {
+                COARSE_MAX_EDGE.to_string()
+            } else if let Some(file) = l
+                .strip_prefix("file = \"")
+                .and_then(|r| r.strip_suffix('"'))
+            {
+                format!("file = \"{}\"", office_dir.join(file).display())
+            } else {
+                l.to_string()
+            }
+        })
         .collect();
     let path = work_dir().join("office-coarse.toml");
     std::fs::write(&path, coarse.join("\n") + "\n").unwrap();

@@ -353,7 +353,7 @@ fn coarse_example(path: &str, max_edge: f64) -> scene::Scene {
 #[test]
 fn invariants_on_the_example_scenes() {
     for (path, edge) in [
-        ("examples/office/scene.toml", 1.0),
+        ("examples/office-lambertian/scene.toml", 1.0),
         ("examples/cornell-box/scene.toml", 0.5),
     ] {
         let scene = coarse_example(path, edge);
@@ -427,7 +427,7 @@ fn a_blocker_never_increases_a_form_factor() {
     // floor and ceiling. A block that stands on the floor has its footprint cut out of the
     // floor, so the desks themselves would change the room's mesh; a floating block leaves the
     // room's patches identical, and every pair of them can be compared.
-    let text = std::fs::read_to_string("examples/office/scene.toml").unwrap();
+    let text = std::fs::read_to_string("examples/office-lambertian/scene.toml").unwrap();
     let without_text = drop_tables(
         &text,
         &[
@@ -440,7 +440,7 @@ fn a_blocker_never_increases_a_form_factor() {
     let with_text = format!(
         "{without_text}\n\n[[block]]\nname = \"sideboard\"\nmin = [1.5, 1.2, 1.0]\nmax = [4.5, 2.8, 1.5]\nmaterial = \"desk\"\n"
     );
-    let origin = Path::new("examples/office/scene.toml");
+    let origin = Path::new("examples/office-lambertian/scene.toml");
     let without = scene::parse(&without_text, origin).unwrap();
     let with = scene::parse(&with_text, origin).unwrap();
     let room = with

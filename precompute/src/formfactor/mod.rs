@@ -40,6 +40,7 @@ mod tests;
 mod visibility;
 
 pub use bvh::Occluders;
+pub(crate) use bvh::Shaft;
 // The patch rules, for the direct light of sources that are not patches (`crate::sources`).
 pub use health::{
     CavityClosure, FormFactorHealth, PairDisagreement, RowMiss, CAVITY_TOLERANCE, CLOSED_TOLERANCE,

@@ -134,8 +134,15 @@ impl Luminaire {
 
     /// Luminous intensity, cd, towards `direction`, the maintenance factor included.
     pub fn intensity(&self, direction: Vec3) -> f64 {
-        let (c, gamma) = self.angles(direction);
-        self.maintenance_factor * self.photometry.intensity(c, gamma)
+        let distribution = &self.photometry.distribution;
+        let (c, gamma) = if distribution.c_angles().len() == 1 {
+            // Rotationally symmetric: C does not matter (and its atan2 is not computed).
+            let d = direction.normalized();
+            (0.0, d.dot(self.nadir).clamp(-1.0, 1.0).acos().to_degrees())
+        } else {
+            self.angles(direction)
+        };
+        self.maintenance_factor * distribution.intensity(c, gamma)
     }
 }
 

@@ -1,4 +1,5 @@
-//! Scene tests: the two example scenes and the documentation's example here; one test per
+//! Scene tests: the example scenes (the Lambertian office, the Cornell box; the offices and
+//! classroom with photometry in `luminaires`) and the documentation's example here; one test per
 //! validation error checking that the message names the file and the field or line
 //! (`errors`, `obj`); openings cut out of room faces (`openings`).
 
@@ -35,8 +36,8 @@ fn area(scene: &Scene, name: &str) -> f64 {
 }
 
 #[test]
-fn scene_office_example() {
-    let scene = load(&example("office")).expect("office scene loads");
+fn scene_lambertian_office_example() {
+    let scene = load(&example("office-lambertian")).expect("office scene loads");
     assert_eq!(scene.bands, Bands::Photopic);
     let n = scene.patches.len();
     eprintln!("office: {n} patches");
@@ -233,7 +234,7 @@ fn scene_faces_are_tiled_by_their_patches() {
     // Reference: meshing cuts each convex face into patches that tile it, so occlusion may use
     // the face in their place. Every patch is in exactly one face, in the face's plane and
     // facing its way, and the patch areas add up to the face area (1e-9 relative).
-    for name in ["office", "cornell-box"] {
+    for name in ["office", "office-lambertian", "cornell-box"] {
         let scene = load(&example(name)).expect("example loads");
         let mut covered = 0;
         for face in &scene.faces {
@@ -270,8 +271,8 @@ fn scene_faces_are_tiled_by_their_patches() {
 
 #[test]
 fn scene_meshing_is_deterministic() {
-    let a = load(&example("office")).expect("loads");
-    let b = load(&example("office")).expect("loads");
+    let a = load(&example("office-lambertian")).expect("loads");
+    let b = load(&example("office-lambertian")).expect("loads");
     assert_eq!(a, b);
 }
 

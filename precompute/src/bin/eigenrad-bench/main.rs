@@ -6,7 +6,8 @@
 //!   Gauss–Seidel), with the accuracy each reaches against the exact solve; and the host
 //!   evaluation against a memory-bandwidth bound.
 //! - `eigenrad-bench scale SCENE...`: precompute stage times and peak memory, one child
-//!   process per scene (so that each peak is its own).
+//!   process per scene (so that each peak is its own), and each scene's total time against
+//!   the first scene's.
 //! - `eigenrad-bench eigen SCENE...`: dense against partial eigensolve on the same matrix.
 //!
 //! Run in release: `cargo run --release -p eigenrad-precompute --bin eigenrad-bench -- …`.
@@ -42,7 +43,8 @@ enum Command {
         #[arg(long)]
         skip_lu: bool,
     },
-    /// Precompute stage times and peak memory, one child process per scene.
+    /// Precompute stage times and peak memory, one child process per scene; each scene's
+    /// total time against the first's.
     Scale {
         /// Scene files.
         scenes: Vec<PathBuf>,

@@ -8,21 +8,50 @@ use std::time::Instant;
 use anyhow::{bail, Context as _, Result};
 use eigenrad_precompute::pipeline::{self, BuildOptions};
 
+/// The table's columns; the build's wall time is [`TOTAL_COLUMN`].
+const HEADER: &str = "| patches | meshing s | BVH s | form factors s | sensors & zones s | eigenbasis s | exact reference s | serialization s | verification s | total s | CPU s | peak MB |";
+
+/// Index of `total s` among the columns of [`HEADER`].
+const TOTAL_COLUMN: usize = 9;
+
 /// Prints the table's header, then runs `eigenrad-bench scale-one` on each scene in a child
-/// process, which prints its row.
+/// process, which prints its row. With more than one scene, each scene's total time is then
+/// given against the first's (e.g. the office with photometric luminaires against the
+/// Lambertian office, in one run).
 pub(crate) fn run(scenes: &[PathBuf]) -> Result<()> {
-    println!(
-        "| patches | meshing s | BVH s | form factors s | sensors & zones s | eigenbasis s | exact reference s | serialization s | verification s | total s | CPU s | peak MB |"
-    );
+    println!("{HEADER}");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     let exe = std::env::current_exe()?;
+    let mut totals = Vec::new();
     for s in scenes {
-        let status = std::process::Command::new(&exe)
+        let out = std::process::Command::new(&exe)
             .arg("scale-one")
             .arg(s)
-            .status()?;
-        if !status.success() {
+            .stderr(std::process::Stdio::inherit())
+            .output()?;
+        if !out.status.success() {
             bail!("{}: scale-one failed", s.display());
+        }
+        let row = String::from_utf8_lossy(&out.stdout);
+        print!("{row}");
+        let total = row
+            .trim()
+            .trim_matches('|')
+            .split('|')
+            .nth(TOTAL_COLUMN)
+            .and_then(|t| t.trim().parse::<f64>().ok());
+        totals.push((s, total));
+    }
+    if let [(first, Some(base)), rest @ ..] = totals.as_slice() {
+        for (s, total) in rest {
+            if let Some(t) = total {
+                println!(
+                    "\n{}: total {t:.1} s, {:.2}× the {base:.1} s of {}",
+                    s.display(),
+                    t / base,
+                    first.display()
+                );
+            }
         }
     }
     Ok(())
@@ -97,8 +126,9 @@ pub(crate) fn one(path: &Path) -> Result<()> {
         (w.0.max(c.patch_error), w.1.max(c.worst_reading.error))
     });
     eprintln!(
-        "  {}: {} modes, row sums {:.4}..{:.4}, reciprocity {:.1e}, worst patch error {:.1e}, worst sensor/zone error {:.1e}",
+        "  {}: light sources {:.1} s; {} modes, row sums {:.4}..{:.4}, reciprocity {:.1e}, worst patch error {:.1e}, worst sensor/zone error {:.1e}",
         path.display(),
+        stage("light sources"),
         report.modes,
         report.form_factors.row_sum_min,
         report.form_factors.row_sum_max,

@@ -1,4 +1,4 @@
-//! `[[luminaire]]` entries: the example classroom, arrays, orientation, channels driven by
+//! `[[luminaire]]` entries: the example office and classroom, arrays, orientation, channels driven by
 //! luminaires only, and an error for each mistake naming the file, line and field.
 
 use super::*;
@@ -52,6 +52,45 @@ fn scene_classroom_example_places_six_luminaires_on_two_channels() {
     let p = &l.photometry;
     assert!((p.opening.length - 0.6).abs() < 1e-12 && (p.opening.width - 0.6).abs() < 1e-12);
     assert!((p.flux() / 3141.6 - 1.0).abs() < 2e-2, "{} lm", p.flux());
+}
+
+/// The office: the Lambertian office's room with its four luminaires given by the shipped
+/// photometric files (examples/photometry/), one channel each, the window's channel as before.
+#[test]
+fn scene_office_example_places_four_luminaires_with_photometry() {
+    let scene = load(&example("office")).unwrap_or_else(|e| panic!("{e}"));
+    let lambertian = load(&example("office-lambertian")).unwrap_or_else(|e| panic!("{e}"));
+    let names: Vec<&str> = scene.channels.iter().map(|c| c.name.as_str()).collect();
+    assert_eq!(names, ["lum1", "lum2", "lum3", "lum4", "window"]);
+    assert_eq!(scene.sensors, lambertian.sensors);
+    // Only the window emits; the luminaires' faces are ceiling (no openings for them).
+    assert!(scene.channels[..4].iter().all(|c| c.surfaces.is_empty()));
+    assert_eq!(scene.channels[4].exitance, vec![3000.0]);
+    let ceiling: f64 = patches(&scene, "room.ceiling").iter().map(|p| p.area).sum();
+    assert!((ceiling - 24.0).abs() < 1e-12, "{ceiling} m²");
+    let files = [
+        "linear-panel.ldt",
+        "linear-panel.ldt",
+        "downlight.ies",
+        "downlight.ies",
+    ];
+    // The Lambertian office's luminaires are the centres of its 0.6 m quads.
+    let centres = [[1.5, 1.2], [4.5, 1.2], [1.5, 2.8], [4.5, 2.8]];
+    for (k, l) in scene.luminaires.iter().enumerate() {
+        assert_eq!(l.name, format!("lum{}", k + 1));
+        assert_eq!(l.channel, k);
+        assert!(l.file.ends_with(files[k]), "{}", l.file.display());
+        let [x, y] = centres[k];
+        assert!((l.position - Vec3::new(x, y, 2.8)).length() < 1e-12);
+        assert!((l.nadir - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-15);
+        assert!((l.c0 - Vec3::new(1.0, 0.0, 0.0)).length() < 1e-15);
+        assert_eq!(l.maintenance_factor, 0.8);
+    }
+    // The flux of the files (their generator's closed forms: 4400 lm and 3300 lm).
+    for (k, flux) in [(0, 4400.0), (2, 3300.0)] {
+        let f = scene.luminaires[k].photometry.flux();
+        assert!((f / flux - 1.0).abs() < 5e-4, "{f} lm");
+    }
 }
 
 #[test]

@@ -13,7 +13,10 @@
 //! (q − x)/d` (0 when the light arrives from behind), `(C, γ)` the angles of `x − q` in the
 //! luminaire's frame ([`crate::scene::Luminaire::angles`]), `MF` the maintenance factor, and
 //! zero where a blocker cuts the segment ([`Occluders::visible`], ignoring the receiving
-//! patch). A sensor counts only directions within its half-angle of its normal.
+//! patch). A sensor counts only directions within its half-angle of its normal. Each patch,
+//! sensor and point first gathers the occluders that may cut a segment between it and the
+//! opening's bounding rectangle (shaft culling, as for the form factors); when there are none,
+//! no ray is traced, and otherwise rays are tested against those alone.
 //!
 //! # Near field
 //!
@@ -38,15 +41,16 @@
 //! to about `(cell_angle / 2)^(2 order)`, ~1e-7 at the defaults; the tests hold patches next to
 //! a point source to 1e-5 of the exact patch average. A patch whose plane has the whole
 //! opening behind or in it receives nothing and costs nothing. Where a shadow edge crosses a
-//! cell (some of its points lit, a blocker hiding the light from others) the cell is split
-//! again, down to `edge_depth` (1/256 of the patch's side): the tests hold the flux of a
+//! cell (some of its points lit, a blocker hiding light from some, and not the same pieces of
+//! the opening hidden from all: a cell wholly inside one part of a penumbra is smooth) the
+//! cell is split again, down to `edge_depth` (1/256 of the patch's side): the tests hold the flux of a
 //! shadow to 2e-3. The split pieces of a Lambertian opening converge to its exitance's exact
 //! form factor as `1/k²`: 0.7 % off at the five-times rule, 0.05 % at twenty times.
 
 use rayon::prelude::*;
 
 use super::ChannelLight;
-use crate::formfactor::{for_each_on_cell, gauss_legendre, split_cell, Occluders};
+use crate::formfactor::{for_each_on_cell, gauss_legendre, split_cell, Occluders, Shaft};
 use crate::geometry::{Patch, Vec3};
 use crate::scene::photometry::OpeningShape;
 use crate::scene::{Luminaire, Scene, ZoneKind};
@@ -283,7 +287,34 @@ impl<'a> Source<'a> {
     /// Illuminance, lux, at `x` (m) facing the unit `normal`; `cone` is the cosine of a
     /// sensor's half-angle (only light within it counts); `ignore` the receiving patch.
     pub fn point(&self, x: Vec3, normal: Vec3, cone: Option<f64>, ignore: &[usize]) -> f64 {
-        self.lit(x, normal, cone, ignore).0
+        let shaft = self.shaft(&[x], normal, ignore);
+        self.lit(x, normal, cone, ignore, shaft.as_ref()).lux
+    }
+
+    /// The occluders that may cut light from the opening to a receiver (its `corners`, one for
+    /// a point, and front `normal`): shaft culling, as the form factors use it, between the
+    /// receiver and the opening's bounding rectangle, on the side of the opening's plane that
+    /// the receiver is on. `None` when the receiver reaches both sides of that plane: its rays
+    /// then go through the whole hierarchy.
+    fn shaft(&self, corners: &[Vec3], normal: Vec3, ignore: &[usize]) -> Option<Shaft> {
+        let p = self.lum.position;
+        let heights = corners.iter().map(|&x| self.lum.nadir.dot(x - p));
+        let (low, high) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| {
+            (lo.min(h), hi.max(h))
+        });
+        let facing = if low >= -PLANE_TOLERANCE && high > PLANE_TOLERANCE {
+            self.lum.nadir
+        } else if high <= PLANE_TOLERANCE && low < -PLANE_TOLERANCE {
+            -self.lum.nadir
+        } else {
+            return None;
+        };
+        let (a, b) = (self.lum.c0 * self.half.0, self.lum.c90 * self.half.1);
+        let opening = [p + a + b, p - a + b, p - a - b, p + a - b];
+        Some(
+            self.occluders
+                .shaft(&opening, facing, corners, normal, ignore),
+        )
     }
 
     /// Distance, m, from `x` to the nearest point of the opening's bounding rectangle.
@@ -295,14 +326,24 @@ impl<'a> Source<'a> {
         (u.max(0.0).powi(2) + w.max(0.0).powi(2) + h * h).sqrt()
     }
 
-    /// [`Source::point`], and whether a blocker hid some light that would otherwise arrive.
-    fn lit(&self, x: Vec3, normal: Vec3, cone: Option<f64>, ignore: &[usize]) -> (f64, bool) {
+    /// What [`Source::point`] receives at `x`, with which pieces of the opening a blocker
+    /// hides; `shaft` holds the occluders that may cut light reaching `x` ([`Source::shaft`]).
+    fn lit(
+        &self,
+        x: Vec3,
+        normal: Vec3,
+        cone: Option<f64>,
+        ignore: &[usize],
+        shaft: Option<&Shaft>,
+    ) -> Received {
         let d = self.distance(x);
         if d == 0.0 {
-            return (0.0, false);
+            return Received::default();
         }
         let (mut e, mut hidden) = (0.0, false);
+        let (mut signature, mut piece) = (SIGNATURE_SEED, 0u64);
         self.for_each_piece(d, |q, share| {
+            piece += 1;
             let v = q - x;
             let r2 = v.dot(v);
             let cos = normal.dot(v) / r2.sqrt();
@@ -312,14 +353,24 @@ impl<'a> Source<'a> {
             }
             let intensity = self.lum.intensity(-v) * share;
             if intensity > 0.0 {
-                if self.occluders.visible(q, x, ignore) {
+                let visible = match shaft {
+                    Some(s) if s.is_clear() => true,
+                    Some(s) => self.occluders.visible_in(s, q, x, ignore),
+                    None => self.occluders.visible(q, x, ignore),
+                };
+                if visible {
                     e += intensity * cos / r2;
                 } else {
                     hidden = true;
+                    signature = mix(signature, piece);
                 }
             }
         });
-        (e, hidden)
+        Received {
+            lux: e,
+            hidden,
+            signature: mix(signature, piece),
+        }
     }
 
     /// Mean illuminance, lux, over `patch` (its front side); `ignore` is the patch itself when
@@ -329,7 +380,8 @@ impl<'a> Source<'a> {
         if patch.area <= 0.0 || corners.is_empty() || self.behind(patch) {
             return 0.0;
         }
-        self.cell(corners, patch.normal, ignore, 0) / patch.area
+        let shaft = self.shaft(corners, patch.normal, ignore);
+        self.cell(corners, patch.normal, ignore, shaft.as_ref(), 0) / patch.area
     }
 
     /// Is the whole opening behind the patch's plane or in it?
@@ -345,11 +397,19 @@ impl<'a> Source<'a> {
     /// `∫ E dA` over a convex cell, lm: split while it is large for its distance, then the
     /// Gauss–Legendre rule; a cell where some points see the light and a blocker hides it
     /// from others holds a shadow edge, and is split again down to `edge_depth`.
-    fn cell(&self, corners: &[Vec3], normal: Vec3, ignore: &[usize], depth: u32) -> f64 {
+    /// `shaft` is the patch's ([`Source::shaft`]), valid for every cell inside it.
+    fn cell(
+        &self,
+        corners: &[Vec3],
+        normal: Vec3,
+        ignore: &[usize],
+        shaft: Option<&Shaft>,
+        depth: u32,
+    ) -> f64 {
         let split = |corners: &[Vec3]| -> f64 {
             split_cell(corners)
                 .iter()
-                .map(|c| self.cell(c, normal, ignore, depth + 1))
+                .map(|c| self.cell(c, normal, ignore, shaft, depth + 1))
                 .sum()
         };
         let centroid = corners.iter().fold(Vec3::ZERO, |s, &c| s + c) / corners.len() as f64;
@@ -363,13 +423,17 @@ impl<'a> Source<'a> {
             return split(corners);
         }
         let (mut lumens, mut seen, mut hidden) = (0.0, false, false);
+        let (mut first, mut uniform) = (None, true);
         for_each_on_cell(corners, self.gl, |x, w| {
-            let (e, h) = self.lit(x, normal, None, ignore);
-            lumens += w * e;
-            seen |= e > 0.0;
-            hidden |= h;
+            let r = self.lit(x, normal, None, ignore, shaft);
+            lumens += w * r.lux;
+            seen |= r.lux > 0.0;
+            hidden |= r.hidden;
+            uniform &= *first.get_or_insert(r.signature) == r.signature;
         });
-        if seen && hidden && depth < self.opts.edge_depth {
+        // Every point hiding the same pieces (a cell wholly in one part of a penumbra): the
+        // integrand is smooth over the cell, and there is no edge to split along.
+        if seen && hidden && !uniform && depth < self.opts.edge_depth {
             return split(corners);
         }
         lumens
@@ -378,3 +442,32 @@ impl<'a> Source<'a> {
 
 /// An opening this close to a patch's plane (m) is in it: a recessed luminaire in its ceiling.
 const PLANE_TOLERANCE: f64 = 1e-9;
+
+/// What one point receives from a luminaire.
+#[derive(Clone, Copy, Debug)]
+struct Received {
+    /// Illuminance, lux.
+    lux: f64,
+    /// A blocker hides light that would otherwise arrive.
+    hidden: bool,
+    /// Which pieces of the opening are hidden, and how many pieces there are, as a hash: two
+    /// points with the same signature see the same pieces.
+    signature: u64,
+}
+
+impl Default for Received {
+    fn default() -> Self {
+        Received {
+            lux: 0.0,
+            hidden: false,
+            signature: SIGNATURE_SEED,
+        }
+    }
+}
+
+/// FNV-1a's offset basis and prime: the signature of a [`Received`].
+const SIGNATURE_SEED: u64 = 0xcbf2_9ce4_8422_2325;
+
+fn mix(hash: u64, value: u64) -> u64 {
+    (hash ^ value).wrapping_mul(0x0000_0100_0000_01b3)
+}
