@@ -580,4 +580,23 @@ fn errors_name_what_is_wrong() {
         "{e}"
     );
     assert!(!plan.exists());
+    // The band around a task area is a grid of four pieces, which a plan does not draw.
+    let banded = dir.join("banded.toml");
+    let band = "\n[[zone]]\nname = \"around\"\nwork_plane = { height = 0.8, area = \
+                { min = [1, 0.8], max = [2, 1.2] }, band = 0.5 }\n";
+    std::fs::write(&banded, std::fs::read_to_string(&room).unwrap() + band).unwrap();
+    let o = common::run(&[
+        "render",
+        banded.to_str().unwrap(),
+        "--zone",
+        "around",
+        "--plan",
+        plan.to_str().unwrap(),
+    ]);
+    let e = common::stderr(&o);
+    assert!(
+        !o.status.success() && e.contains("zone `around`'s grid has 4 pieces"),
+        "{e}"
+    );
+    assert!(!plan.exists());
 }
