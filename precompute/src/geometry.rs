@@ -253,6 +253,99 @@ impl Polygon {
     }
 }
 
+/// The narrowest rectangle around a convex planar polygon with a side along one of its edges
+/// (of all rectangles around a convex polygon, the narrowest has a side along an edge).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Narrowest {
+    /// Unit direction of the rectangle's long side (along the edge it rests on).
+    pub along: Vec3,
+    /// Extent of the polygon along `along`, m.
+    pub length: f64,
+    /// Extent across it, in the polygon's plane: the polygon's width, m.
+    pub width: f64,
+    /// Smallest `p · along` over the corners, m.
+    pub start: f64,
+}
+
+/// The [`Narrowest`] rectangle around convex planar `vertices` (the first edge of least
+/// width wins a tie); `None` for fewer than three corners or no area.
+pub fn narrowest(vertices: &[Vec3]) -> Option<Narrowest> {
+    let n = vertices.len();
+    let normal = doubled_vector_area(vertices).normalized();
+    if n < 3 || normal.length() == 0.0 {
+        return None;
+    }
+    let mut best: Option<Narrowest> = None;
+    for i in 0..n {
+        let edge = vertices[(i + 1) % n] - vertices[i];
+        if edge.length() == 0.0 {
+            continue;
+        }
+        let along = edge.normalized();
+        let across = normal.cross(along);
+        let range = |d: Vec3| {
+            vertices
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    let x = p.dot(d);
+                    (lo.min(x), hi.max(x))
+                })
+        };
+        let (lo, hi) = range(along);
+        let (wlo, whi) = range(across);
+        let width = whi - wlo;
+        if best.is_none_or(|b| width < b.width) {
+            best = Some(Narrowest {
+                along,
+                length: hi - lo,
+                width,
+                start: lo,
+            });
+        }
+    }
+    best
+}
+
+/// Aspect ratio of a convex planar polygon: the long side over the short side of its
+/// [`narrowest`] rectangle. A square has 1, an equilateral triangle 1.15, a right isosceles
+/// triangle 2, an l × w rectangle l / w, a triangle its longest edge over the height onto it;
+/// infinite for a polygon without area.
+pub fn aspect(vertices: &[Vec3]) -> f64 {
+    match narrowest(vertices) {
+        Some(r) if r.width > 0.0 => r.length / r.width,
+        _ => f64::INFINITY,
+    }
+}
+
+/// The median and the worst [`aspect`] over a scene's patches (both 0 without patches).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct AspectSummary {
+    /// The median patch's aspect (the mean of the middle two for an even count).
+    pub median: f64,
+    /// The largest aspect of any patch.
+    pub worst: f64,
+}
+
+/// The [`AspectSummary`] of `patches`.
+pub fn aspect_summary(patches: &[Patch]) -> AspectSummary {
+    let mut a: Vec<f64> = patches
+        .iter()
+        .map(|p| aspect(&p.polygon.vertices))
+        .collect();
+    a.sort_by(f64::total_cmp);
+    let n = a.len();
+    if n == 0 {
+        return AspectSummary {
+            median: 0.0,
+            worst: 0.0,
+        };
+    }
+    AspectSummary {
+        median: 0.5 * (a[(n - 1) / 2] + a[n / 2]),
+        worst: a[n - 1],
+    }
+}
+
 /// A convex planar face of a surface as the scene gives it, before meshing. Its patches tile
 /// it exactly, so for occlusion the face stands in for all of them: one blocker instead of
 /// dozens, and no ray can slip through a seam between two of its patches.
@@ -267,7 +360,8 @@ pub struct Face {
 /// A meshed patch: the unit of the radiosity system.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {
-    /// The patch outline (convex, 3 or 4 corners, counter-clockwise seen from the front).
+    /// The patch outline (convex, counter-clockwise seen from the front; 3 or 4 corners, more
+    /// where a face's own corners or a contact cut leave them).
     pub polygon: Polygon,
     /// Unit normal, pointing to the side that emits and receives light.
     pub normal: Vec3,
