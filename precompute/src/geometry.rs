@@ -416,4 +416,66 @@ mod tests {
         assert!((p.area() - 4.5).abs() < 1e-12);
         assert!((p.centroid() - Vec3::new(1.0, 1.0, 1.0)).length() < 1e-12);
     }
+
+    #[test]
+    fn aspect_of_hand_checked_shapes() {
+        let v = |x: f64, y: f64| Vec3::new(x, y, 0.5);
+        let s3 = 3.0_f64.sqrt();
+        // By hand: square 1; equilateral triangle side / height = 2/√3; right isosceles
+        // triangle hypotenuse √2 over the height onto it 1/√2 = 2; 3 × 0.5 rectangle 6 (turned
+        // by 30°, so the rectangle is not along an axis); a triangle with longest edge 2 and
+        // height 0.1 onto it: 20; a trapezoid 1 m high with parallel sides 1 and 3 m: 3.
+        let (c, s) = (s3 / 2.0, 0.5);
+        let turned = |x: f64, y: f64| v(c * x - s * y, s * x + c * y);
+        let cases: [(Vec<Vec3>, f64); 6] = [
+            (
+                vec![v(0.0, 0.0), v(1.0, 0.0), v(1.0, 1.0), v(0.0, 1.0)],
+                1.0,
+            ),
+            (vec![v(0.0, 0.0), v(1.0, 0.0), v(0.5, s3 / 2.0)], 2.0 / s3),
+            (vec![v(0.0, 0.0), v(1.0, 0.0), v(0.0, 1.0)], 2.0),
+            (
+                vec![
+                    turned(0.0, 0.0),
+                    turned(3.0, 0.0),
+                    turned(3.0, 0.5),
+                    turned(0.0, 0.5),
+                ],
+                6.0,
+            ),
+            (vec![v(0.0, 0.0), v(2.0, 0.0), v(0.5, 0.1)], 20.0),
+            (
+                vec![v(0.0, 0.0), v(3.0, 0.0), v(2.0, 1.0), v(1.0, 1.0)],
+                3.0,
+            ),
+        ];
+        for (corners, want) in cases {
+            let got = aspect(&corners);
+            assert!(
+                (got - want).abs() < 1e-12 * want,
+                "{corners:?}: {got} vs {want}"
+            );
+        }
+        assert_eq!(
+            aspect(&[v(0.0, 0.0), v(1.0, 0.0), v(2.0, 0.0)]),
+            f64::INFINITY
+        );
+    }
+
+    #[test]
+    fn aspect_summary_takes_the_middle_and_the_worst() {
+        let v = |x: f64, y: f64| Vec3::new(x, y, 0.0);
+        let rectangle = |l: f64| {
+            Patch::new(
+                Polygon::new(vec![v(0.0, 0.0), v(l, 0.0), v(l, 1.0), v(0.0, 1.0)]),
+                0,
+            )
+        };
+        let patches: Vec<Patch> = [4.0, 1.0, 2.0, 3.0].map(rectangle).into();
+        let s = aspect_summary(&patches);
+        assert!((s.median - 2.5).abs() < 1e-12 && (s.worst - 4.0).abs() < 1e-12);
+        let s = aspect_summary(&patches[..3]);
+        assert!((s.median - 2.0).abs() < 1e-12);
+        assert_eq!(aspect_summary(&[]).worst, 0.0);
+    }
 }
