@@ -361,7 +361,7 @@ pub struct Face {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {
     /// The patch outline (convex, counter-clockwise seen from the front; 3 or 4 corners, more
-    /// where a face's own corners or a contact cut leave them).
+    /// where a contact cut leaves them).
     pub polygon: Polygon,
     /// Unit normal, pointing to the side that emits and receives light.
     pub normal: Vec3,
