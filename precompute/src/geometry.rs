@@ -253,6 +253,99 @@ impl Polygon {
     }
 }
 
+/// The narrowest rectangle around a convex planar polygon with a side along one of its edges
+/// (of all rectangles around a convex polygon, the narrowest has a side along an edge).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Narrowest {
+    /// Unit direction of the rectangle's long side (along the edge it rests on).
+    pub along: Vec3,
+    /// Extent of the polygon along `along`, m.
+    pub length: f64,
+    /// Extent across it, in the polygon's plane: the polygon's width, m.
+    pub width: f64,
+    /// Smallest `p · along` over the corners, m.
+    pub start: f64,
+}
+
+/// The [`Narrowest`] rectangle around convex planar `vertices` (the first edge of least
+/// width wins a tie); `None` for fewer than three corners or no area.
+pub fn narrowest(vertices: &[Vec3]) -> Option<Narrowest> {
+    let n = vertices.len();
+    let normal = doubled_vector_area(vertices).normalized();
+    if n < 3 || normal.length() == 0.0 {
+        return None;
+    }
+    let mut best: Option<Narrowest> = None;
+    for i in 0..n {
+        let edge = vertices[(i + 1) % n] - vertices[i];
+        if edge.length() == 0.0 {
+            continue;
+        }
+        let along = edge.normalized();
+        let across = normal.cross(along);
+        let range = |d: Vec3| {
+            vertices
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    let x = p.dot(d);
+                    (lo.min(x), hi.max(x))
+                })
+        };
+        let (lo, hi) = range(along);
+        let (wlo, whi) = range(across);
+        let width = whi - wlo;
+        if best.is_none_or(|b| width < b.width) {
+            best = Some(Narrowest {
+                along,
+                length: hi - lo,
+                width,
+                start: lo,
+            });
+        }
+    }
+    best
+}
+
+/// Aspect ratio of a convex planar polygon: the long side over the short side of its
+/// [`narrowest`] rectangle. A square has 1, an equilateral triangle 1.15, a right isosceles
+/// triangle 2, an l × w rectangle l / w, a triangle its longest edge over the height onto it;
+/// infinite for a polygon without area.
+pub fn aspect(vertices: &[Vec3]) -> f64 {
+    match narrowest(vertices) {
+        Some(r) if r.width > 0.0 => r.length / r.width,
+        _ => f64::INFINITY,
+    }
+}
+
+/// The median and the worst [`aspect`] over a scene's patches (both 0 without patches).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct AspectSummary {
+    /// The median patch's aspect (the mean of the middle two for an even count).
+    pub median: f64,
+    /// The largest aspect of any patch.
+    pub worst: f64,
+}
+
+/// The [`AspectSummary`] of `patches`.
+pub fn aspect_summary(patches: &[Patch]) -> AspectSummary {
+    let mut a: Vec<f64> = patches
+        .iter()
+        .map(|p| aspect(&p.polygon.vertices))
+        .collect();
+    a.sort_by(f64::total_cmp);
+    let n = a.len();
+    if n == 0 {
+        return AspectSummary {
+            median: 0.0,
+            worst: 0.0,
+        };
+    }
+    AspectSummary {
+        median: 0.5 * (a[(n - 1) / 2] + a[n / 2]),
+        worst: a[n - 1],
+    }
+}
+
 /// A convex planar face of a surface as the scene gives it, before meshing. Its patches tile
 /// it exactly, so for occlusion the face stands in for all of them: one blocker instead of
 /// dozens, and no ray can slip through a seam between two of its patches.
@@ -267,7 +360,8 @@ pub struct Face {
 /// A meshed patch: the unit of the radiosity system.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {
-    /// The patch outline (convex, 3 or 4 corners, counter-clockwise seen from the front).
+    /// The patch outline (convex, counter-clockwise seen from the front; 3 or 4 corners, more
+    /// where a contact cut leaves them).
     pub polygon: Polygon,
     /// Unit normal, pointing to the side that emits and receives light.
     pub normal: Vec3,
@@ -321,5 +415,67 @@ mod tests {
         ]);
         assert!((p.area() - 4.5).abs() < 1e-12);
         assert!((p.centroid() - Vec3::new(1.0, 1.0, 1.0)).length() < 1e-12);
+    }
+
+    #[test]
+    fn aspect_of_hand_checked_shapes() {
+        let v = |x: f64, y: f64| Vec3::new(x, y, 0.5);
+        let s3 = 3.0_f64.sqrt();
+        // By hand: square 1; equilateral triangle side / height = 2/√3; right isosceles
+        // triangle hypotenuse √2 over the height onto it 1/√2 = 2; 3 × 0.5 rectangle 6 (turned
+        // by 30°, so the rectangle is not along an axis); a triangle with longest edge 2 and
+        // height 0.1 onto it: 20; a trapezoid 1 m high with parallel sides 1 and 3 m: 3.
+        let (c, s) = (s3 / 2.0, 0.5);
+        let turned = |x: f64, y: f64| v(c * x - s * y, s * x + c * y);
+        let cases: [(Vec<Vec3>, f64); 6] = [
+            (
+                vec![v(0.0, 0.0), v(1.0, 0.0), v(1.0, 1.0), v(0.0, 1.0)],
+                1.0,
+            ),
+            (vec![v(0.0, 0.0), v(1.0, 0.0), v(0.5, s3 / 2.0)], 2.0 / s3),
+            (vec![v(0.0, 0.0), v(1.0, 0.0), v(0.0, 1.0)], 2.0),
+            (
+                vec![
+                    turned(0.0, 0.0),
+                    turned(3.0, 0.0),
+                    turned(3.0, 0.5),
+                    turned(0.0, 0.5),
+                ],
+                6.0,
+            ),
+            (vec![v(0.0, 0.0), v(2.0, 0.0), v(0.5, 0.1)], 20.0),
+            (
+                vec![v(0.0, 0.0), v(3.0, 0.0), v(2.0, 1.0), v(1.0, 1.0)],
+                3.0,
+            ),
+        ];
+        for (corners, want) in cases {
+            let got = aspect(&corners);
+            assert!(
+                (got - want).abs() < 1e-12 * want,
+                "{corners:?}: {got} vs {want}"
+            );
+        }
+        assert_eq!(
+            aspect(&[v(0.0, 0.0), v(1.0, 0.0), v(2.0, 0.0)]),
+            f64::INFINITY
+        );
+    }
+
+    #[test]
+    fn aspect_summary_takes_the_middle_and_the_worst() {
+        let v = |x: f64, y: f64| Vec3::new(x, y, 0.0);
+        let rectangle = |l: f64| {
+            Patch::new(
+                Polygon::new(vec![v(0.0, 0.0), v(l, 0.0), v(l, 1.0), v(0.0, 1.0)]),
+                0,
+            )
+        };
+        let patches: Vec<Patch> = [4.0, 1.0, 2.0, 3.0].map(rectangle).into();
+        let s = aspect_summary(&patches);
+        assert!((s.median - 2.5).abs() < 1e-12 && (s.worst - 4.0).abs() < 1e-12);
+        let s = aspect_summary(&patches[..3]);
+        assert!((s.median - 2.0).abs() < 1e-12);
+        assert_eq!(aspect_summary(&[]).worst, 0.0);
     }
 }

@@ -114,6 +114,8 @@ pub struct BuildReport {
     pub scene: String,
     /// Number of patches.
     pub patches: usize,
+    /// Median and worst aspect ratio of the patches.
+    pub aspect: crate::geometry::AspectSummary,
     /// Number of bands.
     pub bands: usize,
     /// Unit of exitance and irradiance.
@@ -328,6 +330,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     let report = BuildReport {
         scene: scene.name.clone(),
         patches: n,
+        aspect: crate::geometry::aspect_summary(&scene.patches),
         bands,
         unit: scene.bands.unit(),
         formulation: opts.formulation.name(),

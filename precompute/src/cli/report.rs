@@ -14,8 +14,8 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "scene {}: {} patches, {} band(s) in {}",
-        r.scene, r.patches, r.bands, r.unit
+        "scene {}: {} patches (aspect ratio median {:.2}, worst {:.2}), {} band(s) in {}",
+        r.scene, r.patches, r.aspect.median, r.aspect.worst, r.bands, r.unit
     );
     s += &super::form_factors::format_health(&r.form_factors);
     let _ = writeln!(
