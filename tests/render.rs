@@ -147,7 +147,10 @@ fn the_plan_shows_the_exact_grid_values() {
     let (bytes, frame) = plan.png().unwrap();
     let img = decode(&bytes);
     let half = plan.scale.bin_width() / 2.0;
-    let cell = [grid.pieces[0].cell_m[0] / 2.0, grid.pieces[0].cell_m[1] / 2.0];
+    let cell = [
+        grid.pieces[0].cell_m[0] / 2.0,
+        grid.pieces[0].cell_m[1] / 2.0,
+    ];
     assert!(grid.points.len() >= 12, "{} points", grid.points.len());
     for p in &grid.points {
         let [x, y, _] = p.position_m;
