@@ -15,7 +15,7 @@ use super::colour::{Rgb, Scale, ABOVE, LEVELS, NO_VALUE};
 /// viewer.
 pub const FONT: &str = "sans-serif";
 
-/// Registers the embedded font under [`FONT`] (once per process). Every plotters drawing of
+/// Registers the embedded font under `FONT` (once per process). Every plotters drawing of
 /// the precompute (the pictures, `eigenrad verify`'s curves) needs it before any text.
 pub fn register_font() {
     static ONCE: Once = Once::new();

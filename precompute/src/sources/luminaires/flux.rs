@@ -56,6 +56,21 @@ impl LuminaireFlux {
             )),
             _ => None,
         };
+        // The lamp-tilt factors are read but not applied: say so where they matter.
+        let tilted = photometry
+            .tilt
+            .as_ref()
+            .is_some_and(|t| t.factors.iter().any(|&f| (f - 1.0).abs() > FLUX_AGREEMENT));
+        let tilt = tilted.then(|| {
+            format!(
+                "{file}: its tilt table (TILT=INCLUDE) is not applied; the distribution is \
+                 used as measured, whatever the luminaire's aim"
+            )
+        });
+        let warning = match (warning, tilt) {
+            (Some(a), Some(b)) => Some(format!("{a}; {b}")),
+            (a, b) => a.or(b),
+        };
         LuminaireFlux {
             name: luminaire.name.clone(),
             file,

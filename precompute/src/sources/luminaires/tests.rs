@@ -481,4 +481,18 @@ fn the_flux_account_of_a_closed_room_loses_nothing_and_flags_files_that_disagree
         .warning
         .expect("more than the lamps");
     assert!(more.contains("more than the"), "{more}");
+    // A tilt table that changes the output is named as not applied; one of factors 1 is not.
+    let tilted = |factors: Vec<f64>| {
+        let mut p = isotropic(100.0);
+        p.tilt = Some(crate::scene::photometry::Tilt {
+            geometry: crate::scene::photometry::LampGeometry::Vertical,
+            angles: vec![0.0, 45.0, 90.0],
+            factors,
+        });
+        let lum = luminaire(p, Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.0, -1.0), 0.0);
+        LuminaireFlux::new(&lum, 0.0).warning
+    };
+    assert!(tilted(vec![1.0, 1.0, 1.0]).is_none());
+    let w = tilted(vec![1.0, 0.9, 0.8]).expect("factors below 1");
+    assert!(w.contains("tilt table") && w.contains("not applied"), "{w}");
 }
