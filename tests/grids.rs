@@ -331,34 +331,7 @@ fn in_a_white_furnace_every_grid_point_sees_the_uniform_exitance() {
     let (rho, e) = (0.5, 100.0);
     let dir = scratch("furnace");
     let path = dir.join("furnace.toml");
-    let text = format!(
-        r#"
-[scene]
-name = "furnace"
-bands = "photopic"
-unit = "m"
-max_edge = 1.0
-
-[materials]
-surface = {{ reflectance = {rho} }}
-
-[[room]]
-name = "room"
-min = [0, 0, 0]
-max = [4, 4, 4]
-material = "surface"
-
-[[channel]]
-name = "all"
-surfaces = ["room*"]
-exitance = {e}
-
-[[zone]]
-name = "plane"
-work_plane = {{ height = 0.8 }}
-"#
-    );
-    std::fs::write(&path, text).unwrap();
+    std::fs::write(&path, common::white_furnace(rho, e)).unwrap();
     // M = e / (1 − ρ) on every patch; an upward point inside sees E = M.
     let m = e / (1.0 - rho);
     let exact = cli::solve(

@@ -378,34 +378,7 @@ fn a_white_furnace_is_one_colour_without_isolux_lines() {
     let (rho, e) = (0.5, 100.0);
     let dir = scratch("furnace");
     let path = dir.join("furnace.toml");
-    let text = format!(
-        r#"
-[scene]
-name = "furnace"
-bands = "photopic"
-unit = "m"
-max_edge = 1.0
-
-[materials]
-surface = {{ reflectance = {rho} }}
-
-[[room]]
-name = "room"
-min = [0, 0, 0]
-max = [4, 4, 4]
-material = "surface"
-
-[[channel]]
-name = "all"
-surfaces = ["room*"]
-exitance = {e}
-
-[[zone]]
-name = "plane"
-work_plane = {{ height = 0.8 }}
-"#
-    );
-    std::fs::write(&path, text).unwrap();
+    std::fs::write(&path, common::white_furnace(rho, e)).unwrap();
     // M = e / (1 − ρ) on every patch, and every upward point sees E = M.
     let m = e / (1.0 - rho);
     let levels = LevelArgs::default();

@@ -195,3 +195,36 @@ flux = 800
 "#
     )
 }
+
+/// The white furnace of docs/math.md, "Exact results": a closed 4 m cube whose every surface
+/// has reflectance `rho` and emits `e` (one channel, `all`), with a work plane (`plane`) at
+/// 0.8 m. Every patch's exitance is `e / (1 − rho)`, and every upward point inside sees it.
+pub fn white_furnace(rho: f64, e: f64) -> String {
+    format!(
+        r#"
+[scene]
+name = "furnace"
+bands = "photopic"
+unit = "m"
+max_edge = 1.0
+
+[materials]
+surface = {{ reflectance = {rho} }}
+
+[[room]]
+name = "room"
+min = [0, 0, 0]
+max = [4, 4, 4]
+material = "surface"
+
+[[channel]]
+name = "all"
+surfaces = ["room*"]
+exitance = {e}
+
+[[zone]]
+name = "plane"
+work_plane = {{ height = 0.8 }}
+"#
+    )
+}

@@ -274,6 +274,23 @@ pub(super) fn colour_bar<DB: DrawingBackend>(
     Ok(())
 }
 
+/// The plot's size in pixels for the drawn `range` (m): metres at one scale on both axes, the
+/// largest that fits `max_plot` pixels and is at most `max_scale` pixels a metre, and at least
+/// 40 pixels a side.
+pub(super) fn plot_size(
+    ([x0, x1], [y0, y1]): ([f64; 2], [f64; 2]),
+    max_plot: (f64, f64),
+    max_scale: f64,
+) -> (u32, u32) {
+    let s = (max_plot.0 / (x1 - x0))
+        .min(max_plot.1 / (y1 - y0))
+        .min(max_scale);
+    (
+        ((x1 - x0) * s).round().max(40.0) as u32,
+        ((y1 - y0) * s).round().max(40.0) as u32,
+    )
+}
+
 /// A picture drawn into an SVG document of `size` pixels.
 pub(super) fn svg(
     size: (u32, u32),

@@ -118,14 +118,7 @@ impl Plan {
 
     /// The plot's size in pixels: metres drawn at one scale on both axes.
     fn plot_size(&self) -> (u32, u32) {
-        let ([x0, x1], [y0, y1]) = self.range();
-        let s = (MAX_PLOT.0 / (x1 - x0))
-            .min(MAX_PLOT.1 / (y1 - y0))
-            .min(MAX_SCALE);
-        (
-            ((x1 - x0) * s).round().max(40.0) as u32,
-            ((y1 - y0) * s).round().max(40.0) as u32,
-        )
+        draw::plot_size(self.range(), MAX_PLOT, MAX_SCALE)
     }
 
     const TITLE: u32 = 40;
