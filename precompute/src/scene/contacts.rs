@@ -255,6 +255,19 @@ mod tests {
         Vec3::new(x, y, z)
     }
 
+    /// A 2 m × 2 m floor at z = 0, facing up.
+    fn floor_2m() -> RawSurface {
+        surface(
+            "floor",
+            vec![vec![
+                v(0., 0., 0.),
+                v(2., 0., 0.),
+                v(2., 2., 0.),
+                v(0., 2., 0.),
+            ]],
+        )
+    }
+
     fn surface(name: &str, faces: Vec<Vec<Vec3>>) -> RawSurface {
         RawSurface {
             name: name.into(),
@@ -283,15 +296,7 @@ mod tests {
 
     #[test]
     fn a_turned_box_on_a_floor_has_its_square_footprint() {
-        let floor = surface(
-            "floor",
-            vec![vec![
-                v(0., 0., 0.),
-                v(2., 0., 0.),
-                v(2., 2., 0.),
-                v(0., 2., 0.),
-            ]],
-        );
+        let floor = floor_2m();
         let angle = 0.3f64;
         let block = surface("box", box_sides(1.0, 1.0, 0.3, angle, 0.5));
         let found = footprints(&[floor, block], &[1], 1e-6);
@@ -307,15 +312,7 @@ mod tests {
 
     #[test]
     fn legs_give_one_footprint_each_and_open_chains_none() {
-        let floor = surface(
-            "floor",
-            vec![vec![
-                v(0., 0., 0.),
-                v(2., 0., 0.),
-                v(2., 2., 0.),
-                v(0., 2., 0.),
-            ]],
-        );
+        let floor = floor_2m();
         let mut legs = box_sides(0.5, 0.5, 0.05, 0.0, 0.7);
         legs.extend(box_sides(1.5, 1.5, 0.05, 0.0, 0.7));
         // A free-standing panel: one edge on the floor, no loop.
