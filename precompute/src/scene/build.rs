@@ -132,6 +132,9 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         luminaires,
         sensors,
         zones,
+        site: None,
+        windows: Vec::new(),
+        obstructions: Vec::new(),
     })
 }
 

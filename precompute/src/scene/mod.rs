@@ -185,6 +185,43 @@ pub enum ZoneKind {
     },
 }
 
+/// Where the room stands, for daylight: the scene's `[site]` (docs/scene.md, "Daylight").
+#[derive(Clone, Debug, PartialEq)]
+pub struct Site {
+    /// Latitude (degrees north), longitude (degrees east) and elevation (m).
+    pub location: crate::daylight::sun::Site,
+    /// Compass bearing of the scene's +y axis, degrees clockwise from true north
+    /// (`crate::daylight::room_direction`).
+    pub north: f64,
+    /// The site's UTC offset, seconds east of UTC, for times given without one; `None`: every
+    /// time must carry its offset.
+    pub utc_offset: Option<i32>,
+    /// Diffuse reflectance of the ground outside, in [0, 1).
+    pub ground_reflectance: f64,
+}
+
+/// A glazed surface through which daylight enters: a surface whose material has a
+/// transmittance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Window {
+    /// Index into [`Scene::surfaces`]; its patches face into the room.
+    pub surface: usize,
+    /// The glazing's angular transmittance (clear or diffusing).
+    pub glazing: eigenrad_runtime::sky::glazing::Glazing,
+}
+
+/// A surface outside the room (`exterior = true`): it shades the windows and is not meshed
+/// into the room's patches.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Obstruction {
+    /// The surface's name.
+    pub name: String,
+    /// Its convex faces, in metres (their `patches` ranges are empty).
+    pub faces: Vec<Face>,
+    /// Diffuse reflectance of the faces seen from the windows, in [0, 1) (photopic).
+    pub reflectance: f64,
+}
+
 /// A loaded, validated and meshed scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -215,6 +252,12 @@ pub struct Scene {
     pub sensors: Vec<Sensor>,
     /// Zones, in file order.
     pub zones: Vec<Zone>,
+    /// The site, for daylight; `None` without `[site]`.
+    pub site: Option<Site>,
+    /// Glazed surfaces, in surface order.
+    pub windows: Vec<Window>,
+    /// Surfaces outside the room that shade the windows, in file order.
+    pub obstructions: Vec<Obstruction>,
 }
 
 /// Reads, validates and meshes the scene file at `path`.
