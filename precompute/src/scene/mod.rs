@@ -9,6 +9,7 @@ mod build;
 mod channels;
 mod contacts;
 mod context;
+mod daylight;
 mod error;
 mod file;
 pub mod grid;
