@@ -655,7 +655,42 @@ fn scene_exterior_errors_name_the_field_and_line() {
     );
 }
 
-// ---- the example ---------------------------------------------------------------------------
+// ---- the examples --------------------------------------------------------------------------
+
+#[test]
+fn scene_docs_daylight_example_loads() {
+    // The block of docs/scene.md, "Daylight", with a [scene] header before it and a room with
+    // a window of each glazing after it.
+    let docs = include_str!("../../../../docs/scene.md");
+    let section = docs.find("## Daylight").expect("a Daylight section");
+    let start = docs[section..].find("```toml\n").expect("its example") + section + 8;
+    let end = docs[start..].find("```").expect("its end") + start;
+    let text = format!(
+        "[scene]\nname = \"docs\"\nbands = \"photopic\"\nunit = \"m\"\nmax_edge = 1\n\n{}\n\
+         [[room]]\nname = \"room\"\nmin = [0, 0, 0]\nmax = [6, 4, 3]\nmaterial = \"facade\"\n\
+         openings = [\"a\", \"b\", \"c\"]\n\
+         [[quad]]\nname = \"a\"\nmaterial = \"glass\"\n\
+         corners = [[1, 0, 1], [1, 0, 2], [2, 0, 2], [2, 0, 1]]\n\
+         [[quad]]\nname = \"b\"\nmaterial = \"single\"\n\
+         corners = [[3, 0, 1], [3, 0, 2], [4, 0, 2], [4, 0, 1]]\n\
+         [[quad]]\nname = \"c\"\nmaterial = \"frosted\"\n\
+         corners = [[1, 1, 3], [1, 2, 3], [2, 2, 3], [2, 1, 3]]\n",
+        &docs[start..end]
+    );
+    let scene = load_day(&text);
+    let site = scene.site.as_ref().expect("a site");
+    assert_eq!(site.utc_offset, Some(3600));
+    let glazing: Vec<Glazing> = scene.windows.iter().map(|w| w.glazing).collect();
+    let expected = [
+        Glazing::clear(0.70, 2),
+        Glazing::clear(0.88, 1),
+        Glazing::diffusing(0.6, 2),
+    ]
+    .map(|g| g.expect("valid"));
+    assert_eq!(glazing, expected);
+    // The block has all six faces.
+    assert_eq!(scene.obstructions.len(), 6);
+}
 
 #[test]
 fn scene_office_daylight_example() {
