@@ -110,6 +110,11 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         channel_of_patch.push(emitters.channel_of_surface[p.surface]);
     }
 
+    // A room's own face may be glazed; any other window in a room face must be an opening.
+    let mut in_place = claimed.clone();
+    for i in geometry.room_faces.iter().flat_map(|r| r.clone()) {
+        in_place[i] = true;
+    }
     let windows = daylight::windows(
         &ctx,
         &file,
@@ -117,7 +122,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         &materials,
         &emitters.channel_of_surface,
         &geometry.rooms,
-        &claimed,
+        &in_place,
     )?;
     let inside_blocks: Vec<(String, Vec3, Vec3)> = geometry
         .blocks

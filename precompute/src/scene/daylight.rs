@@ -470,8 +470,8 @@ fn reaches_into(polygon: &[Vec3], lo: Vec3, hi: Vec3) -> bool {
 /// The windows: every surface of the room (`raw`, after the openings are cut) whose material
 /// is glazed, in surface order. A window driven
 /// by a channel (`channel_of_surface`) is an error naming both; so is one lying in a room's
-/// face (`rooms`) that is not among the room's `openings` (`claimed`: the wall would hide
-/// it).
+/// face (`rooms`) that is neither among the room's `openings` nor that face itself
+/// (`in_place`): the face would hide it.
 pub(crate) fn windows(
     ctx: &Ctx,
     file: &SceneFile,
@@ -479,7 +479,7 @@ pub(crate) fn windows(
     materials: &BTreeMap<String, MaterialInfo>,
     channel_of_surface: &[Option<usize>],
     rooms: &[(String, Vec3, Vec3)],
-    claimed: &[bool],
+    in_place: &[bool],
 ) -> Result<Vec<Window>, SceneError> {
     let mut windows = Vec::new();
     for (i, s) in raw.iter().enumerate() {
@@ -499,7 +499,7 @@ pub(crate) fn windows(
                 ),
             });
         }
-        if !claimed[i] {
+        if !in_place[i] {
             if let Some(face) = room_face_holding(&s.faces, rooms) {
                 return Err(SceneError::Invalid {
                     at: s.at.clone(),

@@ -368,6 +368,21 @@ fn scene_windows_in_surface_order_facing_into_the_room() {
         let expected = if name == "window" { 1.2 } else { 1.0 };
         assert!((area(&scene, name) - expected).abs() < 1e-12, "{name}");
     }
+    // A room's own face glazed in [surfaces] (a glass wall) is a window facing in.
+    let text = DAY
+        .replace("openings = [\"window\"]\n", "")
+        .replace("name = \"window\"", "name = \"panel\"")
+        .replace("material = \"glass\"", "material = \"white\"")
+        + "\n[surfaces.\"room.wall_xmax\"]\nmaterial = \"glass\"\n";
+    let scene = load_day(&text);
+    assert_eq!(scene.windows.len(), 1);
+    assert_eq!(
+        scene.surfaces[scene.windows[0].surface].name,
+        "room.wall_xmax"
+    );
+    assert!(patches(&scene, "room.wall_xmax")
+        .iter()
+        .all(|p| (p.normal - Vec3::new(-1.0, 0.0, 0.0)).length() < 1e-12));
     // A surface of another material is no window; no glazed material, no windows.
     assert!(load_day(BASE).windows.is_empty());
 }
