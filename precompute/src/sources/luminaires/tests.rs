@@ -11,7 +11,7 @@ use super::{channel_lights, lights_and_flux, LuminaireFlux, LuminaireOptions, So
 use crate::formfactor::{gauss_legendre, Occluders};
 use crate::geometry::{Patch, Polygon, Vec3};
 use crate::scene::photometry::{
-    Distribution, Format, Identity, Opening, OpeningShape, Photometry, Symmetry,
+    Distribution, Format, Identity, LampGeometry, Opening, OpeningShape, Photometry, Symmetry, Tilt,
 };
 use crate::scene::{self, luminaire_frame, Luminaire};
 
@@ -75,8 +75,11 @@ fn lambertian(i0: f64, length: f64, width: f64) -> Photometry {
     photometry(Symmetry::Rotational, &[0.0], gamma, vec![values], opening)
 }
 
+/// `p` placed at `position`, aimed and spun as a scene's `[[luminaire]]` is (its tilt factor
+/// computed as the scene computes it).
 fn luminaire(p: Photometry, position: Vec3, aim: Vec3, spin_degrees: f64) -> Luminaire {
     let (nadir, c0, c90) = luminaire_frame(aim, spin_degrees.to_radians());
+    let tilt_factor = p.tilt_factor(nadir, c0, c90);
     Luminaire {
         name: "l".into(),
         file: PathBuf::from("synthetic"),
@@ -87,6 +90,7 @@ fn luminaire(p: Photometry, position: Vec3, aim: Vec3, spin_degrees: f64) -> Lum
         c90,
         channel: 0,
         maintenance_factor: 1.0,
+        tilt_factor,
     }
 }
 
@@ -481,18 +485,100 @@ fn the_flux_account_of_a_closed_room_loses_nothing_and_flags_files_that_disagree
         .warning
         .expect("more than the lamps");
     assert!(more.contains("more than the"), "{more}");
-    // A tilt table that changes the output is named as not applied; one of factors 1 is not.
-    let tilted = |factors: Vec<f64>| {
-        let mut p = isotropic(100.0);
-        p.tilt = Some(crate::scene::photometry::Tilt {
-            geometry: crate::scene::photometry::LampGeometry::Vertical,
-            angles: vec![0.0, 45.0, 90.0],
-            factors,
-        });
-        let lum = luminaire(p, Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.0, -1.0), 0.0);
-        LuminaireFlux::new(&lum, 0.0).warning
+    // A tilted luminaire with a tilt table: the file's flux stays the table's own, what it
+    // emits carries the factor (0.8 at 30°, `tilted_isotropic`), and nothing is flagged.
+    let aim = Vec3::new(30f64.to_radians().sin(), 0.0, -30f64.to_radians().cos());
+    let position = Vec3::new(0.0, 0.0, 1.0);
+    let lum = luminaire(
+        tilted_isotropic(100.0, LampGeometry::Vertical),
+        position,
+        aim,
+        0.0,
+    );
+    let a = LuminaireFlux::new(&lum, 0.0);
+    assert!(relative(a.integrated, flux) < 1e-12, "{a:?}");
+    assert!((a.tilt_factor - 0.8).abs() < 1e-12, "{a:?}");
+    assert!(relative(a.emitted, 0.8 * flux) < 1e-12, "{a:?}");
+    assert!(a.warning.is_none(), "{a:?}");
+}
+
+/// `isotropic(i)` with a tilt table of lamp geometry `geometry`: factors 1, 0.9, 0.8 and 0.5
+/// at 0°, 15°, 30° and 90°.
+fn tilted_isotropic(i: f64, geometry: LampGeometry) -> Photometry {
+    let mut p = isotropic(i);
+    p.tilt = Some(Tilt {
+        geometry,
+        angles: vec![0.0, 15.0, 30.0, 90.0],
+        factors: vec![1.0, 0.9, 0.8, 0.5],
+    });
+    p
+}
+
+/// A tilted luminaire's illuminance is its tilt factor times the untilted file's, from the
+/// point-source closed form `E = I / d²` straight along its nadir, for each lamp geometry:
+/// vertical lamps read the table at the nadir's angle from straight down, horizontal lamps
+/// at their axis's (C0 for code 2, C90 for code 3) angle from the horizontal. The factors
+/// are hand-computed from `tilted_isotropic`'s table: 0.8 at 30°, 0.85 at 22.5° (halfway
+/// from 15° to 30°), 0.65 at 60° (halfway from 30° to 90°), 0.5 at 90°, 1 untilted.
+#[test]
+fn tilt_tables_multiply_each_luminaire_by_the_factor_at_its_tilt() {
+    let (i, d) = (200.0, 2.0);
+    let at = Vec3::new(0.3, -0.2, 2.5);
+    // Aimed `degrees` from straight down, leaning towards +x (a turn about y) or +y (about x).
+    let towards_x = |deg: f64| {
+        let t = deg.to_radians();
+        Vec3::new(t.sin(), 0.0, -t.cos())
     };
-    assert!(tilted(vec![1.0, 1.0, 1.0]).is_none());
-    let w = tilted(vec![1.0, 0.9, 0.8]).expect("factors below 1");
-    assert!(w.contains("tilt table") && w.contains("not applied"), "{w}");
+    let towards_y = |deg: f64| {
+        let t = deg.to_radians();
+        Vec3::new(0.0, t.sin(), -t.cos())
+    };
+    let occluders = Occluders::new(&[]);
+    let opts = LuminaireOptions::default();
+    let gl = gauss_legendre(opts.order);
+    use LampGeometry::{Horizontal0, Horizontal90, Vertical};
+    let cases: &[(LampGeometry, Vec3, f64, f64)] = &[
+        // Untilted, whatever the spin: the table at 0°.
+        (Vertical, DOWN, 0.0, 1.0),
+        (Horizontal0, DOWN, 40.0, 1.0),
+        (Horizontal90, DOWN, -70.0, 1.0),
+        // Code 1: the nadir's angle from straight down, whichever way it leans.
+        (Vertical, towards_x(30.0), 0.0, 0.8),
+        (Vertical, towards_y(30.0), 55.0, 0.8),
+        (Vertical, towards_x(22.5), 0.0, 0.85),
+        (Vertical, towards_y(90.0), 0.0, 0.5),
+        // A table ending at 90° folds 120° onto 60°, and straight up onto 0°.
+        (Vertical, towards_x(120.0), 0.0, 0.65),
+        (Vertical, UP, 0.0, 1.0),
+        // Code 2, lamp along C0: leaning towards +x raises C0 (to 30°); a turn about x, the
+        // C0 axis, leaves the lamp horizontal; spun by 90°, C0 lies across that turn and rises.
+        (Horizontal0, towards_x(30.0), 0.0, 0.8),
+        (Horizontal0, towards_y(30.0), 0.0, 1.0),
+        (Horizontal0, towards_y(30.0), 90.0, 0.8),
+        (Horizontal0, towards_x(60.0), 0.0, 0.65),
+        // Code 3, lamp along C90: the other way round.
+        (Horizontal90, towards_y(30.0), 0.0, 0.8),
+        (Horizontal90, towards_x(30.0), 0.0, 1.0),
+        (Horizontal90, towards_x(30.0), 90.0, 0.8),
+        (Horizontal90, towards_y(22.5), 0.0, 0.85),
+    ];
+    for &(geometry, aim, spin, factor) in cases {
+        let tilted = luminaire(tilted_isotropic(i, geometry), at, aim, spin);
+        let plain = luminaire(isotropic(i), at, aim, spin);
+        assert!(
+            (tilted.tilt_factor - factor).abs() < 1e-12,
+            "{geometry:?} aimed {aim:?} spun {spin}°: factor {}, expected {factor}",
+            tilted.tilt_factor
+        );
+        assert_eq!(plain.tilt_factor, 1.0);
+        let nadir = tilted.nadir;
+        let x = at + nadir * d;
+        let lit = Source::new(&tilted, &occluders, &opts, &gl).point(x, -nadir, None, &[]);
+        let bare = Source::new(&plain, &occluders, &opts, &gl).point(x, -nadir, None, &[]);
+        assert!(relative(bare, i / (d * d)) < 1e-12, "{bare}");
+        assert!(
+            relative(lit, factor * i / (d * d)) < 1e-12,
+            "{geometry:?} aimed {aim:?} spun {spin}°: {lit} lux, untilted {bare} lux"
+        );
+    }
 }
