@@ -45,8 +45,9 @@
 //! cell (some of its points lit, a blocker hiding light from some, and not the same pieces of
 //! the opening hidden from all: a cell wholly inside one part of a penumbra is smooth) the
 //! cell is split again, down to `edge_depth` (1/256 of the patch's side): the tests hold the
-//! flux of a shadow to 2e-3. The split pieces of a Lambertian opening converge to its exitance's exact
-//! form factor as `1/k²`: 0.7 % off at the five-times rule, 0.05 % at twenty times.
+//! flux of a shadow to 2e-3, and patch means under a penumbra to 1e-3 of exact. The split
+//! pieces of a Lambertian opening converge to its exitance's exact form factor as `1/k²`:
+//! 0.7 % off at the five-times rule, 0.05 % at twenty times.
 
 use rayon::prelude::*;
 

@@ -196,46 +196,75 @@ fn a_blocker_shadows_a_sensor_and_a_patch() {
 }
 
 /// An extended opening casts a penumbra: its points see some pieces of the opening and not
-/// others. Reference: each patch's mean by the midpoint rule on a 256 × 256 grid of
-/// [`Source::point`] (the same point illuminance, integrated independently of the cells and
-/// their refinement, on a grid 2 mm fine across the shadow edges).
+/// others. An isotropic opening (1000 cd, 1.2 m × 0.3 m, 2 m up) over a floor of 0.5 m
+/// patches, a 0.6 m square blocker at 1 m. Seen from the floor (2 m to 2.2 m from the
+/// opening) the opening is split into 3 × 1 pieces (`⌈5 · 1.2 / d⌉ = 3` along its length,
+/// module documentation), point sources of 1000/3 cd at x = −0.4, 0, 0.4 m, and the piece at
+/// `p` hides the rectangle `[−0.6 − p, 0.6 − p] × [−0.6, 0.6]` of the floor. Reference, exact
+/// for that model: a piece of intensity `I` at height `h` puts `I Ω` lm on a rectangle below
+/// it, `Ω` its solid angle (`solid_angle`), so each patch receives `Σ I (Ω(patch) −
+/// Ω(patch ∩ shadow))`.
 #[test]
 fn an_extended_opening_casts_a_penumbra_integrated_over_patches() {
-    // A 1.2 m × 0.3 m Lambertian opening 2 m up, a 0.6 m square blocker at 1 m.
-    let lum = luminaire(
-        lambertian(1000.0, 1.2, 0.3),
-        Vec3::new(0.0, 0.0, 2.0),
-        DOWN,
-        0.0,
-    );
+    let (i, h) = (1000.0, 2.0);
+    let mut p = isotropic(i);
+    p.opening = Opening {
+        shape: OpeningShape::Rectangular,
+        length: 1.2,
+        width: 0.3,
+        height: 0.0,
+        side_heights: None,
+    };
+    let lum = luminaire(p, Vec3::new(0.0, 0.0, h), DOWN, 0.0);
     let mut patches = floor(4, 0.5, 0.0);
     patches.push(floor(1, 0.6, 1.0).remove(0));
     let occluders = Occluders::new(&patches);
-    let opts = LuminaireOptions::default();
-    let gl = gauss_legendre(opts.order);
-    let source = Source::new(&lum, &occluders, &opts, &gl);
-    const N: usize = 256;
-    let mut worst = 0.0f64;
-    for (k, p) in patches[..16].iter().enumerate() {
-        let (lo, hi) = (p.polygon.vertices[0], p.polygon.vertices[2]);
-        let mut sum = 0.0;
-        for i in 0..N {
-            for j in 0..N {
-                let (u, v) = ((i as f64 + 0.5) / N as f64, (j as f64 + 0.5) / N as f64);
-                let x = Vec3::new(lo.x + u * (hi.x - lo.x), lo.y + v * (hi.y - lo.y), 0.0);
-                sum += source.point(x, UP, None, &[k]);
-            }
+    let exact = |lo: Vec3, hi: Vec3| -> f64 {
+        let mut lumens = 0.0;
+        for piece in [-0.4, 0.0, 0.4] {
+            let all = solid_angle(lo.x - piece, hi.x - piece, lo.y, hi.y, h);
+            let (x1, x2) = ((-0.6 - piece).max(lo.x), (0.6 - piece).min(hi.x));
+            let (y1, y2) = ((-0.6f64).max(lo.y), 0.6f64.min(hi.y));
+            let hidden = if x1 < x2 && y1 < y2 {
+                solid_angle(x1 - piece, x2 - piece, y1, y2, h)
+            } else {
+                0.0
+            };
+            lumens += i / 3.0 * (all - hidden);
         }
-        let reference = sum / (N * N) as f64;
-        worst = worst.max(relative(source.patch(p, &[k]), reference));
-    }
-    // Measured: 3.2e-3 worst (the patch under the penumbra, a third of its light left), the
-    // error of two quadratures of the same discontinuous integrand (each piece's hard
-    // shadow); without the blocker the two agree within 2e-6. Splitting every cell where a
-    // piece is hidden, penumbra or not, gives the same means within 1e-6.
+        lumens / ((hi.x - lo.x) * (hi.y - lo.y))
+    };
+    let worst = |opts: &LuminaireOptions| -> f64 {
+        let gl = gauss_legendre(opts.order);
+        let source = Source::new(&lum, &occluders, opts, &gl);
+        let mut worst = 0.0f64;
+        for (k, p) in patches[..16].iter().enumerate() {
+            let (lo, hi) = (p.polygon.vertices[0], p.polygon.vertices[2]);
+            let reference = exact(lo, hi);
+            assert!(reference > 0.0);
+            worst = worst.max(relative(source.patch(p, &[k]), reference));
+        }
+        worst
+    };
+    // Measured at the defaults: 6.4e-4 worst (the four patches the penumbra crosses), the
+    // error of the 4 × 4 rule on the cells a shadow edge cuts, of order their side (1/256 of
+    // the patch's): 1.6e-4 at edge_depth 10 and 4.0e-5 at 12, while order 8 in place of 4
+    // gives 5.2e-4. Against the same exact reference, the midpoint rule on a 256 × 256 grid
+    // of `Source::point` per patch is 2.6e-3 off, 512² 7.6e-4, 1024² 6.4e-4, 2048² 1.9e-4:
+    // as a reference for this tolerance a grid needs to be finer than 2048².
+    let defaults = worst(&LuminaireOptions::default());
     assert!(
-        worst < 5e-3,
-        "patch means within {worst:.2e} of the reference"
+        defaults < 1e-3,
+        "patch means within {defaults:.2e} of exact"
+    );
+    // Finer edge cells close in on the exact means as their side: the error is the edges'.
+    let finer = worst(&LuminaireOptions {
+        edge_depth: 10,
+        ..LuminaireOptions::default()
+    });
+    assert!(
+        finer < defaults / 3.0,
+        "edge_depth 10: {finer:.2e}, 8: {defaults:.2e}"
     );
 }
 
