@@ -198,8 +198,9 @@ pub enum LampGeometry {
     Horizontal90,
 }
 
-/// An LM-63 tilt table (`TILT=INCLUDE`): how the lamp's output changes with the tilt of the
-/// luminaire, for lamps (metal halide) whose output depends on their burning position.
+/// An LM-63 tilt table (`TILT=INCLUDE`, or `TILT=<file>`): how the lamp's output changes with
+/// the tilt of the luminaire, for lamps (metal halide) whose output depends on their burning
+/// position.
 ///
 /// The distribution is measured with the luminaire aimed straight down; a luminaire mounted
 /// otherwise multiplies every intensity by [`Tilt::factor`] at its [`Tilt::angle`], once for
