@@ -206,7 +206,14 @@ pub(super) struct Ctx<'a> {
     gl_receiver: Vec<(f64, f64)>,
     apertures: Vec<Aperture>,
     tau: &'a Transmittance<'a>,
+    /// τ of every window tabulated at [`TAU_STEPS`] + 1 equal steps of `cos θ` from 0 to 1,
+    /// for the sky's many evaluations.
+    tau_table: Vec<Vec<f64>>,
 }
+
+/// Steps of the transmittance table in `cos θ`. Linear interpolation between them departs
+/// from the clear glass model by less than 1e-5 (9.5e-6 at grazing incidence, the tests).
+const TAU_STEPS: usize = 4096;
 
 /// A point or patch this close to a plane (m) is in it.
 const PLANE_TOLERANCE: f64 = 1e-9;
@@ -247,7 +254,15 @@ impl<'a> Ctx<'a> {
                 }
             })
             .collect();
+        let tau_table = (0..scene.windows.len())
+            .map(|w| {
+                (0..=TAU_STEPS)
+                    .map(|i| tau(w, (i as f64 / TAU_STEPS as f64).acos()))
+                    .collect()
+            })
+            .collect();
         Ctx {
+            tau_table,
             scene,
             occluders,
             outside,
@@ -262,6 +277,17 @@ impl<'a> Ctx<'a> {
     /// τ of window `w` at the incidence cosine `cos`.
     fn transmittance(&self, w: usize, cos: f64) -> f64 {
         (self.tau)(w, cos.clamp(-1.0, 1.0).acos())
+    }
+
+    /// [`Ctx::transmittance`] interpolated in its table (within 1e-5 of it).
+    fn tabulated(&self, w: usize, cos: f64) -> f64 {
+        let Some(table) = self.tau_table.get(w) else {
+            return 0.0;
+        };
+        let at = cos.clamp(0.0, 1.0) * TAU_STEPS as f64;
+        let i = (at as usize).min(TAU_STEPS - 1);
+        let f = at - i as f64;
+        table[i] * (1.0 - f) + table[i + 1] * f
     }
 
     /// Distance, m, from `x` to the nearest window of the given kind.

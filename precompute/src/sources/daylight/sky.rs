@@ -65,7 +65,7 @@ impl Ctx<'_> {
     fn clear_sample(&self, w: usize) -> impl Fn(Vec3, Vec3, f64) -> Option<(usize, f64)> + '_ {
         let exterior = self.outside.patches.count();
         move |y, d, cos_w| {
-            let t = self.transmittance(w, cos_w);
+            let t = self.tabulated(w, cos_w);
             Some(match self.outside.seen(y, d) {
                 Seen::Sky(k) => (k, t),
                 Seen::Exterior(r) => (exterior, t * r),
@@ -193,8 +193,7 @@ impl Ctx<'_> {
                     if cos <= 0.0 {
                         continue;
                     }
-                    let value =
-                        scale * wu * wv * dh * da * h.cos() * cos * self.transmittance(w, cos);
+                    let value = scale * wu * wv * dh * da * h.cos() * cos * self.tabulated(w, cos);
                     match (o.obstruction(y, d), ground) {
                         (Some(r), _) => acc[exterior] += value * r,
                         (None, true) => acc[exterior] += value * o.ground,
