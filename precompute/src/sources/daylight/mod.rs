@@ -160,7 +160,8 @@ pub fn sky_response(
 /// The direct sun from `direction` (unit vector towards the sun, room frame) at a direct
 /// normal illuminance of 1 lux: a sun patch on every receiver it reaches through the windows
 /// (glazing transmittance at the window's incidence angle, occlusion inside, obstructions
-/// outside); a diffusing window emits what it transmits. Needs no site.
+/// outside); a diffusing window emits what it transmits. A sun below the horizon
+/// (`direction.z < 0`) is hidden by the ground: no light. Needs no site.
 ///
 /// # Panics
 ///

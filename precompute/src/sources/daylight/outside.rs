@@ -151,8 +151,15 @@ impl Outside {
                 nearest = (t, Some(f.reflectance));
             }
         }
-        // The hierarchy saw a hit: the scan finds it too, barring a graze on an edge.
-        nearest.1.or(self.common_reflectance).or(Some(0.0))
+        // The hierarchy saw a hit: the scan finds it too, barring a graze on an edge, which
+        // counts as black.
+        nearest.1.or(Some(0.0))
+    }
+
+    /// Does the sun in direction `s` reach window point `y`: above the horizon (below it
+    /// the ground hides it) and no obstruction in the way?
+    pub(super) fn sun_reaches(&self, y: Vec3, s: Vec3) -> bool {
+        s.z >= 0.0 && self.obstruction(y, s).is_none()
     }
 
     /// What the ray from window point `y` in unit direction `d` (room frame, leaving the room)

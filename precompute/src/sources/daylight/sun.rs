@@ -103,13 +103,13 @@ impl Ctx<'_> {
                 }
                 let ignore: Vec<usize> = ignore.into_iter().chain([*pw]).collect();
                 let shaft = self.occluders.shaft(window, *nw, &part, p.normal, &ignore);
-                let seen = if shaft.is_clear() && !self.outside.has_obstructions() {
+                let seen = if shaft.is_clear() && !self.outside.has_obstructions() && s.z >= 0.0 {
                     whole
                 } else {
                     let lit = |x: Vec3| {
                         let y = x + s * (nw.dot(window[0] - x) / nw.dot(s));
                         (shaft.is_clear() || self.occluders.visible_in(&shaft, x, y, &ignore))
-                            && self.outside.obstruction(y, s).is_none()
+                            && self.outside.sun_reaches(y, s)
                     };
                     self.lit_area(&part, &lit, 0)
                 };
@@ -137,8 +137,7 @@ impl Ctx<'_> {
                 let Some(y) = ray_polygon(x, s, window, *nw) else {
                     continue;
                 };
-                if self.occluders.visible(x, y, &[*pw]) && self.outside.obstruction(y, s).is_none()
-                {
+                if self.occluders.visible(x, y, &[*pw]) && self.outside.sun_reaches(y, s) {
                     e += self.transmittance(a.window, cw) * cx;
                 }
             }
@@ -155,7 +154,7 @@ impl Ctx<'_> {
             return 0.0;
         }
         let unshaded = if self.outside.has_obstructions() {
-            let open = |y: Vec3| self.outside.obstruction(y, s).is_none();
+            let open = |y: Vec3| self.outside.sun_reaches(y, s);
             self.lit_area(&w.polygon.vertices, &open, 0) / w.area
         } else {
             1.0

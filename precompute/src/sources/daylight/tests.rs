@@ -152,6 +152,15 @@ normal = [-0.6, -0.8, 0]
 "#;
     let scene = daylit(room(sensors, 0.5), clear(), 0.0, 0.7);
     let occ = occluders(&scene);
+    // Reinhart MF:2 (577 patches) only moves light between finer patches.
+    let mf2 = sky::response(
+        &scene,
+        &occ,
+        SkyPatches::reinhart(2).expect("MF:2"),
+        &DaylightOptions::default(),
+        &unit,
+    );
+    assert_eq!(mf2.sky.len(), 577);
     let r = sky::response(
         &scene,
         &occ,
@@ -160,6 +169,14 @@ normal = [-0.6, -0.8, 0]
         &unit,
     );
     assert_eq!(r.sky.len(), 145);
+    for (o, s) in scene.sensors.iter().enumerate() {
+        let exact = PI * window_form_factor(s.position, s.normal, 1.0, 2.0);
+        assert!(
+            relative(uniform_sky(&mf2, o), exact) < SMOOTH,
+            "{} at MF:2",
+            s.name
+        );
+    }
     for (o, s) in scene.sensors.iter().enumerate() {
         let exact = PI * window_form_factor(s.position, s.normal, 1.0, 2.0);
         let sum = uniform_sky(&r, o);
@@ -506,6 +523,10 @@ normal = [0, -1, 0]
     let under = sun_light(&scene, &occ, low, &opts);
     scene.obstructions.clear();
     let full = sun_light(&scene, &occ, low, &opts);
+    // With nothing outside, a sun below the horizon is the ground's: it would shine up
+    // through the window onto the ceiling.
+    let night = sun_light(&scene, &occ, Vec3::new(0.0, -1.0, -0.1).normalized(), &opts);
+    assert!(night.patch_irradiance[0].iter().all(|&e| e == 0.0));
     let flux = |l: &ChannelLight| -> f64 {
         scene
             .patches
