@@ -26,10 +26,12 @@
 //! `x` (`cell_angle`, `max_depth`), and split again where their points see different sky
 //! patches or some are hidden, until a cell subtends less than `edge_angle` from `x`
 //! (`edge_depth` at most): the patches' boundaries are resolved to a fraction of
-//! `edge_angle`. The sum over the patches of a uniform sky is the smooth form-factor
-//! integral, exact to the quadrature's error whatever the patch boundaries do. A receiving
-//! patch's value is its mean, by the same rules on cells of the patch split by their distance
-//! to the nearest window.
+//! `edge_angle`. The ground's edge, the largest jump, is exact: each window patch is first cut
+//! along the receiving point's horizontal plane. The sum over the patches of a uniform sky is
+//! the smooth form-factor integral, exact to the quadrature's error whatever the patch
+//! boundaries do. A receiving patch's value is its mean, by Gauss–Legendre rules
+//! (`receiver_order`) on cells of the patch split while they are large for their distance to
+//! the nearest window (`receiver_cell_angle`).
 //!
 //! The sun is a direction `s`: `E(x) = τ(θ_w) max(0, n_x · s) V(x, s)` where the ray from
 //! `x` towards the sun crosses a window, no room surface before it and no obstruction after
