@@ -129,7 +129,9 @@ fn relative(a: f64, b: f64) -> f64 {
 }
 
 /// Quadrature tolerance of a uniform sky's total against the exact form factor: the window
-/// cells' Gauss–Legendre rule on a smooth integrand (`(cell_angle/2)^(2 order)` ~ 4e-6).
+/// cells' Gauss–Legendre rule on a smooth integrand (`(cell_angle/2)^(2 order)` ~ 4e-6 at
+/// worst; measured 1e-9 at the sensors below the sill, 1.4e-5 for the floor's mean against
+/// its midpoint reference).
 const SMOOTH: f64 = 2e-5;
 
 #[test]
