@@ -2,12 +2,18 @@
 //! and together, each exactly what its own solve gives; daylight linear in the sky's
 //! illuminance; an overcast sky's daylight independent of the time; the site's UTC offset for
 //! times given without one; every bad combination an error naming the flag or the file.
+//!
+//! The readings are taken in-process through `cli::solve_with_daylight` (the code behind
+//! `eigenrad solve`, optimised as tests are) and turned into the JSON document `--json`
+//! prints; the flags themselves, the text readout and the errors through the binary.
 
 mod common;
 
 use std::path::{Path, PathBuf};
 
 use common::{run, scratch, stderr};
+use eigenrad_precompute::cli::{self, DaylightArgs, LevelArgs, SkyInput, Units};
+use eigenrad_precompute::formfactor::FormFactorOptions;
 use serde_json::Value;
 
 /// A 4 × 3 × 2.8 m room with a 2 × 1.3 m clear window in its y = 0 wall (facing south at
@@ -86,12 +92,40 @@ fn scene_file(test: &str, site: &str) -> (PathBuf, PathBuf) {
     (dir, path)
 }
 
-fn solve(scene: &Path, extra: &[&str]) -> Value {
-    let mut args = vec!["solve", scene.to_str().unwrap(), "--no-cache", "--json"];
-    args.extend_from_slice(extra);
-    let o = run(&args);
-    assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
-    serde_json::from_slice(&o.stdout).expect("JSON readout")
+/// The traditional CIE overcast sky (`--cie overcast --dhi-lux LUX`).
+fn overcast(diffuse_horizontal: f64) -> SkyInput {
+    SkyInput::Cie {
+        sky_type: 0,
+        diffuse_horizontal,
+        direct_normal: 0.0,
+    }
+}
+
+/// The readout of `eigenrad solve SCENE [--level ...] [--time TIME <sky>] --json`, with the
+/// form factors computed afresh (`--no-cache`).
+fn solve_in(scene: &Path, sky: Option<(&str, SkyInput)>, levels: &[&str], units: Units) -> Value {
+    let daylight = sky.map(|(time, input)| DaylightArgs {
+        time: time.to_owned(),
+        input,
+        water: 2.0,
+        subdivision: 1,
+    });
+    let levels = LevelArgs {
+        levels: levels.iter().map(|l| (*l).to_owned()).collect(),
+        arcs: Vec::new(),
+    };
+    let ff = FormFactorOptions {
+        cache: None,
+        ..FormFactorOptions::default()
+    };
+    let readout =
+        cli::solve_with_daylight(scene, &levels, daylight.as_ref(), false, &ff).expect("solve");
+    let readout = cli::units::readout_in(readout, units).expect("units");
+    serde_json::to_value(&readout).expect("JSON")
+}
+
+fn solve(scene: &Path, sky: Option<(&str, SkyInput)>, levels: &[&str]) -> Value {
+    solve_in(scene, sky, levels, Units::Native)
 }
 
 /// `(name, total, daylight, electric)` of every sensor and zone (one band).
@@ -118,7 +152,6 @@ fn close(a: f64, b: f64, tolerance: f64) -> bool {
 }
 
 const NOON: &str = "2026-06-21T12:00+02:00";
-const OVERCAST: [&str; 4] = ["--cie", "overcast", "--dhi-lux", "10000"];
 
 /// With a sky, each reading is its daylight plus its electric part (1e-12, rounding); the
 /// electric part is the reading without a sky (1e-9: the same factorisation, another
@@ -127,15 +160,10 @@ const OVERCAST: [&str; 4] = ["--cie", "overcast", "--dhi-lux", "10000"];
 #[test]
 fn daylight_and_electric_add_up() {
     let (_dir, path) = scene_file("add-up", VIENNA);
-    let mut args = vec!["--time", NOON];
-    args.extend_from_slice(&OVERCAST);
-    let both = solve(&path, &args);
-    let dark = {
-        let mut a = args.clone();
-        a.extend_from_slice(&["--level", "lamp=0"]);
-        solve(&path, &a)
-    };
-    let night = solve(&path, &[]);
+    let sky = Some((NOON, overcast(10_000.0)));
+    let both = solve(&path, sky, &[]);
+    let dark = solve(&path, sky, &["lamp=0"]);
+    let night = solve(&path, None, &[]);
     let with = readings(&both);
     assert_eq!(with.len(), 3);
     for (((name, total, day, electric), lamp_off), no_sky) in
@@ -182,24 +210,12 @@ fn daylight_and_electric_add_up() {
 #[test]
 fn daylight_is_linear_and_overcast_ignores_the_time() {
     let (_dir, path) = scene_file("linear", VIENNA);
-    let base = readings(&solve(
-        &path,
-        &["--time", NOON, "--cie", "overcast", "--dhi-lux", "10000"],
-    ));
-    let double = readings(&solve(
-        &path,
-        &["--time", NOON, "--cie", "overcast", "--dhi-lux", "20000"],
-    ));
+    let base = readings(&solve(&path, Some((NOON, overcast(10_000.0))), &[]));
+    let double = readings(&solve(&path, Some((NOON, overcast(20_000.0))), &[]));
     let evening = readings(&solve(
         &path,
-        &[
-            "--time",
-            "2026-06-21T18:30+02:00",
-            "--cie",
-            "overcast",
-            "--dhi-lux",
-            "10000",
-        ],
+        Some(("2026-06-21T18:30+02:00", overcast(10_000.0))),
+        &[],
     ));
     for ((a, b), c) in base.iter().zip(&double).zip(&evening) {
         assert!(close(2.0 * a.2.unwrap(), b.2.unwrap(), 1e-9), "{}", a.0);
@@ -212,12 +228,12 @@ fn daylight_is_linear_and_overcast_ignores_the_time() {
 #[test]
 fn a_time_without_offset_takes_the_sites() {
     let (_dir, path) = scene_file("offset", VIENNA);
-    let sky = ["--cie", "12", "--dhi-lux", "15000", "--dni-lux", "70000"];
-    let at = |time: &str| {
-        let mut a = vec!["--time", time];
-        a.extend_from_slice(&sky);
-        solve(&path, &a)
+    let clear = SkyInput::Cie {
+        sky_type: 12,
+        diffuse_horizontal: 15_000.0,
+        direct_normal: 70_000.0,
     };
+    let at = |time: &str| solve(&path, Some((time, clear)), &[]);
     let bare = at("2026-06-21T11:00");
     let explicit = at("2026-06-21T11:00+01:00");
     let utc = at("2026-06-21T11:00Z");
@@ -248,49 +264,14 @@ fn a_time_without_offset_takes_the_sites() {
     );
 }
 
-/// The text readout shows each reading's two parts; footcandles convert them too; the grid
-/// CSV gets a daylight column after the total.
+/// The text readout shows each reading's two parts; footcandles convert them too;
+/// the grid CSV gets a daylight column after the total.
 #[test]
 fn text_units_and_csv_carry_the_parts() {
-    let (dir, path) = scene_file("text", VIENNA);
-    let mut args = vec![
-        "solve",
-        path.to_str().unwrap(),
-        "--no-cache",
-        "--time",
-        NOON,
-    ];
-    args.extend_from_slice(&OVERCAST);
-    let o = run(&args);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let text = String::from_utf8_lossy(&o.stdout).into_owned();
-    assert!(
-        text.contains("daylight: CIE traditional overcast"),
-        "{text}"
-    );
-    assert!(
-        text.contains("= daylight ") && text.contains(" + electric "),
-        "{text}"
-    );
-    assert!(text.contains("under daylight alone:"), "{text}");
-
-    let lux = solve(
-        &path,
-        &["--time", NOON, "--cie", "overcast", "--dhi-lux", "10000"],
-    );
-    let fc = solve(
-        &path,
-        &[
-            "--time",
-            NOON,
-            "--cie",
-            "overcast",
-            "--dhi-lux",
-            "10000",
-            "--units",
-            "fc",
-        ],
-    );
+    let (_dir, path) = scene_file("text", VIENNA);
+    let sky = Some((NOON, overcast(10_000.0)));
+    let lux = solve(&path, sky, &[]);
+    let fc = solve_in(&path, sky, &[], Units::Footcandles);
     assert_eq!(fc["unit"], "fc");
     let lux_per_fc = 1.0 / (0.3048 * 0.3048);
     for (a, b) in readings(&lux).iter().zip(readings(&fc)) {
@@ -305,38 +286,50 @@ fn text_units_and_csv_carry_the_parts() {
             a.0
         );
     }
+    let fc_grid = &fc["daylight"]["grids"][0]["points"][0]["irradiance"][0];
+    let lux_grid = &lux["daylight"]["grids"][0]["points"][0]["irradiance"][0];
+    assert!(close(
+        lux_grid.as_f64().unwrap(),
+        fc_grid.as_f64().unwrap() * lux_per_fc,
+        1e-12
+    ));
 
-    let csv = dir.join("grid.csv");
-    let mut args = vec![
-        "solve",
-        path.to_str().unwrap(),
-        "--no-cache",
-        "--time",
-        NOON,
-        "--csv",
-        csv.to_str().unwrap(),
-        "--json",
-    ];
-    args.extend_from_slice(&OVERCAST);
-    let o = run(&args);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
-    let table = std::fs::read_to_string(&csv).unwrap();
+    let readout: cli::Readout = {
+        let ff = FormFactorOptions {
+            cache: None,
+            ..FormFactorOptions::default()
+        };
+        let args = DaylightArgs {
+            time: NOON.to_owned(),
+            input: overcast(10_000.0),
+            water: 2.0,
+            subdivision: 1,
+        };
+        cli::solve_with_daylight(&path, &LevelArgs::default(), Some(&args), false, &ff)
+            .expect("solve")
+    };
+    let text = cli::format_readout(&readout);
+    assert!(
+        text.contains("daylight: CIE traditional overcast"),
+        "{text}"
+    );
+    assert!(
+        text.contains("= daylight ") && text.contains(" + electric "),
+        "{text}"
+    );
+    assert!(text.contains("under daylight alone:"), "{text}");
+    let table = cli::grids_csv(&readout);
     let mut lines = table.lines();
     assert_eq!(
         lines.next(),
         Some("zone,point,x_m,y_m,z_m,photopic_lux,daylight_photopic_lux")
     );
-    let day_points = v["daylight"]["grids"][0]["points"].as_array().unwrap();
+    let day = &readout.daylight.as_ref().expect("daylight").grids[0].points;
     let rows: Vec<&str> = lines.collect();
-    assert_eq!(rows.len(), day_points.len());
-    for (row, p) in rows.iter().zip(day_points) {
-        // serde_json's parsing of floats is within an ulp, not always the nearest.
+    assert_eq!(rows.len(), day.len());
+    for (row, p) in rows.iter().zip(day) {
         let last: f64 = row.rsplit(',').next().unwrap().parse().unwrap();
-        assert!(
-            close(last, p["irradiance"][0].as_f64().unwrap(), 1e-15),
-            "{row}"
-        );
+        assert_eq!(last, p.irradiance[0], "{row}");
     }
 }
 

@@ -8,7 +8,7 @@ use std::path::Path;
 use eigenrad_runtime::{Basis, Quantity};
 use serde::Serialize;
 
-use super::sky::{sky, SkyInput, SkyRequest};
+use super::sky::{sky, SkyInput, SkyReport, SkyRequest};
 use crate::accuracy::runtime_eval;
 use crate::error::{Error, Result};
 use crate::formfactor::exchange;
@@ -343,16 +343,14 @@ fn daylight_err(what: &str, reason: impl Into<String>) -> Error {
     }
 }
 
-/// The sky of `args` over `scene`'s site, and the daylight it sends through the windows at
-/// that moment, as one light (emission of diffusing windows, direct illuminance everywhere):
-/// each sky patch's response times its centre luminance, the exterior's times `E_gh / π`, the
-/// sun's times its direct normal illuminance.
-fn daylight_light(
+/// The sky of `args` over `scene`'s site: the sun, the illuminances and every sky patch's
+/// centre luminance, as `eigenrad sky` reports them. A time without a UTC offset takes the
+/// site's `utc_offset`.
+fn sky_of_moment(
     scene: &crate::scene::Scene,
     scene_path: &Path,
     args: &DaylightArgs,
-) -> Result<(crate::sources::ChannelLight, DaylightReadout)> {
-    use crate::sources::daylight;
+) -> Result<SkyReport> {
     let site = scene.site.as_ref().ok_or_else(|| {
         daylight_err(
             "--time",
@@ -378,14 +376,26 @@ fn daylight_light(
             )
         }
     };
-    let report = sky(&SkyRequest {
+    sky(&SkyRequest {
         site: site.location,
         time,
         north: site.north,
         input: args.input,
         water: args.water,
         subdivision: args.subdivision,
-    })?;
+    })
+}
+
+/// The daylight the sky of `report` sends through the windows, as one light (emission of
+/// diffusing windows, direct illuminance everywhere): each sky patch's response times its
+/// centre luminance, the exterior's times `E_gh / π`, the sun's times its direct normal
+/// illuminance.
+fn daylight_light(
+    scene: &crate::scene::Scene,
+    args: &DaylightArgs,
+    report: SkyReport,
+) -> Result<(crate::sources::ChannelLight, DaylightReadout)> {
+    use crate::sources::daylight;
     let patches = eigenrad_runtime::sky::patches::SkyPatches::reinhart(args.subdivision)
         .map_err(|e| daylight_err("--mf", e.to_string()))?;
     let occluders = crate::formfactor::Occluders::with_faces(&scene.patches, &scene.faces);
@@ -432,17 +442,26 @@ pub fn solve_with_daylight(
     patches: bool,
     form_factors: &FormFactorOptions,
 ) -> Result<Readout> {
+    // The sky first: a bad time or a scene without a site is an error before any form factor.
+    let moment = match daylight {
+        None => None,
+        Some(args) => Some(sky_of_moment(
+            &crate::scene::load(scene_path)?,
+            scene_path,
+            args,
+        )?),
+    };
     let prepared = pipeline::prepare(scene_path, form_factors)?;
     let scene = &prepared.scene;
     let names: Vec<String> = scene.channels.iter().map(|c| c.name.clone()).collect();
     let levels = parse_levels(level_args, &names)?;
-    let (solved, mut daylight_readout) = match daylight {
+    let (solved, mut daylight_readout) = match daylight.zip(moment) {
         None => (
             solve_cases(&prepared, &prepared.lights, std::slice::from_ref(&levels))?,
             None,
         ),
-        Some(args) => {
-            let (light, summary) = daylight_light(scene, scene_path, args)?;
+        Some((args, report)) => {
+            let (light, summary) = daylight_light(scene, args, report)?;
             let mut lights = prepared.lights.clone();
             lights.push(light);
             let mut electric = levels.clone();

@@ -9,9 +9,12 @@
 //!   process per scene (so that each peak is its own), and each scene's total time against
 //!   the first scene's.
 //! - `eigenrad-bench eigen SCENE...`: dense against partial eigensolve on the same matrix.
+//! - `eigenrad-bench daylight SCENE...`: the room's response to the sky (Tregenza, Reinhart
+//!   MF:2) and to one sun direction, against the time to prepare the scene.
 //!
 //! Run in release: `cargo run --release -p eigenrad-precompute --bin eigenrad-bench -- …`.
 
+mod daylight;
 mod eigen;
 mod scale;
 mod update;
@@ -54,6 +57,12 @@ enum Command {
         /// Scene file.
         scene: PathBuf,
     },
+    /// The room's response to the sky and to one sun direction through its windows, against
+    /// the time to prepare the scene (scenes with a `[site]` and glazed windows).
+    Daylight {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+    },
     /// Dense against partial eigensolve (p = 32) on each scene's form factors.
     Eigen {
         /// Scene files.
@@ -75,6 +84,10 @@ fn main() -> Result<()> {
             scale::run(&scenes)?;
         }
         Command::ScaleOne { scene } => scale::one(&scene)?,
+        Command::Daylight { scenes } => {
+            machine();
+            daylight::run(&scenes)?;
+        }
         Command::Eigen { scenes, dense_max } => {
             machine();
             eigen::run(&scenes, dense_max)?;
