@@ -11,7 +11,9 @@ use super::error::SceneError;
 use super::file::{BandsDef, SceneFile};
 use super::mesh::{check_face, mesh_face, triangulate};
 use super::openings::CONTACT_TOLERANCE;
-use super::{channels, limits, luminaires, obj, observers, openings, primitives, winding};
+use super::{
+    channels, daylight, limits, luminaires, obj, observers, openings, primitives, winding,
+};
 use super::{Bands, Scene, Surface};
 use crate::geometry::{Aabb, Face, Patch, Polygon, Vec3};
 
@@ -34,19 +36,28 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     let planarity = planarity(&ctx, &file)?;
     let mut materials = scene_materials(&ctx, &file)?;
     let mut geometry = geometry(&ctx, &file, &mut materials)?;
-    let (flip, split) = surface_settings(&ctx, &file, &mut geometry.raw)?;
+    let site = daylight::site(&ctx, file.site.as_ref())?;
+    let (mut flip, mut split) = surface_settings(&ctx, &file, &mut geometry.raw)?;
 
-    // Faces wound against their neighbours, openings cut out of room faces, and the patch
-    // count checked against memory: all before meshing.
+    // Faces wound against their neighbours, exterior surfaces set apart, openings cut out of
+    // room faces, and the patch count checked against memory: all before meshing.
     for range in &geometry.obj_surfaces {
         winding::check(&geometry.raw[range.clone()], &flip[range.clone()])?;
     }
+    let mut is_obj = vec![false; geometry.raw.len()];
+    for i in geometry.obj_surfaces.iter().flat_map(|r| r.clone()) {
+        is_obj[i] = true;
+    }
+    let outside = daylight::take_exterior(&mut geometry.raw, &mut flip, &mut split, &mut is_obj);
+    daylight::check_references(&ctx, &file, &geometry.raw, &outside)?;
+    let obstructions =
+        daylight::obstructions(&ctx, &outside, &materials, &geometry.rooms, planarity)?;
     let mut claimed = vec![false; geometry.raw.len()];
     let standing: Vec<(String, Vec3, Vec3)> = geometry
         .blocks
         .iter()
         .zip(&file.block)
-        .filter(|(_, def)| !def.get_ref().bottom)
+        .filter(|(_, def)| !def.get_ref().bottom && !def.get_ref().exterior)
         .map(|(b, _)| b.clone())
         .collect();
     for (r, faces) in file.room.iter().zip(geometry.room_faces.clone()) {
@@ -68,11 +79,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     )?;
 
     let raw = &geometry.raw;
-    let objects: Vec<usize> = geometry
-        .obj_surfaces
-        .iter()
-        .flat_map(|r| r.clone())
-        .collect();
+    let objects: Vec<usize> = (0..raw.len()).filter(|&i| is_obj[i]).collect();
     let footprints = contacts::footprints(raw, &objects, contact_tolerance(raw));
     let meshed = mesh(
         raw,
@@ -103,11 +110,32 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         channel_of_patch.push(emitters.channel_of_surface[p.surface]);
     }
 
+    // A room's own face may be glazed; any other window in a room face must be an opening.
+    let mut in_place = claimed.clone();
+    for i in geometry.room_faces.iter().flat_map(|r| r.clone()) {
+        in_place[i] = true;
+    }
+    let windows = daylight::windows(
+        &ctx,
+        &file,
+        raw,
+        &materials,
+        &emitters.channel_of_surface,
+        &geometry.rooms,
+        &in_place,
+    )?;
+    let inside_blocks: Vec<(String, Vec3, Vec3)> = geometry
+        .blocks
+        .iter()
+        .zip(&file.block)
+        .filter(|(_, def)| !def.get_ref().exterior)
+        .map(|(b, _)| b.clone())
+        .collect();
     let sensors = observers::sensors(
         &ctx,
         &file.sensor,
         &geometry.rooms,
-        &geometry.blocks,
+        &inside_blocks,
         extent(raw),
     )?;
     let zones = observers::zones(
@@ -132,9 +160,9 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         luminaires,
         sensors,
         zones,
-        site: None,
-        windows: Vec::new(),
-        obstructions: Vec::new(),
+        site,
+        windows,
+        obstructions,
     })
 }
 
@@ -166,6 +194,7 @@ fn scene_materials(
         let field = format!("materials.{name}.reflectance");
         let reflectance = ctx.per_band(&m.reflectance, &field)?;
         let reflectance = ctx.check_reflectance(reflectance, &ctx.at(&m.reflectance), &field)?;
+        let glazing = daylight::glazing(ctx, name, m, &reflectance)?;
         let emission = match &m.emission {
             Some(e) => {
                 let field = format!("materials.{name}.emission");
@@ -178,6 +207,7 @@ fn scene_materials(
             MaterialInfo {
                 reflectance,
                 emission,
+                glazing,
             },
         );
     }
@@ -219,7 +249,9 @@ fn geometry(
     for b in &file.block {
         raw.extend(primitives::block(ctx, b)?);
         let (lo, hi) = primitives::box_corners(ctx, "block", &b.get_ref().min, &b.get_ref().max)?;
-        primitives::check_inside_rooms(ctx, b, lo, hi, &rooms)?;
+        if !b.get_ref().exterior {
+            primitives::check_inside_rooms(ctx, b, lo, hi, &rooms)?;
+        }
         blocks.push((b.get_ref().name.clone(), lo, hi));
     }
     for q in &file.quad {

@@ -276,6 +276,7 @@ mod tests {
             faces,
             max_edge: None,
             at: super::super::error::Location::file(std::path::Path::new("t")),
+            exterior: false,
         }
     }
 

@@ -34,6 +34,8 @@ pub(crate) struct MaterialInfo {
     pub reflectance: Vec<f64>,
     /// Exitance at level 1 per band (lux or W/m²).
     pub emission: Vec<f64>,
+    /// The glazing of a material with a transmittance: its surfaces are windows.
+    pub glazing: Option<eigenrad_runtime::sky::glazing::Glazing>,
 }
 
 /// A surface before meshing: faces in metres, material by name.
@@ -49,6 +51,8 @@ pub(crate) struct RawSurface {
     pub max_edge: Option<f64>,
     /// Where the surface was defined.
     pub at: Location,
+    /// Outside the room (`exterior = true`): an obstruction, not meshed.
+    pub exterior: bool,
 }
 
 impl Ctx<'_> {

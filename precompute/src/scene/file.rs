@@ -37,6 +37,9 @@ impl std::ops::Deref for Xyz {
 #[serde(deny_unknown_fields)]
 pub(crate) struct SceneFile {
     pub scene: Header,
+    /// Where the room stands, for daylight.
+    #[serde(default)]
+    pub site: Option<Spanned<SiteDef>>,
     #[serde(default)]
     pub materials: BTreeMap<String, Spanned<MaterialDef>>,
     #[serde(default)]
@@ -172,6 +175,48 @@ pub(crate) struct MaterialDef {
     /// Exitance at level 1 (lux or W/m² per band).
     #[serde(default)]
     pub emission: Option<Spanned<PerBand>>,
+    /// Visible transmittance at normal incidence, in (0, 1): the material is glazing and
+    /// its surfaces are windows.
+    #[serde(default)]
+    pub transmittance: Option<Spanned<f64>>,
+    /// Panes of the glazing, 1 to 3 (default 2); only with `transmittance`.
+    #[serde(default)]
+    pub panes: Option<Spanned<i64>>,
+    /// The glazing's angular model (default clear); only with `transmittance`.
+    #[serde(default)]
+    pub glazing: Option<Spanned<GlazingDef>>,
+}
+
+/// `materials.<name>.glazing`.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum GlazingDef {
+    /// Clear glass: transmitted light keeps its direction.
+    Clear,
+    /// Transmitted light leaves as a Lambertian emitter.
+    Diffusing,
+}
+
+/// `[site]`: where the room stands and how it is turned (degrees, metres).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SiteDef {
+    /// Degrees north, −90 to 90.
+    pub latitude: Spanned<f64>,
+    /// Degrees east, −180 to 180.
+    pub longitude: Spanned<f64>,
+    /// Metres above sea level (default 0); always metres, whatever `scene.unit`.
+    #[serde(default)]
+    pub elevation: Option<Spanned<f64>>,
+    /// Compass bearing of the scene's +y axis, degrees clockwise from true north (default 0).
+    #[serde(default)]
+    pub north: Option<Spanned<f64>>,
+    /// `"Z"`, `"+HH:MM"` or `"-HH:MM"`: the offset of times given without one.
+    #[serde(default)]
+    pub utc_offset: Option<Spanned<String>>,
+    /// The ground's diffuse reflectance, in [0, 1) (default 0.2).
+    #[serde(default)]
+    pub ground_reflectance: Option<Spanned<f64>>,
 }
 
 /// `[surfaces.<name>]`: per-surface settings that apply whatever made the surface.
@@ -201,6 +246,9 @@ pub(crate) struct QuadDef {
     pub corners: Spanned<Vec<Xyz>>,
     #[serde(default)]
     pub max_edge: Option<Spanned<f64>>,
+    /// Outside the room: an obstruction shading the windows, not meshed into patches.
+    #[serde(default)]
+    pub exterior: bool,
 }
 
 /// `[[room]]`: axis-aligned box seen from inside.
@@ -237,6 +285,9 @@ pub(crate) struct BlockDef {
     pub bottom: bool,
     #[serde(default)]
     pub max_edge: Option<Spanned<f64>>,
+    /// Outside the room: an obstruction shading the windows, not meshed into patches.
+    #[serde(default)]
+    pub exterior: bool,
 }
 
 fn yes() -> bool {
@@ -268,6 +319,10 @@ pub(crate) struct ObjDef {
     /// What the MTL `Ke` values are.
     #[serde(default)]
     pub ke: KeMeaning,
+    /// Outside the room: every surface of the file is an obstruction shading the windows,
+    /// not meshed into patches.
+    #[serde(default)]
+    pub exterior: bool,
 }
 
 /// `obj.ke`: what an MTL file's `Ke` gives.

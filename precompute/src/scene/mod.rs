@@ -9,6 +9,7 @@ mod build;
 mod channels;
 mod contacts;
 mod context;
+mod daylight;
 mod error;
 mod file;
 pub mod grid;
@@ -229,7 +230,8 @@ pub struct Scene {
     pub name: String,
     /// Spectral bands; every per-band vector has `bands.count()` entries.
     pub bands: Bands,
-    /// Named surfaces, in file order (rooms, blocks, quads, then OBJ files).
+    /// Named surfaces, in file order (rooms, blocks, quads, then OBJ files); exterior ones are
+    /// not among them but in [`Scene::obstructions`].
     pub surfaces: Vec<Surface>,
     /// Patches; `patch.surface` indexes [`Scene::surfaces`].
     pub patches: Vec<Patch>,
@@ -254,9 +256,10 @@ pub struct Scene {
     pub zones: Vec<Zone>,
     /// The site, for daylight; `None` without `[site]`.
     pub site: Option<Site>,
-    /// Glazed surfaces, in surface order.
+    /// Glazed surfaces (those whose material has a transmittance), in surface order.
     pub windows: Vec<Window>,
-    /// Surfaces outside the room that shade the windows, in file order.
+    /// Surfaces outside the room that shade the windows (`exterior = true`), one per surface,
+    /// in surface order (blocks, quads, then OBJ files).
     pub obstructions: Vec<Obstruction>,
 }
 

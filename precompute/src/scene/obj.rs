@@ -187,6 +187,7 @@ fn material_infos(
             MaterialInfo {
                 reflectance,
                 emission,
+                glazing: None,
             },
         ));
     }
@@ -249,6 +250,7 @@ fn surfaces(
                     faces: Vec::new(),
                     max_edge: placed.max_edge,
                     at: placed.at.clone(),
+                    exterior: o.exterior,
                 });
                 seen.push(HashSet::new());
                 surfaces.len() - 1

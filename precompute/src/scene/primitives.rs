@@ -96,6 +96,7 @@ pub(crate) fn room(ctx: &Ctx, def: &Spanned<RoomDef>) -> Result<Vec<RawSurface>,
                 faces: vec![corners.to_vec()],
                 max_edge,
                 at: ctx.at(def),
+                exterior: false,
             }
         })
         .collect())
@@ -120,6 +121,7 @@ pub(crate) fn block(ctx: &Ctx, def: &Spanned<BlockDef>) -> Result<Vec<RawSurface
                 faces: vec![corners.to_vec()],
                 max_edge,
                 at: ctx.at(def),
+                exterior: b.exterior,
             }
         })
         .collect())
@@ -150,6 +152,7 @@ pub(crate) fn quad(ctx: &Ctx, def: &Spanned<QuadDef>) -> Result<RawSurface, Scen
         faces: vec![corners],
         max_edge: ctx.optional_length(q.max_edge.as_ref(), &format!("{what}.max_edge"))?,
         at: ctx.at(&q.corners),
+        exterior: q.exterior,
     })
 }
 

@@ -1,12 +1,14 @@
 //! Scene tests: the example scenes (the Lambertian office, the Cornell box; the offices and
 //! classroom with photometry in `luminaires`) and the documentation's example here; one test per
 //! validation error checking that the message names the file and the field or line
-//! (`errors`, `obj`); openings cut out of room faces (`openings`).
+//! (`errors`, `obj`); openings cut out of room faces (`openings`); the site, windows and
+//! exterior obstructions (`daylight`).
 
 use std::path::{Path, PathBuf};
 
 use super::*;
 
+mod daylight;
 mod errors;
 mod luminaires;
 mod obj;
@@ -234,7 +236,12 @@ fn scene_faces_are_tiled_by_their_patches() {
     // Reference: meshing cuts each convex face into patches that tile it, so occlusion may use
     // the face in their place. Every patch is in exactly one face, in the face's plane and
     // facing its way, and the patch areas add up to the face area (1e-9 relative).
-    for name in ["office", "office-lambertian", "cornell-box"] {
+    for name in [
+        "office",
+        "office-lambertian",
+        "office-daylight",
+        "cornell-box",
+    ] {
         let scene = load(&example(name)).expect("example loads");
         let mut covered = 0;
         for face in &scene.faces {
