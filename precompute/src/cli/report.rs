@@ -105,17 +105,18 @@ fn write_luminaires(s: &mut String, r: &BuildReport) {
     }
     let _ = writeln!(
         s,
-        "luminaires (lm): {:<24} {:>10} {:>10} {:>10} {:>10} {:>10}",
-        "name", "stated", "integrated", "emitted", "received", "escaping"
+        "luminaires (lm): {:<24} {:>10} {:>10} {:>6} {:>10} {:>10} {:>10}",
+        "name", "stated", "integrated", "tilt", "emitted", "received", "escaping"
     );
     let lm = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.1}"));
     for l in &r.luminaires {
         let _ = writeln!(
             s,
-            "                 {:<24} {:>10} {:>10.1} {:>10.1} {:>10.1} {:>10.1}",
+            "                 {:<24} {:>10} {:>10.1} {:>6.3} {:>10.1} {:>10.1} {:>10.1}",
             l.name,
             lm(l.stated),
             l.integrated,
+            l.tilt_factor,
             l.emitted,
             l.received,
             l.escaping

@@ -282,7 +282,8 @@ fn matches(pattern: &str, name: &str) -> bool {
 }
 
 /// Exterior surfaces are not the room's: a room's `openings`, a channel's or a zone's
-/// `surfaces` naming one (and no surface of the room) is an error saying so.
+/// `surfaces` naming one (and no surface of the room), or a channel's `materials` naming a
+/// material only exterior surfaces have, is an error saying so.
 pub(crate) fn check_references(
     ctx: &Ctx,
     file: &SceneFile,
@@ -325,6 +326,27 @@ pub(crate) fn check_references(
                         o.surface.name
                     ),
                 });
+            }
+        }
+    }
+    for c in &file.channel {
+        let Some(list) = &c.get_ref().materials else {
+            continue;
+        };
+        for m in list.get_ref() {
+            let on = |s: &RawSurface| &s.material == m;
+            if !inside.iter().any(on) {
+                if let Some(o) = outside.iter().find(|o| on(&o.surface)) {
+                    return Err(SceneError::Invalid {
+                        at: ctx.at(list),
+                        field: format!("channel `{}`.materials", c.get_ref().name),
+                        message: format!(
+                            "material `{m}` is only on exterior surfaces (`{}` ...), which \
+                             stand outside the room and cannot be in a channel",
+                            o.surface.name
+                        ),
+                    });
+                }
             }
         }
     }

@@ -62,6 +62,8 @@ pub(crate) fn place(
         let position = ctx.point(&l.position, &format!("{what}.position"))?;
         let (nadir, c0, c90) = frame_of(ctx, l, &what)?;
         let maintenance_factor = maintenance(ctx, l, &what)?;
+        // The array's elements share the entry's orientation, and so its tilt.
+        let tilt_factor = photometry.tilt_factor(nadir, c0, c90);
         for (name, offset) in elements(ctx, l, &what)? {
             names.push((name.clone(), ctx.at(def)));
             placed.push(Luminaire {
@@ -74,6 +76,7 @@ pub(crate) fn place(
                 c90,
                 channel,
                 maintenance_factor,
+                tilt_factor,
             });
         }
     }

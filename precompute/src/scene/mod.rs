@@ -121,6 +121,9 @@ pub struct Luminaire {
     pub channel: usize,
     /// Light-loss (maintenance) factor in (0, 1], multiplying every intensity.
     pub maintenance_factor: f64,
+    /// The photometric file's tilt factor at this luminaire's orientation, multiplying every
+    /// intensity ([`photometry::Photometry::tilt_factor`]; 1 without a tilt table).
+    pub tilt_factor: f64,
 }
 
 impl Luminaire {
@@ -133,7 +136,7 @@ impl Luminaire {
         (c, gamma)
     }
 
-    /// Luminous intensity, cd, towards `direction`, the maintenance factor included.
+    /// Luminous intensity, cd, towards `direction`, the maintenance and tilt factors included.
     pub fn intensity(&self, direction: Vec3) -> f64 {
         let distribution = &self.photometry.distribution;
         let (c, gamma) = if distribution.c_angles().len() == 1 {
@@ -143,7 +146,7 @@ impl Luminaire {
         } else {
             self.angles(direction)
         };
-        self.maintenance_factor * distribution.intensity(c, gamma)
+        self.maintenance_factor * self.tilt_factor * distribution.intensity(c, gamma)
     }
 }
 

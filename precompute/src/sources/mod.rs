@@ -5,6 +5,9 @@
 //!
 //! - [`surfaces`]: emitting surfaces of the scene (luminaire faces, windows as Lambertian
 //!   panels), grouped by the scene's channels.
+//! - [`daylight`]: the sky, the ground and the sun through the scene's windows: their direct
+//!   illuminance per sky patch, per unit of the exterior's luminance and per unit of direct
+//!   normal illuminance.
 //! - [`luminaires`]: luminaires placed with their photometry: no emission, their direct
 //!   illuminance on every patch and output.
 //!
@@ -13,6 +16,7 @@
 //!
 //! A channel may have both kinds; [`ChannelLight::plus`] adds their light.
 
+pub mod daylight;
 pub mod luminaires;
 pub mod surfaces;
 

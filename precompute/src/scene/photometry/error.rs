@@ -66,7 +66,7 @@ pub enum PhotometryError {
         message: String,
     },
     /// The file uses a feature this reader does not implement (type A or B photometry, a tilt
-    /// table in a separate file).
+    /// table in a separate file in LM-63-2019, which no longer allows one).
     #[error("{path}:{line}: {feature} is not supported", path = path.display())]
     Unsupported {
         /// The file.

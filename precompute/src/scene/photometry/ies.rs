@@ -7,7 +7,9 @@
 //! line is too long or (when the next record then fits exactly) too short. The records:
 //!
 //! 1. with `TILT=INCLUDE`: lamp-to-luminaire geometry; number of tilt angles `n`; `n` angles;
-//!    `n` multiplying factors;
+//!    `n` multiplying factors. With `TILT=<file>` (LM-63 up to 2002; LM-63-2019 dropped it)
+//!    these four records are that file's whole content instead, the file named relative to
+//!    the folder of the `.ies` file (an absolute name as it is), and its errors name it;
 //! 2. number of lamps, lumens per lamp (−1: absolute photometry), candela multiplier, number
 //!    of vertical angles, number of horizontal angles, photometric type (1 = C), units (1 =
 //!    feet, 2 = metres), width, length, height of the luminous opening;
@@ -59,12 +61,19 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<Photometry> {
     let tilt = if spec.eq_ignore_ascii_case("NONE") {
         None
     } else if spec.eq_ignore_ascii_case("INCLUDE") {
-        Some(read_tilt(&mut records)?)
-    } else {
+        Some(read_tilt(&mut records, Next::Size(10))?)
+    } else if version >= Lm63Version::V2019 {
         return Err(file.unsupported(
             tilt_line,
-            format!("`TILT={spec}` (a tilt table in a separate file)"),
+            format!(
+                "`TILT={spec}` (a tilt table in a separate file, which LM-63-2019 no longer \
+                 allows)"
+            ),
         ));
+    } else if spec.is_empty() {
+        return Err(file.invalid(tilt_line, "`TILT=` names no tilt table"));
+    } else {
+        Some(read_tilt_file(&file, tilt_line, spec)?)
     };
     let header = read_header(&mut records, version)?;
     let (symmetry, distribution) = read_distribution(&mut records, &header)?;
@@ -283,7 +292,43 @@ impl<'a> Records<'a> {
     }
 }
 
-fn read_tilt(records: &mut Records) -> Result<Tilt> {
+/// A tilt table in a file of its own (`TILT=<name>` on line `tilt_line` of `ies`): `name`
+/// relative to the folder of the `.ies` file, holding the table's four records and nothing
+/// else. A file that cannot be read is an error at the `TILT=` line; a fault inside it names
+/// that file and its line.
+fn read_tilt_file(ies: &File, tilt_line: usize, name: &str) -> Result<Tilt> {
+    let path = ies.path.parent().unwrap_or(Path::new("")).join(name);
+    let bytes = std::fs::read(&path).map_err(|reason| {
+        ies.invalid(
+            tilt_line,
+            format!(
+                "`TILT={name}`: cannot read the tilt table's file {}: {reason}",
+                path.display()
+            ),
+        )
+    })?;
+    let text = decode(&bytes);
+    let lines: Vec<(usize, &str)> = lines(&text).collect();
+    let mut records = Records::new(File::new(&path), &lines, 1);
+    let tilt = read_tilt(&mut records, Next::End)?;
+    if let Some((line, _)) = records.lines.get(records.next) {
+        let extra: usize = records.lines[records.next..]
+            .iter()
+            .map(|(_, v)| v.len())
+            .sum();
+        return Err(records.file.invalid(
+            *line,
+            format!(
+                "{extra} values follow the tilt table: its number of angles does not match \
+                 the data"
+            ),
+        ));
+    }
+    Ok(tilt)
+}
+
+/// The four records of a tilt table; `after` is what follows its factors.
+fn read_tilt(records: &mut Records, after: Next) -> Result<Tilt> {
     let g = records.record(1, "lamp-to-luminaire geometry", Next::Size(1))?[0];
     let geometry = match records.integer(g, "lamp-to-luminaire geometry", 1, 3)? {
         1 => LampGeometry::Vertical,
@@ -293,7 +338,7 @@ fn read_tilt(records: &mut Records) -> Result<Tilt> {
     let c = records.record(1, "number of tilt angles", Next::Unknown)?[0];
     let n = records.integer(c, "number of tilt angles", 1, i64::from(u32::MAX))? as usize;
     let angle_values = records.record(n, "tilt angles", Next::Same)?;
-    let factor_values = records.record(n, "tilt multiplying factors", Next::Size(10))?;
+    let factor_values = records.record(n, "tilt multiplying factors", after)?;
     let angles = increasing_angles(records, &angle_values, "tilt angle", -90.0, 180.0)?;
     let mut factors = Vec::with_capacity(n);
     for v in factor_values {

@@ -65,6 +65,8 @@ use std::path::Path;
 
 pub use error::PhotometryError;
 
+use crate::geometry::Vec3;
+
 /// Reads a photometric file, choosing the reader by its extension: `.ies` for IES LM-63,
 /// `.ldt` or `.eul` for EULUMDAT (either case).
 pub fn read(path: &Path) -> Result<Photometry, PhotometryError> {
@@ -180,23 +182,29 @@ pub struct Opening {
     pub side_heights: Option<[f64; 4]>,
 }
 
-/// How the lamp sits in the luminaire, LM-63's lamp-to-luminaire geometry of a tilt table.
+/// How the lamp sits in the luminaire, LM-63's lamp-to-luminaire geometry of a tilt table
+/// (LM-63-2002, "TILT"): which axis of the luminaire the lamp lies along, and so which turn
+/// of the luminaire changes the lamp's burning position.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LampGeometry {
-    /// Code 1: the lamp is vertical, base up or base down.
+    /// Code 1: the lamp is vertical, base up or base down, when the luminaire is aimed
+    /// straight down: it lies along the nadir axis.
     Vertical,
-    /// Code 2: the lamp is horizontal and stays horizontal when the luminaire is tilted in
-    /// its 0° photometric plane.
+    /// Code 2: the lamp is horizontal, along the C0–C180 axis, and stays horizontal when the
+    /// luminaire is turned about that axis.
     Horizontal0,
-    /// Code 3: the lamp is horizontal and tilts with the luminaire in its 0° photometric
-    /// plane.
+    /// Code 3: the lamp is horizontal when the luminaire is aimed straight down, along the
+    /// C90–C270 axis, and tilts when the luminaire is turned about the C0–C180 axis.
     Horizontal90,
 }
 
-/// An LM-63 tilt table (`TILT=INCLUDE`): how the lamp's output changes with the tilt of the
-/// luminaire, for lamps (metal halide) whose output depends on their burning position.
+/// An LM-63 tilt table (`TILT=INCLUDE`, or `TILT=<file>`): how the lamp's output changes with
+/// the tilt of the luminaire, for lamps (metal halide) whose output depends on their burning
+/// position.
 ///
-/// The table is kept, not applied: the distribution is as measured, untilted.
+/// The distribution is measured with the luminaire aimed straight down; a luminaire mounted
+/// otherwise multiplies every intensity by [`Tilt::factor`] at its [`Tilt::angle`], once for
+/// its placed orientation (docs/scene.md, "Luminaires").
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tilt {
     /// How the lamp sits in the luminaire.
@@ -209,7 +217,9 @@ pub struct Tilt {
 
 impl Tilt {
     /// The multiplying factor at a tilt of `degrees`: linear between the tabulated angles,
-    /// the end values beyond them (1 for a table without entries).
+    /// the end values beyond them (1 for a table without entries). LM-63 gives no rule
+    /// beyond the table; holding its end keeps the factor within what was measured and never
+    /// negative.
     pub fn factor(&self, degrees: f64) -> f64 {
         let (a, f) = (&self.angles, &self.factors);
         if a.is_empty() || a.len() != f.len() {
@@ -224,6 +234,36 @@ impl Tilt {
         }
         let t = (degrees - a[i - 1]) / (a[i] - a[i - 1]);
         f[i - 1] + t * (f[i] - f[i - 1])
+    }
+
+    /// The tilt, degrees, of a luminaire whose nadir, C0 and C90 directions are these unit
+    /// vectors of a frame with +z up: the angle through which its lamp's axis has turned from
+    /// where it was in the measurement (the luminaire aimed straight down).
+    ///
+    /// - [`LampGeometry::Vertical`]: the nadir's angle from straight down, 0°…180° (180°
+    ///   aimed straight up, the lamp turned over). A table that ends at or below 90° is read
+    ///   with the angle folded into 0°…90° (`min(t, 180° − t)`): its lamp is then taken to
+    ///   burn alike base up and base down, as Radiance's `tilt.cal` (`tilt_ang2`) reads it.
+    /// - [`LampGeometry::Horizontal0`]: the C0 axis's angle from the horizontal, 0°…90°.
+    /// - [`LampGeometry::Horizontal90`]: the C90 axis's angle from the horizontal, 0°…90°.
+    ///
+    /// For a horizontal lamp which way it tilts does not matter: the file does not say which
+    /// end holds its base.
+    pub fn angle(&self, nadir: Vec3, c0: Vec3, c90: Vec3) -> f64 {
+        let from_horizontal = |axis: Vec3| axis.z.abs().min(1.0).asin().to_degrees();
+        match self.geometry {
+            LampGeometry::Vertical => {
+                let t = (-nadir.z).clamp(-1.0, 1.0).acos().to_degrees();
+                let beyond_90 = self.angles.last().is_some_and(|&a| a > 90.0);
+                if beyond_90 {
+                    t
+                } else {
+                    t.min(180.0 - t)
+                }
+            }
+            LampGeometry::Horizontal0 => from_horizontal(c0),
+            LampGeometry::Horizontal90 => from_horizontal(c90),
+        }
     }
 }
 
@@ -289,9 +329,19 @@ impl Photometry {
         self.distribution.intensity(c_degrees, gamma_degrees)
     }
 
-    /// The flux of the distribution, lm: see [`Distribution::flux`].
+    /// The flux of the distribution, lm: see [`Distribution::flux`]. The file's own, as
+    /// measured: no tilt factor.
     pub fn flux(&self) -> f64 {
         self.distribution.flux()
+    }
+
+    /// The tilt table's factor for a luminaire of this photometry mounted with these unit
+    /// nadir, C0 and C90 directions (+z up): [`Tilt::factor`] at [`Tilt::angle`]; 1 without
+    /// a table.
+    pub fn tilt_factor(&self, nadir: Vec3, c0: Vec3, c90: Vec3) -> f64 {
+        self.tilt
+            .as_ref()
+            .map_or(1.0, |t| t.factor(t.angle(nadir, c0, c90)))
     }
 }
 

@@ -576,6 +576,14 @@ fn scene_exterior_errors_name_the_field_and_line() {
         &["channel `c`.surfaces", "`overhang`", "exterior"],
     );
     let text = day(&format!(
+        "{OVERHANG}\n[[channel]]\nname = \"c\"\nmaterials = [\"facade\"]\nexitance = 10\n"
+    ));
+    refused(
+        &text,
+        "materials = [\"facade\"]",
+        &["channel `c`.materials", "`facade`", "exterior"],
+    );
+    let text = day(&format!(
         "{OPPOSITE}\n[[zone]]\nname = \"z\"\nsurfaces = [\"opposite.*\"]\n"
     ));
     refused(

@@ -124,6 +124,42 @@ fn scene_luminaire_aim_spin_array_and_units() {
     assert!(gamma.abs() < 1e-9, "{c} {gamma}");
 }
 
+/// A file with a tilt table (`lm63-2002-tilt.ies`: a vertical lamp, factors 1, 0.98, 0.95,
+/// 0.9 … at 0°, 15°, 30°, 45° …): each entry's factor comes from its own aim, every element of
+/// an array shares it, and every intensity carries it.
+#[test]
+fn scene_luminaire_tilt_factor_follows_its_aim() {
+    let entry = |name: &str, aim: &str| {
+        format!(
+            "\n[[luminaire]]\nname = \"{name}\"\nfile = \"{}\"\nposition = [1, 1, 2]\n\
+             aim = {aim}\narray = {{ rows = 1, columns = 2, spacing = [0.5, 0.5] }}\n\
+             channel = \"c\"\n",
+            testdata("lm63-2002-tilt.ies")
+        )
+    };
+    let text = format!(
+        "{BASE}\n[[channel]]\nname = \"c\"\n{}{}{}",
+        entry("down", "[0, 0, -1]"),
+        entry("tilted", "[1, 0, -1]"),
+        // 37.5° from straight down: halfway between the factors at 30° and 45°.
+        entry(
+            "between",
+            &format!("[{}, 0, -1]", 37.5f64.to_radians().tan())
+        ),
+    );
+    let scene = parse(&text, Path::new(FILE)).unwrap_or_else(|e| panic!("{e}"));
+    let factors: Vec<f64> = scene.luminaires.iter().map(|l| l.tilt_factor).collect();
+    let expected = [1.0, 1.0, 0.9, 0.9, 0.925, 0.925];
+    for (f, e) in factors.iter().zip(expected) {
+        assert!((f - e).abs() < 1e-12, "{factors:?}");
+    }
+    // The intensity along the nadir is the file's γ = 0 value times the factor.
+    for l in &scene.luminaires {
+        let at_nadir = l.photometry.intensity(0.0, 0.0);
+        assert!((l.intensity(l.nadir) - l.tilt_factor * at_nadir).abs() < 1e-9 * at_nadir);
+    }
+}
+
 #[test]
 fn scene_error_luminaire_unknown_channel_file_and_photometry() {
     let extra = lamp("").replace("channel = \"c\"\n", "channel = \"d\"\n");

@@ -23,9 +23,12 @@ pub struct LuminaireFlux {
     pub stated: Option<f64>,
     /// The rated flux of its lamps, lm, if the file gives one.
     pub lamps: Option<f64>,
-    /// The integral of its candela table over the sphere, lm.
+    /// The integral of its candela table over the sphere, lm: the file's own, as measured
+    /// (no tilt or maintenance factor), which is what `stated` and `lamps` are checked against.
     pub integrated: f64,
-    /// What it emits in the scene: `integrated` times its maintenance factor, lm.
+    /// Its tilt table's factor at its orientation (dimensionless; 1 without a table).
+    pub tilt_factor: f64,
+    /// What it emits in the scene: `integrated` times its tilt and maintenance factors, lm.
     pub emitted: f64,
     /// What reaches the scene's patches directly, `Σ A_i E_i`, lm.
     pub received: f64,
@@ -41,7 +44,7 @@ impl LuminaireFlux {
     pub fn new(luminaire: &Luminaire, received: f64) -> LuminaireFlux {
         let photometry = &luminaire.photometry;
         let integrated = photometry.flux();
-        let emitted = integrated * luminaire.maintenance_factor;
+        let emitted = integrated * luminaire.tilt_factor * luminaire.maintenance_factor;
         let file = luminaire.file.display().to_string();
         let apart = |a: f64, b: f64| (a - b).abs() / b.abs().max(f64::MIN_POSITIVE);
         let warning = match (photometry.luminaire_flux, photometry.lamp_flux) {
@@ -56,27 +59,13 @@ impl LuminaireFlux {
             )),
             _ => None,
         };
-        // The lamp-tilt factors are read but not applied: say so where they matter.
-        let tilted = photometry
-            .tilt
-            .as_ref()
-            .is_some_and(|t| t.factors.iter().any(|&f| (f - 1.0).abs() > FLUX_AGREEMENT));
-        let tilt = tilted.then(|| {
-            format!(
-                "{file}: its tilt table (TILT=INCLUDE) is not applied; the distribution is \
-                 used as measured, whatever the luminaire's aim"
-            )
-        });
-        let warning = match (warning, tilt) {
-            (Some(a), Some(b)) => Some(format!("{a}; {b}")),
-            (a, b) => a.or(b),
-        };
         LuminaireFlux {
             name: luminaire.name.clone(),
             file,
             stated: photometry.luminaire_flux,
             lamps: photometry.lamp_flux,
             integrated,
+            tilt_factor: luminaire.tilt_factor,
             emitted,
             received,
             escaping: emitted - received,

@@ -11,9 +11,10 @@
 //! From a source of intensity `I(C, γ)` (cd) at `q`, the illuminance (lux) at a point `x`
 //! with unit normal `n` is `E = MF · I(C, γ) · cos θ / d²`, `d = |q − x|` (m), `cos θ = n ·
 //! (q − x)/d` (0 when the light arrives from behind), `(C, γ)` the angles of `x − q` in the
-//! luminaire's frame ([`crate::scene::Luminaire::angles`]), `MF` the maintenance factor, and
-//! zero where a blocker cuts the segment ([`Occluders::visible`], ignoring the receiving
-//! patch). A sensor counts only directions within its half-angle of its normal. Each patch,
+//! luminaire's frame ([`crate::scene::Luminaire::angles`]), `MF` the maintenance factor times
+//! the tilt table's factor at the luminaire's orientation
+//! ([`crate::scene::Luminaire::tilt_factor`]), and zero where a blocker cuts the segment
+//! ([`Occluders::visible`], ignoring the receiving patch). A sensor counts only directions within its half-angle of its normal. Each patch,
 //! sensor and point first gathers the occluders that may cut a segment between it and the
 //! opening's bounding rectangle (shaft culling, as for the form factors); when there are none,
 //! no ray is traced, and otherwise rays are tested against those alone.
@@ -43,9 +44,10 @@
 //! opening behind or in it receives nothing and costs nothing. Where a shadow edge crosses a
 //! cell (some of its points lit, a blocker hiding light from some, and not the same pieces of
 //! the opening hidden from all: a cell wholly inside one part of a penumbra is smooth) the
-//! cell is split again, down to `edge_depth` (1/256 of the patch's side): the tests hold the flux of a
-//! shadow to 2e-3. The split pieces of a Lambertian opening converge to its exitance's exact
-//! form factor as `1/k²`: 0.7 % off at the five-times rule, 0.05 % at twenty times.
+//! cell is split again, down to `edge_depth` (1/256 of the patch's side): the tests hold the
+//! flux of a shadow to 2e-3, and patch means under a penumbra to 1e-3 of exact. The split
+//! pieces of a Lambertian opening converge to its exitance's exact form factor as `1/k²`:
+//! 0.7 % off at the five-times rule, 0.05 % at twenty times.
 
 use rayon::prelude::*;
 

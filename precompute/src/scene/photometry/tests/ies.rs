@@ -127,6 +127,44 @@ fn luminous_openings_in_metres() {
     assert_eq!(load("isotropic.ies").opening.shape, OpeningShape::Point);
 }
 
+/// `TILT=<file>`: the table of `lm63-2002-tilt.ies` (its lines 12 to 17) moved into a file of
+/// its own next to the `.ies` file reads as the included one; a fault in it names that file
+/// and its line.
+#[test]
+fn a_tilt_table_in_its_own_file_reads_as_an_included_one() {
+    let dir = std::env::temp_dir().join(format!("eigenrad-tilt-file-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(super::data("lm63-2002-tilt.ies")).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    let mut ies: Vec<&str> = lines[..10].to_vec();
+    ies.push("TILT=lamp.tlt");
+    ies.extend_from_slice(&lines[17..]);
+    let path = dir.join("lamp.ies");
+    std::fs::write(&path, ies.join("\n") + "\n").unwrap();
+    let table = lines[11..17].join("\n") + "\n";
+    std::fs::write(dir.join("lamp.tlt"), &table).unwrap();
+    let p = super::super::read(&path).unwrap_or_else(|e| panic!("{e}"));
+    let included = load("lm63-2002-tilt.ies");
+    assert_eq!(p.tilt, included.tilt);
+    assert_eq!(p.distribution, included.distribution);
+    // One factor too many: the table's file and the line of the extra value.
+    std::fs::write(dir.join("lamp.tlt"), table.clone() + "0.6\n").unwrap();
+    let e = super::super::read(&path).expect_err("a value after the table");
+    assert_eq!(e.path(), dir.join("lamp.tlt"), "{e}");
+    assert_eq!(e.line(), Some(7), "{e}");
+    assert!(e.to_string().contains("follow the tilt table"), "{e}");
+    // A factor short.
+    std::fs::write(dir.join("lamp.tlt"), table.replace(" 0.7\n", "\n")).unwrap();
+    let e = super::super::read(&path).expect_err("a factor short");
+    assert_eq!(e.path(), dir.join("lamp.tlt"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("expected 7 tilt multiplying factors, found 6"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn an_included_tilt_table_is_kept() {
     let p = load("lm63-2002-tilt.ies");

@@ -192,12 +192,23 @@ fn lm63_unsupported_and_missing() {
         12,
         "type A photometry (type 3) is not supported",
     );
+    // A tilt table in a file of its own: missing, or not named; LM-63-2019 allows none.
     let e = ies_error(&edit(HALF, 11, Some("TILT=lamp.tlt")));
     assert_at(
         &e,
         "bad.ies",
         11,
-        "`TILT=lamp.tlt` (a tilt table in a separate file) is not supported",
+        "`TILT=lamp.tlt`: cannot read the tilt table's file lamp.tlt",
+    );
+    let e = ies_error(&edit(HALF, 11, Some("TILT=")));
+    assert_at(&e, "bad.ies", 11, "`TILT=` names no tilt table");
+    let e = ies_error(&edit("lm63-2019-none.ies", 11, Some("TILT=lamp.tlt")));
+    assert_at(
+        &e,
+        "bad.ies",
+        11,
+        "`TILT=lamp.tlt` (a tilt table in a separate file, which LM-63-2019 no longer allows) \
+         is not supported",
     );
     let e = ies_error(&edit(HALF, 1, Some("IESNA:LM-63-2030")));
     assert_at(

@@ -1,0 +1,194 @@
+//! The quadratures daylight shares: receiving patches cut into cells by their distance to the
+//! windows, window cells refined where their points see different things, and lit areas
+//! refined along shadow edges.
+
+use super::outside::{centre, clip};
+use super::Ctx;
+use crate::formfactor::{for_each_on_cell, split_cell, Shaft};
+use crate::geometry::Vec3;
+
+/// Most Gauss–Legendre points per side (a cell's samples live in a fixed buffer).
+pub(super) const MAX_ORDER: usize = 8;
+
+/// Signature of a sample that contributes nothing (behind, outside a sensor's view, hidden).
+const NOTHING: usize = usize::MAX;
+
+/// A receiving point: where it is, where it faces, what it sees.
+#[derive(Clone, Copy)]
+pub(super) struct Viewer<'a> {
+    pub(super) x: Vec3,
+    pub(super) normal: Vec3,
+    /// Cosine of a sensor's half-angle: only directions within it count.
+    pub(super) cone: Option<f64>,
+    /// Patches whose faces do not block (the receiving patch, the window patch).
+    pub(super) ignore: &'a [usize],
+}
+
+/// A window patch or face as seen by the quadratures.
+#[derive(Clone, Copy)]
+pub(super) struct Pane<'a> {
+    pub(super) corners: &'a [Vec3],
+    /// Unit normal, into the room.
+    pub(super) normal: Vec3,
+}
+
+/// What one window point contributes: `(bin, factor)` for the point `y`, the unit direction
+/// `d` from the receiver through it and the cosine at the window `cos_w`; the geometric
+/// kernel `cos θ_x cos θ_w / r²` is applied by the caller. `None`: nothing.
+pub(super) type Sample<'s> = dyn Fn(Vec3, Vec3, f64) -> Option<(usize, f64)> + 's;
+
+impl Ctx<'_> {
+    /// Calls `f(point, weight)` (m, m²) over the convex cell `corners` of a receiving patch,
+    /// split in four while its diameter exceeds `receiver_cell_angle` times its distance to
+    /// the nearest window (`near`, m, from a point), at most `max_depth` times, then by the
+    /// Gauss–Legendre rule of `receiver_order`.
+    pub(super) fn over_cells(
+        &self,
+        corners: &[Vec3],
+        near: &dyn Fn(Vec3) -> f64,
+        depth: u32,
+        f: &mut dyn FnMut(Vec3, f64),
+    ) {
+        let (c, r) = centre(corners);
+        let gap = (near(c) - r).max(0.0);
+        if depth < self.opts.max_depth && 2.0 * r > self.opts.receiver_cell_angle * gap {
+            for cell in split_cell(corners) {
+                self.over_cells(&cell, near, depth + 1, f);
+            }
+            return;
+        }
+        for_each_on_cell(corners, &self.gl_receiver, f);
+    }
+
+    /// [`Ctx::window_cell`] over a whole window pane, cut first along the viewer's horizon
+    /// (the horizontal plane through it) so that the ground's edge is exact.
+    pub(super) fn window_pane(
+        &self,
+        v: Viewer,
+        shaft: &Shaft,
+        pane: Pane,
+        sample: &Sample,
+        scale: f64,
+        acc: &mut [f64],
+    ) {
+        let up = Vec3::new(0.0, 0.0, 1.0);
+        let (mut above, mut below) = (false, false);
+        for c in pane.corners {
+            above |= c.z > v.x.z;
+            below |= c.z < v.x.z;
+        }
+        if above && below {
+            for part in [clip(pane.corners, v.x, up), clip(pane.corners, v.x, -up)] {
+                if part.len() >= 3 {
+                    self.window_cell(v, shaft, pane, &part, sample, scale, 0, acc);
+                }
+            }
+        } else {
+            self.window_cell(v, shaft, pane, pane.corners, sample, scale, 0, acc);
+        }
+    }
+
+    /// `∫ sample · cos θ_x cos θ_w / r² dA` over a cell of a window pane seen from the viewer,
+    /// times `scale`, added into `acc` by bin. The cell is split while it is large for its
+    /// distance (`cell_angle`, `max_depth`) and, where its points fall in different bins or
+    /// some are hidden, while its angular diameter exceeds `edge_angle` (at most
+    /// `edge_depth` splits).
+    #[allow(clippy::too_many_arguments)]
+    fn window_cell(
+        &self,
+        v: Viewer,
+        shaft: &Shaft,
+        pane: Pane,
+        corners: &[Vec3],
+        sample: &Sample,
+        scale: f64,
+        depth: u32,
+        acc: &mut [f64],
+    ) {
+        let (c, r) = centre(corners);
+        let distance = (c - v.x).length();
+        let gap = (distance - r).max(0.0);
+        let split = |acc: &mut [f64]| {
+            for cell in split_cell(corners) {
+                self.window_cell(v, shaft, pane, &cell, sample, scale, depth + 1, acc);
+            }
+        };
+        // A polygon of more than four corners is cut into its fan's triangles first, so that
+        // a cell's samples fit the buffer.
+        if corners.len() > 4
+            || (depth < self.opts.max_depth && 2.0 * r > self.opts.cell_angle * gap)
+        {
+            return split(acc);
+        }
+        let mut samples = [(NOTHING, 0.0); MAX_ORDER * MAX_ORDER * 4];
+        let mut count = 0;
+        for_each_on_cell(corners, &self.gl, |y, w| {
+            let s = self
+                .at(v, shaft, pane, y, sample)
+                .map(|(bin, value)| (bin, w * value));
+            if let Some(slot) = samples.get_mut(count) {
+                *slot = s.unwrap_or((NOTHING, 0.0));
+                count += 1;
+            }
+        });
+        let taken = &samples[..count];
+        let uniform = taken.iter().all(|s| s.0 == taken[0].0);
+        if !uniform && depth < self.opts.edge_depth && 2.0 * r > self.opts.edge_angle * distance {
+            return split(acc);
+        }
+        for &(bin, value) in taken {
+            if let Some(a) = acc.get_mut(bin) {
+                *a += scale * value;
+            }
+        }
+    }
+
+    /// One window point `y`: `(bin, sample · cos θ_x cos θ_w / r²)`, or `None`.
+    fn at(
+        &self,
+        v: Viewer,
+        shaft: &Shaft,
+        pane: Pane,
+        y: Vec3,
+        sample: &Sample,
+    ) -> Option<(usize, f64)> {
+        let d = y - v.x;
+        let r2 = d.dot(d);
+        let r = r2.sqrt();
+        if r == 0.0 {
+            return None;
+        }
+        let d = d / r;
+        let cx = v.normal.dot(d);
+        let cw = -pane.normal.dot(d);
+        if !(cx > 0.0 && cw > 0.0) || v.cone.is_some_and(|c| cx < c) {
+            return None;
+        }
+        let clear = shaft.is_clear() || self.occluders.visible_in(shaft, v.x, y, v.ignore);
+        if !clear {
+            return None;
+        }
+        sample(y, d, cw).map(|(bin, f)| (bin, f * cx * cw / r2))
+    }
+
+    /// Area, m², of the part of the convex cell `corners` where `lit` holds: the
+    /// Gauss–Legendre rule, and cells whose points disagree split down to `edge_depth`.
+    pub(super) fn lit_area(&self, corners: &[Vec3], lit: &dyn Fn(Vec3) -> bool, depth: u32) -> f64 {
+        let (mut area, mut some, mut all) = (0.0, false, true);
+        for_each_on_cell(corners, &self.gl, |x, w| {
+            if lit(x) {
+                area += w;
+                some = true;
+            } else {
+                all = false;
+            }
+        });
+        if some && !all && depth < self.opts.edge_depth {
+            return split_cell(corners)
+                .iter()
+                .map(|c| self.lit_area(c, lit, depth + 1))
+                .sum();
+        }
+        area
+    }
+}
