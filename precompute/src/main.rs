@@ -163,6 +163,13 @@ enum Command {
         /// this CSV file, atomically.
         #[arg(long, value_name = "FILE")]
         csv: Option<PathBuf>,
+        /// Daylight at this date and time (with its UTC offset, or the scene's
+        /// `site.utc_offset`), through the scene's windows from the sky the sky flags give;
+        /// readings then show daylight and electric light apart and together.
+        #[arg(long)]
+        time: Option<String>,
+        #[command(flatten)]
+        sky: SkyStateArgs,
         #[command(flatten)]
         cache: CacheArgs,
     },
@@ -296,6 +303,16 @@ struct SkyArgs {
     /// Compass bearing of the scene's +y axis, degrees clockwise from true north.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     north: f64,
+    #[command(flatten)]
+    sky: SkyStateArgs,
+    /// Print one JSON document on stdout, with every sky patch.
+    #[arg(long)]
+    json: bool,
+}
+
+/// A sky and what drives it: the flags `sky` and `solve` share.
+#[derive(Args)]
+struct SkyStateArgs {
     /// CIE standard general sky type 1 to 15, or `overcast` for the traditional CIE
     /// overcast sky; needs --dhi-lux (and takes --dni-lux for the sun).
     #[arg(long, value_name = "TYPE", value_parser = cie_type)]
@@ -318,9 +335,81 @@ struct SkyArgs {
     /// Sky patches: Reinhart subdivision MF:n, 1 (Tregenza, 145 patches) to 8.
     #[arg(long, default_value_t = 1)]
     mf: u8,
-    /// Print one JSON document on stdout, with every sky patch.
-    #[arg(long)]
-    json: bool,
+}
+
+impl SkyStateArgs {
+    /// The sky the flags give, or `None` when they give none.
+    fn input(&self) -> anyhow::Result<Option<cli::SkyInput>> {
+        Ok(Some(
+            match (self.cie, self.dni, self.dhi, self.dni_lux, self.dhi_lux) {
+                (None, None, None, None, None) => return Ok(None),
+                (Some(sky_type), None, None, dni, Some(dhi)) => cli::SkyInput::Cie {
+                    sky_type,
+                    diffuse_horizontal: dhi,
+                    direct_normal: dni.unwrap_or(0.0),
+                },
+                (Some(_), _, _, _, None) => anyhow::bail!("--cie needs --dhi-lux (lux)"),
+                (None, Some(dni), Some(dhi), None, None) => cli::SkyInput::PerezIrradiance {
+                    direct_normal: dni,
+                    diffuse_horizontal: dhi,
+                },
+                (None, None, None, Some(dni), Some(dhi)) => cli::SkyInput::PerezIlluminance {
+                    direct_normal: dni,
+                    diffuse_horizontal: dhi,
+                },
+                (None, None, None, Some(_), None) => {
+                    anyhow::bail!("--dni-lux needs --dhi-lux (the Perez sky from illuminances)")
+                }
+                _ => anyhow::bail!(
+                    "give one sky: --cie TYPE --dhi-lux LUX, --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX"
+                ),
+            },
+        ))
+    }
+}
+
+impl SkyArgs {
+    fn request(&self) -> anyhow::Result<cli::SkyRequest> {
+        let Some(input) = self.sky.input()? else {
+            anyhow::bail!(
+                "give one sky: --cie TYPE --dhi-lux LUX, --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX"
+            )
+        };
+        Ok(cli::SkyRequest {
+            site: eigenrad_precompute::daylight::sun::Site {
+                latitude: self.lat,
+                longitude: self.lon,
+                elevation: self.elevation,
+            },
+            time: self.time.clone(),
+            north: self.north,
+            input,
+            water: self.sky.water,
+            subdivision: self.sky.mf,
+        })
+    }
+}
+
+/// `solve --time ... <sky>`: the daylight asked for, or `None` without a time and a sky.
+fn daylight_args(
+    time: Option<String>,
+    sky: &SkyStateArgs,
+) -> anyhow::Result<Option<cli::DaylightArgs>> {
+    match (time, sky.input()?) {
+        (None, None) => Ok(None),
+        (Some(time), Some(input)) => Ok(Some(cli::DaylightArgs {
+            time,
+            input,
+            water: sky.water,
+            subdivision: sky.mf,
+        })),
+        (Some(_), None) => anyhow::bail!(
+            "--time needs a sky: --cie TYPE --dhi-lux LUX, --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX"
+        ),
+        (None, Some(_)) => {
+            anyhow::bail!("a sky needs --time (the date and time, for the sun's position)")
+        }
+    }
 }
 
 /// `--cie`: 1 to 15, or `overcast` (the traditional CIE overcast sky, 0 here).
@@ -333,45 +422,6 @@ fn cie_type(text: &str) -> Result<u8, String> {
                 "`{text}` is not a CIE standard sky type: 1 to 15, or `overcast`"
             )),
         },
-    }
-}
-
-impl SkyArgs {
-    fn request(&self) -> anyhow::Result<cli::SkyRequest> {
-        let input = match (self.cie, self.dni, self.dhi, self.dni_lux, self.dhi_lux) {
-            (Some(sky_type), None, None, dni, Some(dhi)) => cli::SkyInput::Cie {
-                sky_type,
-                diffuse_horizontal: dhi,
-                direct_normal: dni.unwrap_or(0.0),
-            },
-            (Some(_), _, _, _, None) => anyhow::bail!("--cie needs --dhi-lux (lux)"),
-            (None, Some(dni), Some(dhi), None, None) => cli::SkyInput::PerezIrradiance {
-                direct_normal: dni,
-                diffuse_horizontal: dhi,
-            },
-            (None, None, None, Some(dni), Some(dhi)) => cli::SkyInput::PerezIlluminance {
-                direct_normal: dni,
-                diffuse_horizontal: dhi,
-            },
-            (None, None, None, Some(_), None) => {
-                anyhow::bail!("--dni-lux needs --dhi-lux (the Perez sky from illuminances)")
-            }
-            _ => anyhow::bail!(
-                "give one sky: --cie TYPE --dhi-lux LUX, --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX"
-            ),
-        };
-        Ok(cli::SkyRequest {
-            site: eigenrad_precompute::daylight::sun::Site {
-                latitude: self.lat,
-                longitude: self.lon,
-                elevation: self.elevation,
-            },
-            time: self.time.clone(),
-            north: self.north,
-            input,
-            water: self.water,
-            subdivision: self.mf,
-        })
     }
 }
 
@@ -494,14 +544,23 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             units,
             json,
             csv,
+            time,
+            sky,
             cache,
         } => {
+            let daylight = daylight_args(time, &sky)?;
             if let Some(csv) = &csv {
                 guard::check_file_output(csv)?;
                 guard::check_outputs(std::slice::from_ref(csv), &scene::inputs(&scene)?.files)?;
             }
             let levels = cli::LevelArgs { levels, arcs };
-            let readout = cli::solve(&scene, &levels, patches, &cache.form_factors())?;
+            let readout = cli::solve_with_daylight(
+                &scene,
+                &levels,
+                daylight.as_ref(),
+                patches,
+                &cache.form_factors(),
+            )?;
             show_readout(readout, units.into(), csv.as_deref(), json)?;
         }
         Command::Eval {

@@ -22,8 +22,8 @@ pub struct Gain {
     /// `per_channel[c][b]`: the reading in band b with channel c at level 1 and every other
     /// channel off ([`Gains::unit`] per unit level).
     pub per_channel: Vec<Vec<f64>>,
-    /// The reading per unit of daylight, per band. Always `null` today: the scene format has
-    /// no daylight source, so a basis holds no daylight response to read.
+    /// The reading per unit of daylight, per band. Always `null` today: a basis holds no
+    /// daylight response to read (`eigenrad solve --time` computes daylight from the scene).
     pub per_daylight: Option<Vec<f64>>,
 }
 
@@ -121,7 +121,7 @@ fn rows(g: &Gains) -> Vec<(&'static str, &str, &'static str, Vec<f64>)> {
 
 /// What the table says about daylight (the JSON has `per_daylight: null`).
 const NO_DAYLIGHT: &str =
-    "per unit of daylight: none (the scene format has no daylight source yet)";
+    "per unit of daylight: none (a basis carries no daylight yet; `eigenrad solve --time` computes it from the scene)";
 
 /// The gains as a table: one line per sensor or zone (and band), one column per channel.
 pub fn format_gains(g: &Gains) -> String {

@@ -8,6 +8,7 @@ use std::path::Path;
 use eigenrad_runtime::{Basis, Quantity};
 use serde::Serialize;
 
+use super::sky::{sky, SkyInput, SkyRequest};
 use crate::accuracy::runtime_eval;
 use crate::error::{Error, Result};
 use crate::formfactor::exchange;
@@ -33,8 +34,26 @@ pub struct Level {
 pub struct Reading {
     /// Sensor or zone name.
     pub name: String,
-    /// Irradiance per band (W/m²) or illuminance (lux).
+    /// Irradiance per band (W/m²) or illuminance (lux): all the light, daylight included.
     pub irradiance: Vec<f64>,
+    /// With a sky (`solve --time`): the part of `irradiance` that daylight gives, lux.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub daylight: Option<Vec<f64>>,
+    /// With a sky: the part the channels give at their levels, lux.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub electric: Option<Vec<f64>>,
+}
+
+impl Reading {
+    /// A reading of all the light, without a daylight split.
+    fn total(name: String, irradiance: Vec<f64>) -> Reading {
+        Reading {
+            name,
+            irradiance,
+            daylight: None,
+            electric: None,
+        }
+    }
 }
 
 /// One patch's results.
@@ -73,6 +92,50 @@ pub struct Readout {
     /// Per patch, with `--patches`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub patches: Option<Vec<PatchReading>>,
+    /// With a sky (`solve --time`): the sky, and the grids under daylight alone.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub daylight: Option<DaylightReadout>,
+}
+
+/// Daylight for `solve`: a time and a sky, driven by the same flags as `eigenrad sky`. The
+/// site and the room's orientation are the scene's `[site]`.
+#[derive(Clone, Debug)]
+pub struct DaylightArgs {
+    /// Date-time, RFC 3339 with its UTC offset; without one, the site's `utc_offset`.
+    pub time: String,
+    /// The sky and what drives it.
+    pub input: SkyInput,
+    /// Precipitable water, cm (Perez efficacies).
+    pub water: f64,
+    /// Reinhart subdivision MF (1: Tregenza's 145 patches).
+    pub subdivision: u8,
+}
+
+/// The sky a readout's daylight comes from, and the grids under daylight alone.
+#[derive(Clone, Debug, Serialize)]
+pub struct DaylightReadout {
+    /// The time, RFC 3339 with its offset.
+    pub time: String,
+    /// `CIE type N`, `CIE traditional overcast` or `Perez`.
+    pub model: String,
+    /// The sun seen from the site (apparent altitude).
+    pub sun: crate::daylight::sun::SunPosition,
+    /// The sun's direction in the room's frame (unit vector).
+    pub sun_direction_room: [f64; 3],
+    /// Diffuse horizontal illuminance of the unobstructed sky, lux.
+    pub diffuse_horizontal_lux: f64,
+    /// Direct normal illuminance of the sun, lux.
+    pub direct_normal_lux: f64,
+    /// Global horizontal illuminance, lux: what lights the ground outside.
+    pub global_horizontal_lux: f64,
+    /// The sky patches: `tregenza` (MF:1) or `reinhart MF:n`, and how many.
+    pub patch_set: String,
+    /// Number of sky patches.
+    pub patch_count: usize,
+    /// The glazed surfaces the daylight enters through.
+    pub windows: Vec<String>,
+    /// The zones' grids under daylight alone, with their figures.
+    pub grids: Vec<GridReadout>,
 }
 
 pub(super) fn band_names(count: usize) -> Vec<&'static str> {
@@ -212,66 +275,226 @@ pub fn solve(
     patches: bool,
     form_factors: &FormFactorOptions,
 ) -> Result<Readout> {
-    let prepared = pipeline::prepare(scene_path, form_factors)?;
+    solve_with_daylight(scene_path, level_args, None, patches, form_factors)
+}
+
+/// The exact solve of some lights at some levels: per band, the exitance and irradiance of
+/// every patch and the reading of every output (`[patch][band]`, `[output][band]`).
+struct Solved {
+    exitance: Vec<Vec<f64>>,
+    irradiance: Vec<Vec<f64>>,
+    outputs: Vec<Vec<f64>>,
+}
+
+/// Solves `lights` at each set of levels in `cases`, one factorisation per band for all.
+fn solve_cases(
+    prepared: &pipeline::Prepared,
+    lights: &[crate::sources::ChannelLight],
+    cases: &[Vec<f64>],
+) -> Result<Vec<Solved>> {
     let scene = &prepared.scene;
-    let names: Vec<String> = scene.channels.iter().map(|c| c.name.clone()).collect();
-    let levels = parse_levels(level_args, &names)?;
     let n = scene.patches.len();
     let bands = scene.bands.count();
-    let mut exitance = vec![vec![0.0; bands]; n];
-    let mut irradiance = vec![vec![0.0; bands]; n];
-    let mut outputs = vec![vec![0.0; bands]; prepared.output_rows.len()];
-    let external: Vec<_> = prepared
-        .lights
+    let external: Vec<_> = lights
         .iter()
         .map(|l| l.external(&prepared.g, &prepared.area, &prepared.output_rows))
+        .collect();
+    let mut solved: Vec<Solved> = cases
+        .iter()
+        .map(|_| Solved {
+            exitance: vec![vec![0.0; bands]; n],
+            irradiance: vec![vec![0.0; bands]; n],
+            outputs: vec![vec![0.0; bands]; prepared.output_rows.len()],
+        })
         .collect();
     for b in 0..bands {
         let rho: Vec<f64> = scene.reflectance.iter().map(|r| r[b]).collect();
         let solver = ExactSolver::new(prepared.g.as_ref(), &prepared.area, &rho)?;
-        let m0 = model::initial_exitance(&prepared.lights, &external, &rho, b, &levels, &[]);
-        let m = solver.solve(&m0);
-        // E = F M (exact for black patches too), plus the light from beyond the patches.
-        let mut e = exchange::patch_irradiance(&prepared.g, &prepared.area, &m);
-        for (c, &l) in levels.iter().enumerate() {
-            if let Some(e_ext) = &external[c].patches[b] {
-                for (x, d) in e.iter_mut().zip(e_ext) {
-                    *x += l * d;
+        for (levels, out) in cases.iter().zip(&mut solved) {
+            let m0 = model::initial_exitance(lights, &external, &rho, b, levels, &[]);
+            let m = solver.solve(&m0);
+            // E = F M (exact for black patches too), plus the light from beyond the patches.
+            let mut e = exchange::patch_irradiance(&prepared.g, &prepared.area, &m);
+            for (c, &l) in levels.iter().enumerate() {
+                if let Some(e_ext) = &external[c].patches[b] {
+                    for (x, d) in e.iter_mut().zip(e_ext) {
+                        *x += l * d;
+                    }
                 }
             }
-        }
-        let mut readings = exchange::output_irradiance(&prepared.output_rows, &m);
-        model::add_external_readings(&mut readings, &external, b, &levels);
-        for i in 0..n {
-            exitance[i][b] = m[i];
-            irradiance[i][b] = e[i];
-        }
-        for (o, r) in readings.iter().enumerate() {
-            outputs[o][b] = *r;
+            let mut readings = exchange::output_irradiance(&prepared.output_rows, &m);
+            model::add_external_readings(&mut readings, &external, b, levels);
+            for i in 0..n {
+                out.exitance[i][b] = m[i];
+                out.irradiance[i][b] = e[i];
+            }
+            for (o, r) in readings.iter().enumerate() {
+                out.outputs[o][b] = *r;
+            }
         }
     }
+    Ok(solved)
+}
+
+fn daylight_err(what: &str, reason: impl Into<String>) -> Error {
+    Error::Daylight {
+        what: what.to_owned(),
+        reason: reason.into(),
+    }
+}
+
+/// The sky of `args` over `scene`'s site, and the daylight it sends through the windows at
+/// that moment, as one light (emission of diffusing windows, direct illuminance everywhere):
+/// each sky patch's response times its centre luminance, the exterior's times `E_gh / π`, the
+/// sun's times its direct normal illuminance.
+fn daylight_light(
+    scene: &crate::scene::Scene,
+    scene_path: &Path,
+    args: &DaylightArgs,
+) -> Result<(crate::sources::ChannelLight, DaylightReadout)> {
+    use crate::sources::daylight;
+    let site = scene.site.as_ref().ok_or_else(|| {
+        daylight_err(
+            "--time",
+            format!(
+                "{} has no [site]: daylight needs the room's latitude, longitude and orientation (docs/scene.md, \"Daylight\")",
+                scene_path.display()
+            ),
+        )
+    })?;
+    let time = match (
+        crate::daylight::sun::parse_time(&args.time),
+        site.utc_offset,
+    ) {
+        (Ok(_), _) | (Err(_), None) => args.time.trim().to_owned(),
+        (Err(_), Some(offset)) => {
+            let sign = if offset < 0 { '-' } else { '+' };
+            let minutes = offset.unsigned_abs() / 60;
+            format!(
+                "{}{sign}{:02}:{:02}",
+                args.time.trim(),
+                minutes / 60,
+                minutes % 60
+            )
+        }
+    };
+    let report = sky(&SkyRequest {
+        site: site.location,
+        time,
+        north: site.north,
+        input: args.input,
+        water: args.water,
+        subdivision: args.subdivision,
+    })?;
+    let patches = eigenrad_runtime::sky::patches::SkyPatches::reinhart(args.subdivision)
+        .map_err(|e| daylight_err("--mf", e.to_string()))?;
+    let occluders = crate::formfactor::Occluders::with_faces(&scene.patches, &scene.faces);
+    let opts = daylight::DaylightOptions::default();
+    let response = daylight::sky_response(scene, &occluders, patches, &opts);
+    let mut light = response
+        .exterior
+        .scaled(report.global_horizontal_lux / std::f64::consts::PI);
+    for (patch, response) in report.patches.iter().zip(&response.sky) {
+        light.add_scaled(response, patch.luminance_cd_m2);
+    }
+    if report.direct_normal_lux > 0.0 {
+        let [x, y, z] = report.sun_direction_room;
+        let toward_sun = crate::geometry::Vec3::new(x, y, z);
+        let sun = daylight::sun_light(scene, &occluders, toward_sun, &opts);
+        light.add_scaled(&sun, report.direct_normal_lux);
+    }
+    let summary = DaylightReadout {
+        time: report.time,
+        model: report.model,
+        sun: report.sun,
+        sun_direction_room: report.sun_direction_room,
+        diffuse_horizontal_lux: report.diffuse_horizontal_lux,
+        direct_normal_lux: report.direct_normal_lux,
+        global_horizontal_lux: report.global_horizontal_lux,
+        patch_set: report.patch_set,
+        patch_count: report.patches.len(),
+        windows: scene
+            .windows
+            .iter()
+            .map(|w| scene.surfaces[w.surface].name.clone())
+            .collect(),
+        grids: Vec::new(),
+    };
+    Ok((light, summary))
+}
+
+/// `eigenrad solve`, with daylight when `daylight` gives a time and a sky: the channels at
+/// their levels and the daylight of that moment, solved apart and reported apart and together.
+pub fn solve_with_daylight(
+    scene_path: &Path,
+    level_args: &LevelArgs,
+    daylight: Option<&DaylightArgs>,
+    patches: bool,
+    form_factors: &FormFactorOptions,
+) -> Result<Readout> {
+    let prepared = pipeline::prepare(scene_path, form_factors)?;
+    let scene = &prepared.scene;
+    let names: Vec<String> = scene.channels.iter().map(|c| c.name.clone()).collect();
+    let levels = parse_levels(level_args, &names)?;
+    let (solved, mut daylight_readout) = match daylight {
+        None => (
+            solve_cases(&prepared, &prepared.lights, std::slice::from_ref(&levels))?,
+            None,
+        ),
+        Some(args) => {
+            let (light, summary) = daylight_light(scene, scene_path, args)?;
+            let mut lights = prepared.lights.clone();
+            lights.push(light);
+            let mut electric = levels.clone();
+            electric.push(0.0);
+            let mut day = vec![0.0; levels.len()];
+            day.push(1.0);
+            (
+                solve_cases(&prepared, &lights, &[electric, day])?,
+                Some(summary),
+            )
+        }
+    };
+    let sum = |a: &[Vec<f64>], b: Option<&[Vec<f64>]>| -> Vec<Vec<f64>> {
+        match b {
+            None => a.to_vec(),
+            Some(b) => a
+                .iter()
+                .zip(b)
+                .map(|(x, y)| x.iter().zip(y).map(|(p, q)| p + q).collect())
+                .collect(),
+        }
+    };
+    let electric = &solved[0];
+    let day = solved.get(1);
+    let outputs = sum(&electric.outputs, day.map(|d| d.outputs.as_slice()));
+    let exitance = sum(&electric.exitance, day.map(|d| d.exitance.as_slice()));
+    let irradiance = sum(&electric.irradiance, day.map(|d| d.irradiance.as_slice()));
+    if let (Some(readout), Some(day)) = (&mut daylight_readout, day) {
+        readout.grids = scene_grids(scene, &day.outputs);
+    }
+    let reading = |name: &str, o: usize| Reading {
+        name: name.to_owned(),
+        irradiance: outputs[o].clone(),
+        daylight: day.map(|d| d.outputs[o].clone()),
+        electric: day.map(|_| electric.outputs[o].clone()),
+    };
     let sensors = scene.sensors.len();
     Ok(Readout {
         unit: scene.bands.unit(),
-        bands: band_names(bands),
+        bands: band_names(scene.bands.count()),
         levels: applied(&names, &levels, level_args),
         sensors: scene
             .sensors
             .iter()
-            .zip(&outputs)
-            .map(|(s, o)| Reading {
-                name: s.name.clone(),
-                irradiance: o.clone(),
-            })
+            .enumerate()
+            .map(|(o, s)| reading(&s.name, o))
             .collect(),
         zones: scene
             .zones
             .iter()
-            .zip(outputs.iter().skip(sensors))
-            .map(|(z, o)| Reading {
-                name: z.name.clone(),
-                irradiance: o.clone(),
-            })
+            .enumerate()
+            .map(|(z, zone)| reading(&zone.name, sensors + z))
             .collect(),
         grids: scene_grids(scene, &outputs),
         patches: patches.then(|| {
@@ -289,6 +512,7 @@ pub fn solve(
                 })
                 .collect()
         }),
+        daylight: daylight_readout,
     })
 }
 
@@ -314,17 +538,11 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &LevelArgs, patches: bool) ->
     };
     let mut sensors = Vec::new();
     for (s, v) in got.sensors.iter().enumerate() {
-        sensors.push(Reading {
-            name: name(basis.sensor_name(s))?,
-            irradiance: v.clone(),
-        });
+        sensors.push(Reading::total(name(basis.sensor_name(s))?, v.clone()));
     }
     let mut zones = Vec::new();
     for (z, v) in got.zones.iter().enumerate() {
-        zones.push(Reading {
-            name: name(basis.zone_name(z))?,
-            irradiance: v.clone(),
-        });
+        zones.push(Reading::total(name(basis.zone_name(z))?, v.clone()));
     }
     let mut grids = Vec::new();
     let mut next = 0;
@@ -377,6 +595,7 @@ pub fn eval(path: &Path, bytes: &[u8], level_args: &LevelArgs, patches: bool) ->
         zones,
         grids,
         patches: patch_list,
+        daylight: None,
     })
 }
 
@@ -388,17 +607,27 @@ pub fn grids_csv(r: &Readout) -> String {
         "lux" => "lux",
         _ => "W_per_m2",
     };
+    // With daylight, each point's daylight part follows its total, band by band.
+    let daylight = r.daylight.as_ref().map(|d| &d.grids);
     let mut s = String::from("zone,point,x_m,y_m,z_m");
     for b in &r.bands {
         let _ = write!(s, ",{b}_{unit}");
     }
+    if daylight.is_some() {
+        for b in &r.bands {
+            let _ = write!(s, ",daylight_{b}_{unit}");
+        }
+    }
     s.push('\n');
-    for g in &r.grids {
+    for (k, g) in r.grids.iter().enumerate() {
         let zone = g.zone.replace('"', "\"\"");
+        let day = daylight.and_then(|d| d.get(k));
         for (i, p) in g.points.iter().enumerate() {
             let [x, y, z] = p.position_m;
             let _ = write!(s, "\"{zone}\",{i},{x:.4},{y:.4},{z:.4}");
-            for v in &p.irradiance {
+            let day_point = day.and_then(|d| d.points.get(i));
+            let parts = day_point.map(|d| d.irradiance.as_slice()).unwrap_or(&[]);
+            for v in p.irradiance.iter().chain(parts) {
                 let _ = write!(s, ",{v}");
             }
             s.push('\n');
@@ -484,19 +713,58 @@ pub fn format_readout(r: &Readout) -> String {
             .join(", ")
     );
     let _ = writeln!(s, "bands: {} ({})", r.bands.join(" "), r.unit);
+    if let Some(d) = &r.daylight {
+        let _ = writeln!(
+            s,
+            "daylight: {} at {}; sun altitude {:.2}°, azimuth {:.2}°; diffuse horizontal {:.1} lux, direct normal {:.1} lux, global horizontal {:.1} lux; {} sky patches ({}); through {}",
+            d.model,
+            d.time,
+            d.sun.altitude,
+            d.sun.azimuth,
+            d.diffuse_horizontal_lux,
+            d.direct_normal_lux,
+            d.global_horizontal_lux,
+            d.patch_count,
+            d.patch_set,
+            if d.windows.is_empty() {
+                "no window".to_owned()
+            } else {
+                d.windows.join(", ")
+            }
+        );
+    }
+    // With daylight, each reading is followed by its two parts.
+    let parts = |x: &Reading| match (&x.daylight, &x.electric) {
+        (Some(d), Some(e)) => format!(" = daylight {} + electric {}", fmt(d), fmt(e)),
+        _ => String::new(),
+    };
     for x in &r.sensors {
-        let _ = writeln!(s, "sensor {:<20} {} {}", x.name, fmt(&x.irradiance), r.unit);
+        let _ = writeln!(
+            s,
+            "sensor {:<20} {} {}{}",
+            x.name,
+            fmt(&x.irradiance),
+            r.unit,
+            parts(x)
+        );
     }
     for z in &r.zones {
         let _ = writeln!(
             s,
-            "zone   {:<20} {} {} (average)",
+            "zone   {:<20} {} {} (average){}",
             z.name,
             fmt(&z.irradiance),
-            r.unit
+            r.unit,
+            parts(z)
         );
     }
     write_grids(&mut s, &r.grids, r.unit);
+    if let Some(d) = &r.daylight {
+        if !d.grids.is_empty() {
+            let _ = writeln!(s, "under daylight alone:");
+            write_grids(&mut s, &d.grids, r.unit);
+        }
+    }
     if let Some(patches) = &r.patches {
         let _ = writeln!(
             s,

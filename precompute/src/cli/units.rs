@@ -52,6 +52,9 @@ pub fn readout_in(mut readout: Readout, units: Units) -> Result<Readout> {
     let convert = |v: &mut Vec<f64>| v.iter_mut().for_each(|x| *x = f(*x));
     for r in readout.sensors.iter_mut().chain(&mut readout.zones) {
         convert(&mut r.irradiance);
+        for part in [&mut r.daylight, &mut r.electric].into_iter().flatten() {
+            convert(part);
+        }
     }
     for p in readout.patches.iter_mut().flatten() {
         convert(&mut p.exitance);
@@ -60,7 +63,8 @@ pub fn readout_in(mut readout: Readout, units: Units) -> Result<Readout> {
         }
     }
     // A grid's figures scale with its points (U_o is a ratio and stays).
-    for g in &mut readout.grids {
+    let daylight_grids = readout.daylight.iter_mut().flat_map(|d| &mut d.grids);
+    for g in readout.grids.iter_mut().chain(daylight_grids) {
         for v in [&mut g.average, &mut g.minimum, &mut g.maximum] {
             convert(v);
         }

@@ -76,6 +76,51 @@ impl ChannelLight {
     }
 }
 
+impl ChannelLight {
+    /// This light times `factor`: a source's response per unit of what drives it, taken at a
+    /// given drive (a sky patch's luminance, the sun's direct normal illuminance).
+    pub fn scaled(&self, factor: f64) -> ChannelLight {
+        let times = |x: &[Vec<f64>]| -> Vec<Vec<f64>> {
+            x.iter()
+                .map(|v| v.iter().map(|y| y * factor).collect())
+                .collect()
+        };
+        ChannelLight {
+            emission: times(&self.emission),
+            patch_irradiance: times(&self.patch_irradiance),
+            output_irradiance: times(&self.output_irradiance),
+        }
+    }
+
+    /// Adds `factor` times `other` to this light, entry by entry.
+    ///
+    /// # Panics
+    ///
+    /// As [`ChannelLight::plus`], when the two are not of the same shape.
+    pub fn add_scaled(&mut self, other: &ChannelLight, factor: f64) {
+        let add = |a: &mut [Vec<f64>], b: &[Vec<f64>], what: &str| {
+            assert_eq!(a.len(), b.len(), "{what} of different band counts");
+            for (x, y) in a.iter_mut().zip(b) {
+                assert_eq!(x.len(), y.len(), "{what} of different lengths");
+                for (p, q) in x.iter_mut().zip(y) {
+                    *p += factor * q;
+                }
+            }
+        };
+        add(&mut self.emission, &other.emission, "emission");
+        add(
+            &mut self.patch_irradiance,
+            &other.patch_irradiance,
+            "patch irradiance",
+        );
+        add(
+            &mut self.output_irradiance,
+            &other.output_irradiance,
+            "output irradiance",
+        );
+    }
+}
+
 /// The part of a channel's direct light that its own emitting patches do not account for:
 /// light from sources that are not patches of the scene (a luminaire's photometry, the sky).
 /// The radiosity model propagates patch emission itself (its first bounce is `R F e`, its
