@@ -45,8 +45,34 @@
 //!    from `eigenrad sky` (NREL SPA) for the site and time of the clear-sky case, given to
 //!    gensky as `-ang`.
 //!
-//! Run with `cargo test --test validation_radiance_daylight -- --nocapture` to see the tables.
-//! Without Radiance each test prints "SKIPPED" and passes.
+//! Then eigenrad against Radiance in the lit room (floor 0.2, walls 0.5, ceiling 0.7, the
+//! window one pane of τ_n = 0.88), at the grid's 45 points, `cli::solve_with_daylight` (the
+//! code of `eigenrad solve --time ... <sky>`, the exact dense solve) at `max_edge` 0.25 m with
+//! Tregenza's sky against `rtrace -ab 16 -aa 0 -lr 0 -lw 1e-3` (`RTRACE_ROOM`), `REPEATS`
+//! runs:
+//!
+//! 4. The daylight factor under the CIE overcast sky (gensky `-c`), `E / E_h` with E_h the
+//!    sky's own horizontal illuminance (7π/9 L_z), which eigenrad is given as `--dhi-lux`.
+//! 5. The illuminance under the CIE clear sky with sun (gensky `+s`, ISO 15469 type 12 for
+//!    eigenrad, the same formula to its rounded constant 0.91) at the March equinox at noon,
+//!    when the sun patch covers six of the points: eigenrad is given the Radiance sky's
+//!    diffuse horizontal illuminance (`sky_horizontal`) and the sun's direct normal
+//!    illuminance (its radiance times its solid angle).
+//!
+//! The ground, in both programs, is Lambertian at `ρ_g E_gh / π` (E_gh the global horizontal
+//! illuminance, sky and sun). Each point must agree within `MC_SIGMAS` standard errors of
+//! rtrace's mean plus three measured parts of eigenrad's error, each checked against its
+//! stated bound on every run: the mesh (`MESH_ERROR`), the sky discretisation
+//! (`SKY_DISCRETISATION`) and the window's reflection of the room's light, which the programs
+//! model differently (`GLASS_REFLECTION`); and the mean relative difference over the points
+//! within the mean allowance plus `MC_SIGMAS` standard errors of that mean (`compare`), which
+//! catches a scale error that the per-point noise would hide. Negative controls: eigenrad with
+//! the window in the opposite wall, glazing of 0.80, the sky 5 % too bright (overcast), north
+//! turned by 180° or off by 15° (clear sky) must fail the same comparison.
+//!
+//! Run with `cargo test --test validation_radiance_daylight -- --nocapture` to see the tables
+//! (about 150 CPU-seconds, 2¼ minutes on two busy cores; the MF:4 solves take most of
+//! eigenrad's part). Without Radiance each test prints "SKIPPED" and passes.
 
 mod common;
 
@@ -54,6 +80,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use common::radiance::{self, Radiance, WHITE_EFFICACY};
+use eigenrad::precompute::cli;
+use eigenrad::precompute::formfactor::FormFactorOptions;
 
 /// Room, from the origin to here, m.
 const ROOM: [f64; 3] = [6.0, 4.0, 2.8];
@@ -738,5 +766,638 @@ fn radiance_direct_sun_through_the_glass_is_the_window_projected() {
         lit >= 5 && shaded >= 5,
         "the sun patch covers part of the work plane ({lit} points lit, {shaded} not)"
     );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+// ---------------------------------------------------------------------------------------------
+// eigenrad against Radiance in the lit room: daylight factor under the CIE overcast sky and
+// illuminance under the clear sky with sun.
+// ---------------------------------------------------------------------------------------------
+
+/// Reflectances of floor, walls and ceiling (grey, diffuse).
+const REFLECTANCE: Reflectance = Reflectance {
+    floor: 0.2,
+    wall: 0.5,
+    ceiling: 0.7,
+};
+/// The weather of the comparisons: the overcast sky's diffuse horizontal illuminance, and the
+/// clear sky's diffuse horizontal and direct normal illuminance, lux.
+const OVERCAST_DHI: f64 = 10_000.0;
+const CLEAR_DHI: f64 = 15_000.0;
+const CLEAR_DNI: f64 = 70_000.0;
+/// eigenrad's patch size compared with Radiance, and the coarser one that measures its mesh
+/// error, m.
+const MAX_EDGE: f64 = 0.25;
+const MAX_EDGE_COARSE: f64 = 0.5;
+/// The finer sky discretisation that measures the error of eigenrad's default (Tregenza, MF:1):
+/// Reinhart MF:4, 2305 patches.
+const MF_FINE: u8 = 4;
+
+/// Runs per point in the interreflected comparisons.
+const REPEATS: usize = 64;
+/// `rtrace` in the lit room: 16 diffuse bounces, no ambient cache (`-aa 0`: pure Monte Carlo),
+/// 2048 hemisphere samples at most per bounce, no super-sampling, uncorrelated sampling, and
+/// Russian roulette below a ray weight of 10⁻³ (`-lr 0 -lw 1e-3`; `rayorigin()` in
+/// `src/rt/raytrace.c`: a ray under the weight survives with probability weight/10⁻³ and is
+/// promoted, so the estimate stays unbiased). With a positive `-lr`, rays under `-lw` are
+/// dropped instead, which biases the interreflected light low: averaged over the work plane
+/// under the overcast sky, 21 % at `-lr 20 -lw 1e-3`, 8 % at `1e-4` and 0.1 % ± 0.1 % at
+/// `1e-6` (16 runs each), which costs nine times the roulette's time for its noise. The sun is
+/// sampled at its centre (`-dj 0`), every source tested for every point.
+const RTRACE_ROOM: &[&str] = &[
+    "-h", "-I", "-ab", "16", "-aa", "0", "-ad", "2048", "-as", "0", "-lr", "0", "-lw", "1e-3",
+    "-u+", "-dj", "0", "-dt", "0", "-dc", "1", "-dr", "0", "-dp", "0",
+];
+/// The standard error rtrace's mean may have, relative, in the lit room: measured 0.6 % on
+/// average and 1.2 % at most over the points under the overcast sky, 0.9 % at most under the
+/// clear sky (checked on every run).
+const MC_NOISE: f64 = 2e-2;
+/// eigenrad's mesh error at `MAX_EDGE`, relative: measured as the change of each point's
+/// reading from `MAX_EDGE_COARSE`, at most 0.15 % under the overcast sky and 0.19 % under the
+/// clear sky (checked on every run: the mesh is deterministic).
+/// The error of constant exitance per patch falls by 2 to 4 when the patches halve, so this
+/// change bounds the finer mesh's error.
+const MESH_ERROR: f64 = 5e-3;
+/// The error of the sky discretisation (Tregenza's 145 patches, each at its centre's
+/// luminance), relative: measured as the change of each reading from MF:1 to MF:4, at most
+/// 0.54 % under the overcast sky and 0.65 % under the clear sky (checked on every run). Its error falls about as the patches' area, 16 times from MF:1 to
+/// MF:4, so this change bounds MF:1's error against the continuous sky.
+const SKY_DISCRETISATION: f64 = 1e-2;
+/// The window's own reflection of the room's light, relative: Radiance's glass reflects
+/// specularly, 7.8 % at normal incidence and 14.8 % averaged over a diffuse hemisphere
+/// (`glass_reflectance`), eigenrad's window diffusely at `window_reflectance()` (the most its
+/// scene check lets a glazing of τ_n have). The allowance is all the light the window reflects
+/// onto the point in eigenrad, scaled up to Radiance's hemispherical reflectance: measured
+/// 0.43 % at most under the overcast sky and 1.1 % under the clear sky (checked on every run).
+const GLASS_REFLECTION: f64 = 2e-2;
+
+/// The reflectance of Radiance's `glass` of normal transmittance `tau_n` at an angle of
+/// incidence of cosine `cos_i` (`m_glass.c`, as `glass_transmittance`).
+fn glass_reflectance(tau_n: f64, cos_i: f64) -> f64 {
+    let n = GLASS_INDEX;
+    let cos_t = (1.0 - (1.0 - cos_i * cos_i) / (n * n)).sqrt();
+    let r_s = ((cos_i - n * cos_t) / (cos_i + n * cos_t)).powi(2);
+    let r_p = ((1.0 / cos_i - n / cos_t) / (1.0 / cos_i + n / cos_t)).powi(2);
+    let d = glass_transmissivity(tau_n).powf(1.0 / cos_t);
+    [r_s, r_p]
+        .iter()
+        .map(|r| 0.5 * (r + (1.0 - r) * (1.0 - r) * r * d * d / (1.0 - r * r * d * d)))
+        .sum()
+}
+
+/// `glass_reflectance` averaged over a diffuse (cosine-weighted) hemisphere of incidence:
+/// `2 ∫ R(θ) cos θ sin θ dθ` by the midpoint rule on 2000 steps.
+fn glass_reflectance_hemispherical(tau_n: f64) -> f64 {
+    let steps = 2000;
+    let h = std::f64::consts::FRAC_PI_2 / steps as f64;
+    (0..steps)
+        .map(|k| {
+            let theta = (k as f64 + 0.5) * h;
+            2.0 * glass_reflectance(tau_n, theta.cos()) * theta.cos() * theta.sin() * h
+        })
+        .sum()
+}
+
+/// eigenrad's reflectance for the window: `1 − τ_n`, the most its scene check allows with
+/// the transmittance τ_n.
+fn window_reflectance() -> f64 {
+    1.0 - TAU_N
+}
+
+/// What an eigenrad scene may get wrong, for the negative controls.
+#[derive(Clone, Copy)]
+struct Variant {
+    /// The scene's `north`, degrees.
+    north: f64,
+    /// The window in the wall y = 4 m (facing +y outwards, north) instead of y = 0.
+    window_opposite: bool,
+    /// The glazing's normal transmittance.
+    tau_n: f64,
+    /// The window's reflectance.
+    window_reflectance: f64,
+}
+
+const RIGHT: Variant = Variant {
+    north: 0.0,
+    window_opposite: false,
+    tau_n: TAU_N,
+    window_reflectance: 1.0 - TAU_N,
+};
+
+/// The room as eigenrad TOML: the same shell, window and work plane, one pane of clear glass
+/// (Radiance's `glass` model), the site of `LATITUDE`, `LONGITUDE`.
+fn eigenrad_scene(max_edge: f64, v: Variant) -> String {
+    let [x, y, z] = ROOM;
+    let [wx0, wx1, wz0, wz1] = WINDOW;
+    // Wound to face into the room: +y for the wall y = 0, −y for the wall y = 4 m.
+    let corners = if v.window_opposite {
+        format!(
+            "[[{wx1}, {y}, {wz0}], [{wx1}, {y}, {wz1}], [{wx0}, {y}, {wz1}], [{wx0}, {y}, {wz0}]]"
+        )
+    } else {
+        format!("[[{wx0}, 0, {wz0}], [{wx0}, 0, {wz1}], [{wx1}, 0, {wz1}], [{wx1}, 0, {wz0}]]")
+    };
+    format!(
+        r#"[scene]
+name = "daylight room"
+bands = "photopic"
+unit = "m"
+max_edge = {max_edge}
+
+[site]
+latitude = {LATITUDE}
+longitude = {LONGITUDE}
+north = {north}
+ground_reflectance = {GROUND_REFLECTANCE}
+
+[materials]
+floor = {{ reflectance = {floor} }}
+wall = {{ reflectance = {wall} }}
+ceiling = {{ reflectance = {ceiling} }}
+glass = {{ reflectance = {glass_r}, transmittance = {tau_n}, panes = 1 }}
+
+[[room]]
+name = "room"
+min = [0, 0, 0]
+max = [{x}, {y}, {z}]
+material = "wall"
+floor = "floor"
+ceiling = "ceiling"
+openings = ["window"]
+
+[[quad]]
+name = "window"
+material = "glass"
+corners = {corners}
+
+[[zone]]
+name = "work_plane"
+work_plane = {{ room = "room", height = {WORK_PLANE}, margin = {GRID_BORDER}, max_edge = 0.5 }}
+"#,
+        north = v.north,
+        floor = REFLECTANCE.floor,
+        wall = REFLECTANCE.wall,
+        ceiling = REFLECTANCE.ceiling,
+        glass_r = v.window_reflectance,
+        tau_n = v.tau_n,
+    )
+}
+
+/// eigenrad's exact solve with daylight (`cli::solve_with_daylight`, the code of `eigenrad
+/// solve --time ... <sky>`) of the scene `text` (written into `dir` as `name.toml`) under
+/// `sky` at `time`, the sky in Reinhart MF:`mf` patches: the work-plane grid's illuminances,
+/// lux, in `work_plane_points()` order (checked).
+fn eigenrad_grid(dir: &Path, name: &str, text: &str, time: &str, sky: Sky) -> Vec<f64> {
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    let daylight = cli::DaylightArgs {
+        time: time.into(),
+        input: cli::SkyInput::Cie {
+            sky_type: sky.cie,
+            diffuse_horizontal: sky.dhi,
+            direct_normal: sky.dni,
+        },
+        water: 2.0,
+        subdivision: sky.mf,
+    };
+    let readout = cli::solve_with_daylight(
+        &path,
+        &cli::LevelArgs::default(),
+        Some(&daylight),
+        false,
+        &FormFactorOptions::default(),
+    )
+    .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let points = work_plane_points();
+    let grid = &readout.grids[0].points;
+    assert_eq!(
+        grid.len(),
+        points.len(),
+        "{name}: the work plane's grid points"
+    );
+    grid.iter()
+        .zip(&points)
+        .map(|(g, (p, _))| {
+            for k in 0..3 {
+                assert!(
+                    (g.position_m[k] - p[k]).abs() < 1e-9,
+                    "{name}: grid point {:?} is not at {p:?}",
+                    g.position_m
+                );
+            }
+            g.irradiance[0]
+        })
+        .collect()
+}
+
+/// A CIE sky for eigenrad: type (0: the traditional overcast sky), diffuse horizontal and
+/// direct normal illuminance (lux), Reinhart MF.
+#[derive(Clone, Copy)]
+struct Sky {
+    cie: u8,
+    dhi: f64,
+    dni: f64,
+    mf: u8,
+}
+
+/// `∫ L cos Z dω` over the upper hemisphere of the `SKY_CAL` sky `args` (Radiance units,
+/// W/m²), by the midpoint rule on 1500 zenith × 3000 azimuth cells (the clear sky's
+/// circumsolar cusp makes it converge as the cells' area: 10⁻⁵ relative here).
+fn sky_horizontal(args: &[f64]) -> f64 {
+    let (nz, na) = (1500usize, 3000usize);
+    let (hz, ha) = (
+        std::f64::consts::FRAC_PI_2 / nz as f64,
+        2.0 * std::f64::consts::PI / na as f64,
+    );
+    let sun = [args[4], args[5], args[6]];
+    let mut sum = 0.0;
+    for i in 0..nz {
+        let zenith = (i as f64 + 0.5) * hz;
+        let (sz, cz) = zenith.sin_cos();
+        let mut row = 0.0;
+        for j in 0..na {
+            let (sa, ca) = ((j as f64 + 0.5) * ha).sin_cos();
+            row += sky_luminance(args, [sz * ca, sz * sa, cz], sun);
+        }
+        sum += row * cz * sz;
+    }
+    sum * hz * ha
+}
+
+/// `SKY_CAL`'s sky brightness in the direction `d` (unit, upward).
+fn sky_luminance(args: &[f64], d: [f64; 3], sun: [f64; 3]) -> f64 {
+    match args[0] as u32 {
+        1 => {
+            let cos_g = (d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2]).clamp(-1.0, 1.0);
+            let gamma = cos_g.acos();
+            let gradation = if d[2] > 0.01 {
+                1.0 - (-0.32 / d[2]).exp()
+            } else {
+                1.0
+            };
+            args[1] * (0.91 + 10.0 * (-3.0 * gamma).exp() + 0.45 * cos_g * cos_g) * gradation
+                / args[3]
+        }
+        2 => args[1] * (1.0 + 2.0 * d[2]) / 3.0,
+        3 => args[1],
+        other => panic!("sky type {other}"),
+    }
+}
+
+/// Radiance in the lit room (`REFLECTANCE`, the glazed window) under `sky` with the ground at
+/// `ground` (W/sr/m²): every work-plane point, `REPEATS` runs.
+fn radiance_in_the_room(
+    radiance: &Radiance,
+    dir: &Path,
+    name: &str,
+    sky: &GenSky,
+    ground: f64,
+) -> Vec<radiance::Estimate> {
+    let scene = radiance_room(&REFLECTANCE, Opening::Glass(TAU_N)) + &sky.scene(ground);
+    let oct = radiance.octree(dir, name, &scene);
+    radiance.trace(dir, &oct, RTRACE_ROOM, &work_plane_points(), REPEATS)
+}
+
+/// eigenrad's readings of one sky and what each may be off by.
+struct Ours {
+    /// At `MAX_EDGE`, Tregenza sky, lux.
+    readings: Vec<f64>,
+    /// The allowance per point, lux: mesh change + sky discretisation change + the window's
+    /// reflection (`GLASS_REFLECTION`).
+    allowance: Vec<f64>,
+    /// The three parts, relative to the reading.
+    mesh: Vec<f64>,
+    sky: Vec<f64>,
+    glass: Vec<f64>,
+}
+
+/// eigenrad under `sky` at `time`, with its error budget measured: the mesh at `MAX_EDGE`
+/// against `MAX_EDGE_COARSE`, Tregenza against MF:`MF_FINE` (at the coarse mesh: the
+/// discretisation's error is in the light through the window, which the mesh does not change
+/// at a point), and the window's reflection (at the coarse mesh). Checks each part against its
+/// stated bound.
+fn eigenrad_with_budget(dir: &Path, name: &str, time: &str, sky: Sky) -> Ours {
+    let grid = |what: &str, max_edge: f64, v: Variant, mf: u8| {
+        let sky = Sky { mf, ..sky };
+        let scene = eigenrad_scene(max_edge, v);
+        eigenrad_grid(dir, &format!("{name}-{what}"), &scene, time, sky)
+    };
+    let unreflecting = Variant {
+        window_reflectance: 0.0,
+        ..RIGHT
+    };
+    // Four independent solves: run side by side.
+    let [readings, coarse, fine_sky, no_glass_reflection] = std::thread::scope(|scope| {
+        [
+            scope.spawn(|| grid("fine", MAX_EDGE, RIGHT, 1)),
+            scope.spawn(|| grid("coarse", MAX_EDGE_COARSE, RIGHT, 1)),
+            scope.spawn(|| grid("mf", MAX_EDGE_COARSE, RIGHT, MF_FINE)),
+            scope.spawn(|| grid("unreflecting", MAX_EDGE_COARSE, unreflecting, 1)),
+        ]
+        .map(|h| h.join().expect("eigenrad solve"))
+    });
+    let scale = glass_reflectance_hemispherical(TAU_N) / window_reflectance();
+    let n = readings.len();
+    let mesh: Vec<f64> = (0..n)
+        .map(|i| (coarse[i] - readings[i]).abs() / readings[i])
+        .collect();
+    let sky: Vec<f64> = (0..n)
+        .map(|i| (fine_sky[i] - coarse[i]).abs() / coarse[i])
+        .collect();
+    let glass: Vec<f64> = (0..n)
+        .map(|i| scale * (coarse[i] - no_glass_reflection[i]).abs() / coarse[i])
+        .collect();
+    let points = work_plane_points();
+    for i in 0..n {
+        let p = points[i].0;
+        assert!(
+            mesh[i] <= MESH_ERROR,
+            "{name}, {p:?}: mesh change {}",
+            mesh[i]
+        );
+        assert!(
+            sky[i] <= SKY_DISCRETISATION,
+            "{name}, {p:?}: change from MF:1 to MF:{MF_FINE} {}",
+            sky[i]
+        );
+        assert!(
+            glass[i] <= GLASS_REFLECTION,
+            "{name}, {p:?}: the window's reflection {}",
+            glass[i]
+        );
+    }
+    let allowance = (0..n)
+        .map(|i| (mesh[i] + sky[i] + glass[i]) * readings[i])
+        .collect();
+    Ours {
+        readings,
+        allowance,
+        mesh,
+        sky,
+        glass,
+    }
+}
+
+/// Prints eigenrad's and Radiance's readings side by side, `unit` (lux) divided by `per`.
+fn print_table(ours: &Ours, theirs: &[radiance::Estimate], per: f64, unit: &str) {
+    println!(
+        "  point (x, y) m   eigenrad {unit:>5}   Radiance {unit:>5}  std. err.  rel. diff | mesh chg.  sky chg.  window r.  tolerance"
+    );
+    for (i, (p, _)) in work_plane_points().iter().enumerate() {
+        let (o, t) = (ours.readings[i], theirs[i]);
+        let tolerance = (MC_SIGMAS * t.standard_error + ours.allowance[i]) / o;
+        println!(
+            "  ({:4.2}, {:4.2})   {:14.3} {:16.3} {:10.2e} {:10.2e} | {:9.2e} {:9.2e} {:10.2e} {:10.2e}",
+            p[0],
+            p[1],
+            o / per,
+            t.mean / per,
+            t.standard_error / t.mean,
+            t.mean / o - 1.0,
+            ours.mesh[i],
+            ours.sky[i],
+            ours.glass[i],
+            tolerance
+        );
+    }
+}
+
+/// Checks rtrace's noise against `MC_NOISE`.
+fn check_noise(name: &str, theirs: &[radiance::Estimate]) {
+    for ((p, _), t) in work_plane_points().iter().zip(theirs) {
+        assert!(
+            t.standard_error <= MC_NOISE * t.mean,
+            "{name}, {p:?}: rtrace's standard error {} of {} lux",
+            t.standard_error,
+            t.mean
+        );
+    }
+}
+
+/// A negative control: what eigenrad would get wrong, its scene and its sky flags.
+struct Control {
+    what: &'static str,
+    variant: Variant,
+    sky: Sky,
+}
+
+/// The negative controls: eigenrad with each control's mistake, at the coarse mesh under the
+/// same sky, must fail the comparison that the right scene passes (the solves run side by
+/// side).
+fn must_miss(
+    dir: &Path,
+    time: &str,
+    controls: &[Control],
+    ours: &Ours,
+    theirs: &[radiance::Estimate],
+) {
+    let wrong: Vec<Vec<f64>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = controls
+            .iter()
+            .map(|c| {
+                scope.spawn(move || {
+                    eigenrad_grid(
+                        dir,
+                        &format!("control-{}", c.what.replace(' ', "-")),
+                        &eigenrad_scene(MAX_EDGE_COARSE, c.variant),
+                        time,
+                        c.sky,
+                    )
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("eigenrad solve"))
+            .collect()
+    });
+    for (c, wrong) in controls.iter().zip(&wrong) {
+        match compare(wrong, &ours.allowance, theirs) {
+            Ok(mean) => panic!(
+                "eigenrad with {} passes the comparison ({:+.2} % on average)",
+                c.what,
+                100.0 * mean
+            ),
+            Err(e) => println!("  control, {}: fails as it must: {e}", c.what),
+        }
+    }
+}
+
+#[test]
+fn daylight_factor_under_the_cie_overcast_sky_matches_radiance() {
+    let Some(radiance) = Radiance::find() else {
+        eprintln!("{}", radiance::SKIPPED);
+        return;
+    };
+    let dir = radiance::scratch("daylight-overcast");
+    std::fs::write(dir.join("sky.cal"), SKY_CAL).unwrap();
+    let (altitude, azimuth, _) = sun_position(CLEAR_TIME);
+    let b = OVERCAST_DHI / WHITE_EFFICACY;
+    let overcast = GenSky::run(
+        &radiance,
+        &dir,
+        &[
+            "-ang",
+            &altitude.to_string(),
+            &(azimuth - 180.0).to_string(),
+            "-c",
+            "-B",
+            &b.to_string(),
+        ],
+    );
+    // The sky's own horizontal illuminance (7π/9 L_z, exact for SKY_CAL's overcast sky), which
+    // eigenrad is given and the daylight factor divides by.
+    let e_h = WHITE_EFFICACY * 7.0 * std::f64::consts::PI / 9.0 * overcast.sky[1];
+    assert!(
+        (e_h / OVERCAST_DHI - 1.0).abs() < GENSKY_DIGITS,
+        "gensky -c: {e_h} lux"
+    );
+    let ground = GROUND_REFLECTANCE * e_h / std::f64::consts::PI / WHITE_EFFICACY;
+    let sky = Sky {
+        cie: 0,
+        dhi: e_h,
+        dni: 0.0,
+        mf: 1,
+    };
+    let (theirs, ours) = std::thread::scope(|scope| {
+        let theirs =
+            scope.spawn(|| radiance_in_the_room(&radiance, &dir, "overcast", &overcast, ground));
+        let ours = eigenrad_with_budget(&dir, "overcast", CLEAR_TIME, sky);
+        (theirs.join().expect("rtrace"), ours)
+    });
+    println!(
+        "Daylight factor (%) under the CIE overcast sky, E_h = {e_h:.0} lux: eigenrad solve at \
+         max_edge {MAX_EDGE} m, Tregenza sky, against rtrace -ab 16 -aa 0 -ad 2048 -lr 0 -lw 1e-3, \
+         mean of {REPEATS} runs"
+    );
+    print_table(&ours, &theirs, e_h / 100.0, "DF %");
+    check_noise("overcast", &theirs);
+    let mean = compare(&ours.readings, &ours.allowance, &theirs)
+        .unwrap_or_else(|e| panic!("overcast: {e}"));
+    println!("  Radiance {:+.2} % on average", 100.0 * mean);
+
+    // The comparison tells a wrong window, glazing or sky scaling apart.
+    let controls = [
+        Control {
+            what: "the window in the opposite wall",
+            variant: Variant {
+                window_opposite: true,
+                ..RIGHT
+            },
+            sky,
+        },
+        Control {
+            what: "glazing of 0.80",
+            variant: Variant {
+                tau_n: 0.8,
+                window_reflectance: 0.2,
+                ..RIGHT
+            },
+            sky,
+        },
+        Control {
+            what: "the sky 5 % too bright",
+            variant: RIGHT,
+            sky: Sky {
+                dhi: 1.05 * e_h,
+                ..sky
+            },
+        },
+    ];
+    must_miss(&dir, CLEAR_TIME, &controls, &ours, &theirs);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn clear_sky_and_sun_on_the_work_plane_match_radiance() {
+    let Some(radiance) = Radiance::find() else {
+        eprintln!("{}", radiance::SKIPPED);
+        return;
+    };
+    let dir = radiance::scratch("daylight-clear");
+    std::fs::write(dir.join("sky.cal"), SKY_CAL).unwrap();
+    let (altitude, azimuth, s) = sun_position(CLEAR_TIME);
+    let sin_h = altitude.to_radians().sin();
+    let clear = GenSky::run(
+        &radiance,
+        &dir,
+        &[
+            "-ang",
+            &altitude.to_string(),
+            &(azimuth - 180.0).to_string(),
+            "+s",
+            "-B",
+            &(CLEAR_DHI / WHITE_EFFICACY).to_string(),
+            "-R",
+            &(CLEAR_DNI * sin_h / WHITE_EFFICACY).to_string(),
+        ],
+    );
+    let (sun_radiance, _) = clear.sun.expect("gensky +s prints a sun");
+    let e_dn = WHITE_EFFICACY * sun_radiance * sun_solid_angle();
+    // The sky's own diffuse horizontal illuminance (gensky normalises it by a fit, within
+    // 0.3 % of `-B`), which eigenrad is given.
+    let e_dh = WHITE_EFFICACY * sky_horizontal(&clear.sky);
+    assert!(
+        (e_dh / CLEAR_DHI - 1.0).abs() < 5e-3,
+        "gensky +s: {e_dh} lux diffuse"
+    );
+    let ground = GROUND_REFLECTANCE * (e_dh + e_dn * sin_h) / std::f64::consts::PI / WHITE_EFFICACY;
+    let sky = Sky {
+        cie: 12,
+        dhi: e_dh,
+        dni: e_dn,
+        mf: 1,
+    };
+    let (theirs, ours) = std::thread::scope(|scope| {
+        let theirs = scope.spawn(|| radiance_in_the_room(&radiance, &dir, "clear", &clear, ground));
+        let ours = eigenrad_with_budget(&dir, "clear", CLEAR_TIME, sky);
+        (theirs.join().expect("rtrace"), ours)
+    });
+    println!(
+        "Illuminance (lux) under the CIE clear sky (type 12), {e_dh:.0} lux diffuse and {e_dn:.0} \
+         lux direct normal, sun at {altitude:.2}° and {azimuth:.2}°: eigenrad solve at max_edge \
+         {MAX_EDGE} m, Tregenza sky, against rtrace -ab 16 -aa 0 -ad 2048 -lr 0 -lw 1e-3, mean of \
+         {REPEATS} runs"
+    );
+    print_table(&ours, &theirs, 1.0, "lux");
+    // The sun patch covers part of the grid, no point on its edge.
+    let points = work_plane_points();
+    let lit = points
+        .iter()
+        .filter(|(p, _)| match sun_at(*p, s) {
+            SunAt::Lit(_) => true,
+            SunAt::Shaded => false,
+            SunAt::Edge => panic!("{p:?} lies on the sun patch's edge: choose another time"),
+        })
+        .count();
+    assert!(
+        lit >= 5 && lit + 5 <= points.len(),
+        "{lit} points in the sun"
+    );
+    check_noise("clear", &theirs);
+    let mean =
+        compare(&ours.readings, &ours.allowance, &theirs).unwrap_or_else(|e| panic!("clear: {e}"));
+    println!("  Radiance {:+.2} % on average", 100.0 * mean);
+
+    // The comparison tells a wrong north apart: the sun patch moves.
+    let controls = [
+        Control {
+            what: "north turned by 180°",
+            variant: Variant {
+                north: 180.0,
+                ..RIGHT
+            },
+            sky,
+        },
+        Control {
+            what: "north off by 15°",
+            variant: Variant {
+                north: 15.0,
+                ..RIGHT
+            },
+            sky,
+        },
+    ];
+    must_miss(&dir, CLEAR_TIME, &controls, &ours, &theirs);
     std::fs::remove_dir_all(&dir).ok();
 }
