@@ -626,7 +626,12 @@ fn a_tilted_luminaire_with_a_tilt_table_matches_rtrace() {
         return;
     };
     let dir = scratch("tilted");
-    convert(&radiance, &dir, "tilted", &downlight_ies_with_tilt(TILT_TABLE));
+    convert(
+        &radiance,
+        &dir,
+        "tilted",
+        &downlight_ies_with_tilt(TILT_TABLE),
+    );
     convert(&radiance, &dir, "untilted", &downlight_ies());
     let t = PENDANT_TILT.to_radians();
     let mount = Mount {
