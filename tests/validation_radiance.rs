@@ -47,10 +47,12 @@
 //! Run with `cargo test --test validation_radiance -- --nocapture` to see the tables
 //! (docs/accuracy.md, "Against Radiance").
 
-use std::ffi::OsString;
+mod common;
+
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::path::Path;
+
+use common::radiance::{scratch, Estimate, Radiance};
 
 use eigenrad::precompute::cli;
 use eigenrad::precompute::formfactor::FormFactorOptions;
@@ -74,13 +76,6 @@ const WORK_PLANE: f64 = 0.8;
 /// The patch size compared with Radiance, m, and the coarser one that measures its mesh error.
 const MAX_EDGE: f64 = 0.25;
 const MAX_EDGE_COARSE: f64 = 0.5;
-
-/// Radiance's luminous efficacy of white light, lm/W (`WHTEFFICACY`, `src/common/color.h`):
-/// `ies2rad` divides candela by it, `luminance()` multiplies by it.
-const WHITE_EFFICACY: f64 = 179.0;
-/// Radiance's luminance weights of its RGB primaries (`CIE_rf`, `CIE_gf`, `CIE_bf`,
-/// `src/common/color.h`), which `bright()` applies.
-const LUMINANCE_WEIGHTS: [f64; 3] = [0.265074126, 0.670114631, 0.064811243];
 
 /// How many times each point is traced in the interreflected comparison; the spread of these
 /// independent estimates (rtrace seeds its generator from the clock, `-u+`) gives the standard
@@ -383,199 +378,35 @@ fn placement(spin: f64) -> String {
     format!("-rz {spin} -t {x} {y} {z}")
 }
 
-/// Radiance's programs and the `RAYPATH` their function files (`source.cal`, `rayinit.cal`)
-/// need.
-struct Radiance {
-    /// Folder of the programs, `None` for `PATH`.
-    bin: Option<PathBuf>,
-    /// `RAYPATH` to set, `None` to keep the environment's.
-    raypath: Option<OsString>,
+/// Writes `downlight.ies` and its `ies2rad` conversion (metres, white lamp) into `dir`.
+fn convert_luminaire(radiance: &Radiance, dir: &Path) {
+    convert(radiance, dir, "downlight", &downlight_ies());
 }
 
-impl Radiance {
-    fn find() -> Option<Radiance> {
-        if let Some(dir) = std::env::var_os("EIGENRAD_RADIANCE") {
-            let named = Radiance {
-                bin: Some(dir.into()),
-                raypath: None,
-            };
-            // Named on purpose: a folder where rtrace does not run is an error, not a skip.
-            assert!(
-                named.works(),
-                "EIGENRAD_RADIANCE: no working rtrace in {:?} (is RAYPATH set?)",
-                named.bin
-            );
-            return Some(named);
-        }
-        let on_path = Radiance {
-            bin: None,
-            raypath: None,
-        };
-        if on_path.works() {
-            return Some(on_path);
-        }
-        let script = "import os, pyradiance; print(os.path.dirname(pyradiance.__file__))";
-        let out = Command::new("python3").args(["-c", script]).output().ok()?;
-        if !out.status.success() {
-            return None;
-        }
-        let package = PathBuf::from(String::from_utf8(out.stdout).ok()?.trim());
-        let wheel = Radiance {
-            bin: Some(package.join("bin")),
-            raypath: Some(std::env::join_paths([Path::new("."), &package.join("lib")]).ok()?),
-        };
-        wheel.works().then_some(wheel)
-    }
-
-    /// Whether `rtrace` runs (it fails without its `rayinit.cal`).
-    fn works(&self) -> bool {
-        self.command("rtrace", &std::env::temp_dir())
-            .arg("-version")
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .status()
-            .is_ok_and(|s| s.success())
-    }
-
-    fn command(&self, program: &str, dir: &Path) -> Command {
-        let mut command = Command::new(match &self.bin {
-            Some(bin) => bin.join(program),
-            None => program.into(),
-        });
-        command.current_dir(dir);
-        // The scene's `!xform` runs through the shell: the programs' folder goes on `PATH`.
-        if let Some(bin) = &self.bin {
-            let path = std::env::var_os("PATH").unwrap_or_default();
-            let paths = std::iter::once(bin.clone()).chain(std::env::split_paths(&path));
-            command.env("PATH", std::env::join_paths(paths).unwrap());
-        }
-        if let Some(raypath) = &self.raypath {
-            command.env("RAYPATH", raypath);
-        }
-        command
-    }
-
-    /// Runs `program` in `dir`, stdout to `stdout` (a file in `dir`) if given; panics with its
-    /// stderr if it fails or warns (a missing `!xform` is only a warning to oconv).
-    fn run(&self, program: &str, dir: &Path, args: &[&str], stdout: Option<&str>) {
-        let mut command = self.command(program, dir);
-        command.args(args);
-        if let Some(file) = stdout {
-            command.stdout(std::fs::File::create(dir.join(file)).unwrap());
-        }
-        let out = command.stderr(Stdio::piped()).output().unwrap();
-        assert!(
-            out.status.success() && out.stderr.is_empty(),
-            "{program} {args:?} failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    }
-
-    /// Writes `downlight.ies` and its `ies2rad` conversion (metres, white lamp) into `dir`.
-    fn convert_luminaire(&self, dir: &Path) {
-        self.convert(dir, "downlight", &downlight_ies());
-    }
-
-    /// Writes `name.ies` holding `ies` and its `ies2rad` conversion (metres, white lamp:
-    /// `name.rad`, `name.dat`, and `name%.dat` for a tilt table) into `dir`.
-    fn convert(&self, dir: &Path, name: &str, ies: &str) {
-        let file = format!("{name}.ies");
-        std::fs::write(dir.join(&file), ies).unwrap();
-        self.run(
-            "ies2rad",
-            dir,
-            &["-dm", "-t", "default", "-o", name, &file],
-            None,
-        );
-    }
-
-    /// The octree `name.oct` of `scene` (Radiance text), in `dir`.
-    fn octree(&self, dir: &Path, name: &str, scene: &str) -> String {
-        let rad = format!("{name}.rad");
-        std::fs::write(dir.join(&rad), scene).unwrap();
-        let oct = format!("{name}.oct");
-        // Frozen (`-f`): rtrace reads the octree alone.
-        self.run("oconv", dir, &["-f", &rad], Some(&oct));
-        oct
-    }
-
-    /// `rtrace -I` at every sensor, `repeats` times over: per sensor the mean illuminance and
-    /// the standard error of that mean (0 for one repeat), lux.
-    fn trace(&self, dir: &Path, octree: &str, options: &[&str], repeats: usize) -> Vec<Estimate> {
-        let sensors = sensors();
-        let mut input = String::new();
-        for _ in 0..repeats {
-            for s in &sensors {
-                let [x, y, z] = s.position;
-                let [nx, ny, nz] = s.normal;
-                writeln!(input, "{x} {y} {z} {nx} {ny} {nz}").unwrap();
-            }
-        }
-        let points = dir.join(format!("{octree}.points"));
-        std::fs::write(&points, input).unwrap();
-        let out = self
-            .command("rtrace", dir)
-            .args(options)
-            .arg(octree)
-            .stdin(std::fs::File::open(&points).unwrap())
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success() && out.stderr.is_empty(),
-            "rtrace failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let lux: Vec<f64> = String::from_utf8(out.stdout)
-            .unwrap()
-            .lines()
-            .map(|line| {
-                let rgb: Vec<f64> = line
-                    .split_whitespace()
-                    .map(|w| w.parse().unwrap())
-                    .collect();
-                assert_eq!(rgb.len(), 3, "rtrace line `{line}`");
-                WHITE_EFFICACY * (0..3).map(|k| LUMINANCE_WEIGHTS[k] * rgb[k]).sum::<f64>()
-            })
-            .collect();
-        assert_eq!(lux.len(), repeats * sensors.len(), "rtrace's output lines");
-        (0..sensors.len())
-            .map(|i| {
-                let runs: Vec<f64> = (0..repeats).map(|r| lux[r * sensors.len() + i]).collect();
-                Estimate::of(&runs)
-            })
-            .collect()
-    }
+/// Writes `name.ies` holding `ies` and its `ies2rad` conversion (metres, white lamp:
+/// `name.rad`, `name.dat`, and `name%.dat` for a tilt table) into `dir`.
+fn convert(radiance: &Radiance, dir: &Path, name: &str, ies: &str) {
+    let file = format!("{name}.ies");
+    std::fs::write(dir.join(&file), ies).unwrap();
+    radiance.run(
+        "ies2rad",
+        dir,
+        &["-dm", "-t", "default", "-o", name, &file],
+        None,
+    );
 }
 
-/// A Monte Carlo mean and its standard error, lux.
-#[derive(Clone, Copy)]
-struct Estimate {
-    mean: f64,
-    standard_error: f64,
-}
-
-impl Estimate {
-    fn of(runs: &[f64]) -> Estimate {
-        let n = runs.len() as f64;
-        let mean = runs.iter().sum::<f64>() / n;
-        let standard_error = if runs.len() < 2 {
-            0.0
-        } else {
-            (runs.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt()
-        };
-        Estimate {
-            mean,
-            standard_error,
-        }
-    }
-}
-
-/// A fresh folder for one test's files.
-fn scratch(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("eigenrad-radiance-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// `rtrace` at every sensor, `repeats` times over (`common::radiance`, `Radiance::trace`).
+fn trace_sensors(
+    radiance: &Radiance,
+    dir: &Path,
+    octree: &str,
+    options: &[&str],
+    repeats: usize,
+) -> Vec<Estimate> {
+    let points: Vec<([f64; 3], [f64; 3])> =
+        sensors().iter().map(|s| (s.position, s.normal)).collect();
+    radiance.trace(dir, octree, options, &points, repeats)
 }
 
 /// eigenrad's exact solve (`cli::solve`, the code of `eigenrad solve`) of the scene in `dir`:
@@ -608,11 +439,11 @@ fn worst_relative(ours: &[f64], theirs: &[f64]) -> f64 {
 #[test]
 fn direct_light_matches_rtrace_and_a_turned_luminaire_would_not() {
     let Some(radiance) = Radiance::find() else {
-        eprintln!("SKIPPED: Radiance not found (pip install pyradiance, or set EIGENRAD_RADIANCE)");
+        eprintln!("{}", common::radiance::SKIPPED);
         return;
     };
     let dir = scratch("direct");
-    radiance.convert_luminaire(&dir);
+    convert_luminaire(&radiance, &dir);
     let ours = eigenrad_readings(&dir, &BLACK, MAX_EDGE_COARSE, &RECESSED);
     let trace = |name: &str, transform: &str| -> Vec<f64> {
         let oct = radiance.octree(
@@ -622,8 +453,7 @@ fn direct_light_matches_rtrace_and_a_turned_luminaire_would_not() {
         );
         let mut options = RTRACE_DIRECT.to_vec();
         options.extend(["-ab", "0"]);
-        radiance
-            .trace(&dir, &oct, &options, 1)
+        trace_sensors(&radiance, &dir, &oct, &options, 1)
             .iter()
             .map(|e| e.mean)
             .collect()
@@ -678,11 +508,11 @@ fn direct_light_matches_rtrace_and_a_turned_luminaire_would_not() {
 #[test]
 fn interreflected_illuminance_matches_rtrace_within_noise_and_mesh_error() {
     let Some(radiance) = Radiance::find() else {
-        eprintln!("SKIPPED: Radiance not found (pip install pyradiance, or set EIGENRAD_RADIANCE)");
+        eprintln!("{}", common::radiance::SKIPPED);
         return;
     };
     let dir = scratch("interreflected");
-    radiance.convert_luminaire(&dir);
+    convert_luminaire(&radiance, &dir);
     let fine = eigenrad_readings(&dir, &REFLECTANCE, MAX_EDGE, &RECESSED);
     let coarse = eigenrad_readings(&dir, &REFLECTANCE, MAX_EDGE_COARSE, &RECESSED);
     let direct = eigenrad_readings(&dir, &BLACK, MAX_EDGE_COARSE, &RECESSED);
@@ -693,14 +523,13 @@ fn interreflected_illuminance_matches_rtrace_within_noise_and_mesh_error() {
     );
     let mut options = RTRACE_DIRECT.to_vec();
     options.extend(["-ab", "0"]);
-    let their_direct: Vec<f64> = radiance
-        .trace(&dir, &oct, &options, 1)
+    let their_direct: Vec<f64> = trace_sensors(&radiance, &dir, &oct, &options, 1)
         .iter()
         .map(|e| e.mean)
         .collect();
     let mut options = RTRACE_DIRECT.to_vec();
     options.extend_from_slice(RTRACE_AMBIENT);
-    let theirs = radiance.trace(&dir, &oct, &options, REPEATS);
+    let theirs = trace_sensors(&radiance, &dir, &oct, &options, REPEATS);
 
     println!(
         "Direct and interreflected light: eigenrad solve at max_edge {MAX_EDGE} m (mesh change from \
@@ -793,12 +622,17 @@ const TILTED_TOLERANCE: f64 = 2e-2;
 #[test]
 fn a_tilted_luminaire_with_a_tilt_table_matches_rtrace() {
     let Some(radiance) = Radiance::find() else {
-        eprintln!("SKIPPED: Radiance not found (pip install pyradiance, or set EIGENRAD_RADIANCE)");
+        eprintln!("{}", common::radiance::SKIPPED);
         return;
     };
     let dir = scratch("tilted");
-    radiance.convert(&dir, "tilted", &downlight_ies_with_tilt(TILT_TABLE));
-    radiance.convert(&dir, "untilted", &downlight_ies());
+    convert(
+        &radiance,
+        &dir,
+        "tilted",
+        &downlight_ies_with_tilt(TILT_TABLE),
+    );
+    convert(&radiance, &dir, "untilted", &downlight_ies());
     let t = PENDANT_TILT.to_radians();
     let mount = Mount {
         file: "tilted.ies",
@@ -813,8 +647,7 @@ fn a_tilted_luminaire_with_a_tilt_table_matches_rtrace() {
         let oct = radiance.octree(&dir, name, &radiance_scene(&BLACK, &transform, luminaire));
         let mut options = RTRACE_DIRECT.to_vec();
         options.extend(["-ab", "0"]);
-        radiance
-            .trace(&dir, &oct, &options, 1)
+        trace_sensors(&radiance, &dir, &oct, &options, 1)
             .iter()
             .map(|e| e.mean)
             .collect()

@@ -6,6 +6,8 @@
 // Each test crate uses its own part of these.
 #![allow(dead_code)]
 
+pub mod radiance;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::OnceLock;
