@@ -52,7 +52,7 @@ mod common;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use common::radiance::{scratch, Estimate, Radiance};
+use common::radiance::{self, scratch, Estimate, Radiance};
 
 use eigenrad::precompute::cli;
 use eigenrad::precompute::formfactor::FormFactorOptions;
@@ -317,56 +317,14 @@ channel = "downlight"
 /// no roughness (Lambertian), polygons wound to face into the room, and the `ies2rad` output
 /// `ies2rad` output `luminaire` (a `.rad` file) placed by `transform` (xform arguments).
 fn radiance_scene(rho: &Reflectance, transform: &str, luminaire: &str) -> String {
-    let [x, y, z] = ROOM;
-    let mut text = String::new();
-    for (name, r) in [
-        ("floor_mat", rho.floor),
-        ("wall_mat", rho.wall),
-        ("ceiling_mat", rho.ceiling),
-    ] {
-        writeln!(text, "void plastic {name} 0 0 5 {r} {r} {r} 0 0").unwrap();
-    }
-    // Counter-clockwise seen from inside the room: Radiance's normal (right-hand rule) and
-    // eigenrad's room faces point inwards.
-    let polygons: [(&str, &str, [[f64; 3]; 4]); 6] = [
-        (
-            "floor_mat",
-            "floor",
-            [[0., 0., 0.], [x, 0., 0.], [x, y, 0.], [0., y, 0.]],
-        ),
-        (
-            "ceiling_mat",
-            "ceiling",
-            [[0., 0., z], [0., y, z], [x, y, z], [x, 0., z]],
-        ),
-        (
-            "wall_mat",
-            "wall_xmin",
-            [[0., 0., 0.], [0., y, 0.], [0., y, z], [0., 0., z]],
-        ),
-        (
-            "wall_mat",
-            "wall_xmax",
-            [[x, 0., 0.], [x, 0., z], [x, y, z], [x, y, 0.]],
-        ),
-        (
-            "wall_mat",
-            "wall_ymin",
-            [[0., 0., 0.], [0., 0., z], [x, 0., z], [x, 0., 0.]],
-        ),
-        (
-            "wall_mat",
-            "wall_ymax",
-            [[0., y, 0.], [x, y, 0.], [x, y, z], [0., y, z]],
-        ),
-    ];
-    for (material, name, corners) in polygons {
-        write!(text, "{material} polygon {name} 0 0 12").unwrap();
-        for [a, b, c] in corners {
-            write!(text, "  {a} {b} {c}").unwrap();
-        }
-        text.push('\n');
-    }
+    let [x, _, z] = ROOM;
+    let mut text = radiance::grey_room_but_y0(ROOM, rho.floor, rho.wall, rho.ceiling);
+    radiance::write_polygon(
+        &mut text,
+        "wall_mat",
+        "wall_ymin",
+        &[[0., 0., 0.], [0., 0., z], [x, 0., z], [x, 0., 0.]],
+    );
     writeln!(text, "!xform {transform} {luminaire}").unwrap();
     text
 }

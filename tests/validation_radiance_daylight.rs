@@ -202,69 +202,29 @@ fn window_corners() -> [[f64; 3]; 4] {
 /// inside: Radiance's right-hand normal), the wall y = 0 in four pieces around the window,
 /// and the window as `opening`.
 fn radiance_room(rho: &Reflectance, opening: Opening) -> String {
-    let [x, y, z] = ROOM;
+    let [x, _, z] = ROOM;
     let [wx0, wx1, wz0, wz1] = WINDOW;
-    let mut text = String::new();
-    for (name, r) in [
-        ("floor_mat", rho.floor),
-        ("wall_mat", rho.wall),
-        ("ceiling_mat", rho.ceiling),
-    ] {
-        writeln!(text, "void plastic {name} 0 0 5 {r} {r} {r} 0 0").unwrap();
-    }
+    let mut text = radiance::grey_room_but_y0(ROOM, rho.floor, rho.wall, rho.ceiling);
     // The y = 0 wall, seen from inside (+y), counter-clockwise: (x0, z0), (x0, z1), (x1, z1),
     // (x1, z0) in x and z.
     let wall_y0 = |x0: f64, x1: f64, z0: f64, z1: f64| {
         [[x0, 0., z0], [x0, 0., z1], [x1, 0., z1], [x1, 0., z0]]
     };
     let polygons: Vec<(&str, &str, [[f64; 3]; 4])> = vec![
-        (
-            "floor_mat",
-            "floor",
-            [[0., 0., 0.], [x, 0., 0.], [x, y, 0.], [0., y, 0.]],
-        ),
-        (
-            "ceiling_mat",
-            "ceiling",
-            [[0., 0., z], [0., y, z], [x, y, z], [x, 0., z]],
-        ),
-        (
-            "wall_mat",
-            "wall_xmin",
-            [[0., 0., 0.], [0., y, 0.], [0., y, z], [0., 0., z]],
-        ),
-        (
-            "wall_mat",
-            "wall_xmax",
-            [[x, 0., 0.], [x, 0., z], [x, y, z], [x, y, 0.]],
-        ),
-        (
-            "wall_mat",
-            "wall_ymax",
-            [[0., y, 0.], [x, y, 0.], [x, y, z], [0., y, z]],
-        ),
         ("wall_mat", "wall_ymin_below", wall_y0(0., x, 0., wz0)),
         ("wall_mat", "wall_ymin_above", wall_y0(0., x, wz1, z)),
         ("wall_mat", "wall_ymin_left", wall_y0(0., wx0, wz0, wz1)),
         ("wall_mat", "wall_ymin_right", wall_y0(wx1, x, wz0, wz1)),
     ];
     for (material, name, corners) in polygons {
-        write_polygon(&mut text, material, name, &corners);
+        radiance::write_polygon(&mut text, material, name, &corners);
     }
     if let Opening::Glass(tau_n) = opening {
         let t = glass_transmissivity(tau_n);
         writeln!(text, "void glass glass_mat 0 0 3 {t} {t} {t}").unwrap();
-        write_polygon(&mut text, "glass_mat", "window", &window_corners());
+        radiance::write_polygon(&mut text, "glass_mat", "window", &window_corners());
     }
     text
-}
-
-fn write_polygon(text: &mut String, material: &str, name: &str, corners: &[[f64; 3]]) {
-    write!(text, "{material} polygon {name} 0 0 {}", 3 * corners.len()).unwrap();
-    for [a, b, c] in corners {
-        write!(text, "  {a} {b} {c}").unwrap();
-    }
-    text.push('\n');
 }
 
 /// Radiance's transmissivity of `glass` from the normal transmittance (reference manual,

@@ -230,3 +230,60 @@ pub fn scratch(test: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
+
+/// A grey room of `size` (m) as Radiance primitives, all but its y = 0 wall (whose openings
+/// each test cuts itself): materials `floor_mat`, `wall_mat` and `ceiling_mat`, `plastic` of
+/// the given greys with no specularity and no roughness (Lambertian), and the floor, ceiling
+/// and walls x = 0, x = size x and y = size y as polygons counter-clockwise seen from inside
+/// (Radiance's right-hand normal points into the room, as eigenrad's room faces do).
+pub fn grey_room_but_y0(size: [f64; 3], floor: f64, wall: f64, ceiling: f64) -> String {
+    let [x, y, z] = size;
+    let mut text = String::new();
+    for (name, r) in [
+        ("floor_mat", floor),
+        ("wall_mat", wall),
+        ("ceiling_mat", ceiling),
+    ] {
+        writeln!(text, "void plastic {name} 0 0 5 {r} {r} {r} 0 0").unwrap();
+    }
+    let faces: [(&str, &str, [[f64; 3]; 4]); 5] = [
+        (
+            "floor_mat",
+            "floor",
+            [[0., 0., 0.], [x, 0., 0.], [x, y, 0.], [0., y, 0.]],
+        ),
+        (
+            "ceiling_mat",
+            "ceiling",
+            [[0., 0., z], [0., y, z], [x, y, z], [x, 0., z]],
+        ),
+        (
+            "wall_mat",
+            "wall_xmin",
+            [[0., 0., 0.], [0., y, 0.], [0., y, z], [0., 0., z]],
+        ),
+        (
+            "wall_mat",
+            "wall_xmax",
+            [[x, 0., 0.], [x, 0., z], [x, y, z], [x, y, 0.]],
+        ),
+        (
+            "wall_mat",
+            "wall_ymax",
+            [[0., y, 0.], [x, y, 0.], [x, y, z], [0., y, z]],
+        ),
+    ];
+    for (material, name, corners) in faces {
+        write_polygon(&mut text, material, name, &corners);
+    }
+    text
+}
+
+/// One Radiance `polygon` of `material` named `name`, on a line of its own.
+pub fn write_polygon(text: &mut String, material: &str, name: &str, corners: &[[f64; 3]]) {
+    write!(text, "{material} polygon {name} 0 0 {}", 3 * corners.len()).unwrap();
+    for [a, b, c] in corners {
+        write!(text, "  {a} {b} {c}").unwrap();
+    }
+    text.push('\n');
+}

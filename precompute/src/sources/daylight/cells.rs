@@ -60,6 +60,38 @@ impl Ctx<'_> {
         for_each_on_cell(corners, &self.gl_receiver, f);
     }
 
+    /// [`Ctx::window_pane`] for window patch `j` seen from a point `x` facing `normal` (within
+    /// the cone of cosine `cone`): the pane, its shaft to the point, and the point as viewer,
+    /// with the window patch itself not blocking.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn window_patch_at_point(
+        &self,
+        j: usize,
+        x: Vec3,
+        normal: Vec3,
+        cone: Option<f64>,
+        sample: &Sample,
+        scale: f64,
+        acc: &mut [f64],
+    ) {
+        let w = &self.scene.patches[j];
+        let ignore = [j];
+        let pane = Pane {
+            corners: &w.polygon.vertices,
+            normal: w.normal,
+        };
+        let shaft = self
+            .occluders
+            .shaft(pane.corners, pane.normal, &[x], normal, &ignore);
+        let v = Viewer {
+            x,
+            normal,
+            cone,
+            ignore: &ignore,
+        };
+        self.window_pane(v, &shaft, pane, sample, scale, acc);
+    }
+
     /// [`Ctx::window_cell`] over a whole window pane, cut first along the viewer's horizon
     /// (the horizontal plane through it) so that the ground's edge is exact.
     pub(super) fn window_pane(

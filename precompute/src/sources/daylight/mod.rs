@@ -371,24 +371,9 @@ impl<'a> Ctx<'a> {
         acc: &mut [f64],
     ) {
         for (j, exitance) in panes {
-            let w = &self.scene.patches[*j];
-            let ignore = [*j];
-            let pane = Pane {
-                corners: &w.polygon.vertices,
-                normal: w.normal,
-            };
-            let shaft = self
-                .occluders
-                .shaft(pane.corners, pane.normal, &[x], normal, &ignore);
-            let v = Viewer {
-                x,
-                normal,
-                cone,
-                ignore: &ignore,
-            };
             let lambert = |_: Vec3, _: Vec3, _: f64| Some((0, std::f64::consts::FRAC_1_PI));
             let mut f = [0.0];
-            self.window_pane(v, &shaft, pane, &lambert, 1.0, &mut f);
+            self.window_patch_at_point(*j, x, normal, cone, &lambert, 1.0, &mut f);
             for (a, e) in acc.iter_mut().zip(exitance) {
                 *a += f[0] * e;
             }

@@ -137,22 +137,7 @@ impl Ctx<'_> {
         for a in self.apertures.iter().filter(|a| !a.diffusing) {
             let sample = self.clear_sample(a.window);
             for &j in &a.patches {
-                let w = &self.scene.patches[j];
-                let ignore = [j];
-                let pane = Pane {
-                    corners: &w.polygon.vertices,
-                    normal: w.normal,
-                };
-                let shaft = self
-                    .occluders
-                    .shaft(pane.corners, pane.normal, &[x], normal, &ignore);
-                let v = Viewer {
-                    x,
-                    normal,
-                    cone,
-                    ignore: &ignore,
-                };
-                self.window_pane(v, &shaft, pane, &sample, 1.0, &mut acc);
+                self.window_patch_at_point(j, x, normal, cone, &sample, 1.0, &mut acc);
             }
         }
         acc
