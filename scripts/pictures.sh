@@ -7,6 +7,11 @@
 #   office-luminance.png  the surfaces' luminance (cd/m²), the same solve
 #   office-dimmed.png     the work plane's plan through a basis (what the controller reads),
 #                         luminaire lum1 at DALI arc 200, the others at 170, the window at 0.3
+#   daylight-overcast.png the daylight office's work plane under the CIE overcast sky of
+#                         10 000 lux at noon on the March equinox, luminaires off (exact solve):
+#                         lux per 10 000 lux outside, i.e. the daylight factor in ‰
+#   daylight-sun.png      the same under the CIE clear sky (type 12) with the sun: 15 000 lux
+#                         diffuse, 70 000 lux direct normal
 #
 # Usage: scripts/pictures.sh [SCENE]      (default examples/office/scene.toml)
 #
@@ -44,7 +49,15 @@ log "basis of $scene, evaluated through the runtime with dimmed channels"
     --arc lum1=200 --arc lum2=170 --arc lum3=170 --arc lum4=170 --level window=0.3 \
     --plan "$out/office-dimmed.png"
 
-for f in office-plan office-surfaces office-luminance office-dimmed; do
+daylit="examples/office-daylight/scene.toml"
+off=(--level lum1=0 --level lum2=0 --level lum3=0 --level lum4=0)
+log "exact solve of $daylit with daylight, luminaires off"
+"$eigenrad" render "$daylit" "${off[@]}" --time 2026-03-20T12:00+01:00 \
+    --cie overcast --dhi-lux 10000 --plan "$out/daylight-overcast.png"
+"$eigenrad" render "$daylit" "${off[@]}" --time 2026-03-20T12:00+01:00 \
+    --cie 12 --dhi-lux 15000 --dni-lux 70000 --plan "$out/daylight-sun.png"
+
+for f in office-plan office-surfaces office-luminance office-dimmed daylight-overcast daylight-sun; do
     bytes=$(stat -c %s "$out/$f.png")
     log "$f.png: $bytes bytes"
     if ((bytes >= 200 * 1024)); then

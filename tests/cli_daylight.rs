@@ -11,79 +11,10 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{run, scratch, stderr};
+use common::{daylit_room, run, scratch, stderr, VIENNA};
 use eigenrad_precompute::cli::{self, DaylightArgs, LevelArgs, SkyInput, Units};
 use eigenrad_precompute::formfactor::FormFactorOptions;
 use serde_json::Value;
-
-/// A 4 × 3 × 2.8 m room with a 2 × 1.3 m clear window in its y = 0 wall (facing south at
-/// `north = 0`), a flush ceiling lamp (channel `lamp`), a desk sensor, a ceiling photocell and
-/// a work plane; meshed coarsely (0.7 m) so that each solve takes a fraction of a second.
-fn daylit_room(site: &str) -> String {
-    format!(
-        r#"[scene]
-name = "daylit"
-bands = "photopic"
-unit = "m"
-max_edge = 0.7
-
-{site}
-
-[materials]
-floor = {{ reflectance = 0.2 }}
-wall = {{ reflectance = 0.5 }}
-ceiling = {{ reflectance = 0.7 }}
-glass = {{ reflectance = 0.0, transmittance = 0.7 }}
-lamp = {{ reflectance = 0.0 }}
-
-[[room]]
-name = "room"
-min = [0, 0, 0]
-max = [4, 3, 2.8]
-material = "wall"
-floor = "floor"
-ceiling = "ceiling"
-openings = ["window", "lamp"]
-
-[[quad]]
-name = "window"
-material = "glass"
-corners = [[1, 0, 0.9], [1, 0, 2.2], [3, 0, 2.2], [3, 0, 0.9]]
-
-[[quad]]
-name = "lamp"
-material = "lamp"
-corners = [[1.7, 1.2, 2.8], [1.7, 1.8, 2.8], [2.3, 1.8, 2.8], [2.3, 1.2, 2.8]]
-
-[[channel]]
-name = "lamp"
-surfaces = ["lamp"]
-flux = 2000
-
-[[sensor]]
-name = "desk"
-position = [2, 1.5, 0.8]
-normal = [0, 0, 1]
-
-[[sensor]]
-name = "photocell"
-position = [2, 2.5, 2.79]
-normal = [0, 0, -1]
-half_angle = 45
-
-[[zone]]
-name = "work_plane"
-work_plane = {{ room = "room", height = 0.8, margin = 0.5, max_edge = 0.7 }}
-"#
-    )
-}
-
-const VIENNA: &str = r#"[site]
-latitude = 48.21
-longitude = 16.37
-north = 0
-ground_reflectance = 0.2
-utc_offset = "+01:00""#;
 
 fn scene_file(test: &str, site: &str) -> (PathBuf, PathBuf) {
     let dir = scratch(test);

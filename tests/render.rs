@@ -16,7 +16,9 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use eigenrad::precompute::cli::{self, LevelArgs, RenderRequest, SurfaceQuantity, Units};
+use eigenrad::precompute::cli::{
+    self, DaylightArgs, LevelArgs, RenderRequest, SkyInput, SurfaceQuantity, Units,
+};
 use eigenrad::precompute::formfactor::FormFactorOptions;
 use eigenrad::precompute::picture::{colour, Frame, Panel, Plan, PlanInput, Scale};
 use eigenrad::precompute::pipeline::{self, BuildOptions, ModeSelection};
@@ -60,6 +62,7 @@ fn request<'a>(
         plan: true,
         surfaces: Some(SurfaceQuantity::Illuminance),
         form_factors: ff,
+        daylight: None,
     }
 }
 
@@ -460,6 +463,82 @@ fn the_same_input_gives_the_same_bytes() {
     for (bytes, _) in &written {
         assert!(bytes.len() < 200_000);
     }
+}
+
+/// A daylight plan (`render --time ... <sky>`, lamp off) shows the exact daylight grid of
+/// `solve --time` within half a colour bin, and names the sky in its notes.
+#[test]
+fn a_daylight_plan_shows_the_daylight_grid() {
+    let dir = scratch("daylight");
+    let path = dir.join("daylit.toml");
+    std::fs::write(&path, common::daylit_room(common::VIENNA)).unwrap();
+    let levels = LevelArgs {
+        levels: vec!["lamp=0".into()],
+        arcs: Vec::new(),
+    };
+    let ff = FormFactorOptions::default();
+    let daylight = DaylightArgs {
+        time: "2026-06-21T12:00+02:00".into(),
+        input: SkyInput::Cie {
+            sky_type: 0,
+            diffuse_horizontal: 10_000.0,
+            direct_normal: 0.0,
+        },
+        water: 2.0,
+        subdivision: 1,
+    };
+    let mut r = request(&path, &levels, &ff);
+    r.daylight = Some(&daylight);
+    let pictures = cli::render(&r).unwrap();
+    let plan = pictures.plan.as_ref().unwrap();
+    assert!(
+        plan.input
+            .notes
+            .iter()
+            .any(|n| n.contains("CIE traditional overcast")),
+        "{:?}",
+        plan.input.notes
+    );
+    let exact = cli::solve_with_daylight(&path, &levels, Some(&daylight), false, &ff).unwrap();
+    let day = &exact.daylight.as_ref().unwrap().grids[0];
+    let (bytes, frame) = plan.png().unwrap();
+    let img = decode(&bytes);
+    let half = plan.scale.bin_width() / 2.0;
+    let cell = [day.pieces[0].cell_m[0] / 2.0, day.pieces[0].cell_m[1] / 2.0];
+    for p in &day.points {
+        let [x, y, _] = p.position_m;
+        let shown = cell_value(&img, &frame, &plan.scale, (x, y), cell)
+            .unwrap_or_else(|| panic!("({x}, {y}): not a colour of the scale"));
+        let e = p.irradiance[0];
+        assert!(e > 0.0, "({x}, {y}): no daylight");
+        assert!(
+            (shown - e).abs() <= half * (1.0 + 1e-9),
+            "({x:.3}, {y:.3}): drawn {shown:.3} lx, exact daylight {e:.3} lx"
+        );
+    }
+    // A basis carries no daylight: asked for both, render says so and draws nothing.
+    let basis = common::good_basis(&dir);
+    let out = dir.join("plan.png");
+    let o = common::run(&[
+        "render",
+        path.to_str().unwrap(),
+        "--basis",
+        basis.to_str().unwrap(),
+        "--time",
+        "2026-06-21T12:00+02:00",
+        "--cie",
+        "overcast",
+        "--dhi-lux",
+        "10000",
+        "--plan",
+        out.to_str().unwrap(),
+    ]);
+    let e = common::stderr(&o);
+    assert!(
+        !o.status.success() && e.contains("carries no daylight"),
+        "{e}"
+    );
+    assert!(!out.exists());
 }
 
 #[test]

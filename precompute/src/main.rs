@@ -232,6 +232,12 @@ enum Command {
         /// Unit of illuminance (luminance is in cd/m² either way).
         #[arg(long, value_enum, default_value = "lux")]
         units: UnitsArg,
+        /// Daylight at this date and time through the scene's windows, under the sky the sky
+        /// flags give, as `solve --time` (not with --basis).
+        #[arg(long)]
+        time: Option<String>,
+        #[command(flatten)]
+        sky: SkyStateArgs,
         #[command(flatten)]
         cache: CacheArgs,
     },
@@ -592,8 +598,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             zone,
             quantity,
             units,
+            time,
+            sky,
             cache,
         } => {
+            let daylight = daylight_args(time, &sky)?;
             if plan.is_empty() && surfaces.is_empty() {
                 anyhow::bail!("render: nothing to draw; name a --plan FILE, a --surfaces FILE or both (.png or .svg)");
             }
@@ -633,6 +642,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     QuantityArg::Luminance => cli::SurfaceQuantity::Luminance,
                 }),
                 form_factors: &cache.form_factors(),
+                daylight: daylight.as_ref(),
             })?;
             let files = plan
                 .iter()

@@ -14,7 +14,7 @@ use crate::formfactor::FormFactorOptions;
 use crate::picture::{Format, Net, NetInput, NetPatch, Plan, PlanInput};
 use crate::scene::{self, Scene, ZoneKind};
 
-use super::readout::{self, LevelArgs, Readout};
+use super::readout::{self, DaylightArgs, LevelArgs, Readout};
 use super::units::{readout_in, Units};
 
 /// What colours the surfaces.
@@ -47,6 +47,9 @@ pub struct RenderRequest<'a> {
     pub surfaces: Option<SurfaceQuantity>,
     /// Form-factor settings, progress and cache of the exact solve.
     pub form_factors: &'a FormFactorOptions,
+    /// Daylight at a time under a sky, as `solve --time` takes it (exact solve only: a basis
+    /// carries no daylight yet).
+    pub daylight: Option<&'a DaylightArgs>,
 }
 
 /// The pictures, ready to be drawn as PNG or SVG.
@@ -211,12 +214,27 @@ pub fn render(request: &RenderRequest<'_>) -> Result<Pictures> {
     };
     let patches = request.surfaces.is_some();
     let native = match request.basis {
+        Some((basis_path, _)) if request.daylight.is_some() => {
+            return Err(render_error(
+                path,
+                format!(
+                    "{} carries no daylight (a basis holds the channels only); leave out --basis to draw daylight from the exact solve",
+                    basis_path.display()
+                ),
+            ))
+        }
         Some((basis_path, bytes)) => {
             let r = readout::eval(basis_path, bytes, request.levels, patches)?;
             check_basis_matches(&scene, path, basis_path, &r)?;
             r
         }
-        None => readout::solve(path, request.levels, patches, request.form_factors)?,
+        None => readout::solve_with_daylight(
+            path,
+            request.levels,
+            request.daylight,
+            patches,
+            request.form_factors,
+        )?,
     };
     let readout = readout_in(native.clone(), request.units)?;
     let bands = readout.bands.len();
@@ -242,6 +260,12 @@ pub fn render(request: &RenderRequest<'_>) -> Result<Pictures> {
         None => format!("the exact solve of {}, as `solve`", path.display()),
     };
     let mut notes = vec![format!("from {source}"), levels];
+    if let Some(d) = &readout.daylight {
+        notes.push(format!(
+            "daylight: {} at {}, sun {:.1}° up; diffuse horizontal {:.0} lux, direct normal {:.0} lux",
+            d.model, d.time, d.sun.altitude, d.diffuse_horizontal_lux, d.direct_normal_lux
+        ));
+    }
     notes.extend(rgb_note);
 
     let plan = match zone {
