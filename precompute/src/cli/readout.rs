@@ -365,16 +365,11 @@ fn sky_of_moment(
         site.utc_offset,
     ) {
         (Ok(_), _) | (Err(_), None) => args.time.trim().to_owned(),
-        (Err(_), Some(offset)) => {
-            let sign = if offset < 0 { '-' } else { '+' };
-            let minutes = offset.unsigned_abs() / 60;
-            format!(
-                "{}{sign}{:02}:{:02}",
-                args.time.trim(),
-                minutes / 60,
-                minutes % 60
-            )
-        }
+        (Err(_), Some(offset)) => match chrono::FixedOffset::east_opt(offset) {
+            // Displayed as `+HH:MM`, the form `parse_time` reads.
+            Some(offset) => format!("{}{offset}", args.time.trim()),
+            None => args.time.trim().to_owned(),
+        },
     };
     sky(&SkyRequest {
         site: site.location,
