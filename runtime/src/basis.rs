@@ -79,6 +79,21 @@ pub struct GridPiece {
     pub normal: [f32; 3],
 }
 
+/// The site a basis' daylight was computed for (`daylight_site`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Site {
+    /// Latitude, degrees north.
+    pub latitude: f32,
+    /// Longitude, degrees east.
+    pub longitude: f32,
+    /// Elevation, m.
+    pub elevation: f32,
+    /// Compass bearing of the scene's +y axis, degrees clockwise from true north.
+    pub north: f32,
+    /// The site's UTC offset, minutes (local time minus UTC).
+    pub utc_offset_minutes: f32,
+}
+
 impl<'a> Basis<'a> {
     /// Decodes and validates a basis in place.
     ///
@@ -332,24 +347,73 @@ impl<'a> Basis<'a> {
         self.matrix(self.tables.grid_view, self.counts.grid_view_cols())
     }
 
+    /// Whether the basis carries daylight (its scene had a site and glazed windows).
+    pub fn has_daylight(&self) -> bool {
+        self.tables.sky_subdivision != 0
+    }
+
+    /// The sky patches of the basis' daylight, `None` without daylight. A
+    /// [`DaylightEvaluator`](crate::DaylightEvaluator) takes one luminance per patch, in
+    /// their order.
+    pub fn sky_patches(&self) -> Option<crate::sky::patches::SkyPatches> {
+        crate::sky::patches::SkyPatches::reinhart(self.tables.sky_subdivision).ok()
+    }
+
+    /// The site of the basis' daylight, `None` without daylight.
+    pub fn site(&self) -> Option<Site> {
+        if !self.has_daylight() {
+            return None;
+        }
+        let at = |k: usize| f32_at(self.tables.daylight_site, k);
+        Some(Site {
+            latitude: at(0),
+            longitude: at(1),
+            elevation: at(2),
+            north: at(3),
+            utc_offset_minutes: at(4),
+        })
+    }
+
+    /// The grid of sun directions the basis' daylight stores the sun at, `None` without
+    /// daylight.
+    pub fn sun_grid(&self) -> Option<crate::sky::sun_grid::SunGrid> {
+        let site = self.site()?;
+        let t = &self.tables;
+        Some(crate::sky::sun_grid::SunGrid {
+            latitude: site.latitude,
+            declination_first: f32_at(t.sun_spacing, 0),
+            declination_step: f32_at(t.sun_spacing, 1),
+            rows: u32_at(t.sun_lattice, 0) as usize,
+            hour_first: f32_at(t.sun_spacing, 2),
+            hour_step: f32_at(t.sun_spacing, 3),
+            columns: u32_at(t.sun_lattice, 1) as usize,
+        })
+    }
+
+    /// Number of sun-grid nodes that light the room (stored ones).
+    pub fn sun_node_count(&self) -> usize {
+        self.tables.sun_nodes.len() / 4
+    }
+
+    /// Number of daylight nodes `D`: sky patches, the exterior, the stored sun nodes (0
+    /// without daylight).
+    pub fn daylight_node_count(&self) -> usize {
+        self.counts.daylight_node_count
+    }
+
+    /// Where sun-grid node `node` is among the stored sun nodes, if it lights the room.
+    pub(crate) fn sun_node_position(&self, node: usize) -> Option<usize> {
+        search_u32(self.tables.sun_nodes, node)
+    }
+
+    /// The `daylight_grid` matrix: `G × D`.
+    pub(crate) fn daylight_grid(&self) -> Matrix<'a> {
+        self.matrix(self.tables.daylight_grid, self.counts.daylight_grid_cols())
+    }
+
     /// Position of patch `patch` in the black-patch list, if it is black in some band.
     pub(crate) fn black_index(&self, patch: usize) -> Option<usize> {
-        let black_patches = self.tables.black_patches;
-        let count = black_patches.len() / 4;
-        let (mut lo, mut hi) = (0usize, count);
-        while lo < hi {
-            let mid = lo + (hi - lo) / 2;
-            let v = u32_at(black_patches, mid) as usize;
-            if v == patch {
-                return Some(mid);
-            }
-            if v < patch {
-                lo = mid + 1;
-            } else {
-                hi = mid;
-            }
-        }
-        None
+        search_u32(self.tables.black_patches, patch)
     }
 
     /// The `modes` matrix: `n × (B·p)`, column `b·p + k` is mode `k` of band `b`.
@@ -380,6 +444,24 @@ impl<'a> Basis<'a> {
             data: raw.data,
         }
     }
+}
+
+/// Position of `value` in an ascending table of little-endian `u32`, by bisection.
+fn search_u32(table: &[u8], value: usize) -> Option<usize> {
+    let (mut lo, mut hi) = (0usize, table.len() / 4);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        let v = u32_at(table, mid) as usize;
+        if v == value {
+            return Some(mid);
+        }
+        if v < value {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    None
 }
 
 pub(crate) fn check_index(what: &'static str, index: usize, count: usize) -> Result<()> {

@@ -1,6 +1,6 @@
 //! Decoding a basis, one function per section of `docs/format.md`: header
 //! ([`format::check_header`]), settings, counts, names, eigenvalues, patch tables, modes,
-//! black patches, channel tables, outputs, grids.
+//! black patches, channel tables, outputs, grids, daylight.
 //!
 //! Each section checks its tables' lengths against the counts and every stored value against
 //! its range, so that the evaluator reads the tables without checking them again. Sections
@@ -48,6 +48,7 @@ pub(crate) fn basis(bytes: &[u8]) -> Result<Basis<'_>> {
     channel_tables(&raw, &counts, precision)?;
     outputs(&raw, &counts, precision)?;
     grids(&raw, &counts, precision)?;
+    daylight(&raw, &counts, quantity, precision)?;
     Ok(Basis {
         quantity,
         formulation,
@@ -104,6 +105,7 @@ fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
         zone_count: raw.zone_count as usize,
         grid_piece_count: 0,
         grid_point_count: 0,
+        daylight_node_count: 0,
     };
     if counts.surface_count > usize::from(u16::MAX) {
         return Err(Error::DecodeField {
@@ -146,9 +148,25 @@ fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
         }
         points = cols(points.checked_add(kept))?;
     }
+    // The daylight's nodes: the sky's patches, the exterior, the sun nodes.
+    if raw.sky_subdivision > crate::sky::patches::MAX_SUBDIVISION {
+        return Err(field_value("sky_subdivision", raw.sky_subdivision));
+    }
+    if !raw.sun_nodes.len().is_multiple_of(4) {
+        return Err(Error::DecodeLength {
+            field: "sun_nodes",
+            expected: raw.sun_nodes.len() / 4 * 4,
+            found: raw.sun_nodes.len(),
+        });
+    }
+    let daylight_nodes = cols(format::daylight_nodes(
+        raw.sky_subdivision,
+        raw.sun_nodes.len() / 4,
+    ))?;
     Ok(Counts {
         grid_piece_count: pieces,
         grid_point_count: points,
+        daylight_node_count: daylight_nodes,
         ..counts
     })
 }
@@ -376,6 +394,104 @@ fn grids(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
         precision,
         g,
         cols(c.grid_view_cols())?,
+    )
+}
+
+/// Most nodes of a sun grid: its node indices are read as `u32`, and a grid this fine is far
+/// finer than the sun's own disc (0.53°) would ever need.
+const MAX_SUN_GRID: usize = 1 << 20;
+
+/// Daylight: nothing without a sky (`sky_subdivision` 0); with one, a photometric basis of
+/// one band, the site, the sun grid and its nodes, and the node tables.
+fn daylight(raw: &Payload<'_>, c: &Counts, quantity: Quantity, precision: Precision) -> Result<()> {
+    if raw.sky_subdivision == 0 {
+        for (field, table) in [
+            ("daylight_site", raw.daylight_site),
+            ("sun_lattice", raw.sun_lattice),
+            ("sun_spacing", raw.sun_spacing),
+            ("sun_nodes", raw.sun_nodes),
+            ("daylight_outputs", raw.daylight_outputs),
+            ("daylight_modes", raw.daylight_modes),
+            ("daylight_grid.scales", raw.daylight_grid.scales),
+            ("daylight_grid.data", raw.daylight_grid.data),
+        ] {
+            check_len(field, table, 0, 1)?;
+        }
+        return Ok(());
+    }
+    // Daylight is photopic: its tables are in lux.
+    if quantity != Quantity::Photometric {
+        return Err(field_value("sky_subdivision", raw.sky_subdivision));
+    }
+    f32_table("daylight_site", raw.daylight_site, 5, Allowed::Bounded)?;
+    let site = |k: usize| f32_at(raw.daylight_site, k);
+    let limits = [90.0, 180.0, 1.0e4, 360.0, 18.0 * 60.0];
+    for (k, limit) in limits.into_iter().enumerate() {
+        if site(k).abs() > limit {
+            return Err(Error::DecodeValue {
+                field: "daylight_site",
+                index: k,
+            });
+        }
+    }
+    check_len("sun_lattice", raw.sun_lattice, 2, 4)?;
+    let rows = u32_at(raw.sun_lattice, 0) as usize;
+    let columns = u32_at(raw.sun_lattice, 1) as usize;
+    let grid = mul(rows, columns)?;
+    if rows == 0 || columns == 0 || grid > MAX_SUN_GRID {
+        return Err(Error::DecodeValue {
+            field: "sun_lattice",
+            index: 0,
+        });
+    }
+    f32_table("sun_spacing", raw.sun_spacing, 4, Allowed::Bounded)?;
+    let spacing = |k: usize| f32_at(raw.sun_spacing, k);
+    // Declinations within ±90°, hour angles within ±360°, and steps that move.
+    let last = |first: f32, step: f32, count: usize| first + step * (count - 1) as f32;
+    let ok = spacing(1) > 0.0
+        && spacing(3) > 0.0
+        && spacing(0) >= -90.0
+        && last(spacing(0), spacing(1), rows) <= 90.0
+        && spacing(2) >= -360.0
+        && last(spacing(2), spacing(3), columns) <= 360.0;
+    if !ok {
+        return Err(Error::DecodeValue {
+            field: "sun_spacing",
+            index: 0,
+        });
+    }
+    let mut previous: Option<u32> = None;
+    for i in 0..raw.sun_nodes.len() / 4 {
+        let node = u32_at(raw.sun_nodes, i);
+        if node as usize >= grid || previous.is_some_and(|p| p >= node) {
+            return Err(Error::DecodeValue {
+                field: "sun_nodes",
+                index: i,
+            });
+        }
+        previous = Some(node);
+    }
+    let d = c.daylight_node_count;
+    let o = cols(c.output_count())?;
+    f32_table(
+        "daylight_outputs",
+        raw.daylight_outputs,
+        mul(o, d)?,
+        Allowed::Bounded,
+    )?;
+    f32_table(
+        "daylight_modes",
+        raw.daylight_modes,
+        mul(cols(c.modes_cols())?, d)?,
+        Allowed::Bounded,
+    )?;
+    matrix(
+        "daylight_grid.data",
+        "daylight_grid.scales",
+        raw.daylight_grid,
+        precision,
+        c.grid_point_count,
+        cols(c.daylight_grid_cols())?,
     )
 }
 

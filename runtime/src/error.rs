@@ -128,6 +128,9 @@ pub enum Error {
     },
     /// DALI arc power level 255 is "MASK" (no change), not a light level.
     DaliMask,
+    /// Daylight was asked of a basis that carries none (its scene had no site or no
+    /// glazed window, docs/scene.md "Daylight").
+    NoDaylight,
     /// A sun, sky or glazing input (module [`sky`](crate::sky)) is NaN or outside the range
     /// its model is defined on.
     OutOfRange {
@@ -240,6 +243,9 @@ impl fmt::Display for Error {
                     "zone {zone} has no calculation grid with finite readings"
                 )
             }
+            Error::NoDaylight => f.write_str(
+                "the basis carries no daylight: build it from a scene with a [site] and glazed windows",
+            ),
             Error::DaliMask => f.write_str("DALI arc power level 255 (MASK) is not a light level"),
             Error::OutOfRange { what, range } => write!(f, "{what} must be {range}"),
             Error::UnknownName { what } => write!(f, "the basis has no {what} of that name"),

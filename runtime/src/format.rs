@@ -1,4 +1,4 @@
-//! The serialized basis, format version 3: the wire types a writer fills and the reader
+//! The serialized basis, format version 5: the wire types a writer fills and the reader
 //! decodes in place. `docs/format.md` is the normative description; this module is its
 //! layout and header, the checks of the payload's sections are in `decode.rs`.
 //!
@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 /// The eight bytes every basis starts with.
 pub const MAGIC: [u8; 8] = *b"EIGENRAD";
 /// The format version this runtime writes and reads.
-pub const FORMAT_VERSION: u16 = 4;
+pub const FORMAT_VERSION: u16 = 5;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 20;
 /// `patch_channel` value of a patch that belongs to no channel.
@@ -220,6 +220,38 @@ pub struct Payload<'a> {
     /// exitance set patch by patch.
     #[serde(borrow)]
     pub grid_view: MatrixBytes<'a>,
+    /// The daylight's sky: 0 when the basis carries no daylight, 1 for Tregenza's 145
+    /// patches, `n` for Reinhart's subdivision MF:n ([`crate::sky::patches::SkyPatches`]).
+    /// With daylight, `D` = the sky's patches + 1 (the exterior) + the sun nodes is the
+    /// number of daylight nodes; without, every daylight table is empty.
+    pub sky_subdivision: u8,
+    /// Empty, or 5 `f32`: latitude (° north), longitude (° east), elevation (m), the compass
+    /// bearing of the scene's +y axis (°, clockwise from true north) and the site's UTC
+    /// offset (minutes).
+    #[serde(borrow)]
+    pub daylight_site: &'a [u8],
+    /// Empty, or 2 `u32`: the sun grid's declinations and hour angles (rows and columns).
+    #[serde(borrow)]
+    pub sun_lattice: &'a [u8],
+    /// Empty, or 4 `f32`, degrees: the first declination, the step between declinations,
+    /// the first hour angle, the step between hour angles.
+    #[serde(borrow)]
+    pub sun_spacing: &'a [u8],
+    /// Ascending `u32` indices `row · columns + column` of the sun grid's nodes that light
+    /// the room; the others light nothing.
+    #[serde(borrow)]
+    pub sun_nodes: &'a [u8],
+    /// `O × D` `f32`: each output's exact illuminance (lux) per unit of each daylight node:
+    /// per cd/m² of a sky patch, per cd/m² of `E_gh/π` of the exterior, per lux of direct
+    /// normal illuminance of the sun at a node.
+    #[serde(borrow)]
+    pub daylight_outputs: &'a [u8],
+    /// `p × D` `f32`: the mode amplitudes of each daylight node's exact exitance.
+    #[serde(borrow)]
+    pub daylight_modes: &'a [u8],
+    /// `G × D` matrix: each grid point's exact illuminance per unit of each daylight node.
+    #[serde(borrow)]
+    pub daylight_grid: MatrixBytes<'a>,
 }
 
 /// The dimensions every table's length follows from (`docs/format.md`, notation): the reader
@@ -248,6 +280,8 @@ pub(crate) struct Counts {
     pub grid_piece_count: usize,
     /// `G`: grid points, the sum of the pieces' kept points.
     pub grid_point_count: usize,
+    /// `D`: daylight nodes (sky patches, the exterior, the sun nodes); 0 without daylight.
+    pub daylight_node_count: usize,
 }
 
 impl Counts {
@@ -275,6 +309,22 @@ impl Counts {
     pub fn grid_view_cols(&self) -> Option<usize> {
         Some(self.patch_count)
     }
+
+    /// Columns of `daylight_grid`: `D`.
+    pub fn daylight_grid_cols(&self) -> Option<usize> {
+        Some(self.daylight_node_count)
+    }
+}
+
+/// `D`, the daylight nodes of a basis whose sky is `sky_subdivision` and whose sun has
+/// `sun_nodes` nodes: the sky's patches, the exterior and the sun nodes (0 without
+/// daylight, `None` for a subdivision the sky patches do not have or an overflow).
+pub(crate) fn daylight_nodes(sky_subdivision: u8, sun_nodes: usize) -> Option<usize> {
+    if sky_subdivision == 0 {
+        return Some(0);
+    }
+    let sky = crate::sky::patches::SkyPatches::reinhart(sky_subdivision).ok()?;
+    sky.count().checked_add(1)?.checked_add(sun_nodes)
 }
 
 /// CRC-32/ISO-HDLC (the zlib/PNG CRC): reflected polynomial `0xEDB88320`, initial value and
@@ -439,6 +489,11 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     for slot in &mut tables {
         *slot = take(&mut rest)?;
     }
+    let sky_subdivision: u8 = take(&mut rest)?;
+    let mut daylight: [&[u8]; 8] = [&[]; 8];
+    for slot in &mut daylight {
+        *slot = take(&mut rest)?;
+    }
     if !rest.is_empty() {
         return Err(Error::DecodeLength {
             field: "payload length",
@@ -451,6 +506,8 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     let matrix = |scales, data| MatrixBytes { scales, data };
     let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_pieces, grid_lattice, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
         tables;
+    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data] =
+        daylight;
     Ok(Payload {
         bands,
         quantity,
@@ -486,6 +543,14 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         grid_modes,
         grid_channels,
         grid_view: matrix(grid_view_scales, grid_view_data),
+        sky_subdivision,
+        daylight_site,
+        sun_lattice,
+        sun_spacing,
+        sun_nodes,
+        daylight_outputs,
+        daylight_modes,
+        daylight_grid: matrix(daylight_grid_scales, daylight_grid_data),
     })
 }
 
@@ -568,7 +633,7 @@ mod tests {
     /// the three loops take the fields in the struct's order.
     #[test]
     fn decode_payload_reads_what_postcard_derives() {
-        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..28u8)
+        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..36u8)
             .map(|k| {
                 (0..=k)
                     .map(|i| k.wrapping_mul(31).wrapping_add(i))
@@ -615,6 +680,14 @@ mod tests {
             grid_modes: t(24),
             grid_channels: t(25),
             grid_view: m(26),
+            sky_subdivision: 9,
+            daylight_site: t(28),
+            sun_lattice: t(29),
+            sun_spacing: t(30),
+            sun_nodes: t(31),
+            daylight_outputs: t(32),
+            daylight_modes: t(33),
+            daylight_grid: m(34),
         };
         let mut buffer = [0u8; 1024];
         let body = postcard::to_slice(&payload, &mut buffer).unwrap();

@@ -16,8 +16,10 @@ pub mod target;
 #[cfg(any(test, feature = "alloc"))]
 pub mod writer;
 
-pub use basis::{Basis, GridPiece, PatchInfo, SensorInfo, MIN_REFLECTANCE};
+pub use basis::{Basis, GridPiece, PatchInfo, SensorInfo, Site, MIN_REFLECTANCE};
 pub use error::{Error, Result};
-pub use eval::{ChannelEvaluator, Evaluator, Figures, Reading, MAX_EXITANCE, MAX_LEVEL};
+pub use eval::{
+    ChannelEvaluator, DaylightEvaluator, Evaluator, Figures, Reading, Sun, MAX_EXITANCE, MAX_LEVEL,
+};
 pub use format::{Formulation, Precision, Quantity};
 pub use target::{LevelProblem, Output};

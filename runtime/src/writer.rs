@@ -91,6 +91,23 @@ pub struct BasisTables {
     pub grid_channels: Vec<f64>,
     /// `G × n`.
     pub grid_view: Vec<f64>,
+    /// The daylight's sky: 0 without daylight (every daylight table empty), 1 Tregenza, `n`
+    /// Reinhart MF:n.
+    pub sky_subdivision: u8,
+    /// Empty, or latitude (°), longitude (°), elevation (m), north (°), UTC offset (minutes).
+    pub daylight_site: Vec<f64>,
+    /// Empty, or the sun grid's declinations and hour angles.
+    pub sun_lattice: Vec<u32>,
+    /// Empty, or the first declination, its step, the first hour angle, its step (°).
+    pub sun_spacing: Vec<f64>,
+    /// Ascending indices of the sun grid's nodes that light the room.
+    pub sun_nodes: Vec<u32>,
+    /// `O × D`: each output's illuminance per unit of each daylight node.
+    pub daylight_outputs: Vec<f64>,
+    /// `p × D`: each daylight node's mode amplitudes.
+    pub daylight_modes: Vec<f64>,
+    /// `G × D`: each grid point's illuminance per unit of each daylight node.
+    pub daylight_grid: Vec<f64>,
 }
 
 /// `values` rounded to `f32`, little-endian.
@@ -230,6 +247,14 @@ impl BasisTables {
             grid_modes: Vec::new(),
             grid_channels: Vec::new(),
             grid_view: Vec::new(),
+            sky_subdivision: 0,
+            daylight_site: Vec::new(),
+            sun_lattice: Vec::new(),
+            sun_spacing: Vec::new(),
+            sun_nodes: Vec::new(),
+            daylight_outputs: Vec::new(),
+            daylight_modes: Vec::new(),
+            daylight_grid: Vec::new(),
         }
     }
 
@@ -245,6 +270,8 @@ impl BasisTables {
             zone_count: self.zone_names.len(),
             grid_piece_count: self.grid_lattice.len(),
             grid_point_count: self.grid_position.len(),
+            daylight_node_count: format::daylight_nodes(self.sky_subdivision, self.sun_nodes.len())
+                .unwrap_or(0),
         }
     }
 
@@ -336,6 +363,14 @@ impl BasisTables {
             grid_modes: &f32_bytes(&self.grid_modes),
             grid_channels: &f32_bytes(&self.grid_channels),
             grid_view: matrix(&self.grid_view, c.grid_view_cols())?.bytes(),
+            sky_subdivision: self.sky_subdivision,
+            daylight_site: &f32_bytes(&self.daylight_site),
+            sun_lattice: &u32_bytes(&self.sun_lattice),
+            sun_spacing: &f32_bytes(&self.sun_spacing),
+            sun_nodes: &u32_bytes(&self.sun_nodes),
+            daylight_outputs: &f32_bytes(&self.daylight_outputs),
+            daylight_modes: &f32_bytes(&self.daylight_modes),
+            daylight_grid: matrix(&self.daylight_grid, c.daylight_grid_cols())?.bytes(),
         })
     }
 }

@@ -4,12 +4,15 @@
 //! channel and nothing else: every reading is a sum over the channels of their exact stored
 //! responses (`channel_response`, `output_channels`). [`Evaluator`] adds exitance set patch by
 //! patch, which goes through the modes, and the per-patch state that needs.
+//! [`DaylightEvaluator`] reads the daylight of a basis that carries it, from a sky state.
 
 mod channels;
+mod daylight;
 mod figures;
 mod patches;
 
 pub use channels::ChannelEvaluator;
+pub use daylight::{DaylightEvaluator, Sun};
 pub(crate) use figures::Accumulator;
 pub use figures::{Figures, Reading};
 pub use patches::Evaluator;

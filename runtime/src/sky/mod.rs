@@ -8,6 +8,8 @@
 //! - [`efficacy`]: the luminous efficacy of diffuse and direct sunlight (Perez et al. 1990);
 //! - [`patches`]: the Tregenza sky of 145 patches and its Reinhart subdivisions;
 //! - [`glazing`]: the angular transmittance of clear and diffusing glazing;
+//! - [`sun_grid`]: the sun's directions at a site as a grid in declination and hour angle,
+//!   the nodes of a basis' daylight;
 //! - [`horizontal_illuminance`]: a sky's luminance integrated over the hemisphere, the rule
 //!   that turns a relative sky into an absolute one.
 //!
@@ -25,14 +27,15 @@
 //! quadrature's sums run over 512 positive terms (relative rounding below 10⁻⁵). The host
 //! uses this same code; the tests check it against independent `f64` computations.
 //!
-//! Nothing here is called by the basis evaluators: a firmware that does not use the sky
-//! links none of it.
+//! Nothing here but [`sun_grid`] is called by the basis evaluators: a firmware that does not
+//! use the sky models links none of them.
 
 pub mod cie;
 pub mod efficacy;
 pub mod glazing;
 pub mod patches;
 pub mod perez;
+pub mod sun_grid;
 
 use crate::error::{Error, Result};
 

@@ -62,7 +62,43 @@ pub fn tiny() -> BasisTables {
         grid_modes: vec![0.25, 0.3],
         grid_channels: vec![110.0, 90.0],
         grid_view: vec![0.0, 0.12, 0.0, 0.08],
+        sky_subdivision: 0,
+        daylight_site: Vec::new(),
+        sun_lattice: Vec::new(),
+        sun_spacing: Vec::new(),
+        sun_nodes: Vec::new(),
+        daylight_outputs: Vec::new(),
+        daylight_modes: Vec::new(),
+        daylight_grid: Vec::new(),
     }
+}
+
+/// Tregenza's sky patches.
+pub const TREGENZA: usize = 145;
+
+/// The tiny basis with daylight: Tregenza's sky, the exterior and a sun grid of 3
+/// declinations by 5 hour angles (−30° to 30° by 15°) in Vienna, of which the nodes 6, 7 and
+/// 8 (the middle row's three middle columns) light the room. Node `d` of the `D = 149`
+/// gives output `o` the value `(o + 1) · (d + 1)` lux per unit (a sky patch's per cd/m²),
+/// mode amplitude `0.01 · (d + 1)`, grid point `g` the value `(g + 2) · (d + 1)`: by hand,
+/// so that the tests can sum what the evaluator must read.
+pub fn tiny_daylight() -> BasisTables {
+    let mut t = tiny();
+    let d = TREGENZA + 1 + 3;
+    t.sky_subdivision = 1;
+    t.daylight_site = vec![48.21, 16.37, 170.0, 0.0, 60.0];
+    t.sun_lattice = vec![3, 5];
+    t.sun_spacing = vec![-10.0, 10.0, -30.0, 15.0];
+    t.sun_nodes = vec![6, 7, 8];
+    let node = |k: usize| (k + 1) as f64;
+    t.daylight_outputs = (0..2)
+        .flat_map(|o| (0..d).map(move |k| (o + 1) as f64 * node(k)))
+        .collect();
+    t.daylight_modes = (0..d).map(|k| 0.01 * node(k)).collect();
+    t.daylight_grid = (0..2)
+        .flat_map(|g| (0..d).map(move |k| (g + 2) as f64 * node(k)))
+        .collect();
+    t
 }
 
 /// A random basis with consistent dimensions and plausible magnitudes.

@@ -1,0 +1,297 @@
+//! Daylight through the windows of a basis that carries it: the sky's patches, the exterior
+//! and the sun, each a node whose exact readings the basis stores (docs/format.md,
+//! "Daylight"; docs/math.md, "Daylight in the basis").
+
+use super::{fits, grid_figures, luminance, ChannelEvaluator, Figures, MAX_EXITANCE};
+use crate::basis::{check_index, Basis};
+use crate::error::{Error, Result};
+use crate::sky::sun_grid::NodeWeight;
+use crate::storage::{dot_f32, f32_at, f32_row};
+
+/// The sun of a moment, as a [`DaylightEvaluator`] takes it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sun {
+    /// Unit vector towards the sun in the site's frame: x east, y north, z up
+    /// ([`crate::sky::direction`] builds it from altitude and azimuth). Below the horizon
+    /// (`z < 0`) it lights nothing.
+    pub direction: [f32; 3],
+    /// Direct normal illuminance, lux.
+    pub direct_normal: f32,
+}
+
+/// Turns a sky state (the luminance of every sky patch, the global horizontal illuminance,
+/// the sun) into the daylight illuminance of every sensor, zone and grid point, exact to
+/// `f32` for the sky's patches and at the sun grid's nodes, and into patch exitance through
+/// the modes.
+///
+/// The basis stores, per daylight node (each sky patch per cd/m², the exterior per cd/m² of
+/// `E_gh/π`, each sun node per lux of direct normal illuminance), every output's exact
+/// illuminance, every grid point's, and the mode amplitudes of the room's exact exitance.
+/// A sky update ([`set_sky`](Self::set_sky)) weighs the nodes: the sky's patches by their
+/// luminances, the exterior by `E_gh/π`, the four sun nodes around the sun by their bilinear
+/// weights in declination and hour angle ([`crate::sky::sun_grid`]) times `E_n`; it then
+/// sums every output's row (`O × D` products) and, when `MODES > 0`, every mode's (`p × D`).
+/// Sensor and zone reads cost nothing more; a grid point sums its row when read.
+///
+/// Capacities: `SKY` at least the basis' sky patches (145 for Tregenza), `OUTPUTS` at least
+/// its sensors plus zones, and `MODES` either 0 (no patch exitance: updates skip the modes)
+/// or at least its mode count. Daylight adds to the electric light of a
+/// [`ChannelEvaluator`] or an [`Evaluator`](crate::Evaluator), which it does not hold:
+/// [`zone_figures_with`](Self::zone_figures_with) takes the figures of the two together.
+#[derive(Clone, Debug)]
+pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize> {
+    basis: Basis<'a>,
+    /// Each sky patch's luminance, cd/m² (the basis' sky order).
+    sky: heapless::Vec<f32, SKY>,
+    /// `E_gh / π`, cd/m²: what the exterior's node is weighed by.
+    exterior: f32,
+    /// The four sun nodes around the sun (their columns among the daylight nodes, or none
+    /// where the node lights nothing) with their weight times `E_n`, lux.
+    sun: [(Option<usize>, f32); 4],
+    /// Every output's daylight illuminance, lux.
+    outputs: heapless::Vec<f32, OUTPUTS>,
+    /// The daylight's mode amplitudes (empty when `MODES` is 0).
+    amplitude: heapless::Vec<f32, MODES>,
+}
+
+impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
+    DaylightEvaluator<'a, SKY, OUTPUTS, MODES>
+{
+    /// Bytes of state besides the basis view and the vectors' lengths.
+    pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + MODES) + 4 + 4 * 8;
+
+    /// An evaluator of `basis`' daylight, dark (no sky, no sun).
+    ///
+    /// [`Error::NoDaylight`] when the basis carries none; [`Error::Capacity`] when its sky,
+    /// its outputs or (with `MODES > 0`) its modes do not fit.
+    pub fn new(basis: Basis<'a>) -> Result<Self> {
+        let sky_patches = basis.sky_patches().ok_or(Error::NoDaylight)?;
+        fits("sky patches", sky_patches.count(), SKY)?;
+        let outputs = basis.sensor_count() + basis.zone_count();
+        fits("outputs", outputs, OUTPUTS)?;
+        if MODES > 0 {
+            fits("modes", basis.mode_count(), MODES)?;
+        }
+        let capacity = Error::Capacity {
+            what: "outputs",
+            needed: outputs,
+            capacity: OUTPUTS,
+        };
+        let mut evaluator = DaylightEvaluator {
+            basis,
+            sky: heapless::Vec::new(),
+            exterior: 0.0,
+            sun: [(None, 0.0); 4],
+            outputs: heapless::Vec::new(),
+            amplitude: heapless::Vec::new(),
+        };
+        evaluator
+            .sky
+            .resize(sky_patches.count(), 0.0)
+            .map_err(|_| capacity)?;
+        evaluator
+            .outputs
+            .resize(outputs, 0.0)
+            .map_err(|_| capacity)?;
+        if MODES > 0 {
+            evaluator
+                .amplitude
+                .resize(basis.mode_count(), 0.0)
+                .map_err(|_| capacity)?;
+        }
+        Ok(evaluator)
+    }
+
+    /// The basis being evaluated.
+    pub fn basis(&self) -> &Basis<'a> {
+        &self.basis
+    }
+
+    /// Sets the sky of a moment: `sky_luminance` (cd/m², one per sky patch of the basis, in
+    /// its order: [`Basis::sky_patches`]), the global horizontal illuminance `E_gh` (lux)
+    /// that lights the ground and the obstructions outside, and the sun, if any. Then sums
+    /// every output's daylight and, with `MODES > 0`, the modes': `O × D` (and `p × D`)
+    /// products.
+    ///
+    /// An input that is negative, not finite or above [`MAX_EXITANCE`], a wrong number of
+    /// luminances, or a sun direction that is not a unit vector is an error and changes
+    /// nothing.
+    pub fn set_sky(
+        &mut self,
+        sky_luminance: &[f32],
+        global_horizontal: f32,
+        sun: Option<Sun>,
+    ) -> Result<()> {
+        if sky_luminance.len() != self.sky.len() {
+            return Err(Error::LengthMismatch {
+                what: "sky_luminance",
+                expected: self.sky.len(),
+                found: sky_luminance.len(),
+            });
+        }
+        let valid = |x: f32| x.is_finite() && (0.0..=MAX_EXITANCE).contains(&x);
+        if !sky_luminance.iter().all(|&x| valid(x)) {
+            return Err(Error::InvalidInput {
+                what: "sky_luminance",
+            });
+        }
+        if !valid(global_horizontal) {
+            return Err(Error::InvalidInput {
+                what: "global_horizontal",
+            });
+        }
+        let sun_nodes = match sun {
+            None => [(None, 0.0); 4],
+            Some(s) => {
+                if !valid(s.direct_normal) {
+                    return Err(Error::InvalidInput {
+                        what: "direct_normal",
+                    });
+                }
+                self.sun_columns(s)?
+            }
+        };
+        for (slot, &l) in self.sky.iter_mut().zip(sky_luminance) {
+            *slot = l;
+        }
+        self.exterior = global_horizontal / core::f32::consts::PI;
+        self.sun = sun_nodes;
+        let columns = self.basis.counts.daylight_node_count;
+        let tables = self.basis.tables;
+        for (o, slot) in self.outputs.iter_mut().enumerate() {
+            *slot = weighed(
+                f32_row(tables.daylight_outputs, o, columns),
+                &self.sky,
+                self.exterior,
+                &self.sun,
+            );
+        }
+        for (k, slot) in self.amplitude.iter_mut().enumerate() {
+            *slot = weighed(
+                f32_row(tables.daylight_modes, k, columns),
+                &self.sky,
+                self.exterior,
+                &self.sun,
+            );
+        }
+        Ok(())
+    }
+
+    /// The four sun nodes around `sun` as columns among the daylight nodes, each with its
+    /// bilinear weight times the direct normal illuminance (lux); nodes that light nothing
+    /// (absent from `sun_nodes`) have no column, and a sun below the horizon none at all.
+    fn sun_columns(&self, sun: Sun) -> Result<[(Option<usize>, f32); 4]> {
+        let grid = self.basis.sun_grid().ok_or(Error::NoDaylight)?;
+        let weights: [NodeWeight; 4] = grid.weights(sun.direction)?;
+        let mut out = [(None, 0.0); 4];
+        if sun.direction[2] < 0.0 {
+            return Ok(out);
+        }
+        let first_sun = self.sky.len() + 1;
+        for (slot, w) in out.iter_mut().zip(weights) {
+            if w.weight > 0.0 {
+                *slot = (
+                    self.basis.sun_node_position(w.node).map(|i| first_sun + i),
+                    w.weight * sun.direct_normal,
+                );
+            }
+        }
+        Ok(out)
+    }
+
+    /// Daylight illuminance at sensor `sensor`, lux. O(1).
+    pub fn sensor_illuminance(&self, sensor: usize) -> Result<f32> {
+        check_index("sensor", sensor, self.basis.counts.sensor_count)?;
+        Ok(self.outputs.get(sensor).copied().unwrap_or(0.0))
+    }
+
+    /// Daylight illuminance averaged over zone `zone`, lux. O(1).
+    pub fn zone_illuminance(&self, zone: usize) -> Result<f32> {
+        check_index("zone", zone, self.basis.counts.zone_count)?;
+        let o = self.basis.counts.sensor_count + zone;
+        Ok(self.outputs.get(o).copied().unwrap_or(0.0))
+    }
+
+    /// Daylight illuminance of grid point `g` (among all grid points), already checked.
+    /// O(D).
+    fn grid_reading(&self, g: usize) -> f32 {
+        let view = self.basis.daylight_grid();
+        let sky = view.row_dot(g, 0, &self.sky);
+        let exterior = self.sky.len();
+        let mut sum = sky;
+        let mut add = |column: usize, weight: f32| {
+            view.for_each_compact(g, column, 1, |_, v| sum += v * weight);
+        };
+        add(exterior, self.exterior);
+        for &(column, weight) in &self.sun {
+            if let Some(column) = column {
+                add(column, weight);
+            }
+        }
+        sum
+    }
+
+    /// Daylight illuminance at point `point` of zone `zone`'s calculation grid, lux: exact
+    /// per node as a sensor's. O(D).
+    pub fn grid_point_illuminance(&self, zone: usize, point: usize) -> Result<f32> {
+        let g = self.basis.grid_index(zone, point)?;
+        Ok(self.grid_reading(g))
+    }
+
+    /// `E_avg`, `E_min`, `E_max` and `U_o` of zone `zone`'s grid under daylight alone,
+    /// streamed without a buffer. O(points · D). [`Error::NoGrid`] for a zone without one.
+    pub fn zone_figures(&self, zone: usize) -> Result<Figures> {
+        let range = self.basis.grid_range(zone)?;
+        let [figures] = grid_figures(zone, range, |g| Ok([self.grid_reading(g)]))?;
+        Ok(figures)
+    }
+
+    /// The figures of zone `zone`'s grid under daylight and the electric light of
+    /// `electric` together (the same basis), point by point: the minimum of a sum is not the
+    /// sum of the minima. O(points · (D + m)).
+    pub fn zone_figures_with<const CHANNELS: usize>(
+        &self,
+        zone: usize,
+        electric: &ChannelEvaluator<'_, 1, CHANNELS>,
+    ) -> Result<Figures> {
+        let range = self.basis.grid_range(zone)?;
+        let [figures] = grid_figures(zone, range, |g| {
+            let [e] = electric.grid_reading(g);
+            Ok([self.grid_reading(g) + e])
+        })?;
+        Ok(figures)
+    }
+
+    /// Daylight exitance of `patch`, lux (lm/m²), through the modes: `Σ_k v_k · a_k`, exact
+    /// when `p = n`, otherwise the room's exact daylight exitance projected on the `p`
+    /// modes (docs/math.md). O(p). [`Error::Capacity`] when `MODES` is 0.
+    pub fn exitance(&self, patch: usize) -> Result<f32> {
+        check_index("patch", patch, self.basis.counts.patch_count)?;
+        if MODES == 0 {
+            return Err(Error::Capacity {
+                what: "modes",
+                needed: self.basis.mode_count(),
+                capacity: 0,
+            });
+        }
+        Ok(self.basis.modes().row_dot(patch, 0, &self.amplitude))
+    }
+
+    /// Daylight luminance of `patch` as a Lambertian surface, `M/π`, cd/m².
+    pub fn luminance(&self, patch: usize) -> Result<f32> {
+        let [l] = luminance([self.exitance(patch)?]);
+        Ok(l)
+    }
+}
+
+/// A row of a daylight table (one value per node) weighed by the sky's luminances, the
+/// exterior's and the sun nodes' weights.
+fn weighed(row: &[u8], sky: &[f32], exterior: f32, sun: &[(Option<usize>, f32); 4]) -> f32 {
+    let mut sum = dot_f32(row, sky) + f32_at(row, sky.len()) * exterior;
+    for &(column, weight) in sun {
+        if let Some(c) = column {
+            sum += f32_at(row, c) * weight;
+        }
+    }
+    sum
+}

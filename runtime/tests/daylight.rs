@@ -1,0 +1,235 @@
+//! The daylight section of a basis and its evaluator, on the hand-made `common::tiny_daylight`
+//! basis: what the decoder accepts and refuses, and readings summed by hand from its tables
+//! (node `d` gives output `o` the value `(o + 1)(d + 1)` per unit, grid point `g` the value
+//! `(g + 2)(d + 1)`, mode amplitude `0.01 (d + 1)`).
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::indexing_slicing,
+    clippy::panic
+)]
+
+mod common;
+
+use common::{tiny, tiny_daylight, TREGENZA};
+use eigenrad_runtime::sky::sun_grid::direction_of;
+use eigenrad_runtime::{Basis, ChannelEvaluator, DaylightEvaluator, Error, Quantity, Sun};
+
+/// Relative tolerance of an `f32` sum of a few hundred positive terms against the same sum
+/// in `f64`.
+const SUM_TOLERANCE: f64 = 1.0e-5;
+
+type Day<'a> = DaylightEvaluator<'a, 145, 2, 1>;
+
+/// Luminances that differ patch by patch, cd/m².
+fn luminances() -> Vec<f32> {
+    (0..TREGENZA).map(|i| 1000.0 + 10.0 * i as f32).collect()
+}
+
+/// What output `o` (grid point `g` with `scale = g + 2`) reads for `luminances`, `E_gh`
+/// and `sun` as (node, weight × E_n) pairs: the sum over nodes, in `f64`.
+fn by_hand(scale: f64, sky: &[f32], global: f64, sun: &[(usize, f64)]) -> f64 {
+    let node = |d: usize| scale * (d + 1) as f64;
+    let mut sum: f64 = sky
+        .iter()
+        .enumerate()
+        .map(|(d, &l)| node(d) * f64::from(l))
+        .sum();
+    sum += node(TREGENZA) * global / std::f64::consts::PI;
+    for &(column, w) in sun {
+        sum += node(column) * w;
+    }
+    sum
+}
+
+fn close(got: f32, want: f64) -> bool {
+    (f64::from(got) - want).abs() <= SUM_TOLERANCE * want.abs().max(1.0)
+}
+
+#[test]
+fn decoded_daylight_section() {
+    let bytes = tiny_daylight().to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    assert!(basis.has_daylight());
+    assert_eq!(basis.sky_patches().unwrap().count(), TREGENZA);
+    assert_eq!(basis.sun_node_count(), 3);
+    assert_eq!(basis.daylight_node_count(), TREGENZA + 1 + 3);
+    let site = basis.site().unwrap();
+    assert_eq!(site.utc_offset_minutes, 60.0);
+    assert!((site.latitude - 48.21).abs() < 1e-5);
+    let grid = basis.sun_grid().unwrap();
+    assert_eq!((grid.rows, grid.columns), (3, 5));
+    // Without daylight: nothing, and the evaluator says why.
+    let plain = tiny().to_bytes().unwrap();
+    let plain = Basis::from_bytes(&plain).unwrap();
+    assert!(!plain.has_daylight() && plain.site().is_none() && plain.sun_grid().is_none());
+    assert_eq!(Day::new(plain).unwrap_err(), Error::NoDaylight);
+}
+
+#[test]
+fn sky_and_exterior_read_as_summed_by_hand() {
+    let bytes = tiny_daylight().to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let mut day = Day::new(basis).unwrap();
+    // Dark until a sky is set.
+    assert_eq!(day.sensor_illuminance(0).unwrap(), 0.0);
+    let sky = luminances();
+    day.set_sky(&sky, 20_000.0, None).unwrap();
+    assert!(close(
+        day.sensor_illuminance(0).unwrap(),
+        by_hand(1.0, &sky, 20_000.0, &[])
+    ));
+    assert!(close(
+        day.zone_illuminance(0).unwrap(),
+        by_hand(2.0, &sky, 20_000.0, &[])
+    ));
+    for g in 0..2 {
+        assert!(close(
+            day.grid_point_illuminance(0, g).unwrap(),
+            by_hand((g + 2) as f64, &sky, 20_000.0, &[])
+        ));
+    }
+    let f = day.zone_figures(0).unwrap();
+    assert!(close(f.minimum, by_hand(2.0, &sky, 20_000.0, &[])));
+    assert!(close(f.maximum, by_hand(3.0, &sky, 20_000.0, &[])));
+    // With the electric light of the same basis (its channel at level 1: grid points 110
+    // and 90 lux), point by point.
+    let mut electric = ChannelEvaluator::<1, 1>::new(basis).unwrap();
+    electric.set_channel_level(0, 1.0).unwrap();
+    let both = day.zone_figures_with(0, &electric).unwrap();
+    let points = [
+        by_hand(2.0, &sky, 20_000.0, &[]) + 110.0,
+        by_hand(3.0, &sky, 20_000.0, &[]) + 90.0,
+    ];
+    assert!(close(both.minimum, points[0].min(points[1])));
+    assert!(close(both.average, 0.5 * (points[0] + points[1])));
+    // Patch exitance through the one mode (0.5 on patch 0).
+    let amplitude = by_hand(0.01, &sky, 20_000.0, &[]);
+    assert!(close(day.exitance(0).unwrap(), 0.5 * amplitude));
+    assert!(close(
+        day.luminance(0).unwrap(),
+        0.5 * amplitude / std::f64::consts::PI
+    ));
+}
+
+#[test]
+fn sun_at_a_node_between_nodes_and_where_it_lights_nothing() {
+    let bytes = tiny_daylight().to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let mut day = Day::new(basis).unwrap();
+    let dark = vec![0.0; TREGENZA];
+    // The stored nodes 6, 7, 8 are the daylight's columns 146, 147, 148.
+    let column = |node: usize| TREGENZA + 1 + (node - 6);
+    let sun = |declination: f32, hour: f32| Sun {
+        direction: direction_of(48.21, declination, hour),
+        direct_normal: 80_000.0,
+    };
+    // Node 7: declination 0°, hour angle 0°.
+    day.set_sky(&dark, 0.0, Some(sun(0.0, 0.0))).unwrap();
+    let want = by_hand(1.0, &dark, 0.0, &[(column(7), 80_000.0)]);
+    assert!(close(day.sensor_illuminance(0).unwrap(), want), "{want}");
+    // Halfway between nodes 7 and 8 (hour angles 0° and 15°).
+    day.set_sky(&dark, 0.0, Some(sun(0.0, 7.5))).unwrap();
+    let want = by_hand(
+        1.0,
+        &dark,
+        0.0,
+        &[(column(7), 40_000.0), (column(8), 40_000.0)],
+    );
+    assert!(
+        (f64::from(day.sensor_illuminance(0).unwrap()) - want).abs() <= 1e-3 * want,
+        "{want}"
+    );
+    // Halfway between node 7 and node 12 (declination 10°), which lights nothing: half of
+    // node 7.
+    day.set_sky(&dark, 0.0, Some(sun(5.0, 0.0))).unwrap();
+    let want = by_hand(1.0, &dark, 0.0, &[(column(7), 40_000.0)]);
+    assert!((f64::from(day.sensor_illuminance(0).unwrap()) - want).abs() <= 1e-3 * want);
+    // Below the horizon (midnight): nothing.
+    day.set_sky(&dark, 0.0, Some(sun(0.0, 180.0))).unwrap();
+    assert_eq!(day.sensor_illuminance(0).unwrap(), 0.0);
+}
+
+#[test]
+fn bad_requests_are_errors_and_change_nothing() {
+    let bytes = tiny_daylight().to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let mut day = Day::new(basis).unwrap();
+    let sky = luminances();
+    day.set_sky(&sky, 10_000.0, None).unwrap();
+    let before = day.sensor_illuminance(0).unwrap();
+    assert!(matches!(
+        day.set_sky(&sky[1..], 10_000.0, None),
+        Err(Error::LengthMismatch { .. })
+    ));
+    let mut negative = sky.clone();
+    negative[3] = -1.0;
+    assert!(matches!(
+        day.set_sky(&negative, 10_000.0, None),
+        Err(Error::InvalidInput { .. })
+    ));
+    assert!(day.set_sky(&sky, f32::NAN, None).is_err());
+    let not_unit = Sun {
+        direction: [0.0, 0.0, 2.0],
+        direct_normal: 1.0,
+    };
+    assert!(day.set_sky(&sky, 10_000.0, Some(not_unit)).is_err());
+    let infinite = Sun {
+        direction: [0.0, 0.0, 1.0],
+        direct_normal: f32::INFINITY,
+    };
+    assert!(day.set_sky(&sky, 10_000.0, Some(infinite)).is_err());
+    assert_eq!(day.sensor_illuminance(0).unwrap(), before);
+    assert!(matches!(
+        day.sensor_illuminance(1),
+        Err(Error::IndexOutOfRange { .. })
+    ));
+    // Capacities.
+    assert!(matches!(
+        DaylightEvaluator::<144, 2, 0>::new(basis),
+        Err(Error::Capacity { .. })
+    ));
+    assert!(matches!(
+        DaylightEvaluator::<145, 1, 0>::new(basis),
+        Err(Error::Capacity { .. })
+    ));
+    // Without modes: no patch exitance, the rest as before.
+    let mut lean = DaylightEvaluator::<145, 2, 0>::new(basis).unwrap();
+    lean.set_sky(&sky, 10_000.0, None).unwrap();
+    assert_eq!(lean.sensor_illuminance(0).unwrap(), before);
+    assert!(matches!(lean.exitance(0), Err(Error::Capacity { .. })));
+}
+
+#[test]
+fn decoder_refuses_bad_daylight_sections() {
+    let check = |edit: &dyn Fn(&mut eigenrad_runtime::writer::BasisTables), field: &str| {
+        let mut t = tiny_daylight();
+        edit(&mut t);
+        let bytes = t.to_bytes().unwrap();
+        let err = Basis::from_bytes(&bytes).unwrap_err();
+        let named = match err {
+            Error::DecodeField { field, .. }
+            | Error::DecodeLength { field, .. }
+            | Error::DecodeValue { field, .. } => field,
+            other => panic!("{field}: {other:?}"),
+        };
+        assert_eq!(named, field, "{err:?}");
+    };
+    check(&|t| t.sky_subdivision = 9, "sky_subdivision");
+    check(&|t| t.quantity = Quantity::Radiometric, "sky_subdivision");
+    check(&|t| t.daylight_site[0] = 91.0, "daylight_site");
+    check(
+        &|t| t.daylight_site.pop().map(drop).unwrap(),
+        "daylight_site",
+    );
+    check(&|t| t.sun_lattice[0] = 0, "sun_lattice");
+    check(&|t| t.sun_spacing[1] = 0.0, "sun_spacing");
+    check(&|t| t.sun_spacing[0] = 80.0, "sun_spacing");
+    check(&|t| t.sun_nodes = vec![7, 6, 8], "sun_nodes");
+    check(&|t| t.sun_nodes = vec![6, 7, 15], "sun_nodes");
+    check(&|t| t.daylight_outputs.truncate(10), "daylight_outputs");
+    check(&|t| t.daylight_modes[0] = f64::NAN, "daylight_modes");
+    check(&|t| t.daylight_grid.push(1.0), "daylight_grid.data");
+    // Daylight tables without a sky.
+    check(&|t| t.sky_subdivision = 0, "daylight_site");
+}
