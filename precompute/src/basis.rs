@@ -4,8 +4,9 @@ use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Precision, Quantity};
 
 use crate::radiosity::eigen::Formulation;
-use crate::radiosity::model::Model;
+use crate::radiosity::model::{LightResponse, Model};
 use crate::scene::{Bands, Scene};
+use crate::sources::daylight::nodes::DaylightNodes;
 
 /// Fills every table of the basis for the first `p` modes of `model`, section by section of
 /// `docs/format.md`.
@@ -190,4 +191,62 @@ fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
         }
     }
     t.grid_view = model.output_rows[outputs..].concat();
+}
+
+/// The daylight a basis carries: its nodes, and the room's exact response to each
+/// ([`Model::light_responses`]).
+pub struct BasisDaylight {
+    /// The nodes: sky patches, the exterior, the sun nodes.
+    pub nodes: DaylightNodes,
+    /// The exact response to each node alone, in the nodes' order.
+    pub responses: Vec<LightResponse>,
+}
+
+/// The daylight section (docs/format.md, "Daylight") of a basis whose other tables `t` holds:
+/// the site, the sky and the sun grid, then per node every output's and grid point's exact
+/// reading and the mode amplitudes of the room's exact exitance. Daylight is photopic: one
+/// band.
+pub fn daylight_tables(
+    t: &mut BasisTables,
+    scene: &Scene,
+    model: &Model,
+    daylight: &BasisDaylight,
+) {
+    let Some(site) = &scene.site else { return };
+    let nodes = &daylight.nodes;
+    let d = nodes.len();
+    let outputs = crate::formfactor::outputs::grid_offset(scene);
+    let grid = &nodes.sun_grid;
+    t.sky_subdivision = nodes.patches.subdivision();
+    t.daylight_site = vec![
+        site.location.latitude,
+        site.location.longitude,
+        site.location.elevation,
+        site.north,
+        f64::from(site.utc_offset.unwrap_or(0)) / 60.0,
+    ];
+    t.sun_lattice = vec![grid.rows as u32, grid.columns as u32];
+    t.sun_spacing = [
+        grid.declination_first,
+        grid.declination_step,
+        grid.hour_first,
+        grid.hour_step,
+    ]
+    .map(f64::from)
+    .to_vec();
+    t.sun_nodes.clone_from(&nodes.sun_nodes);
+    let rows = daylight.responses.first().map_or(0, |r| r.readings.len());
+    let column = |row: usize| daylight.responses.iter().map(move |r| r.readings[row]);
+    t.daylight_outputs = (0..outputs).flat_map(column).collect();
+    t.daylight_grid = (outputs..rows).flat_map(column).collect();
+    let p = t.mode_count;
+    let amplitudes: Vec<Vec<f64>> = daylight
+        .responses
+        .iter()
+        .map(|r| model.mode_amplitudes(0, &r.exitance, p))
+        .collect();
+    t.daylight_modes = (0..p)
+        .flat_map(|k| amplitudes.iter().map(move |a| a[k]))
+        .collect();
+    debug_assert_eq!(t.daylight_outputs.len(), outputs * d);
 }

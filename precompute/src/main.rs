@@ -133,6 +133,11 @@ enum Command {
         /// costs about 4 bytes per patch in f32).
         #[arg(long)]
         no_grids: bool,
+        /// Degrees between the sun grid's declinations and between its hour angles, for a
+        /// scene with daylight: finer reads the sun more closely between nodes and takes more
+        /// flash (the build reports both). Default 5.86,7.5.
+        #[arg(long, value_name = "DECLINATION,HOUR", value_parser = sun_step)]
+        sun_step: Option<[f64; 2]>,
         /// Print the report as one JSON document on stdout.
         #[arg(long)]
         json: bool,
@@ -197,6 +202,14 @@ enum Command {
         /// this CSV file, atomically.
         #[arg(long, value_name = "FILE")]
         csv: Option<PathBuf>,
+        /// Daylight at this date and time (with its UTC offset, or the site's), from the sky
+        /// the sky flags give, through the daylight the basis carries (a basis built from a
+        /// scene with a `[site]` and glazed windows); readings then show daylight and
+        /// electric light apart and together.
+        #[arg(long)]
+        time: Option<String>,
+        #[command(flatten)]
+        sky: SkyStateArgs,
     },
     /// False-colour pictures (PNG or SVG, by the file's extension): the plan of a work plane
     /// with isolux lines, and the room's surfaces unfolded; from the exact solve of the scene,
@@ -418,6 +431,30 @@ fn daylight_args(
     }
 }
 
+/// `--sun-step`: two steps in degrees, of declination (0.1° to 46.88°, the whole span) and of
+/// hour angle (0.25° to 180°).
+fn sun_step(text: &str) -> Result<[f64; 2], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let [declination, hour] = parts.as_slice() else {
+        return Err(format!(
+            "`{text}` is not two steps in degrees, DECLINATION,HOUR (e.g. 5.86,7.5)"
+        ));
+    };
+    let number = |t: &str, what: &str, range: std::ops::RangeInclusive<f64>| match t.parse::<f64>()
+    {
+        Ok(x) if range.contains(&x) => Ok(x),
+        _ => Err(format!(
+            "the {what} step `{t}` is not a number of degrees from {} to {}",
+            range.start(),
+            range.end()
+        )),
+    };
+    Ok([
+        number(declination, "declination", 0.1..=46.88)?,
+        number(hour, "hour-angle", 0.25..=180.0)?,
+    ])
+}
+
 /// `--cie`: 1 to 15, or `overcast` (the traditional CIE overcast sky, 0 here).
 fn cie_type(text: &str) -> Result<u8, String> {
     match text.trim() {
@@ -503,11 +540,14 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             precision,
             solver,
             no_grids,
+            sun_step,
             json,
             cache,
         } => {
             let opts = BuildOptions {
                 grids: !no_grids,
+                sun_step: sun_step
+                    .unwrap_or(eigenrad_precompute::sources::daylight::nodes::DEFAULT_SUN_STEP),
                 modes: match (modes, tolerance) {
                     (Some(p), _) => ModeSelection::Count(p),
                     (None, Some(t)) => ModeSelection::Tolerance(t),
@@ -577,15 +617,19 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             units,
             json,
             csv,
+            time,
+            sky,
         } => {
+            let daylight = daylight_args(time, &sky)?;
             if let Some(csv) = &csv {
                 guard::check_file_output(csv)?;
                 guard::check_outputs(std::slice::from_ref(csv), std::slice::from_ref(&basis))?;
             }
             let bytes = read(&basis)?;
             let levels = cli::LevelArgs { levels, arcs };
-            let readout = cli::eval(&basis, &bytes, &levels, patches)
-                .with_context(|| format!("evaluating {}", basis.display()))?;
+            let readout =
+                cli::eval_with_daylight(&basis, &bytes, &levels, daylight.as_ref(), patches)
+                    .with_context(|| format!("evaluating {}", basis.display()))?;
             show_readout(readout, units.into(), csv.as_deref(), json)?;
         }
         Command::Render {

@@ -65,6 +65,9 @@ pub struct BuildOptions {
     /// Store the zones' calculation grids (`--no-grids` leaves them out: a smaller basis,
     /// the zones still read as area averages).
     pub grids: bool,
+    /// Degrees between the sun grid's declinations and between its hour angles, for a scene
+    /// with daylight (`--sun-step`).
+    pub sun_step: [f64; 2],
 }
 
 impl Default for BuildOptions {
@@ -77,6 +80,7 @@ impl Default for BuildOptions {
             form_factors: FormFactorOptions::default(),
             random_patterns: 4,
             grids: true,
+            sun_step: sources::daylight::nodes::DEFAULT_SUN_STEP,
         }
     }
 }
@@ -140,8 +144,33 @@ pub struct BuildReport {
     /// Largest relative difference of any grid figure (`E_avg`, `E_min`, `E_max`, `U_o`)
     /// through the runtime from the same figure of the exact solve, every channel at level 1.
     pub grid_figure_error: f64,
+    /// The daylight the basis carries (a scene with a site and glazed windows).
+    pub daylight: Option<DaylightReport>,
     /// Time per stage.
     pub timings: Vec<Stage>,
+}
+
+/// What a basis' daylight holds, what it costs in flash and how close it reads.
+#[derive(Clone, Debug, Serialize)]
+pub struct DaylightReport {
+    /// The sky's patches: `tregenza` or `reinhart MF:n`.
+    pub sky: String,
+    /// Number of sky patches.
+    pub sky_patches: usize,
+    /// The sun grid: declinations and hour angles.
+    pub sun_grid: [usize; 2],
+    /// Degrees between its declinations and between its hour angles.
+    pub sun_step_deg: [f64; 2],
+    /// The grid's nodes that light the room (stored).
+    pub sun_nodes: usize,
+    /// Every node: sky patches, the exterior, the sun nodes.
+    pub nodes: usize,
+    /// Bytes the daylight section adds to the basis.
+    pub bytes: usize,
+    /// The sun read between the grid's nodes against the exact sun.
+    pub sun_interpolation: crate::accuracy::daylight::SunInterpolation,
+    /// A sky state read through the runtime against the exact solve.
+    pub check: crate::accuracy::daylight::DaylightCheck,
 }
 
 /// A scene with its form factors and output rows: everything before the eigensolve.
@@ -319,8 +348,32 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
             })
         })?,
     };
-    let bytes = timed(&mut timings, "serialization", || {
-        basis::basis_tables(&scene, &model, p, opts.precision).to_bytes()
+    let daylight = if scene.site.is_some() && !scene.windows.is_empty() {
+        Some(timed(&mut timings, "daylight through the windows", || {
+            let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
+            let nodes = sources::daylight::nodes::nodes(
+                &scene,
+                &occluders,
+                eigenrad_runtime::sky::patches::SkyPatches::TREGENZA,
+                opts.sun_step,
+                &sources::daylight::DaylightOptions::default(),
+            );
+            let responses = model.light_responses(0, &nodes.lights)?;
+            Ok::<_, Error>(basis::BasisDaylight { nodes, responses })
+        })?)
+    } else {
+        None
+    };
+    let (bytes, daylight_bytes) = timed(&mut timings, "serialization", || {
+        let mut tables = basis::basis_tables(&scene, &model, p, opts.precision);
+        let Some(d) = &daylight else {
+            return tables.to_bytes().map(|b| (b, 0));
+        };
+        let without = tables.to_bytes()?.len();
+        basis::daylight_tables(&mut tables, &scene, &model, d);
+        let bytes = tables.to_bytes()?;
+        let added = bytes.len() - without;
+        Ok::<_, eigenrad_runtime::Error>((bytes, added))
     })?;
     let accuracy = timed(&mut timings, "verification through the runtime", || {
         verify(&model, &solvers, &cases, &bytes, &scene)
@@ -328,6 +381,30 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     let (grids, grid_figure_error) = timed(&mut timings, "grids through the runtime", || {
         grid_report(&model, &solvers, &bytes, &scene)
     })?;
+    let daylight = match &daylight {
+        None => None,
+        Some(d) => Some(timed(&mut timings, "daylight through the runtime", || {
+            let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
+            let grid = &d.nodes.sun_grid;
+            Ok::<_, Error>(DaylightReport {
+                sky: if d.nodes.patches.subdivision() == 1 {
+                    "tregenza".to_owned()
+                } else {
+                    format!("reinhart MF:{}", d.nodes.patches.subdivision())
+                },
+                sky_patches: d.nodes.patches.count(),
+                sun_grid: [grid.rows, grid.columns],
+                sun_step_deg: [grid.declination_step, grid.hour_step].map(f64::from),
+                sun_nodes: d.nodes.sun_nodes.len(),
+                nodes: d.nodes.len(),
+                bytes: daylight_bytes,
+                sun_interpolation: crate::accuracy::daylight::sun_interpolation(
+                    &scene, &occluders, &model, d,
+                )?,
+                check: crate::accuracy::daylight::through_runtime(&bytes, &model, d)?,
+            })
+        })?),
+    };
     let report = BuildReport {
         scene: scene.name.clone(),
         patches: n,
@@ -343,6 +420,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         accuracy,
         grids,
         grid_figure_error,
+        daylight,
         timings,
     };
     Ok((bytes, report))

@@ -1,7 +1,7 @@
 //! Evaluating a basis on the host through the runtime crate: exactly the arithmetic firmware
 //! performs, with capacities large enough for any basis the precompute writes.
 
-use eigenrad_runtime::{Basis, Evaluator, Figures};
+use eigenrad_runtime::{Basis, ChannelEvaluator, DaylightEvaluator, Evaluator, Figures, Sun};
 
 use crate::error::{Error, Result};
 
@@ -12,6 +12,9 @@ pub const MAX_MODES: usize = 2048;
 /// Channel capacity of the host evaluators.
 pub const MAX_CHANNELS: usize = 1024;
 const MAX_OUTPUTS: usize = 1024;
+/// Sky-patch capacity of the host's daylight evaluator: Reinhart MF:8, the finest sky a
+/// basis may have (144 · 8² + 1).
+pub const MAX_SKY_PATCHES: usize = 9217;
 
 type Host<'a, const B: usize> = Evaluator<'a, B, MAX_PATCHES, MAX_MODES, MAX_CHANNELS, MAX_OUTPUTS>;
 
@@ -102,6 +105,93 @@ fn run<const B: usize>(
                 Err(eigenrad_runtime::Error::BlackPatch { .. }) => None,
                 Err(e) => return Err(e.into()),
             });
+        }
+    }
+    Ok(out)
+}
+
+/// A sky state as the runtime's [`DaylightEvaluator`] takes it.
+#[derive(Clone, Debug)]
+pub struct SkyState {
+    /// Every sky patch's luminance, cd/m², in the basis' sky order.
+    pub sky_luminance: Vec<f32>,
+    /// Global horizontal illuminance, lux.
+    pub global_horizontal: f32,
+    /// The sun, if it shines.
+    pub sun: Option<Sun>,
+}
+
+/// The daylight of a basis for one sky state, through the runtime, and the figures of the
+/// grids under daylight and the channels at `levels` together.
+#[derive(Clone, Debug, Default)]
+pub struct DaylightReadout {
+    /// `sensors[s]`, lux.
+    pub sensors: Vec<f64>,
+    /// `zones[z]`, lux.
+    pub zones: Vec<f64>,
+    /// `grid[g]`, lux: every zone's grid points, zone by zone.
+    pub grid: Vec<f64>,
+    /// Each zone's grid figures under daylight alone (`None` without a grid).
+    pub figures: Vec<Option<Figures>>,
+    /// Each zone's grid figures under daylight and the channels together.
+    pub figures_with_channels: Vec<Option<Figures>>,
+    /// Every patch's daylight exitance through the modes, lux (when asked).
+    pub exitance: Vec<f64>,
+}
+
+type HostDaylight<'a> = DaylightEvaluator<'a, MAX_SKY_PATCHES, MAX_OUTPUTS, MAX_MODES>;
+
+/// Evaluates the daylight of `bytes` under `sky`, with the channels at `levels` for the
+/// figures of the two together; `patches`: also every patch's exitance.
+pub fn evaluate_daylight(
+    bytes: &[u8],
+    sky: &SkyState,
+    levels: &[f32],
+    patches: bool,
+) -> Result<DaylightReadout> {
+    let basis = Basis::from_bytes(bytes)?;
+    std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(64 << 20)
+            .spawn_scoped(s, || run_daylight(basis, sky, levels, patches))
+            .map_err(|e| Error::Thread(format!("cannot start: {e}")))?
+            .join()
+            .unwrap_or_else(|_| Err(Error::Thread("panicked".into())))
+    })
+}
+
+fn run_daylight(
+    basis: Basis<'_>,
+    sky: &SkyState,
+    levels: &[f32],
+    patches: bool,
+) -> Result<DaylightReadout> {
+    let mut day = Box::new(HostDaylight::new(basis)?);
+    day.set_sky(&sky.sky_luminance, sky.global_horizontal, sky.sun)?;
+    let mut electric = Box::new(ChannelEvaluator::<1, MAX_CHANNELS>::new(basis)?);
+    electric.set_channel_levels(levels)?;
+    let mut out = DaylightReadout::default();
+    for s in 0..basis.sensor_count() {
+        out.sensors.push(f64::from(day.sensor_illuminance(s)?));
+    }
+    for z in 0..basis.zone_count() {
+        out.zones.push(f64::from(day.zone_illuminance(z)?));
+        let points = basis.grid_points(z)?;
+        for point in 0..points {
+            out.grid
+                .push(f64::from(day.grid_point_illuminance(z, point)?));
+        }
+        out.figures
+            .push((points > 0).then(|| day.zone_figures(z)).transpose()?);
+        out.figures_with_channels.push(
+            (points > 0)
+                .then(|| day.zone_figures_with(z, &electric))
+                .transpose()?,
+        );
+    }
+    if patches {
+        for i in 0..basis.patch_count() {
+            out.exitance.push(f64::from(day.exitance(i)?));
         }
     }
     Ok(out)

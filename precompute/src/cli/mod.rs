@@ -26,8 +26,8 @@ pub use form_factors::{
 pub use gains::{format_gains, gains, gains_csv, Gain, Gains};
 pub use inspect::{format_inspect, inspect, BasisInfo};
 pub use readout::{
-    eval, format_readout, grids_csv, parse_levels, solve, solve_with_daylight, DaylightArgs,
-    DaylightReadout, Level, LevelArgs, PatchReading, Reading, Readout,
+    eval, eval_with_daylight, format_readout, grids_csv, parse_levels, solve, solve_with_daylight,
+    DaylightArgs, DaylightReadout, Level, LevelArgs, PatchReading, Reading, Readout,
 };
 pub use render::{render, Pictures, RenderRequest, SurfaceQuantity};
 pub use report::{format_build_report, verify_outputs, write_svgs};

@@ -360,17 +360,7 @@ fn sky_of_moment(
             ),
         )
     })?;
-    let time = match (
-        crate::daylight::sun::parse_time(&args.time),
-        site.utc_offset,
-    ) {
-        (Ok(_), _) | (Err(_), None) => args.time.trim().to_owned(),
-        (Err(_), Some(offset)) => match chrono::FixedOffset::east_opt(offset) {
-            // Displayed as `+HH:MM`, the form `parse_time` reads.
-            Some(offset) => format!("{}{offset}", args.time.trim()),
-            None => args.time.trim().to_owned(),
-        },
-    };
+    let time = with_site_offset(&args.time, site.utc_offset);
     sky(&SkyRequest {
         site: site.location,
         time,
@@ -379,6 +369,18 @@ fn sky_of_moment(
         water: args.water,
         subdivision: args.subdivision,
     })
+}
+
+/// `time` as given, or with the site's UTC offset (seconds east) when it has none.
+fn with_site_offset(time: &str, offset: Option<i32>) -> String {
+    match (crate::daylight::sun::parse_time(time), offset) {
+        (Ok(_), _) | (Err(_), None) => time.trim().to_owned(),
+        (Err(_), Some(offset)) => match chrono::FixedOffset::east_opt(offset) {
+            // Displayed as `+HH:MM`, the form `parse_time` reads.
+            Some(offset) => format!("{}{offset}", time.trim()),
+            None => time.trim().to_owned(),
+        },
+    }
 }
 
 /// The daylight the sky of `report` sends through the windows, as one light (emission of
@@ -539,6 +541,196 @@ pub(super) fn basis_error(path: &Path) -> impl Fn(eigenrad_runtime::Error) -> Er
 
 /// `eigenrad eval`: the basis evaluated through the runtime.
 pub fn eval(path: &Path, bytes: &[u8], level_args: &LevelArgs, patches: bool) -> Result<Readout> {
+    eval_with_daylight(path, bytes, level_args, None, patches)
+}
+
+/// `eigenrad eval`, with daylight when `daylight` gives a time and a sky: the basis' stored
+/// daylight weighed by that sky through the runtime's [`eigenrad_runtime::DaylightEvaluator`],
+/// reported apart from the channels and together with them, as `solve` reports the exact
+/// solve.
+pub fn eval_with_daylight(
+    path: &Path,
+    bytes: &[u8],
+    level_args: &LevelArgs,
+    daylight: Option<&DaylightArgs>,
+    patches: bool,
+) -> Result<Readout> {
+    let electric = eval_channels(path, bytes, level_args, patches)?;
+    match daylight {
+        None => Ok(electric),
+        Some(args) => add_basis_daylight(path, bytes, args, electric),
+    }
+}
+
+/// The sky of `args` at the site a basis' daylight was built for: its patches are the basis'
+/// (`--mf` must agree), a time without an offset takes the site's.
+fn basis_sky(path: &Path, basis: &Basis<'_>, args: &DaylightArgs) -> Result<SkyReport> {
+    let (Some(site), Some(patches)) = (basis.site(), basis.sky_patches()) else {
+        return Err(daylight_err(
+            "--time",
+            format!(
+                "{} carries no daylight: build it from a scene with a [site] and glazed windows (docs/scene.md, \"Daylight\")",
+                path.display()
+            ),
+        ));
+    };
+    if args.subdivision != patches.subdivision() {
+        return Err(daylight_err(
+            "--mf",
+            format!(
+                "{} holds the daylight of the sky patches of MF:{}; give --mf {} or none",
+                path.display(),
+                patches.subdivision(),
+                patches.subdivision()
+            ),
+        ));
+    }
+    let offset = (site.utc_offset_minutes * 60.0).round() as i32;
+    let time = with_site_offset(&args.time, Some(offset));
+    sky(&SkyRequest {
+        site: crate::daylight::sun::Site {
+            latitude: f64::from(site.latitude),
+            longitude: f64::from(site.longitude),
+            elevation: f64::from(site.elevation),
+        },
+        time,
+        north: f64::from(site.north),
+        input: args.input,
+        water: args.water,
+        subdivision: patches.subdivision(),
+    })
+}
+
+/// The daylight of `args` from the basis, added to the channels' readout `electric`.
+fn add_basis_daylight(
+    path: &Path,
+    bytes: &[u8],
+    args: &DaylightArgs,
+    electric: Readout,
+) -> Result<Readout> {
+    let basis = Basis::from_bytes(bytes).map_err(basis_error(path))?;
+    let report = basis_sky(path, &basis, args)?;
+    let sun = (report.direct_normal_lux > 0.0).then(|| eigenrad_runtime::Sun {
+        direction: eigenrad_runtime::sky::direction(
+            report.sun.altitude.to_radians() as f32,
+            report.sun.azimuth.to_radians() as f32,
+        ),
+        direct_normal: report.direct_normal_lux as f32,
+    });
+    let state = runtime_eval::SkyState {
+        sky_luminance: report
+            .patches
+            .iter()
+            .map(|p| p.luminance_cd_m2 as f32)
+            .collect(),
+        global_horizontal: report.global_horizontal_lux as f32,
+        sun,
+    };
+    let levels: Vec<f32> = electric.levels.iter().map(|l| l.level as f32).collect();
+    let day = runtime_eval::evaluate_daylight(bytes, &state, &levels, electric.patches.is_some())?;
+    let together = |name: &str, e: &[f64], d: f64| Reading {
+        name: name.to_owned(),
+        irradiance: vec![e[0] + d],
+        daylight: Some(vec![d]),
+        electric: Some(e.to_vec()),
+    };
+    let sensors = electric
+        .sensors
+        .iter()
+        .zip(&day.sensors)
+        .map(|(e, &d)| together(&e.name, &e.irradiance, d))
+        .collect();
+    let zones = electric
+        .zones
+        .iter()
+        .zip(&day.zones)
+        .map(|(e, &d)| together(&e.name, &e.irradiance, d))
+        .collect();
+    // The grids: zone by zone as the readout lists them (zones with a grid only).
+    let mut grids = Vec::new();
+    let mut daylight_grids = Vec::new();
+    let mut next = 0;
+    let mut with_grid = (0..basis.zone_count()).filter(|&z| basis.grid_points(z).unwrap_or(0) > 0);
+    for g in &electric.grids {
+        let z = with_grid.next().unwrap_or(0);
+        let points = g.points.len();
+        let daylight: Vec<Vec<f64>> = day.grid[next..next + points]
+            .iter()
+            .map(|&d| vec![d])
+            .collect();
+        let total: Vec<Vec<f64>> = g
+            .points
+            .iter()
+            .zip(&daylight)
+            .map(|(p, d)| vec![p.irradiance[0] + d[0]])
+            .collect();
+        let positions: Vec<[f64; 3]> = g.points.iter().map(|p| p.position_m).collect();
+        let figures = |f: Option<&eigenrad_runtime::Figures>| f.map(|f| vec![*f]);
+        grids.push(GridReadout::new(
+            g.zone.clone(),
+            g.pieces.clone(),
+            positions.clone(),
+            &total,
+            figures(day.figures_with_channels[z].as_ref()).as_deref(),
+        ));
+        daylight_grids.push(GridReadout::new(
+            g.zone.clone(),
+            g.pieces.clone(),
+            positions,
+            &daylight,
+            figures(day.figures[z].as_ref()).as_deref(),
+        ));
+        next += points;
+    }
+    let patches = electric.patches.map(|list| {
+        list.into_iter()
+            .zip(&day.exitance)
+            .map(|(p, &m)| {
+                let rho = basis
+                    .patch(p.id)
+                    .map_or(0.0, |i| f64::from(i.reflectance[0]));
+                PatchReading {
+                    exitance: vec![p.exitance[0] + m],
+                    irradiance: p
+                        .irradiance
+                        .map(|e| vec![e[0] + if rho > 0.0 { m / rho } else { 0.0 }]),
+                    ..p
+                }
+            })
+            .collect()
+    });
+    Ok(Readout {
+        unit: electric.unit,
+        bands: electric.bands,
+        levels: electric.levels,
+        sensors,
+        zones,
+        grids,
+        patches,
+        daylight: Some(DaylightReadout {
+            time: report.time,
+            model: report.model,
+            sun: report.sun,
+            sun_direction_room: report.sun_direction_room,
+            diffuse_horizontal_lux: report.diffuse_horizontal_lux,
+            direct_normal_lux: report.direct_normal_lux,
+            global_horizontal_lux: report.global_horizontal_lux,
+            patch_set: report.patch_set,
+            patch_count: report.patches.len(),
+            windows: Vec::new(),
+            grids: daylight_grids,
+        }),
+    })
+}
+
+/// The channels of a basis at their levels through the runtime (`eigenrad eval` without a
+/// sky).
+fn eval_channels(
+    path: &Path,
+    bytes: &[u8],
+    level_args: &LevelArgs,
+    patches: bool,
+) -> Result<Readout> {
     let basis = Basis::from_bytes(bytes).map_err(basis_error(path))?;
     let names: Vec<String> = (0..basis.channel_count())
         .map(|c| basis.channel_name(c).map(str::to_owned))
@@ -741,7 +933,8 @@ pub fn format_readout(r: &Readout) -> String {
             d.patch_count,
             d.patch_set,
             if d.windows.is_empty() {
-                "no window".to_owned()
+                // A basis does not name its windows.
+                "the windows".to_owned()
             } else {
                 d.windows.join(", ")
             }

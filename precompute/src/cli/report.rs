@@ -62,6 +62,43 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         );
         super::readout::write_grids(&mut s, &r.grids, r.unit);
     }
+    if let Some(d) = &r.daylight {
+        let _ = writeln!(
+            s,
+            "daylight: {} nodes ({} sky patches ({}), the exterior, {} of the sun grid's {} × {} nodes, every {:.2}° of declination and {:.2}° of hour angle, that light the room): {} bytes",
+            d.nodes,
+            d.sky_patches,
+            d.sky,
+            d.sun_nodes,
+            d.sun_grid[0],
+            d.sun_grid[1],
+            d.sun_step_deg[0],
+            d.sun_step_deg[1],
+            d.bytes
+        );
+        let i = &d.sun_interpolation;
+        let _ = writeln!(
+            s,
+            "  the sun between nodes, at the centres of {} cells, against the exact sun (relative to each reading's largest sun response; mean, 95th percentile, largest):",
+            i.cells
+        );
+        for (what, e) in [
+            ("zones", &i.zones),
+            ("sensors", &i.sensors),
+            ("grid points", &i.grid_points),
+        ] {
+            let _ = writeln!(
+                s,
+                "    {what:<12} {:.1e}  {:.1e}  {:.1e}",
+                e.mean, e.p95, e.max
+            );
+        }
+        let _ = writeln!(
+            s,
+            "  through the runtime against the exact solve (CIE overcast sky, zenith 3000 cd/m², E_gh 10000 lux; then with the sun at a node, E_n 50000 lux): sensors, zones and grid points within {:.1e}; patch exitance through the modes {:.1e} overcast, {:.1e} with the sun",
+            d.check.readings, d.check.patch_error_overcast, d.check.patch_error_sun
+        );
+    }
     let _ = writeln!(s, "time per stage:");
     for t in &r.timings {
         let _ = writeln!(s, "  {:<34} {:>8.3} s", t.stage, t.seconds);

@@ -296,6 +296,83 @@ impl Model {
     }
 }
 
+/// The exact response of the room to one light alone, in one band.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightResponse {
+    /// Exitance of every patch, W/m² or lux.
+    pub exitance: Vec<f64>,
+    /// Reading of every output (sensors, zones, then grid points), W/m² or lux.
+    pub readings: Vec<f64>,
+}
+
+impl Model {
+    /// The exact response in band `b` to each of `lights` alone, lights that are not the
+    /// scene's channels (the daylight's nodes): `(I − R F)⁻¹ M0` with `M0` each light's
+    /// emission plus the first reflection of its light from beyond the patches, and every
+    /// output's reading of it, that light's direct part included. One solve with a
+    /// right-hand side per light.
+    pub fn light_responses(
+        &self,
+        b: usize,
+        lights: &[ChannelLight],
+    ) -> Result<Vec<LightResponse>, eigen::EigenError> {
+        let n = self.patch_count();
+        let reflectance = &self.bands[b].reflectance;
+        let external: Vec<ExternalLight> = lights
+            .iter()
+            .map(|l| l.external(&self.g, &self.area, &self.output_rows))
+            .collect();
+        let mut m0 = Mat::<f64>::zeros(n, lights.len());
+        for (k, (light, ext)) in lights.iter().zip(&external).enumerate() {
+            let first = initial_exitance(
+                std::slice::from_ref(light),
+                std::slice::from_ref(ext),
+                reflectance,
+                b,
+                &[1.0],
+                &[],
+            );
+            for (i, x) in first.iter().enumerate() {
+                m0[(i, k)] = *x;
+            }
+        }
+        let solver = self.exact_solver(b)?;
+        let m = solver.solve_many(m0.as_ref());
+        Ok(external
+            .iter()
+            .enumerate()
+            .map(|(k, ext)| {
+                let exitance: Vec<f64> = (0..n).map(|i| m[(i, k)]).collect();
+                let mut readings = self.outputs(&exitance);
+                add_external_readings(&mut readings, std::slice::from_ref(ext), b, &[1.0]);
+                LightResponse { exitance, readings }
+            })
+            .collect())
+    }
+
+    /// The amplitudes on the first `p` modes of band `b` of an exitance `m` (W/m² or lux)
+    /// over the reflecting patches: `a_k = v_kᵀ B m` (split, `Vᵀ B V = I`) or `v_kᵀ m` (seed,
+    /// orthonormal modes), so that `Σ_k a_k v_k` is `m` projected on the modes, and `m`
+    /// itself on the reflecting patches when `p = n`.
+    pub fn mode_amplitudes(&self, b: usize, m: &[f64], p: usize) -> Vec<f64> {
+        let band = &self.bands[b];
+        let v = &band.modes.vectors;
+        let weight = |j: usize| match (self.formulation, band.reflectance[j]) {
+            (_, r) if r <= 0.0 => 0.0,
+            (Formulation::Split, r) => self.area[j] / r,
+            (Formulation::Seed, _) => 1.0,
+        };
+        (0..p)
+            .map(|k| {
+                if k >= v.ncols() {
+                    return 0.0;
+                }
+                (0..m.len()).map(|j| weight(j) * v[(j, k)] * m[j]).sum()
+            })
+            .collect()
+    }
+}
+
 /// The levels of `m` channels with channel `c` alone at level 1.
 fn alone(m: usize, c: usize) -> Vec<f64> {
     (0..m).map(|d| if d == c { 1.0 } else { 0.0 }).collect()

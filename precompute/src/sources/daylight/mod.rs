@@ -64,6 +64,7 @@ use crate::geometry::{Patch, Vec3};
 use crate::scene::{Scene, ZoneKind};
 
 mod cells;
+pub mod nodes;
 mod outside;
 mod sky;
 mod sun;
