@@ -233,3 +233,28 @@ fn decoder_refuses_bad_daylight_sections() {
     // Daylight tables without a sky.
     check(&|t| t.sky_subdivision = 0, "daylight_site");
 }
+
+/// The sky's patch luminances are the sky's relative luminance at each centre times the scale
+/// (the cap's centre is the zenith, where the CIE overcast sky is 3 times its horizon); a
+/// wrong length is an error.
+#[test]
+fn patch_luminances_of_a_sky() {
+    use eigenrad_runtime::sky::cie::CieSky;
+    use eigenrad_runtime::sky::patches::SkyPatches;
+    use eigenrad_runtime::sky::RelativeSky;
+    let sky = CieSky::traditional_overcast([0.0, -0.6, 0.8]).unwrap();
+    let patches = SkyPatches::TREGENZA;
+    let mut out = vec![0.0f32; TREGENZA];
+    patches.luminances(&sky, 2000.0, &mut out).unwrap();
+    for (i, &l) in out.iter().enumerate() {
+        let p = patches.patch(i).unwrap();
+        assert_eq!(l, sky.relative_luminance(p.direction) * 2000.0);
+    }
+    let zenith = out[TREGENZA - 1];
+    assert_eq!(zenith, sky.relative_luminance([0.0, 0.0, 1.0]) * 2000.0);
+    // The lowest row's centre is 6° up: (1 + 2 sin 6°)/3 of the zenith (Moon and Spencer).
+    let low = (1.0 + 2.0 * 6f32.to_radians().sin()) / 3.0;
+    assert!((out[0] / zenith - low).abs() < 1e-5, "{}", out[0] / zenith);
+    assert!(patches.luminances(&sky, 1.0, &mut out[1..]).is_err());
+    assert!(patches.luminances(&sky, f32::NAN, &mut out).is_err());
+}

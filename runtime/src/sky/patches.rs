@@ -139,6 +139,38 @@ impl SkyPatches {
         None
     }
 
+    /// Every patch's luminance under `sky`: its relative luminance at the patch's centre times
+    /// `scale` (cd/m² per unit of relative luminance, e.g. a CIE sky's zenith luminance), in
+    /// the patches' order, into `out` (one slot per patch): what a
+    /// [`DaylightEvaluator`](crate::DaylightEvaluator) takes. A wrong length or a `scale`
+    /// that is negative or not finite is an error and writes nothing.
+    pub fn luminances<S: super::RelativeSky + ?Sized>(
+        &self,
+        sky: &S,
+        scale: f32,
+        out: &mut [f32],
+    ) -> Result<()> {
+        if out.len() != self.count() {
+            return Err(Error::LengthMismatch {
+                what: "sky luminances",
+                expected: self.count(),
+                found: out.len(),
+            });
+        }
+        if !(scale.is_finite() && scale >= 0.0) {
+            return Err(Error::OutOfRange {
+                what: "sky luminance scale (cd/m²)",
+                range: "finite and not negative",
+            });
+        }
+        for (i, slot) in out.iter_mut().enumerate() {
+            *slot = self
+                .patch(i)
+                .map_or(0.0, |p| sky.relative_luminance(p.direction) * scale);
+        }
+        Ok(())
+    }
+
     /// The patch that direction `dir` (a unit vector, z up, in the site's frame) falls in;
     /// `None` below the horizon (`dir[2] < 0`) or for a direction that is not finite.
     pub fn index(&self, dir: [f32; 3]) -> Option<usize> {
