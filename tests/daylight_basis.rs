@@ -1,0 +1,303 @@
+//! Daylight in the basis (`eigenrad build` of a scene with a site and a window, `eigenrad eval
+//! --time ... <sky>`), against the exact solve of the same mesh and sky (`eigenrad solve
+//! --time`), which computes its daylight afresh and solves it in one piece:
+//!
+//! - without the sun, every sensor, zone and grid point is exact per sky patch: `eval` equals
+//!   `solve` to `f32` ([`F32_SUMS`]);
+//! - with the sun at a node of the basis' sun grid, the runtime equals the exact solve of
+//!   that sun (the same tolerance); between nodes the build report says how far it reads;
+//! - with as many modes as patches, the daylight's patch exitance through the modes equals
+//!   the exact one ([`FULL_MODES`]);
+//! - the same scene builds the same bytes; a basis without daylight, or a sky of other
+//!   patches, is an error naming the flag.
+//!
+//! The readings are taken in-process (the code behind the commands, optimised as tests are);
+//! the errors through the binary.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{daylit_room, run, scratch, stderr, VIENNA};
+use eigenrad_precompute::accuracy::runtime_eval::{evaluate_daylight, SkyState};
+use eigenrad_precompute::cli::{self, DaylightArgs, LevelArgs, SkyInput};
+use eigenrad_precompute::formfactor::{FormFactorOptions, Occluders};
+use eigenrad_precompute::pipeline::{self, BuildOptions, ModeSelection};
+use eigenrad_precompute::radiosity::eigen::Solver;
+use eigenrad_precompute::radiosity::model::Model;
+use eigenrad_precompute::sources::daylight::nodes::room_sun;
+use eigenrad_precompute::sources::daylight::{sun_light, DaylightOptions};
+use eigenrad_runtime::{Basis, Sun};
+
+/// Relative difference of an `f32` sum over the ~150 daylight nodes (and the channels)
+/// from the same sum in `f64`: a few hundred roundings of 6e-8.
+const F32_SUMS: f64 = 2e-5;
+
+/// Area-weighted RMS difference of the daylight's patch exitance through all the modes from
+/// the exact solve: the modes are complete, what remains is `f32` rounding of `n` terms.
+const FULL_MODES: f64 = 1e-4;
+
+fn no_cache() -> FormFactorOptions {
+    FormFactorOptions {
+        cache: None,
+        ..FormFactorOptions::default()
+    }
+}
+
+/// The daylit test room with the Vienna site, written to a scratch folder.
+fn scene_file(test: &str) -> (PathBuf, PathBuf) {
+    let dir = scratch(test);
+    let path = dir.join("daylit.toml");
+    std::fs::write(&path, daylit_room(VIENNA)).expect("write scene");
+    (dir, path)
+}
+
+/// The basis of `scene` with `modes` modes, written next to it; its bytes.
+fn build(scene: &Path, modes: ModeSelection) -> (PathBuf, Vec<u8>) {
+    let opts = BuildOptions {
+        modes,
+        form_factors: no_cache(),
+        ..BuildOptions::default()
+    };
+    let (bytes, report) = pipeline::build(scene, &opts).expect("build");
+    let daylight = report.daylight.expect("a daylight section");
+    assert_eq!(daylight.sky_patches, 145);
+    assert!(daylight.sun_nodes > 0 && daylight.bytes > 0);
+    let path = scene.with_extension("basis");
+    std::fs::write(&path, &bytes).expect("write basis");
+    (path, bytes)
+}
+
+fn sky(time: &str, input: SkyInput) -> DaylightArgs {
+    DaylightArgs {
+        time: time.to_owned(),
+        input,
+        water: 2.0,
+        subdivision: 1,
+    }
+}
+
+/// Every sensor's and zone's reading and daylight part, then every grid point's, of a
+/// readout.
+fn values(r: &cli::Readout) -> Vec<(String, f64, f64)> {
+    let mut out: Vec<(String, f64, f64)> = r
+        .sensors
+        .iter()
+        .chain(&r.zones)
+        .map(|x| {
+            let day = x.daylight.as_ref().expect("a daylight part")[0];
+            (x.name.clone(), x.irradiance[0], day)
+        })
+        .collect();
+    let day = r.daylight.as_ref().expect("daylight");
+    for (g, d) in r.grids.iter().zip(&day.grids) {
+        for (i, (p, q)) in g.points.iter().zip(&d.points).enumerate() {
+            out.push((
+                format!("{} point {i}", g.zone),
+                p.irradiance[0],
+                q.irradiance[0],
+            ));
+        }
+    }
+    out
+}
+
+fn close(a: f64, b: f64, tolerance: f64) -> bool {
+    (a - b).abs() <= tolerance * a.abs().max(b.abs()).max(1e-9)
+}
+
+/// Under the CIE overcast sky (no sun) `eval` reads every sensor, zone and grid point,
+/// its daylight part and its total with the lamp at 0.7, as `solve` does, and the grids'
+/// figures likewise.
+#[test]
+fn eval_equals_solve_without_the_sun() {
+    let (_dir, scene) = scene_file("overcast");
+    let (basis, bytes) = build(&scene, ModeSelection::Count(16));
+    let levels = LevelArgs {
+        levels: vec!["lamp=0.7".into()],
+        arcs: Vec::new(),
+    };
+    let args = sky(
+        "2026-03-21T10:00",
+        SkyInput::Cie {
+            sky_type: 0,
+            diffuse_horizontal: 12_000.0,
+            direct_normal: 0.0,
+        },
+    );
+    let eval = cli::eval_with_daylight(&basis, &bytes, &levels, Some(&args), false).unwrap();
+    let solve = cli::solve_with_daylight(&scene, &levels, Some(&args), false, &no_cache()).unwrap();
+    let (e, s) = (values(&eval), values(&solve));
+    assert_eq!(e.len(), s.len());
+    assert!(e.len() > 3, "sensors, zone and grid points");
+    for (a, b) in e.iter().zip(&s) {
+        assert_eq!(a.0, b.0);
+        assert!(b.2 > 0.0, "{}: daylight reaches it", a.0);
+        assert!(
+            close(a.2, b.2, F32_SUMS),
+            "{}: daylight {} vs {}",
+            a.0,
+            a.2,
+            b.2
+        );
+        assert!(
+            close(a.1, b.1, F32_SUMS),
+            "{}: total {} vs {}",
+            a.0,
+            a.1,
+            b.1
+        );
+    }
+    for (a, b) in eval.grids.iter().zip(&solve.grids) {
+        for (x, y) in [
+            (&a.average, &b.average),
+            (&a.minimum, &b.minimum),
+            (&a.uniformity, &b.uniformity),
+        ] {
+            assert!(close(x[0], y[0], F32_SUMS), "{}: {x:?} vs {y:?}", a.zone);
+        }
+    }
+    let (ed, sd) = (eval.daylight.unwrap(), solve.daylight.unwrap());
+    assert_eq!(ed.time, sd.time, "the site's offset from the basis");
+    assert_eq!(ed.patch_count, sd.patch_count);
+}
+
+/// The exact response to the sun in room direction `sun` (per lux of direct normal
+/// illuminance): every output's reading and every patch's exitance.
+fn exact_sun(scene: &Path, sun: eigenrad_precompute::geometry::Vec3) -> (Vec<f64>, Vec<f64>) {
+    let prepared = pipeline::prepare(scene, &no_cache()).unwrap();
+    let occluders = Occluders::with_faces(&prepared.scene.patches, &prepared.scene.faces);
+    let light = sun_light(
+        &prepared.scene,
+        &occluders,
+        sun,
+        &DaylightOptions::default(),
+    );
+    let model = Model::new(
+        &prepared.scene,
+        prepared.g,
+        prepared.output_rows,
+        prepared.lights,
+        eigenrad_precompute::radiosity::eigen::Formulation::Split,
+        1,
+        Solver::Auto,
+    )
+    .unwrap();
+    let r = model.light_responses(0, &[light]).unwrap().remove(0);
+    (r.readings, r.exitance)
+}
+
+/// With the sun at a node of the basis' grid and a dark sky, the runtime reads what the
+/// exact solve of that sun gives, at every sensor, zone and grid point; and with all the
+/// modes, the patches' exitance too.
+#[test]
+fn at_a_sun_node_the_runtime_is_exact() {
+    let (_dir, scene) = scene_file("sun-node");
+    let loaded = eigenrad_precompute::scene::load(&scene).unwrap();
+    let n = loaded.patches.len();
+    // The window and the lamp reflect nothing: the modes span the other patches.
+    let reflecting = loaded.reflectance.iter().filter(|r| r[0] > 0.0).count();
+    let (_basis, bytes) = build(&scene, ModeSelection::Count(n));
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let grid = basis.sun_grid().unwrap();
+    assert_eq!(basis.mode_count(), reflecting, "all the modes");
+    // A stored node: the sun at noon in spring, or the first that lights the room.
+    let site = eigenrad_precompute::scene::load(&scene)
+        .unwrap()
+        .site
+        .unwrap();
+    let node = (0..grid.len())
+        .filter(|&k| {
+            let (d, h) = grid.angles(k).unwrap();
+            d.abs() < 6.0 && h.abs() < 16.0
+        })
+        .find(|&k| room_sun(&site, grid.direction(k).unwrap()).is_some())
+        .expect("a node near noon at the equinox");
+    let direction = grid.direction(node).unwrap();
+    let state = SkyState {
+        sky_luminance: vec![0.0; 145],
+        global_horizontal: 0.0,
+        sun: Some(Sun {
+            direction,
+            direct_normal: 1000.0,
+        }),
+    };
+    let got = evaluate_daylight(&bytes, &state, &[0.0], true).unwrap();
+    let (readings, exitance) = exact_sun(&scene, room_sun(&site, direction).unwrap());
+    let read: Vec<f64> = got
+        .sensors
+        .iter()
+        .chain(&got.zones)
+        .chain(&got.grid)
+        .copied()
+        .collect();
+    assert_eq!(read.len(), readings.len());
+    let peak = readings.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(peak > 0.0, "the sun lights the room");
+    for (o, (a, b)) in read.iter().zip(&readings).enumerate() {
+        let b = 1000.0 * b;
+        assert!(
+            (a - b).abs() <= F32_SUMS * b.abs().max(1e-3 * peak * 1000.0),
+            "output {o}: {a} vs {b}"
+        );
+    }
+    let exact: Vec<f64> = exitance.iter().map(|x| 1000.0 * x).collect();
+    let area: Vec<f64> = eigenrad_precompute::scene::load(&scene)
+        .unwrap()
+        .patches
+        .iter()
+        .map(|p| p.area)
+        .collect();
+    let error = eigenrad_precompute::accuracy::metric::patch_error(&area, &got.exitance, &exact);
+    assert!(
+        error <= FULL_MODES,
+        "patch exitance through all {n} modes: {error:.2e}"
+    );
+}
+
+/// The same scene and flags build the same bytes, daylight included.
+#[test]
+fn daylight_bases_are_deterministic() {
+    let (_dir, scene) = scene_file("deterministic");
+    let (_, a) = build(&scene, ModeSelection::Count(8));
+    let (_, b) = build(&scene, ModeSelection::Count(8));
+    assert!(a == b, "two builds differ");
+}
+
+/// `eval --time` on a basis without daylight names --time and says why; a sky of other
+/// patches than the basis' names --mf; neither panics.
+#[test]
+fn daylight_requests_a_basis_cannot_serve_are_errors() {
+    let dir = scratch("daylight-errors");
+    let plain = common::good_basis(&dir);
+    let flags = [
+        "--time",
+        "2026-06-21T12:00+02:00",
+        "--cie",
+        "overcast",
+        "--dhi-lux",
+        "9000",
+    ];
+    let mut args = vec!["eval", plain.to_str().unwrap()];
+    args.extend(flags);
+    let o = run(&args);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--time") && stderr(&o).contains("carries no daylight"),
+        "{}",
+        stderr(&o)
+    );
+    let (_d, scene) = scene_file("daylight-errors-mf");
+    let (basis, _) = build(&scene, ModeSelection::Count(4));
+    let mut args = vec!["eval", basis.to_str().unwrap()];
+    args.extend(flags);
+    args.extend(["--mf", "2"]);
+    let o = run(&args);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--mf") && stderr(&o).contains("MF:1"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!stderr(&o).contains("panicked"));
+}
