@@ -160,6 +160,18 @@ fn eval_equals_solve_without_the_sun() {
     let (ed, sd) = (eval.daylight.unwrap(), solve.daylight.unwrap());
     assert_eq!(ed.time, sd.time, "the site's offset from the basis");
     assert_eq!(ed.patch_count, sd.patch_count);
+    // `inspect --gains`: each sensor's and zone's daylight factor is its overcast daylight
+    // per lux of diffuse horizontal illuminance.
+    let gains = cli::gains(&basis, &bytes, cli::Units::Native).unwrap();
+    for (g, x) in gains.sensors.iter().chain(&gains.zones).zip(&s) {
+        let factor = g.per_daylight.as_ref().expect("a daylight factor")[0];
+        assert!(
+            close(factor * 12_000.0, x.2, F32_SUMS),
+            "{}: {factor} vs {}",
+            g.name,
+            x.2 / 12_000.0
+        );
+    }
 }
 
 /// The exact response to the sun in room direction `sun` (per lux of direct normal

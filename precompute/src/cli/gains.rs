@@ -22,8 +22,10 @@ pub struct Gain {
     /// `per_channel[c][b]`: the reading in band b with channel c at level 1 and every other
     /// channel off ([`Gains::unit`] per unit level).
     pub per_channel: Vec<Vec<f64>>,
-    /// The reading per unit of daylight, per band. Always `null` today: a basis holds no
-    /// daylight response to read (`eigenrad solve --time` computes daylight from the scene).
+    /// The reading per unit of daylight, per band: per lux of diffuse horizontal
+    /// illuminance outside under the CIE overcast sky, its daylight factor as a fraction
+    /// (the same in lux or fc), read through the runtime's `DaylightEvaluator`. `null` for a
+    /// basis without daylight.
     pub per_daylight: Option<Vec<f64>>,
 }
 
@@ -52,8 +54,9 @@ pub fn gains(path: &Path, bytes: &[u8], units: Units) -> Result<Gains> {
         _ => read::<3>(basis),
     }
     .map_err(&e)?;
+    let factors = daylight_factors(bytes)?;
     type Name<'b> = dyn Fn(usize) -> std::result::Result<&'b str, eigenrad_runtime::Error> + 'b;
-    let named = |values: PerOutput, name: &Name<'_>| {
+    let named = |values: PerOutput, name: &Name<'_>, first: usize| {
         values
             .into_iter()
             .enumerate()
@@ -64,7 +67,7 @@ pub fn gains(path: &Path, bytes: &[u8], units: Units) -> Result<Gains> {
                         .into_iter()
                         .map(|v| v.into_iter().map(convert).collect())
                         .collect(),
-                    per_daylight: None,
+                    per_daylight: factors.as_ref().map(|f| vec![f[first + i]]),
                 })
             })
             .collect::<Result<Vec<_>>>()
@@ -76,9 +79,33 @@ pub fn gains(path: &Path, bytes: &[u8], units: Units) -> Result<Gains> {
             .map(|c| basis.channel_name(c).map(str::to_owned))
             .collect::<std::result::Result<_, _>>()
             .map_err(&e)?,
-        sensors: named(sensors, &|s| basis.sensor_name(s))?,
-        zones: named(zones, &|z| basis.zone_name(z))?,
+        sensors: named(sensors, &|s| basis.sensor_name(s), 0)?,
+        zones: named(zones, &|z| basis.zone_name(z), basis.sensor_count())?,
     })
+}
+
+/// Every sensor's and zone's daylight factor (a fraction), `None` for a basis without
+/// daylight: the reading under the CIE traditional overcast sky scaled to 1 lux of diffuse
+/// horizontal illuminance, which with no sun is also the global horizontal illuminance that
+/// lights the ground.
+fn daylight_factors(bytes: &[u8]) -> Result<Option<Vec<f64>>> {
+    use eigenrad_runtime::sky::cie::CieSky;
+    let basis = Basis::from_bytes(bytes)?;
+    let Some(patches) = basis.sky_patches() else {
+        return Ok(None);
+    };
+    // The traditional overcast sky does not depend on the sun: any direction serves.
+    let sky = CieSky::traditional_overcast([0.0, 0.0, 1.0])?;
+    let mut sky_luminance = vec![0.0f32; patches.count()];
+    patches.luminances(&sky, sky.zenith_luminance_for(1.0)?, &mut sky_luminance)?;
+    let state = crate::accuracy::runtime_eval::SkyState {
+        sky_luminance,
+        global_horizontal: 1.0,
+        sun: None,
+    };
+    let levels = vec![0.0; basis.channel_count()];
+    let got = crate::accuracy::runtime_eval::evaluate_daylight(bytes, &state, &levels, false)?;
+    Ok(Some(got.sensors.into_iter().chain(got.zones).collect()))
 }
 
 /// `[output][channel][band]` for sensors and zones, one channel at level 1 at a time.
@@ -119,9 +146,9 @@ fn rows(g: &Gains) -> Vec<(&'static str, &str, &'static str, Vec<f64>)> {
     out
 }
 
-/// What the table says about daylight (the JSON has `per_daylight: null`).
+/// What the table says without daylight (the JSON has `per_daylight: null`).
 const NO_DAYLIGHT: &str =
-    "per unit of daylight: none (a basis carries no daylight yet; `eigenrad solve --time` computes it from the scene)";
+    "per unit of daylight: none (the basis carries no daylight: its scene had no [site] or no glazed window)";
 
 /// The gains as a table: one line per sensor or zone (and band), one column per channel.
 pub fn format_gains(g: &Gains) -> String {
@@ -144,7 +171,22 @@ pub fn format_gains(g: &Gains) -> String {
         }
         let _ = writeln!(s, " {}", g.unit);
     }
-    let _ = writeln!(s, "{NO_DAYLIGHT}");
+    let daylit: Vec<&Gain> = g.sensors.iter().chain(&g.zones).collect();
+    if daylit.iter().all(|x| x.per_daylight.is_none()) {
+        let _ = writeln!(s, "{NO_DAYLIGHT}");
+        return s;
+    }
+    let _ = writeln!(
+        s,
+        "per unit of daylight: daylight factor under the CIE overcast sky (reading per lux of diffuse horizontal illuminance outside)"
+    );
+    for (kind, list) in [("sensor", &g.sensors), ("zone", &g.zones)] {
+        for x in list {
+            if let Some(f) = &x.per_daylight {
+                let _ = writeln!(s, "{kind:<6} {:<20} {:>8.3} %", x.name, 100.0 * f[0]);
+            }
+        }
+    }
     s
 }
 

@@ -40,6 +40,29 @@ pub struct BasisInfo {
     pub grids: Vec<usize>,
     /// Eigenvalues of the first band.
     pub eigenvalues: Vec<f32>,
+    /// The daylight the basis carries, `null` without.
+    pub daylight: Option<DaylightInfo>,
+}
+
+/// What a basis' daylight holds.
+#[derive(Clone, Debug, Serialize)]
+pub struct DaylightInfo {
+    /// Latitude (° north), longitude (° east), elevation (m).
+    pub site: [f32; 3],
+    /// Compass bearing of the scene's +y axis, degrees.
+    pub north_deg: f32,
+    /// The site's UTC offset, minutes.
+    pub utc_offset_minutes: f32,
+    /// Sky patches (145: Tregenza).
+    pub sky_patches: usize,
+    /// The sun grid: declinations and hour angles.
+    pub sun_grid: [usize; 2],
+    /// Degrees between declinations and between hour angles.
+    pub sun_step_deg: [f32; 2],
+    /// The grid's nodes that light the room.
+    pub sun_nodes: usize,
+    /// Every daylight node: sky patches, the exterior, the sun nodes.
+    pub nodes: usize,
 }
 
 fn names<'a>(
@@ -80,6 +103,19 @@ pub fn inspect(path: &Path, bytes: &[u8]) -> Result<BasisInfo> {
             .map(|k| b.eigenvalue(0, k))
             .collect::<std::result::Result<_, _>>()
             .map_err(&e)?,
+        daylight: match (b.site(), b.sky_patches(), b.sun_grid()) {
+            (Some(site), Some(sky), Some(grid)) => Some(DaylightInfo {
+                site: [site.latitude, site.longitude, site.elevation],
+                north_deg: site.north,
+                utc_offset_minutes: site.utc_offset_minutes,
+                sky_patches: sky.count(),
+                sun_grid: [grid.rows, grid.columns],
+                sun_step_deg: [grid.declination_step, grid.hour_step],
+                sun_nodes: b.sun_node_count(),
+                nodes: b.daylight_node_count(),
+            }),
+            _ => None,
+        },
     })
 }
 
@@ -126,5 +162,28 @@ pub fn format_inspect(i: &BasisInfo) -> String {
         .map(|e| format!("{e:.4}"))
         .collect();
     let _ = writeln!(s, "leading eigenvalues (band 1): {}", head.join(" "));
+    match &i.daylight {
+        None => {
+            let _ = writeln!(s, "daylight: none");
+        }
+        Some(d) => {
+            let _ = writeln!(
+                s,
+                "daylight: site {:.4}° N {:.4}° E {:.0} m, north {:.1}°, UTC offset {:+.0} min; {} nodes: {} sky patches, the exterior, {} of the sun grid's {} × {} nodes ({:.2}° of declination by {:.2}° of hour angle)",
+                d.site[0],
+                d.site[1],
+                d.site[2],
+                d.north_deg,
+                d.utc_offset_minutes,
+                d.nodes,
+                d.sky_patches,
+                d.sun_nodes,
+                d.sun_grid[0],
+                d.sun_grid[1],
+                d.sun_step_deg[0],
+                d.sun_step_deg[1]
+            );
+        }
+    }
     s
 }
