@@ -516,7 +516,7 @@ fn a_daylight_plan_shows_the_daylight_grid() {
             "({x:.3}, {y:.3}): drawn {shown:.3} lx, exact daylight {e:.3} lx"
         );
     }
-    // A basis carries no daylight: asked for both, render says so and draws nothing.
+    // A basis built without daylight: asked for daylight, render says so and draws nothing.
     let basis = common::good_basis(&dir);
     let out = dir.join("plan.png");
     let o = common::run(&[

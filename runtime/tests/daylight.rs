@@ -258,3 +258,22 @@ fn patch_luminances_of_a_sky() {
     assert!(patches.luminances(&sky, 1.0, &mut out[1..]).is_err());
     assert!(patches.luminances(&sky, f32::NAN, &mut out).is_err());
 }
+
+/// The committed `tiny-daylight.basis` (the README's daylight example reads it) is the
+/// encoding of `common::tiny_daylight`.
+#[test]
+fn tiny_daylight_file_is_the_tiny_daylight_basis() {
+    let bytes = tiny_daylight().to_bytes().unwrap();
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/tiny-daylight.basis"
+    );
+    if std::env::var_os("EIGENRAD_WRITE_GOLDEN").is_some() {
+        std::fs::write(path, &bytes).unwrap();
+    }
+    assert_eq!(
+        std::fs::read(path).unwrap(),
+        bytes,
+        "EIGENRAD_WRITE_GOLDEN=1 rewrites it"
+    );
+}

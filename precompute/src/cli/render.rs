@@ -47,8 +47,8 @@ pub struct RenderRequest<'a> {
     pub surfaces: Option<SurfaceQuantity>,
     /// Form-factor settings, progress and cache of the exact solve.
     pub form_factors: &'a FormFactorOptions,
-    /// Daylight at a time under a sky, as `solve --time` takes it (exact solve only: a basis
-    /// carries no daylight yet).
+    /// Daylight at a time under a sky, as `solve --time` (or with a basis `eval --time`)
+    /// takes it.
     pub daylight: Option<&'a DaylightArgs>,
 }
 
@@ -214,17 +214,23 @@ pub fn render(request: &RenderRequest<'_>) -> Result<Pictures> {
     };
     let patches = request.surfaces.is_some();
     let native = match request.basis {
-        Some((basis_path, _)) if request.daylight.is_some() => {
+        Some((basis_path, _)) if request.daylight.is_some() && patches => {
             return Err(render_error(
                 path,
                 format!(
-                    "{} carries no daylight (a basis holds the channels only); leave out --basis to draw daylight from the exact solve",
+                    "{} holds the daylight of its patches only through its modes, too coarse for a picture of the surfaces (docs/math.md, \"Daylight in the basis\"); leave out --basis to draw them from the exact solve",
                     basis_path.display()
                 ),
             ))
         }
         Some((basis_path, bytes)) => {
-            let r = readout::eval(basis_path, bytes, request.levels, patches)?;
+            let r = readout::eval_with_daylight(
+                basis_path,
+                bytes,
+                request.levels,
+                request.daylight,
+                patches,
+            )?;
             check_basis_matches(&scene, path, basis_path, &r)?;
             r
         }
