@@ -2,7 +2,7 @@
 //! inputs taken from the tail of the data. Nothing may panic; every Ok reading is finite.
 #![no_main]
 
-use eigenrad_runtime::{Basis, ChannelEvaluator, Evaluator};
+use eigenrad_runtime::{Basis, ChannelEvaluator, DaylightEvaluator, Evaluator, Sun};
 use libfuzzer_sys::fuzz_target;
 
 fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
@@ -69,6 +69,44 @@ fn run<const B: usize>(basis: Basis<'_>, knobs: &[u8]) {
                 check(c.grid_point_irradiance(z, point));
             }
             figures(c.zone_figures(z));
+        }
+    }
+    // Daylight (a basis that carries it, Tregenza's sky), driven by the same knobs.
+    if let Ok(mut d) = DaylightEvaluator::<145, 8, 32>::new(basis) {
+        let sky: Vec<f32> = (0..145).map(|i| f32::from(knob(i + 11)) * 40.0).collect();
+        let raw = [
+            f32::from(knob(1)) - 128.0,
+            f32::from(knob(2)) - 128.0,
+            f32::from(knob(4)) - 100.0,
+        ];
+        let norm = (raw[0] * raw[0] + raw[1] * raw[1] + raw[2] * raw[2]).sqrt().max(1.0);
+        let sun = Sun {
+            direction: raw.map(|x| x / norm),
+            direct_normal: f32::from(knob(6)) * 400.0,
+        };
+        let _ = d.set_sky(&sky, f32::from(knob(8)) * 500.0, Some(sun));
+        let finite = |r: eigenrad_runtime::Result<f32>| {
+            if let Ok(v) = r {
+                assert!(v.is_finite());
+            }
+        };
+        for s in 0..basis.sensor_count() {
+            finite(d.sensor_illuminance(s));
+        }
+        for z in 0..basis.zone_count() {
+            finite(d.zone_illuminance(z));
+            let points = basis.grid_points(z).unwrap_or(0);
+            for point in 0..=points.min(64) {
+                finite(d.grid_point_illuminance(z, point));
+            }
+            if let Ok(f) = d.zone_figures(z) {
+                assert!([f.average, f.minimum, f.maximum, f.uniformity]
+                    .iter()
+                    .all(|v| v.is_finite()));
+            }
+        }
+        for i in 0..basis.patch_count().min(256) {
+            finite(d.exitance(i));
         }
     }
     let _ = basis.find_channel("main");
