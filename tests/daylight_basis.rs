@@ -23,7 +23,7 @@ use eigenrad_precompute::accuracy::runtime_eval::{evaluate_daylight, SkyState};
 use eigenrad_precompute::cli::{self, DaylightArgs, LevelArgs, SkyInput};
 use eigenrad_precompute::formfactor::{FormFactorOptions, Occluders};
 use eigenrad_precompute::pipeline::{self, BuildOptions, ModeSelection};
-use eigenrad_precompute::radiosity::eigen::Solver;
+use eigenrad_precompute::radiosity::eigen::{Formulation, Solver};
 use eigenrad_precompute::radiosity::model::Model;
 use eigenrad_precompute::sources::daylight::nodes::room_sun;
 use eigenrad_precompute::sources::daylight::{sun_light, DaylightOptions};
@@ -54,8 +54,14 @@ fn scene_file(test: &str) -> (PathBuf, PathBuf) {
 
 /// The basis of `scene` with `modes` modes, written next to it; its bytes.
 fn build(scene: &Path, modes: ModeSelection) -> (PathBuf, Vec<u8>) {
+    build_in(scene, modes, Formulation::Split)
+}
+
+/// [`build`] in the given formulation.
+fn build_in(scene: &Path, modes: ModeSelection, formulation: Formulation) -> (PathBuf, Vec<u8>) {
     let opts = BuildOptions {
         modes,
+        formulation,
         form_factors: no_cache(),
         ..BuildOptions::default()
     };
@@ -190,7 +196,7 @@ fn exact_sun(scene: &Path, sun: eigenrad_precompute::geometry::Vec3) -> (Vec<f64
         prepared.g,
         prepared.output_rows,
         prepared.lights,
-        eigenrad_precompute::radiosity::eigen::Formulation::Split,
+        Formulation::Split,
         1,
         Solver::Auto,
     )
@@ -201,15 +207,24 @@ fn exact_sun(scene: &Path, sun: eigenrad_precompute::geometry::Vec3) -> (Vec<f64
 
 /// With the sun at a node of the basis' grid and a dark sky, the runtime reads what the
 /// exact solve of that sun gives, at every sensor, zone and grid point; and with all the
-/// modes, the patches' exitance too.
+/// modes, the patches' exitance too, in either formulation.
 #[test]
 fn at_a_sun_node_the_runtime_is_exact() {
-    let (_dir, scene) = scene_file("sun-node");
+    sun_node_exact(Formulation::Split);
+}
+
+#[test]
+fn at_a_sun_node_the_runtime_is_exact_in_the_seed_formulation() {
+    sun_node_exact(Formulation::Seed);
+}
+
+fn sun_node_exact(formulation: Formulation) {
+    let (_dir, scene) = scene_file(&format!("sun-node-{formulation:?}"));
     let loaded = eigenrad_precompute::scene::load(&scene).unwrap();
     let n = loaded.patches.len();
     // The window and the lamp reflect nothing: the modes span the other patches.
     let reflecting = loaded.reflectance.iter().filter(|r| r[0] > 0.0).count();
-    let (_basis, bytes) = build(&scene, ModeSelection::Count(n));
+    let (_basis, bytes) = build_in(&scene, ModeSelection::Count(n), formulation);
     let basis = Basis::from_bytes(&bytes).unwrap();
     let grid = basis.sun_grid().unwrap();
     assert_eq!(basis.mode_count(), reflecting, "all the modes");
