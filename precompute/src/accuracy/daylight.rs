@@ -46,6 +46,8 @@ pub struct SunInterpolation {
 /// largest.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct ErrorSpread {
+    /// Differences measured (cells times readings of the kind); 0 without such readings.
+    pub count: usize,
     /// Mean.
     pub mean: f64,
     /// 95th percentile (nearest rank).
@@ -62,6 +64,7 @@ impl ErrorSpread {
         errors.sort_by(f64::total_cmp);
         let rank = ((0.95 * errors.len() as f64).ceil() as usize).clamp(1, errors.len());
         ErrorSpread {
+            count: errors.len(),
             mean: errors.iter().sum::<f64>() / errors.len() as f64,
             p95: errors[rank - 1],
             max: errors[errors.len() - 1],
