@@ -5,6 +5,11 @@
 #
 #   size <label> basis_bytes <n> text <n> rodata <n> data <n> bss <n> flash <n>
 #
+# and the code-size probes' (examples/firmware/src/bin/code_size_*.rs), each less the empty
+# skeleton's: `size runtime_<probe> text <n> rodata <n>` for channels, patches, levels and
+# daylight, and `size sun_position text <n> rodata <n>` (the sun's position, without the
+# runtime).
+#
 # Usage: scripts/firmware.sh BASIS OUTPUT
 #   BASIS   a basis file (format in docs/format.md)
 #   OUTPUT  where the firmware's standard output goes (the record format is described at the
@@ -110,11 +115,12 @@ report_size() {
         }'
 }
 
-# Prints the code-size line of probe $1 (`.text` and `.rodata` less the empty probe's).
+# Prints the code-size line of probe $1 (`.text` and `.rodata` less the empty probe's),
+# labelled $2 (default runtime_$1).
 report_probe() {
     local release="$target_dir/tiny/$triple/release"
     { sections "$release/code_size_$1" | sed 's/^/probe /'; sections "$release/code_size_empty"; } |
-        awk -v label="runtime_$1" '
+        awk -v label="${2:-runtime_$1}" '
             $1 == "probe" { probe[$2] = $3; next }
             { empty[$1] = $2 }
             END {
@@ -140,6 +146,8 @@ report_size "$target_dir/firmware.elf" basis "$basis"
 report_probe channels
 report_probe patches
 report_probe levels
+report_probe daylight
+report_probe sun sun_position
 
 if [[ $status -ne 0 ]]; then
     echo "firmware.sh: the firmware failed (status $status); its output is in $output" >&2

@@ -1,7 +1,7 @@
 //! eigenrad on a Cortex-M4F: evaluates the basis linked into flash for a fixed sequence of
-//! channel levels and prints every reading, the RAM the evaluators take, the stack used and
-//! the instructions spent per update and read, as lines a host test parses
-//! (`tests/firmware.rs`).
+//! channel levels (and, when the basis carries daylight, through two days of sun and sky) and
+//! prints every reading, the RAM the evaluators take, the stack used and the instructions
+//! spent per update and read, as lines a host test parses (`tests/firmware.rs`).
 //!
 //! Two evaluators run side by side: a `ChannelEvaluator` (channel levels only, the state a
 //! controller that dims channels needs) prints the readings, and a full `Evaluator` (also
@@ -24,9 +24,24 @@
 //! timing <what> reps <r> ticks <t> baseline_ticks <t0>
 //! instructions <what> <per call>                see `measure` for the operations
 //! control ...                                  the controller loop: see `control.rs`
+//! daylight setup sky cie <type> diffuse_horizontal <lux> direct_normal <lux> sky_patches <n> nodes <D> sun_nodes <s>
+//! daylight site latitude <deg> longitude <deg> elevation <m> utc_offset_minutes <min>
+//! daylight_evaluator size_of <bytes> ram_bytes <bytes> capacity <sky> <outputs> <modes>
+//! daylight zone work_plane <z>
+//! daylight step <k> time <YYYY-MM-DDTHH:MM+HH:MM> altitude <deg> azimuth <deg> global_horizontal <lux>
+//! daylight reading <k> sensor <name> <lux>      daylight alone
+//! daylight reading <k> zone <name> <lux>
+//! daylight figures <k> average <lux> minimum <lux> maximum <lux> uniformity <u> zone <name>
 //! stack high_water <bytes> region <bytes>
 //! done
 //! ```
+//!
+//! The `daylight` records (and their `timing` and `instructions` lines) come only from a
+//! firmware built with a basis that carries daylight (`build.rs`): the two solstices of
+//! sun and clear sky at the basis' site, stepped every 30 minutes while the sun is up, read
+//! through a `DaylightEvaluator`; the sun's altitude and azimuth are `f64` (`{:e}` reads back
+//! to the same `f64`). See `daylight.rs`. A firmware built with any other basis prints none of
+//! them and links none of their code.
 //!
 //! Any error is printed as `error <message>` and QEMU exits with a failure status.
 #![no_std]
@@ -34,6 +49,10 @@
 #![deny(unsafe_code)]
 
 mod control;
+// Called only when the linked basis carries daylight (`build.rs` sets `daylight`); compiled
+// and linted always, and left out of the binary by the linker otherwise.
+#[cfg_attr(not(daylight), allow(dead_code))]
+mod daylight;
 mod stack;
 mod timing;
 
@@ -81,6 +100,10 @@ enum Fail {
     Board(&'static str),
     /// The two evaluators read different values at a step.
     Disagree(usize),
+    /// The day of daylight stopped (only in a firmware built with a daylight basis, so that
+    /// one built without links none of its code).
+    #[cfg(daylight)]
+    Daylight(daylight::Fail),
 }
 
 impl From<Error> for Fail {
@@ -99,6 +122,8 @@ impl fmt::Display for Fail {
                 "step {step}: the full evaluator without patch exitance reads otherwise than \
                  the channel evaluator"
             ),
+            #[cfg(daylight)]
+            Fail::Daylight(e) => write!(f, "daylight: {e}"),
         }
     }
 }
@@ -147,6 +172,8 @@ fn run() -> Result<(), Fail> {
         1 => {
             exercise::<1>(basis, &mut ticks, calibration)?;
             controller(basis, &mut ticks, calibration)?;
+            #[cfg(daylight)]
+            daylight::run(basis, &mut ticks, calibration).map_err(Fail::Daylight)?;
         }
         3 => exercise::<3>(basis, &mut ticks, calibration)?,
         _ => return Err(Fail::Board("basis band count is neither 1 nor 3")),
