@@ -18,6 +18,12 @@
 //!   16 modes in f16 and at 64 modes in i16. A build's form factors cost grows as the square
 //!   of the patch count, so the coarse mesh keeps the test's run time down while the
 //!   precisions and mode counts still differ from the f32 basis;
+//! - the daylight office (`examples/office-daylight/scene.toml`: the office with a glazed
+//!   window at a site, 4 channels) at 32 modes in f16, the storage that fits its daylight in
+//!   512 KiB of flash. The firmware also steps through the two solstices of sun and clear sky
+//!   on it; every step's daylight readings must agree with
+//!   `eigenrad eval --time ... --cie 12 --dhi-lux 10000 --dni-lux 60000 --json` within
+//!   [`DAYLIGHT_REL_TOL`] (`firmware/checks.rs`, `firmware_daylight_office`);
 //! - the Cornell box example (`examples/cornell-box/scene.toml`, three bands, one channel) as
 //!   `eigenrad build` makes it by default;
 //! - a random three-band basis (tables of plausible size but no room behind them, several
@@ -52,6 +58,19 @@ mod checks;
 /// two compilations of that sum at most (a few times 2⁻²⁴ ≈ 6e-8), orders of magnitude below
 /// this.
 const REL_TOL: f64 = 1e-4;
+
+/// Daylight readings of the firmware agree with `eigenrad eval --time` within this fraction
+/// of the host's reading (floored at 1 lux). Both weigh the same stored daylight with the
+/// same runtime code in `f32`, and the sun's position agrees to 10⁻¹³° (the same SPA in
+/// `f64`, the host's `std` math against the firmware's `libm`); the difference is the sky's
+/// sun direction, which the host builds from the angles in `f64` and the firmware with the
+/// runtime's `sky::direction` in `f32`: the clear sky's circumsolar peak moves by an `f32`
+/// rounding, each patch's luminance by about 10⁻⁷ of itself, and the readings by up to
+/// 3.1e-7 of themselves (measured; with the sky's sun built in `f64` as the host builds it,
+/// 5.2e-8). The tolerance leaves 30 times that.
+const DAYLIGHT_REL_TOL: f64 = 1e-5;
+/// The sun's altitude and azimuth of the firmware against the host's, degrees.
+const SUN_TOL_DEG: f64 = 1e-8;
 
 /// Capacities of the firmware's evaluator (`examples/firmware/src/main.rs`).
 const FW_PATCHES: usize = 2048;
@@ -183,22 +202,27 @@ fn coarse_office_scene() -> PathBuf {
     path
 }
 
-/// Which office mesh a basis is built from.
+/// Which office scene a basis is built from.
 #[derive(Clone, Copy, Debug)]
 enum Mesh {
     /// `examples/office/scene.toml` as it is.
     Office,
     /// [`coarse_office_scene`].
     Coarse,
+    /// `examples/office-daylight/scene.toml` as it is: the office with a glazed window at a
+    /// site, its daylight in the basis.
+    Daylight,
 }
 
 /// `eigenrad build` of the office at `modes` modes per band and storage `precision`
-/// (`f32`, `f16`, `i16`), once per test run. Returns the basis' path and name.
+/// (`f32`, `f16`, `i16`), once per test run; the build's report goes to `<name>.report`
+/// beside the basis. Returns the basis' path and name.
 fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) {
     static BUILT: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
     let name = match mesh {
         Mesh::Office => format!("office-p{modes}-{precision}"),
         Mesh::Coarse => format!("office-coarse-p{modes}-{precision}"),
+        Mesh::Daylight => format!("office-daylight-p{modes}-{precision}"),
     };
     // Builds run one at a time: each uses every core for its form factors.
     let mut built = BUILT
@@ -211,6 +235,7 @@ fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) 
     let scene = match mesh {
         Mesh::Office => office_scene(),
         Mesh::Coarse => coarse_office_scene(),
+        Mesh::Daylight => root().join("examples/office-daylight/scene.toml"),
     };
     let path = work_dir().join(format!("{name}.basis"));
     let modes = modes.to_string();
@@ -225,6 +250,7 @@ fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) 
         precision.as_ref(),
     ]);
     eprintln!("built {name}:\n{}", String::from_utf8_lossy(&report.stdout));
+    std::fs::write(work_dir().join(format!("{name}.report")), &report.stdout).unwrap();
     built.insert(name.clone(), path.clone());
     (path, name)
 }
@@ -392,6 +418,9 @@ struct FirmwareRun {
     stack_region: usize,
     /// The `control` records (`examples/firmware/src/control.rs`), when the basis has them.
     control: Control,
+    /// The `daylight` records (`examples/firmware/src/daylight.rs`), when the basis carries
+    /// daylight.
+    daylight: Option<Daylight>,
     /// `size` lines of `scripts/firmware.sh`: label → field → bytes.
     sizes: HashMap<String, HashMap<String, usize>>,
 }
@@ -446,6 +475,43 @@ impl ControlStep {
             _ => panic!("bad control status in {line:?}"),
         };
     }
+}
+
+/// The day loop's records.
+#[derive(Debug, Default, Clone)]
+struct Daylight {
+    /// CIE standard general sky type.
+    sky_type: u8,
+    /// Lux.
+    diffuse_horizontal: f32,
+    /// Lux.
+    direct_normal: f32,
+    sky_patches: usize,
+    nodes: usize,
+    sun_nodes: usize,
+    /// Latitude, longitude (degrees), elevation (m), UTC offset (minutes).
+    site: [f32; 4],
+    /// `(size_of, RAM_BYTES, [sky, outputs, modes])` of each daylight evaluator.
+    evaluators: Vec<(usize, usize, [usize; 3])>,
+    /// The zone a controller keeps, if the basis has zones.
+    work_plane: Option<usize>,
+    steps: Vec<DaylightStep>,
+}
+
+/// One step of the day loop; illuminances in lux.
+#[derive(Debug, Default, Clone)]
+struct DaylightStep {
+    /// Local time with the site's UTC offset, as `eigenrad eval --time` reads it.
+    time: String,
+    /// Degrees.
+    altitude: f64,
+    /// Degrees clockwise from north.
+    azimuth: f64,
+    global_horizontal: f32,
+    sensors: Vec<(String, f64)>,
+    zones: Vec<(String, f64)>,
+    /// `(zone, [E_avg, E_min, E_max, U_o])` of each zone with a grid.
+    figures: Vec<(String, [f64; 4])>,
 }
 
 /// One state of the firmware's level sequence.
@@ -568,6 +634,82 @@ impl FirmwareRun {
                     };
                     step.parse_tail(rest, line);
                     run.control.steps.push(step);
+                }
+                ["daylight", "setup", "sky", "cie", t, "diffuse_horizontal", d, "direct_normal", n, "sky_patches", sp, "nodes", nodes, "sun_nodes", sun] =>
+                {
+                    let day = run.daylight.get_or_insert_with(Daylight::default);
+                    day.sky_type = number(t, line);
+                    day.diffuse_horizontal = number(d, line);
+                    day.direct_normal = number(n, line);
+                    day.sky_patches = number(sp, line);
+                    day.nodes = number(nodes, line);
+                    day.sun_nodes = number(sun, line);
+                }
+                ["daylight", "site", "latitude", la, "longitude", lo, "elevation", el, "utc_offset_minutes", off] =>
+                {
+                    let day = run.daylight.as_mut().expect("daylight site before setup");
+                    day.site = [la, lo, el, off].map(|v| number(v, line));
+                }
+                ["daylight_evaluator", "size_of", s, "ram_bytes", r, "capacity", sky, o, p] => {
+                    let day = run
+                        .daylight
+                        .as_mut()
+                        .expect("daylight evaluator before setup");
+                    let capacity = [sky, o, p].map(|v| number(v, line));
+                    day.evaluators
+                        .push((number(s, line), number(r, line), capacity));
+                }
+                ["daylight", "zone", "work_plane", z] => {
+                    let day = run.daylight.as_mut().expect("daylight zone before setup");
+                    day.work_plane = Some(number(z, line));
+                }
+                ["daylight", "step", k, "time", t, "altitude", a, "azimuth", az, "global_horizontal", g] =>
+                {
+                    let day = run.daylight.as_mut().expect("daylight step before setup");
+                    let k: usize = number(k, line);
+                    assert_eq!(
+                        k,
+                        day.steps.len(),
+                        "daylight steps out of order at {line:?}"
+                    );
+                    day.steps.push(DaylightStep {
+                        time: t.to_string(),
+                        altitude: number(a, line),
+                        azimuth: number(az, line),
+                        global_horizontal: number(g, line),
+                        ..DaylightStep::default()
+                    });
+                }
+                ["daylight", "reading", k, kind @ ("sensor" | "zone"), rest @ ..] => {
+                    let day = run
+                        .daylight
+                        .as_mut()
+                        .expect("daylight reading before setup");
+                    assert_eq!(number::<usize>(k, line) + 1, day.steps.len());
+                    let step = day
+                        .steps
+                        .last_mut()
+                        .expect("daylight reading before a step");
+                    let (name, values) = named_values(rest, 1, line);
+                    if *kind == "sensor" {
+                        step.sensors.push((name, values[0]));
+                    } else {
+                        step.zones.push((name, values[0]));
+                    }
+                }
+                ["daylight", "figures", k, "average", a, "minimum", mi, "maximum", ma, "uniformity", u, "zone", name @ ..] =>
+                {
+                    let day = run
+                        .daylight
+                        .as_mut()
+                        .expect("daylight figures before setup");
+                    assert_eq!(number::<usize>(k, line) + 1, day.steps.len());
+                    let step = day
+                        .steps
+                        .last_mut()
+                        .expect("daylight figures before a step");
+                    let figures = [a, mi, ma, u].map(|v| f64::from(number::<f32>(v, line)));
+                    step.figures.push((name.join(" "), figures));
                 }
                 ["timing", ..] => {}
                 ["instructions", what, n] => {
