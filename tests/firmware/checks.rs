@@ -205,7 +205,9 @@ const BUDGET_CHANNEL_UPDATE: u64 = 300;
 /// firmware example measure it (`scripts/firmware.sh`, docs/embedded.md): decoding plus every
 /// operation of the full `Evaluator` but the calculation grids', and decoding plus every
 /// operation of the `ChannelEvaluator`, grids included. The level solver comes on top.
-const BUDGET_RUNTIME_TEXT: usize = 12 * 1024;
+/// Decoding checks a basis' daylight section too (format v5), whether or not the firmware
+/// reads daylight: about 2.3 KB of the 14 KiB.
+const BUDGET_RUNTIME_TEXT: usize = 14 * 1024;
 
 #[test]
 fn firmware_matches_eval_office_f32() {

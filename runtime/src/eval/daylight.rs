@@ -8,6 +8,9 @@ use crate::error::{Error, Result};
 use crate::sky::sun_grid::NodeWeight;
 use crate::storage::{dot_f32, f32_at, f32_row};
 
+/// A sun node's column among the daylight nodes when it has none (it lights nothing).
+const NO_COLUMN: u32 = u32::MAX;
+
 /// The sun of a moment, as a [`DaylightEvaluator`] takes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sun {
@@ -45,9 +48,11 @@ pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const M
     sky: heapless::Vec<f32, SKY>,
     /// `E_gh / π`, cd/m²: what the exterior's node is weighed by.
     exterior: f32,
+    /// The sine and cosine of the site's latitude, for the sun's place in the grid.
+    latitude_sin_cos: [f32; 2],
     /// The four sun nodes around the sun (their columns among the daylight nodes, or none
     /// where the node lights nothing) with their weight times `E_n`, lux.
-    sun: [(Option<usize>, f32); 4],
+    sun: [(u32, f32); 4],
     /// Every output's daylight illuminance, lux.
     outputs: heapless::Vec<f32, OUTPUTS>,
     /// The daylight's mode amplitudes (empty when `MODES` is 0).
@@ -58,7 +63,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     DaylightEvaluator<'a, SKY, OUTPUTS, MODES>
 {
     /// Bytes of state besides the basis view and the vectors' lengths.
-    pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + MODES) + 4 + 4 * 8;
+    pub const RAM_BYTES: usize =
+        4 * (SKY + OUTPUTS + MODES) + 4 * 3 + core::mem::size_of::<[(u32, f32); 4]>();
 
     /// An evaluator of `basis`' daylight, dark (no sky, no sun).
     ///
@@ -81,7 +87,10 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
             basis,
             sky: heapless::Vec::new(),
             exterior: 0.0,
-            sun: [(None, 0.0); 4],
+            latitude_sin_cos: basis
+                .sun_grid()
+                .map_or([0.0, 1.0], |g| g.latitude_sin_cos()),
+            sun: [(NO_COLUMN, 0.0); 4],
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),
         };
@@ -142,7 +151,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
             });
         }
         let sun_nodes = match sun {
-            None => [(None, 0.0); 4],
+            None => [(NO_COLUMN, 0.0); 4],
             Some(s) => {
                 if !valid(s.direct_normal) {
                     return Err(Error::InvalidInput {
@@ -172,10 +181,10 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     /// The four sun nodes around `sun` as columns among the daylight nodes, each with its
     /// bilinear weight times the direct normal illuminance (lux); nodes that light nothing
     /// (absent from `sun_nodes`) have no column, and a sun below the horizon none at all.
-    fn sun_columns(&self, sun: Sun) -> Result<[(Option<usize>, f32); 4]> {
+    fn sun_columns(&self, sun: Sun) -> Result<[(u32, f32); 4]> {
         let grid = self.basis.sun_grid().ok_or(Error::NoDaylight)?;
-        let weights: [NodeWeight; 4] = grid.weights(sun.direction)?;
-        let mut out = [(None, 0.0); 4];
+        let weights: [NodeWeight; 4] = grid.weights_at(sun.direction, self.latitude_sin_cos)?;
+        let mut out = [(NO_COLUMN, 0.0); 4];
         if sun.direction[2] < 0.0 {
             return Ok(out);
         }
@@ -183,7 +192,10 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
         for (slot, w) in out.iter_mut().zip(weights) {
             if w.weight > 0.0 {
                 *slot = (
-                    self.basis.sun_node_position(w.node).map(|i| first_sun + i),
+                    self.basis
+                        .sun_node_position(w.node)
+                        .and_then(|i| u32::try_from(first_sun + i).ok())
+                        .unwrap_or(NO_COLUMN),
                     w.weight * sun.direct_normal,
                 );
             }
@@ -216,8 +228,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
         };
         add(exterior, self.exterior);
         for &(column, weight) in &self.sun {
-            if let Some(column) = column {
-                add(column, weight);
+            if column != NO_COLUMN {
+                add(column as usize, weight);
             }
         }
         sum
@@ -281,7 +293,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
 struct Weights<'s> {
     sky: &'s [f32],
     exterior: f32,
-    sun: &'s [(Option<usize>, f32); 4],
+    sun: &'s [(u32, f32); 4],
 }
 
 impl Weights<'_> {
@@ -295,8 +307,8 @@ impl Weights<'_> {
     fn finish(&self, row: &[u8], sky: f32) -> f32 {
         let mut sum = sky + f32_at(row, self.sky.len()) * self.exterior;
         for &(column, weight) in self.sun {
-            if let Some(c) = column {
-                sum += f32_at(row, c) * weight;
+            if column != NO_COLUMN {
+                sum += f32_at(row, column as usize) * weight;
             }
         }
         sum
@@ -382,16 +394,8 @@ mod tests {
         let columns = sky.len() + 1 + 4;
         for rows in 0..=9 {
             for (seed, sun) in [
-                (1u32, [(None, 0.0f32); 4]),
-                (
-                    2,
-                    [
-                        (Some(8), 0.25),
-                        (Some(9), 0.75),
-                        (None, 0.0),
-                        (Some(11), 1.5e4),
-                    ],
-                ),
+                (1u32, [(NO_COLUMN, 0.0f32); 4]),
+                (2, [(8, 0.25), (9, 0.75), (NO_COLUMN, 0.0), (11, 1.5e4)]),
             ] {
                 let (bytes, len) = table(rows, columns, seed + rows as u32);
                 let weights = Weights {

@@ -80,21 +80,33 @@ impl SunGrid {
         Some(direction_of(self.latitude, declination, hour))
     }
 
+    /// The sine and cosine of the latitude, which every conversion of a direction needs:
+    /// computed once by a caller that converts many ([`SunGrid::weights_at`]).
+    pub fn latitude_sin_cos(&self) -> [f32; 2] {
+        let phi = self.latitude.to_radians();
+        [libm::sinf(phi), libm::cosf(phi)]
+    }
+
     /// Declination and hour angle (degrees) of the unit vector `direction` (site frame).
     pub fn declination_hour(&self, direction: [f32; 3]) -> (f32, f32) {
-        let phi = self.latitude.to_radians();
-        let (sin_phi, cos_phi) = (libm::sinf(phi), libm::cosf(phi));
-        let [east, north, up] = direction;
-        let sin_declination = (north * cos_phi + up * sin_phi).clamp(-1.0, 1.0);
-        let declination = libm::asinf(sin_declination);
-        let hour = libm::atan2f(-east, up * cos_phi - north * sin_phi);
-        (declination.to_degrees(), hour.to_degrees())
+        declination_hour(direction, self.latitude_sin_cos())
     }
 
     /// The four nodes around the sun in `direction` (unit vector, site frame, to 10⁻³) and
     /// their bilinear weights in declination and hour angle. A sun beyond the grid's edges
     /// is read at the nearest edge; a grid of one row (or column) has equal nodes there.
     pub fn weights(&self, direction: [f32; 3]) -> Result<[NodeWeight; 4]> {
+        self.weights_at(direction, self.latitude_sin_cos())
+    }
+
+    /// [`SunGrid::weights`] with the latitude's sine and cosine given
+    /// ([`SunGrid::latitude_sin_cos`]): on a single-precision FPU `libm`'s sine and cosine
+    /// are most of the cost of a call.
+    pub fn weights_at(
+        &self,
+        direction: [f32; 3],
+        latitude_sin_cos: [f32; 2],
+    ) -> Result<[NodeWeight; 4]> {
         let [x, y, z] = direction;
         let norm2 = x * x + y * y + z * z;
         if !(norm2.is_finite() && (norm2 - 1.0).abs() <= 2.0e-3) {
@@ -103,7 +115,7 @@ impl SunGrid {
                 range: "1 (a unit vector, to 10⁻³)",
             });
         }
-        let (declination, hour) = self.declination_hour(direction);
+        let (declination, hour) = declination_hour(direction, latitude_sin_cos);
         let (row, s) = cell(
             declination,
             self.declination_first,
@@ -124,6 +136,16 @@ impl SunGrid {
             at(next_row, next_column, s * t),
         ])
     }
+}
+
+/// Declination and hour angle (degrees) of the unit vector `direction` (site frame) at the
+/// latitude of sine and cosine `[sin φ, cos φ]`.
+fn declination_hour(direction: [f32; 3], [sin_phi, cos_phi]: [f32; 2]) -> (f32, f32) {
+    let [east, north, up] = direction;
+    let sin_declination = (north * cos_phi + up * sin_phi).clamp(-1.0, 1.0);
+    let declination = libm::asinf(sin_declination);
+    let hour = libm::atan2f(-east, up * cos_phi - north * sin_phi);
+    (declination.to_degrees(), hour.to_degrees())
 }
 
 /// The direction of declination `declination` and hour angle `hour` (degrees) at latitude
