@@ -251,13 +251,7 @@ fn sun_node_exact(formulation: Formulation) {
     };
     let got = evaluate_daylight(&bytes, &state, &[0.0], true).unwrap();
     let (readings, exitance) = exact_sun(&scene, room_sun(&site, direction).unwrap());
-    let read: Vec<f64> = got
-        .sensors
-        .iter()
-        .chain(&got.zones)
-        .chain(&got.grid)
-        .copied()
-        .collect();
+    let read = got.outputs();
     assert_eq!(read.len(), readings.len());
     let peak = readings.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     assert!(peak > 0.0, "the sun lights the room");

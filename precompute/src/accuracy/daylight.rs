@@ -238,13 +238,7 @@ pub fn through_runtime(
                 *x += w * y;
             }
         }
-        let read: Vec<f64> = got
-            .sensors
-            .iter()
-            .chain(&got.zones)
-            .chain(&got.grid)
-            .copied()
-            .collect();
+        let read = got.outputs();
         check.readings = check.readings.max(worst_reading(&read, &readings).error);
         let patches = patch_error(&model.area, &got.exitance, &exitance);
         if sun {

@@ -139,6 +139,14 @@ pub struct DaylightReadout {
     pub exitance: Vec<f64>,
 }
 
+impl DaylightReadout {
+    /// Every output's daylight in the model's order: sensors, zones, then grid points (lux).
+    pub fn outputs(&self) -> Vec<f64> {
+        let all = self.sensors.iter().chain(&self.zones).chain(&self.grid);
+        all.copied().collect()
+    }
+}
+
 type HostDaylight<'a> = DaylightEvaluator<'a, MAX_SKY_PATCHES, MAX_OUTPUTS, MAX_MODES>;
 
 /// Evaluates the daylight of `bytes` under `sky`, with the channels at `levels` for the

@@ -138,6 +138,26 @@ pub struct DaylightReadout {
     pub grids: Vec<GridReadout>,
 }
 
+impl DaylightReadout {
+    /// The readout of the sky of `report`, through `windows` (their names), with the grids
+    /// under daylight alone.
+    fn of(report: SkyReport, windows: Vec<String>, grids: Vec<GridReadout>) -> Self {
+        DaylightReadout {
+            patch_count: report.patches.len(),
+            time: report.time,
+            model: report.model,
+            sun: report.sun,
+            sun_direction_room: report.sun_direction_room,
+            diffuse_horizontal_lux: report.diffuse_horizontal_lux,
+            direct_normal_lux: report.direct_normal_lux,
+            global_horizontal_lux: report.global_horizontal_lux,
+            patch_set: report.patch_set,
+            windows,
+            grids,
+        }
+    }
+}
+
 pub(super) fn band_names(count: usize) -> Vec<&'static str> {
     if count == 1 {
         vec!["photopic"]
@@ -410,23 +430,12 @@ fn daylight_light(
         let sun = daylight::sun_light(scene, &occluders, toward_sun, &opts);
         light.add_scaled(&sun, report.direct_normal_lux);
     }
-    let summary = DaylightReadout {
-        time: report.time,
-        model: report.model,
-        sun: report.sun,
-        sun_direction_room: report.sun_direction_room,
-        diffuse_horizontal_lux: report.diffuse_horizontal_lux,
-        direct_normal_lux: report.direct_normal_lux,
-        global_horizontal_lux: report.global_horizontal_lux,
-        patch_set: report.patch_set,
-        patch_count: report.patches.len(),
-        windows: scene
-            .windows
-            .iter()
-            .map(|w| scene.surfaces[w.surface].name.clone())
-            .collect(),
-        grids: Vec::new(),
-    };
+    let windows = scene
+        .windows
+        .iter()
+        .map(|w| scene.surfaces[w.surface].name.clone())
+        .collect();
+    let summary = DaylightReadout::of(report, windows, Vec::new());
     Ok((light, summary))
 }
 
@@ -707,19 +716,8 @@ fn add_basis_daylight(
         zones,
         grids,
         patches,
-        daylight: Some(DaylightReadout {
-            time: report.time,
-            model: report.model,
-            sun: report.sun,
-            sun_direction_room: report.sun_direction_room,
-            diffuse_horizontal_lux: report.diffuse_horizontal_lux,
-            direct_normal_lux: report.direct_normal_lux,
-            global_horizontal_lux: report.global_horizontal_lux,
-            patch_set: report.patch_set,
-            patch_count: report.patches.len(),
-            windows: Vec::new(),
-            grids: daylight_grids,
-        }),
+        // A basis does not name its windows.
+        daylight: Some(DaylightReadout::of(report, Vec::new(), daylight_grids)),
     })
 }
 

@@ -62,14 +62,14 @@ pub fn tiny() -> BasisTables {
         grid_modes: vec![0.25, 0.3],
         grid_channels: vec![110.0, 90.0],
         grid_view: vec![0.0, 0.12, 0.0, 0.08],
-        sky_subdivision: 0,
-        daylight_site: Vec::new(),
-        sun_lattice: Vec::new(),
-        sun_spacing: Vec::new(),
-        sun_nodes: Vec::new(),
-        daylight_outputs: Vec::new(),
-        daylight_modes: Vec::new(),
-        daylight_grid: Vec::new(),
+        // No daylight.
+        ..BasisTables::new(
+            Quantity::Photometric,
+            Formulation::Split,
+            Precision::F32,
+            1,
+            1,
+        )
     }
 }
 
