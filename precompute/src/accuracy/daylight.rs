@@ -173,10 +173,11 @@ fn sample_sky(daylight: &BasisDaylight, sun: bool) -> Option<(SkyState, Vec<f64>
         .and_then(|&n| nodes.sun_grid.direction(n as usize).map(|d| (n, d)));
     let sky = CieSky::traditional_overcast(sun.map_or([0.0, 0.0, 1.0], |(_, d)| d)).ok()?;
     let zenith = 3000.0 / sky.relative_luminance([0.0, 0.0, 1.0]);
-    let sky_luminance: Vec<f32> = (0..nodes.patches.count())
-        .filter_map(|i| nodes.patches.patch(i))
-        .map(|p| sky.relative_luminance(p.direction) * zenith)
-        .collect();
+    let mut sky_luminance = vec![0.0f32; nodes.patches.count()];
+    nodes
+        .patches
+        .luminances(&sky, zenith, &mut sky_luminance)
+        .ok()?;
     let global_horizontal = 10_000.0f32;
     let mut weights: Vec<f64> = sky_luminance.iter().map(|&l| f64::from(l)).collect();
     weights.push(f64::from(global_horizontal) / std::f64::consts::PI);
