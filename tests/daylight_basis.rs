@@ -191,17 +191,8 @@ fn exact_sun(scene: &Path, sun: eigenrad_precompute::geometry::Vec3) -> (Vec<f64
         sun,
         &DaylightOptions::default(),
     );
-    let model = Model::new(
-        &prepared.scene,
-        prepared.g,
-        prepared.output_rows,
-        prepared.lights,
-        Formulation::Split,
-        1,
-        Solver::Auto,
-    )
-    .unwrap();
-    let r = model.light_responses(0, &[light]).unwrap().remove(0);
+    let model = Model::new(&prepared.system, Formulation::Split, 1, Solver::Auto).unwrap();
+    let r = model.system.light_responses(0, &[light]).unwrap().remove(0);
     (r.readings, r.exitance)
 }
 

@@ -104,19 +104,9 @@ fn full_basis_equals_the_dense_solve_for_both_formulations() {
     extra[lamp_patch] = 500.0;
 
     for formulation in [Formulation::Split, Formulation::Seed] {
-        let model = Model::new(
-            scene,
-            prepared.g.clone(),
-            prepared.output_rows.clone(),
-            prepared.lights.clone(),
-            formulation,
-            n,
-            Solver::Dense,
-        )
-        .unwrap();
-        let solver = model.exact_solver(0).unwrap();
-        let exact = model.exact(&solver, 0, &levels, &extra);
-        let exact_out = model.outputs(&exact);
+        let model = Model::new(&prepared.system, formulation, n, Solver::Dense).unwrap();
+        let exact = model.system.exact(0, &levels, &extra).unwrap();
+        let exact_out = model.system.outputs(&exact);
 
         let bytes = basis_tables(scene, &model, n, Precision::F32)
             .to_bytes()

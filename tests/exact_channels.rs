@@ -82,22 +82,12 @@ fn channels_read_the_exact_solve_for_any_levels(scene: &str, patches: usize, cha
     }
 
     for formulation in [Formulation::Split, Formulation::Seed] {
-        let model = Model::new(
-            scene,
-            prepared.g.clone(),
-            prepared.output_rows.clone(),
-            prepared.lights.clone(),
-            formulation,
-            MODES,
-            Solver::Auto,
-        )
-        .unwrap();
+        let model = Model::new(&prepared.system, formulation, MODES, Solver::Auto).unwrap();
         let bytes = basis_tables(scene, &model, MODES, Precision::F32)
             .to_bytes()
             .unwrap();
         let basis = Basis::from_bytes(&bytes).unwrap();
         assert_eq!(basis.mode_count(), MODES);
-        let solver = model.exact_solver(0).unwrap();
         let mut evaluator = ChannelEvaluator::<1, 8>::new(basis).unwrap();
         let (mut worst_storage, mut worst_exact) = (0.0f64, 0.0f64);
 
@@ -122,7 +112,7 @@ fn channels_read_the_exact_solve_for_any_levels(scene: &str, patches: usize, cha
                 .map(|o| (0..m).map(|c| held[c] * readings[c][o]).sum())
                 .collect();
             // An independent exact solve of the same state.
-            let exact = model.exact(&solver, 0, levels, &[]);
+            let exact = model.system.exact(0, levels, &[]).unwrap();
             let exact_out = model.readings(0, &exact, levels);
 
             for i in 0..n {

@@ -334,16 +334,7 @@ fn office_cases_match_the_reference_optimiser() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/office/scene.toml");
     let prepared = prepare(&path, &FormFactorOptions::default()).unwrap();
     let scene = &prepared.scene;
-    let model = Model::new(
-        scene,
-        prepared.g.clone(),
-        prepared.output_rows.clone(),
-        prepared.lights.clone(),
-        Formulation::Split,
-        8,
-        Solver::Auto,
-    )
-    .unwrap();
+    let model = Model::new(&prepared.system, Formulation::Split, 8, Solver::Auto).unwrap();
     let bytes = basis_tables(scene, &model, 8, Precision::F32)
         .to_bytes()
         .unwrap();

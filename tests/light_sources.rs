@@ -95,8 +95,8 @@ fn as_light_from_beyond(lights: &[ChannelLight]) -> Vec<ChannelLight> {
 fn emitting_surfaces_send_their_emission_through_the_form_factors() {
     let p = prepared("surfaces");
     let n = p.scene.patches.len();
-    assert_eq!(p.lights.len(), 2);
-    for (c, light) in p.lights.iter().enumerate() {
+    assert_eq!(p.system.lights.len(), 2);
+    for (c, light) in p.system.lights.iter().enumerate() {
         let e = &light.emission[0];
         // Emission: the channel's patches at the scene's exitance, nothing elsewhere.
         for i in 0..n {
@@ -109,7 +109,12 @@ fn emitting_surfaces_send_their_emission_through_the_form_factors() {
         }
         // Direct irradiance: Σ_j G_ij e_j / A_i, summed here independently.
         let by_hand: Vec<f64> = (0..n)
-            .map(|i| (0..n).map(|j| p.g[(i, j)] * e[j]).sum::<f64>() / p.area[i])
+            .map(|i| {
+                (0..n)
+                    .map(|j| p.system.operator().entry(i, j) * e[j])
+                    .sum::<f64>()
+                    / p.system.area[i]
+            })
             .collect();
         let gap = relative_gap(&light.patch_irradiance[0], &by_hand);
         assert!(
@@ -117,6 +122,7 @@ fn emitting_surfaces_send_their_emission_through_the_form_factors() {
             "channel {c}: patch irradiance {gap:.2e}"
         );
         let readings: Vec<f64> = p
+            .system
             .output_rows
             .iter()
             .map(|r| (0..n).map(|j| r[j] * e[j]).sum())
@@ -124,16 +130,16 @@ fn emitting_surfaces_send_their_emission_through_the_form_factors() {
         let gap = relative_gap(&light.output_irradiance[0], &readings);
         assert!(gap <= F64_TOLERANCE, "channel {c}: outputs {gap:.2e}");
         // A closed room receives all the flux its emitters send out.
-        let emitted: f64 = (0..n).map(|i| p.area[i] * e[i]).sum();
+        let emitted: f64 = (0..n).map(|i| p.system.area[i] * e[i]).sum();
         let received: f64 = (0..n)
-            .map(|i| p.area[i] * light.patch_irradiance[0][i])
+            .map(|i| p.system.area[i] * light.patch_irradiance[0][i])
             .sum();
         assert!(
             (received / emitted - 1.0).abs() <= CLOSURE_TOLERANCE,
             "channel {c}: received {received} lm of {emitted} lm"
         );
         // Nothing is left beyond the patches: the model carries it all as emission.
-        let external = light.external(&p.g, &p.area, &p.output_rows);
+        let external = light.external(p.system.operator(), &p.system.area, &p.system.output_rows);
         assert!(external.patches.iter().all(Option::is_none), "channel {c}");
         assert!(external.outputs.iter().all(Option::is_none), "channel {c}");
     }
@@ -143,7 +149,7 @@ fn emitting_surfaces_send_their_emission_through_the_form_factors() {
 fn light_from_beyond_the_patches_lights_the_room_as_the_surfaces_do() {
     let p = prepared("beyond");
     let n = p.scene.patches.len();
-    let beyond = as_light_from_beyond(&p.lights);
+    let beyond = as_light_from_beyond(&p.system.lights);
     let levels = [0.7, 0.4];
     let levels32 = [0.7f32, 0.4];
     // The emitters' own exitance at these levels, which only the surface model contains.
@@ -151,25 +157,26 @@ fn light_from_beyond_the_patches_lights_the_room_as_the_surfaces_do() {
         .map(|i| {
             levels
                 .iter()
-                .zip(&p.lights)
+                .zip(&p.system.lights)
                 .map(|(l, light)| l * light.emission[0][i])
                 .sum()
         })
         .collect();
     for formulation in [Formulation::Split, Formulation::Seed] {
-        let model = |lights: Vec<ChannelLight>| {
-            let g = p.g.clone();
-            let rows = p.output_rows.clone();
-            Model::new(&p.scene, g, rows, lights, formulation, n, Solver::Dense).unwrap()
-        };
-        let surfaces = model(p.lights.clone());
-        let external = model(beyond.clone());
-        assert!(external.external.iter().all(|x| x.patches[0].is_some()));
+        let surfaces_system = p.system.with_lights(p.system.lights.clone());
+        let external_system = p.system.with_lights(beyond.clone());
+        let model = |system| Model::new(system, formulation, n, Solver::Dense).unwrap();
+        let surfaces = model(&surfaces_system);
+        let external = model(&external_system);
+        assert!(external
+            .system
+            .external
+            .iter()
+            .all(|x| x.patches[0].is_some()));
 
         // Exact solve and readings.
-        let solver = surfaces.exact_solver(0).unwrap();
-        let m_surfaces = surfaces.exact(&solver, 0, &levels, &[]);
-        let m_external = external.exact(&solver, 0, &levels, &[]);
+        let m_surfaces = surfaces.system.exact(0, &levels, &[]).unwrap();
+        let m_external = external.system.exact(0, &levels, &[]).unwrap();
         let reflected: Vec<f64> = m_surfaces
             .iter()
             .zip(&emitted)
@@ -229,26 +236,16 @@ fn short_expansions_read_both_kinds_of_light_alike() {
     let p = prepared("truncated");
     let n = p.scene.patches.len();
     let levels = [1.0, 1.0];
-    let make = |lights: Vec<ChannelLight>| {
-        let (g, rows) = (p.g.clone(), p.output_rows.clone());
-        Model::new(
-            &p.scene,
-            g,
-            rows,
-            lights,
-            Formulation::Split,
-            8,
-            Solver::Dense,
-        )
-        .unwrap()
-    };
-    let surfaces = make(p.lights.clone());
-    let external = make(as_light_from_beyond(&p.lights));
+    let surfaces_system = p.system.with_lights(p.system.lights.clone());
+    let external_system = p.system.with_lights(as_light_from_beyond(&p.system.lights));
+    let make = |system| Model::new(system, Formulation::Split, 8, Solver::Dense).unwrap();
+    let surfaces = make(&surfaces_system);
+    let external = make(&external_system);
     for modes in [0, 1, 4, 8] {
         let a = surfaces.truncated(0, modes, &levels, &[]);
         let b = external.truncated(0, modes, &levels, &[]);
         let emitted: Vec<f64> = (0..n)
-            .map(|i| p.lights.iter().map(|l| l.emission[0][i]).sum())
+            .map(|i| p.system.lights.iter().map(|l| l.emission[0][i]).sum())
             .collect();
         let reflected: Vec<f64> = a.iter().zip(&emitted).map(|(m, e)| m - e).collect();
         let gap = relative_gap(&b, &reflected);

@@ -85,12 +85,12 @@ fn a_luminaire_channel_builds_and_its_exact_solve_conserves_light() {
     let n = p.scene.patches.len();
     let flux = 0.9 * 4.0 * PI * 100.0;
     // The direct light: the sensor reads the closed form, the room receives the flux.
-    let direct = &p.lights[0];
+    let direct = &p.system.lights[0];
     let (dx, dy, h) = (0.4f64, 0.3f64, 1.5f64);
     let sensor = 0.9 * 100.0 * h / (dx * dx + dy * dy + h * h).powf(1.5);
     assert!((direct.output_irradiance[0][0] / sensor - 1.0).abs() < 1e-12);
     let received: f64 = (0..n)
-        .map(|i| p.area[i] * direct.patch_irradiance[0][i])
+        .map(|i| p.system.area[i] * direct.patch_irradiance[0][i])
         .sum();
     assert!(
         (received / flux - 1.0).abs() < 1e-5,
@@ -98,19 +98,9 @@ fn a_luminaire_channel_builds_and_its_exact_solve_conserves_light() {
     );
 
     // Interreflection in a closed room of uniform ρ: the reflected flux is ρ Φ / (1 − ρ).
-    let model = Model::new(
-        &p.scene,
-        p.g.clone(),
-        p.output_rows.clone(),
-        p.lights.clone(),
-        Formulation::Split,
-        16,
-        Solver::Dense,
-    )
-    .unwrap();
-    let solver = model.exact_solver(0).unwrap();
-    let m = model.exact(&solver, 0, &[1.0], &[]);
-    let reflected: f64 = (0..n).map(|i| p.area[i] * m[i]).sum();
+    let model = Model::new(&p.system, Formulation::Split, 16, Solver::Dense).unwrap();
+    let m = model.system.exact(0, &[1.0], &[]).unwrap();
+    let reflected: f64 = (0..n).map(|i| p.system.area[i] * m[i]).sum();
     let rho = 0.5;
     // The computed form factors close to ~1e-4 per row.
     assert!(
@@ -128,8 +118,8 @@ fn a_luminaire_channel_builds_and_its_exact_solve_conserves_light() {
         .find(|s| s.name == "room.floor")
         .unwrap();
     let range = floor.patch_range.clone();
-    let area: f64 = p.area[range.clone()].iter().sum();
-    let mean: f64 = range.map(|i| p.area[i] * m[i] / rho).sum::<f64>() / area;
+    let area: f64 = p.system.area[range.clone()].iter().sum();
+    let mean: f64 = range.map(|i| p.system.area[i] * m[i] / rho).sum::<f64>() / area;
     assert!(
         (readings[1] / mean - 1.0).abs() < 1e-9,
         "{} against {mean}",

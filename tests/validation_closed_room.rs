@@ -169,11 +169,11 @@ fn the_constant_vector_is_the_top_mode_with_mu_equal_to_rho() {
         let channel = "name = \"all\"\nsurfaces = [\"room*\"]\nexitance = 1";
         let path = cube(&dir, rho, channel);
         let prepared = prepare(&path, &FormFactorOptions::default()).unwrap();
-        let n = prepared.area.len();
+        let n = prepared.system.area.len();
         let reflectance = vec![rho; n];
         let modes = eigen::modes(
-            prepared.g.as_ref(),
-            &prepared.area,
+            prepared.system.operator(),
+            &prepared.system.area,
             &reflectance,
             Formulation::Split,
             4,

@@ -220,7 +220,7 @@ fn b3_point_sensor_under_a_corner_of_a_parallel_rectangle() {
     for (a, b, c) in [(1.0, 1.0, 1.0), (2.0, 1.0, 0.5), (0.5, 3.0, 2.0)] {
         let path = write(&dir, "b3.toml", &b3_scene(a, b, c, 0.5, false));
         let prepared = prepare(&path, &FormFactorOptions::default()).unwrap();
-        let got: f64 = prepared.output_rows[0].iter().sum();
+        let got: f64 = prepared.system.output_rows[0].iter().sum();
         let want = howell_b3(a, b, c);
         let err = (got - want).abs() / want;
         let patches = prepared.scene.patches.len();

@@ -4,7 +4,7 @@ use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Precision, Quantity};
 
 use crate::radiosity::eigen::Formulation;
-use crate::radiosity::model::{LightResponse, Model};
+use crate::radiosity::{LightResponse, Model};
 use crate::scene::{Bands, Scene};
 use crate::sources::daylight::nodes::DaylightNodes;
 
@@ -39,7 +39,7 @@ pub fn basis_tables(scene: &Scene, model: &Model, p: usize, precision: Precision
 
 /// The first `p` modes of a model, padded with null modes where a band has fewer.
 struct Truncated<'m> {
-    model: &'m Model,
+    model: &'m Model<'m>,
     p: usize,
 }
 
@@ -82,7 +82,7 @@ fn patch_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
         t.patch_channel
             .push(scene.channel_of_patch[i].map(|c| c as u16));
         for b in 0..bands {
-            t.patch_reflectance.push(model.bands[b].reflectance[i]);
+            t.patch_reflectance.push(model.reflectance(b)[i]);
             // The format gives a patch one channel: its emission is that channel's.
             t.patch_emission
                 .push(scene.channel_of_patch[i].map_or(0.0, |c| model.emission(c, b)[i]));
@@ -94,7 +94,7 @@ fn patch_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
         }
     }
     for j in 0..model.patch_count() {
-        if (0..bands).any(|b| model.bands[b].reflectance[j] == 0.0) {
+        if (0..bands).any(|b| model.reflectance(b)[j] == 0.0) {
             for b in 0..bands {
                 let mut projection = model.patch_projection(j, b);
                 projection.resize(p, 0.0);
@@ -158,7 +158,7 @@ fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
         }
     }
     let mut row_modes = Vec::new();
-    for row in &model.output_rows {
+    for row in &model.system.output_rows {
         for b in 0..bands {
             for k in 0..modes.p {
                 row_modes.push((0..n).map(|j| row[j] * modes.mode(b, j, k)).sum::<f64>());
@@ -172,7 +172,7 @@ fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
     let readings: Vec<Vec<Vec<f64>>> = (0..m)
         .map(|c| (0..bands).map(|b| model.channel_readings(c, b)).collect())
         .collect();
-    for o in 0..model.output_rows.len() {
+    for o in 0..model.system.output_rows.len() {
         let table = if o < outputs {
             &mut t.output_channels
         } else {
@@ -185,16 +185,16 @@ fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
         }
     }
     t.output_view = vec![0.0; n * outputs];
-    for (o, row) in model.output_rows.iter().take(outputs).enumerate() {
+    for (o, row) in model.system.output_rows.iter().take(outputs).enumerate() {
         for (j, &v) in row.iter().enumerate() {
             t.output_view[j * outputs + o] = v;
         }
     }
-    t.grid_view = model.output_rows[outputs..].concat();
+    t.grid_view = model.system.output_rows[outputs..].concat();
 }
 
 /// The daylight a basis carries: its nodes, and the room's exact response to each
-/// ([`Model::light_responses`]).
+/// ([`crate::radiosity::System::light_responses`]).
 pub struct BasisDaylight {
     /// The nodes: sky patches, the exterior, the sun nodes.
     pub nodes: DaylightNodes,

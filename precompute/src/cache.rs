@@ -235,7 +235,7 @@ pub fn form_factors(
 /// arguments), from the cache in `opts.cache` or computed and stored there, as [`form_factors`].
 pub fn output_rows(
     scene: &Scene,
-    g: &Mat<f64>,
+    g: &dyn crate::formfactor::FormFactorOperator,
     area: &[f64],
     occluders: &Occluders,
     opts: &FormFactorOptions,

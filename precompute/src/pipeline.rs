@@ -4,8 +4,9 @@
 use std::path::Path;
 use std::time::Instant;
 
+use std::sync::Arc;
+
 use eigenrad_runtime::Precision;
-use faer::Mat;
 use serde::Serialize;
 
 use crate::accuracy::metric::Worst;
@@ -15,13 +16,13 @@ use crate::basis;
 use crate::cache;
 use crate::error::{Error, Result};
 use crate::formfactor::{exchange, outputs};
-use crate::formfactor::{FormFactorHealth, FormFactorOptions, Occluders};
+use crate::formfactor::{FormFactorHealth, FormFactorOperator, FormFactorOptions, Occluders};
 use crate::memory;
 use crate::radiosity::eigen::{Formulation, Solver};
-use crate::radiosity::model::Model;
+use crate::radiosity::{Model, System};
 use crate::scene::{self, Scene};
+use crate::sources;
 use crate::sources::luminaires::LuminaireFlux;
-use crate::sources::{self, ChannelLight};
 
 /// Modes kept when neither a count nor a tolerance is given. Channels are exact whatever the
 /// count; the modes carry exitance set patch by patch: on the example office (1070 patches)
@@ -173,18 +174,16 @@ pub struct DaylightReport {
     pub check: crate::accuracy::daylight::DaylightCheck,
 }
 
-/// A scene with its form factors and output rows: everything before the eigensolve.
+/// A scene with its radiosity system: everything before the eigensolve.
 pub struct Prepared {
     /// The scene.
     pub scene: Scene,
-    /// `G = A F`, symmetrised.
-    pub g: Mat<f64>,
-    /// Patch areas, m².
-    pub area: Vec<f64>,
-    /// Sensor and zone rows.
-    pub output_rows: Vec<Vec<f64>>,
-    /// The light of every channel at level 1, from its sources.
-    pub lights: Vec<ChannelLight>,
+    /// The scene's occluders, built once and shared by the form factors, the luminaires and
+    /// the daylight.
+    pub occluders: Occluders,
+    /// The room's radiosity problem: form-factor operator, areas, reflectances, receivers,
+    /// the channels' light, and its exact solves.
+    pub system: System,
     /// Where each luminaire's flux goes.
     pub luminaire_flux: Vec<LuminaireFlux>,
     /// Form-factor health.
@@ -244,12 +243,12 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
     let names: Vec<String> = scene.surfaces.iter().map(|s| s.name.clone()).collect();
     let form_factor_health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
-    let g = exchange::exchange_areas(ff.matrix, &area);
+    let g: Arc<dyn FormFactorOperator> = Arc::new(exchange::exchange_areas(ff.matrix, &area));
     let output_rows = timed(&mut timings, "sensors and zones", || {
-        cache::output_rows(&scene, &g, &area, &occluders, opts)
+        cache::output_rows(&scene, g.as_ref(), &area, &occluders, opts)
     });
     let (lights, luminaire_flux) = timed(&mut timings, "light sources", || {
-        let surfaces = sources::surfaces::channel_lights(&scene, &g, &area, &output_rows);
+        let surfaces = sources::surfaces::channel_lights(&scene, g.as_ref(), &area, &output_rows);
         if scene.luminaires.is_empty() {
             // Left exactly as it is: scenes without luminaires build the bases they always did.
             return (surfaces, Vec::new());
@@ -263,12 +262,14 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
             .collect();
         (lights, flux)
     });
+    let reflectance = (0..scene.bands.count())
+        .map(|b| scene.reflectance.iter().map(|r| r[b]).collect())
+        .collect();
+    let system = System::new(g, area, reflectance, output_rows, lights);
     Ok(Prepared {
         scene,
-        g,
-        area,
-        output_rows,
-        lights,
+        occluders,
+        system,
         luminaire_flux,
         form_factor_health,
         timings,
@@ -280,10 +281,8 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     let prepared = prepare(path, &opts.form_factors)?;
     let Prepared {
         mut scene,
-        g,
-        area: _,
-        mut output_rows,
-        mut lights,
+        occluders,
+        mut system,
         luminaire_flux,
         form_factor_health,
         mut timings,
@@ -294,47 +293,33 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         for zone in &mut scene.zones {
             zone.grid = None;
         }
-        output_rows.truncate(keep);
-        for light in &mut lights {
-            for band in &mut light.output_irradiance {
-                band.truncate(keep);
-            }
-        }
+        system = system.with_outputs(keep);
     }
     let n = scene.patches.len();
     let p_max = match opts.modes {
         ModeSelection::Count(p) => p.min(n),
         ModeSelection::Tolerance(_) => n.min(TOLERANCE_MAX_MODES),
     };
+    // The exact reference every figure is measured against, and the channels' exact
+    // responses the basis stores: LU for small scenes, conjugate gradients on G above
+    // `EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation). Made once, kept by the system.
+    timed(&mut timings, "exact channel responses (LU or CG)", || {
+        system.channel_responses().map(|_| ())
+    })?;
     let model = timed(&mut timings, "eigenbasis", || {
-        Model::new(
-            &scene,
-            g,
-            output_rows,
-            lights,
-            opts.formulation,
-            p_max,
-            opts.solver,
-        )
+        Model::new(&system, opts.formulation, p_max, opts.solver)
     })?;
     let bands = model.bands.len();
-    // The reference the accuracy is measured against: LU for small scenes, conjugate
-    // gradients on G above `EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation).
-    let solvers = timed(&mut timings, "exact reference (LU or CG)", || {
-        (0..bands)
-            .map(|b| model.exact_solver(b))
-            .collect::<std::result::Result<Vec<_>, _>>()
-    })?;
     let cases = accuracy::standard_cases(&scene, opts.random_patterns);
     let available = accuracy::modes_held(&model);
     let p = match opts.modes {
         ModeSelection::Count(p) => p.min(available),
         ModeSelection::Tolerance(t) => timed(&mut timings, "mode count search", || {
             let ladder = accuracy::mode_ladder(available.max(1));
-            let curves: Vec<_> = cases
+            let curves = cases
                 .iter()
-                .map(|c| accuracy::curve(&model, &solvers, c, &ladder))
-                .collect();
+                .map(|c| accuracy::curve(&model, c, &ladder))
+                .collect::<std::result::Result<Vec<_>, _>>()?;
             accuracy::smallest_p(&curves, t).ok_or_else(|| Error::Tolerance {
                 tolerance: t,
                 modes: available,
@@ -350,7 +335,6 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     };
     let daylight = if scene.site.is_some() && !scene.windows.is_empty() {
         Some(timed(&mut timings, "daylight through the windows", || {
-            let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
             let nodes = sources::daylight::nodes::nodes(
                 &scene,
                 &occluders,
@@ -358,7 +342,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
                 opts.sun_step,
                 &sources::daylight::DaylightOptions::default(),
             );
-            let responses = model.light_responses(0, &nodes.lights)?;
+            let responses = system.light_responses(0, &nodes.lights)?;
             Ok::<_, Error>(basis::BasisDaylight { nodes, responses })
         })?)
     } else {
@@ -376,15 +360,14 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         Ok::<_, eigenrad_runtime::Error>((bytes, added))
     })?;
     let accuracy = timed(&mut timings, "verification through the runtime", || {
-        verify(&model, &solvers, &cases, &bytes, &scene)
+        verify(&model, &cases, &bytes, &scene)
     })?;
     let (grids, grid_figure_error) = timed(&mut timings, "grids through the runtime", || {
-        grid_report(&model, &solvers, &bytes, &scene)
+        grid_report(&model, &bytes, &scene)
     })?;
     let daylight = match &daylight {
         None => None,
         Some(d) => Some(timed(&mut timings, "daylight through the runtime", || {
-            let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
             let grid = &d.nodes.sun_grid;
             Ok::<_, Error>(DaylightReport {
                 sky: if d.nodes.patches.subdivision() == 1 {
@@ -589,18 +572,15 @@ pub fn scene_grids(scene: &crate::scene::Scene, outputs: &[Vec<f64>]) -> Vec<Gri
 
 /// The grids with every channel at level 1 through the runtime, and the largest relative
 /// difference of their figures from those of the exact solve.
-fn grid_report(
-    model: &Model,
-    solvers: &[crate::radiosity::exact::ExactSolver],
-    bytes: &[u8],
-    scene: &Scene,
-) -> Result<(Vec<GridReadout>, f64)> {
+fn grid_report(model: &Model, bytes: &[u8], scene: &Scene) -> Result<(Vec<GridReadout>, f64)> {
     let levels = vec![1.0; model.channel_count()];
     let got = runtime_eval::evaluate(bytes, &vec![1.0f32; levels.len()], &[], false)?;
     let basis = eigenrad_runtime::Basis::from_bytes(bytes)?;
-    let mut exact = vec![Vec::new(); model.output_rows.len()];
-    for (b, solver) in solvers.iter().enumerate() {
-        let m = model.exact_many(solver, b, &[(levels.as_slice(), &[][..])]);
+    let mut exact = vec![Vec::new(); model.system.output_count()];
+    for b in 0..model.bands.len() {
+        let m = model
+            .system
+            .exact_many(b, &[(levels.as_slice(), &[][..])])?;
         for (slot, r) in exact.iter_mut().zip(model.readings(b, &m[0], &levels)) {
             slot.push(r);
         }
@@ -640,26 +620,18 @@ fn grid_report(
 
 /// Evaluates the encoded basis through the runtime for every case and compares with the
 /// exact solve.
-fn verify(
-    model: &Model,
-    solvers: &[crate::radiosity::exact::ExactSolver],
-    cases: &[Case],
-    bytes: &[u8],
-    scene: &Scene,
-) -> Result<Vec<CaseAccuracy>> {
+fn verify(model: &Model, cases: &[Case], bytes: &[u8], scene: &Scene) -> Result<Vec<CaseAccuracy>> {
     let output_names = output_names(scene);
     // Every case's exact solution at once, per band.
-    let exact_all: Vec<Vec<Vec<f64>>> = solvers
-        .iter()
-        .enumerate()
-        .map(|(b, solver)| {
+    let exact_all = (0..model.bands.len())
+        .map(|b| {
             let inputs: Vec<(&[f64], &[f64])> = cases
                 .iter()
                 .map(|c| (c.levels.as_slice(), c.extra[b].as_slice()))
                 .collect();
-            model.exact_many(solver, b, &inputs)
+            model.system.exact_many(b, &inputs)
         })
-        .collect();
+        .collect::<std::result::Result<Vec<_>, _>>()?;
     let mut out = Vec::new();
     for (index, case) in cases.iter().enumerate() {
         let levels: Vec<f32> = case.levels.iter().map(|&l| l as f32).collect();
@@ -667,10 +639,10 @@ fn verify(
         let mut patch_error = 0.0f64;
         let mut worst_patch = Worst::default();
         let mut worst_reading = Worst::default();
-        for b in 0..solvers.len() {
+        for b in 0..model.bands.len() {
             let exact = &exact_all[b][index];
             let exitance: Vec<f64> = got.exitance.iter().map(|e| e[b]).collect();
-            let patches = accuracy::metric::patch_error(&model.area, &exitance, exact);
+            let patches = accuracy::metric::patch_error(model.area(), &exitance, exact);
             patch_error = patch_error.max(patches);
             worst_patch = worst_patch.max(accuracy::metric::worst_reading(&exitance, exact));
             let readings: Vec<f64> = got

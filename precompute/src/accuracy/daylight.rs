@@ -134,7 +134,7 @@ pub fn sun_interpolation(
             }
         }
     }
-    let exact = model.light_responses(0, &lights)?;
+    let exact = model.system.light_responses(0, &lights)?;
     let zones_start = scene.sensors.len();
     let grid_start = crate::formfactor::outputs::grid_offset(scene);
     let (mut sensors, mut zones, mut points) = (Vec::new(), Vec::new(), Vec::new());
@@ -241,7 +241,7 @@ pub fn through_runtime(
         }
         let read = got.outputs();
         check.readings = check.readings.max(worst_reading(&read, &readings).error);
-        let patches = patch_error(&model.area, &got.exitance, &exitance);
+        let patches = patch_error(model.area(), &got.exitance, &exitance);
         if sun {
             check.patch_error_sun = patches;
         } else {

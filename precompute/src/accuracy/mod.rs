@@ -8,7 +8,7 @@ pub mod metric;
 pub mod rng;
 pub mod runtime_eval;
 
-use crate::radiosity::exact::ExactSolver;
+use crate::radiosity::eigen::EigenError;
 use crate::radiosity::model::Model;
 use crate::scene::Scene;
 use rng::Rng;
@@ -207,13 +207,12 @@ pub struct SweepPoint<'s> {
 /// solve. Shared by `--tolerance`, the build report and `eigenrad verify`.
 pub fn sweep(
     model: &Model,
-    solvers: &[ExactSolver],
     case: &Case,
     modes: &[usize],
     mut visit: impl FnMut(SweepPoint<'_>),
-) {
-    for (b, solver) in solvers.iter().enumerate() {
-        let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
+) -> Result<(), EigenError> {
+    for b in 0..model.bands.len() {
+        let exact = model.system.exact(b, &case.levels, &case.extra[b])?;
         let exact_outputs = model.readings(b, &exact, &case.levels);
         let (mut m, amplitude) = model.expansion(b, &case.levels, &case.extra[b]);
         let v = &model.bands[b].modes.vectors;
@@ -236,25 +235,26 @@ pub fn sweep(
             });
         }
     }
+    Ok(())
 }
 
 /// Error curves of `case` for every p in `modes` (ascending), against the exact solve.
-pub fn curve(model: &Model, solvers: &[ExactSolver], case: &Case, modes: &[usize]) -> Curve {
+pub fn curve(model: &Model, case: &Case, modes: &[usize]) -> Result<Curve, EigenError> {
     let mut patch_error = vec![0.0f64; modes.len()];
     let mut reading_error = vec![0.0f64; modes.len()];
-    sweep(model, solvers, case, modes, |pt| {
+    sweep(model, case, modes, |pt| {
         let t = pt.step;
-        let patches = metric::patch_error(&model.area, pt.exitance, pt.exact);
+        let patches = metric::patch_error(model.area(), pt.exitance, pt.exact);
         patch_error[t] = patch_error[t].max(patches);
         let readings = metric::worst_reading(pt.outputs, pt.exact_outputs);
         reading_error[t] = reading_error[t].max(readings.error);
-    });
-    Curve {
+    })?;
+    Ok(Curve {
         case: case.name.clone(),
         modes: modes.to_vec(),
         patch_error,
         reading_error,
-    }
+    })
 }
 
 /// The smallest p at which, for every curve, the patch error and every sensor's and zone's

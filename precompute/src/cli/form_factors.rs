@@ -126,10 +126,13 @@ pub fn form_factor_table(scene_path: &Path, opts: &FormFactorOptions) -> Result<
     let s = scene.surfaces.len();
     let mut sums = vec![vec![0.0f64; s]; s];
     let mut areas = vec![0.0f64; s];
+    let g = prepared.system.operator();
+    let mut row = vec![0.0; g.len()];
     for (i, p) in scene.patches.iter().enumerate() {
         areas[p.surface] += p.area;
-        for (j, q) in scene.patches.iter().enumerate() {
-            sums[p.surface][q.surface] += prepared.g[(i, j)];
+        g.row(i, &mut row);
+        for (q, x) in scene.patches.iter().zip(&row) {
+            sums[p.surface][q.surface] += x;
         }
     }
     let mut out = Vec::new();

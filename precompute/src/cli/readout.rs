@@ -11,11 +11,9 @@ use serde::Serialize;
 use super::sky::{sky, SkyInput, SkyReport, SkyRequest};
 use crate::accuracy::runtime_eval;
 use crate::error::{Error, Result};
-use crate::formfactor::exchange;
 use crate::formfactor::FormFactorOptions;
 use crate::pipeline::{self, scene_grids, GridReadout, PieceLayout};
-use crate::radiosity::exact::ExactSolver;
-use crate::radiosity::model;
+use crate::radiosity::System;
 
 /// A channel level as applied.
 #[derive(Clone, Debug, Serialize)]
@@ -298,62 +296,65 @@ pub fn solve(
     solve_with_daylight(scene_path, level_args, None, patches, form_factors)
 }
 
-/// The exact solve of some lights at some levels: per band, the exitance and irradiance of
-/// every patch and the reading of every output (`[patch][band]`, `[output][band]`).
+/// The exact solve of the channels at some levels, or of one further light alone: per band,
+/// the exitance and irradiance of every patch and the reading of every output
+/// (`[patch][band]`, `[output][band]`).
 struct Solved {
     exitance: Vec<Vec<f64>>,
     irradiance: Vec<Vec<f64>>,
     outputs: Vec<Vec<f64>>,
 }
 
-/// Solves `lights` at each set of levels in `cases`, one factorisation per band for all.
-fn solve_cases(
-    prepared: &pipeline::Prepared,
-    lights: &[crate::sources::ChannelLight],
-    cases: &[Vec<f64>],
-) -> Result<Vec<Solved>> {
-    let scene = &prepared.scene;
-    let n = scene.patches.len();
-    let bands = scene.bands.count();
-    let external: Vec<_> = lights
-        .iter()
-        .map(|l| l.external(&prepared.g, &prepared.area, &prepared.output_rows))
-        .collect();
-    let mut solved: Vec<Solved> = cases
-        .iter()
-        .map(|_| Solved {
-            exitance: vec![vec![0.0; bands]; n],
-            irradiance: vec![vec![0.0; bands]; n],
-            outputs: vec![vec![0.0; bands]; prepared.output_rows.len()],
-        })
-        .collect();
-    for b in 0..bands {
-        let rho: Vec<f64> = scene.reflectance.iter().map(|r| r[b]).collect();
-        let solver = ExactSolver::new(prepared.g.as_ref(), &prepared.area, &rho)?;
-        for (levels, out) in cases.iter().zip(&mut solved) {
-            let m0 = model::initial_exitance(lights, &external, &rho, b, levels, &[]);
-            let m = solver.solve(&m0);
-            // E = F M (exact for black patches too), plus the light from beyond the patches.
-            let mut e = exchange::patch_irradiance(&prepared.g, &prepared.area, &m);
-            for (c, &l) in levels.iter().enumerate() {
-                if let Some(e_ext) = &external[c].patches[b] {
-                    for (x, d) in e.iter_mut().zip(e_ext) {
-                        *x += l * d;
-                    }
-                }
-            }
-            let mut readings = exchange::output_irradiance(&prepared.output_rows, &m);
-            model::add_external_readings(&mut readings, &external, b, levels);
-            for i in 0..n {
-                out.exitance[i][b] = m[i];
-                out.irradiance[i][b] = e[i];
-            }
-            for (o, r) in readings.iter().enumerate() {
-                out.outputs[o][b] = *r;
-            }
+impl Solved {
+    fn new(patches: usize, outputs: usize, bands: usize) -> Solved {
+        Solved {
+            exitance: vec![vec![0.0; bands]; patches],
+            irradiance: vec![vec![0.0; bands]; patches],
+            outputs: vec![vec![0.0; bands]; outputs],
         }
     }
-    Ok(solved)
+
+    /// Band `b`'s exitance, patch irradiance and readings.
+    fn set(&mut self, b: usize, exitance: &[f64], irradiance: &[f64], readings: &[f64]) {
+        for (i, (m, e)) in exitance.iter().zip(irradiance).enumerate() {
+            self.exitance[i][b] = *m;
+            self.irradiance[i][b] = *e;
+        }
+        for (o, r) in readings.iter().enumerate() {
+            self.outputs[o][b] = *r;
+        }
+    }
+}
+
+/// The channels of `system` at `levels`, solved exactly in every band.
+fn solve_levels(system: &System, levels: &[f64]) -> Result<Solved> {
+    let mut out = Solved::new(
+        system.patch_count(),
+        system.output_count(),
+        system.band_count(),
+    );
+    for b in 0..system.band_count() {
+        let m = system.exact(b, levels, &[])?;
+        let e = system.patch_irradiance(b, &m, levels);
+        out.set(b, &m, &e, &system.readings(b, &m, levels));
+    }
+    Ok(out)
+}
+
+/// `light` alone (not a channel of `system`: a moment's daylight), solved exactly in every band.
+fn solve_light(system: &System, light: &crate::sources::ChannelLight) -> Result<Solved> {
+    let mut out = Solved::new(
+        system.patch_count(),
+        system.output_count(),
+        system.band_count(),
+    );
+    for b in 0..system.band_count() {
+        let (response, e) = system
+            .light_responses_with_irradiance(b, std::slice::from_ref(light))?
+            .remove(0);
+        out.set(b, &response.exitance, &e, &response.readings);
+    }
+    Ok(out)
 }
 
 fn daylight_err(what: &str, reason: impl Into<String>) -> Error {
@@ -403,33 +404,32 @@ fn with_site_offset(time: &str, offset: Option<i32>) -> String {
     }
 }
 
-/// The daylight the sky of `report` sends through the windows, as one light (emission of
-/// diffusing windows, direct illuminance everywhere): each sky patch's response times its
-/// centre luminance, the exterior's times `E_gh / π`, the sun's times its direct normal
-/// illuminance.
+/// The daylight the sky of `report` sends through the windows, as one light
+/// ([`crate::sources::daylight::moment_light`]), and its summary.
 fn daylight_light(
     scene: &crate::scene::Scene,
+    occluders: &crate::formfactor::Occluders,
     args: &DaylightArgs,
     report: SkyReport,
 ) -> Result<(crate::sources::ChannelLight, DaylightReadout)> {
     use crate::sources::daylight;
     let patches = eigenrad_runtime::sky::patches::SkyPatches::reinhart(args.subdivision)
         .map_err(|e| daylight_err("--mf", e.to_string()))?;
-    let occluders = crate::formfactor::Occluders::with_faces(&scene.patches, &scene.faces);
-    let opts = daylight::DaylightOptions::default();
-    let response = daylight::sky_response(scene, &occluders, patches, &opts);
-    let mut light = response
-        .exterior
-        .scaled(report.global_horizontal_lux / std::f64::consts::PI);
-    for (patch, response) in report.patches.iter().zip(&response.sky) {
-        light.add_scaled(response, patch.luminance_cd_m2);
-    }
-    if report.direct_normal_lux > 0.0 {
-        let [x, y, z] = report.sun_direction_room;
-        let toward_sun = crate::geometry::Vec3::new(x, y, z);
-        let sun = daylight::sun_light(scene, &occluders, toward_sun, &opts);
-        light.add_scaled(&sun, report.direct_normal_lux);
-    }
+    let luminances: Vec<f64> = report.patches.iter().map(|p| p.luminance_cd_m2).collect();
+    let [x, y, z] = report.sun_direction_room;
+    let moment = daylight::SkyMoment {
+        patches,
+        luminances: &luminances,
+        global_horizontal_lux: report.global_horizontal_lux,
+        direct_normal_lux: report.direct_normal_lux,
+        toward_sun: crate::geometry::Vec3::new(x, y, z),
+    };
+    let light = daylight::moment_light(
+        scene,
+        occluders,
+        &moment,
+        &daylight::DaylightOptions::default(),
+    );
     let windows = scene
         .windows
         .iter()
@@ -461,25 +461,14 @@ pub fn solve_with_daylight(
     let scene = &prepared.scene;
     let names: Vec<String> = scene.channels.iter().map(|c| c.name.clone()).collect();
     let levels = parse_levels(level_args, &names)?;
-    let (solved, mut daylight_readout) = match daylight.zip(moment) {
-        None => (
-            solve_cases(&prepared, &prepared.lights, std::slice::from_ref(&levels))?,
-            None,
-        ),
-        Some((args, report)) => {
-            let (light, summary) = daylight_light(scene, args, report)?;
-            let mut lights = prepared.lights.clone();
-            lights.push(light);
-            let mut electric = levels.clone();
-            electric.push(0.0);
-            let mut day = vec![0.0; levels.len()];
-            day.push(1.0);
-            (
-                solve_cases(&prepared, &lights, &[electric, day])?,
-                Some(summary),
-            )
-        }
-    };
+    let system = &prepared.system;
+    let mut solved = vec![solve_levels(system, &levels)?];
+    let mut daylight_readout = None;
+    if let Some((args, report)) = daylight.zip(moment) {
+        let (light, summary) = daylight_light(scene, &prepared.occluders, args, report)?;
+        solved.push(solve_light(system, &light)?);
+        daylight_readout = Some(summary);
+    }
     let sum = |a: &[Vec<f64>], b: Option<&[Vec<f64>]>| -> Vec<Vec<f64>> {
         match b {
             None => a.to_vec(),

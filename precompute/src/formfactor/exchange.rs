@@ -6,6 +6,8 @@
 
 use faer::Mat;
 
+use crate::formfactor::operator::FormFactorOperator;
+
 /// `G = A F` (m²) from the form factors `f` (n × n, symmetrised) and the patch areas (m²).
 pub fn exchange_areas(mut f: Mat<f64>, area: &[f64]) -> Mat<f64> {
     // Column by column: contiguous in faer's layout.
@@ -19,8 +21,8 @@ pub fn exchange_areas(mut f: Mat<f64>, area: &[f64]) -> Mat<f64> {
 
 /// Irradiance on every patch, `E_i = (G M)_i / A_i` (W/m² or lux), from the exitance `M` of
 /// every patch (same unit), `G` in m² and the areas in m².
-pub fn patch_irradiance(g: &Mat<f64>, area: &[f64], exitance: &[f64]) -> Vec<f64> {
-    let gm = g * faer::ColRef::from_slice(exitance);
+pub fn patch_irradiance(g: &dyn FormFactorOperator, area: &[f64], exitance: &[f64]) -> Vec<f64> {
+    let gm = g.apply_vector(exitance);
     (0..area.len()).map(|i| gm[i] / area[i]).collect()
 }
 

@@ -31,6 +31,7 @@ pub mod exchange;
 mod health;
 mod kernel;
 mod near;
+pub mod operator;
 pub mod outputs;
 mod pair;
 mod quadrature;
@@ -41,6 +42,7 @@ mod visibility;
 
 pub use bvh::Occluders;
 pub(crate) use bvh::Shaft;
+pub use operator::{DenseF32, FormFactorOperator};
 // The patch rules, for the direct light of sources that are not patches (`crate::sources`).
 pub use health::{
     CavityClosure, FormFactorHealth, PairDisagreement, RowMiss, CAVITY_TOLERANCE, CLOSED_TOLERANCE,

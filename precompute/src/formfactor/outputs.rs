@@ -4,7 +4,7 @@
 //! Outputs are in basis order: the sensors, then the zones, then every zone's grid points,
 //! zone by zone ([`grid_points`]).
 
-use faer::Mat;
+use crate::formfactor::operator::FormFactorOperator;
 use rayon::prelude::*;
 
 use crate::formfactor::{self, FormFactorOptions, Occluders};
@@ -40,7 +40,7 @@ pub fn grid_offset(scene: &Scene) -> usize {
 /// `g` is `A F` symmetrised, `area` the patch areas (m²).
 pub fn output_rows(
     scene: &Scene,
-    g: &Mat<f64>,
+    g: &dyn FormFactorOperator,
     area: &[f64],
     occluders: &Occluders,
     opts: &FormFactorOptions,
@@ -62,11 +62,17 @@ pub fn output_rows(
     for zone in &scene.zones {
         let row = match &zone.kind {
             ZoneKind::Surfaces(patches) => {
-                // Σ_i A_i F_ij / Σ A_i = Σ_i G_ij / Σ A_i.
+                // Σ_i A_i F_ij / Σ A_i = Σ_i G_ij / Σ A_i, a row of G at a time.
                 let total: f64 = patches.iter().map(|&i| area[i]).sum();
-                (0..n)
-                    .map(|j| patches.iter().map(|&i| g[(i, j)]).sum::<f64>() / total)
-                    .collect()
+                let mut sum = vec![0.0; n];
+                let mut row = vec![0.0; n];
+                for &i in patches {
+                    g.row(i, &mut row);
+                    for (s, x) in sum.iter_mut().zip(&row) {
+                        *s += x;
+                    }
+                }
+                sum.iter().map(|s| s / total).collect()
             }
             ZoneKind::WorkPlane { receivers, .. } => {
                 let f =

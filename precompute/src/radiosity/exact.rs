@@ -5,10 +5,12 @@
 //! response" lighting practice uses when the emitter channels are fixed (docs/math.md, "Be
 //! honest about the baseline").
 
+use std::sync::Arc;
+
+use crate::formfactor::operator::FormFactorOperator;
 use crate::radiosity::eigen::{check_inputs, EigenError};
-use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::{PartialPivLu, Solve};
-use faer::{Accum, Mat, MatRef};
+use faer::{Mat, MatRef};
 
 /// Largest patch count [`ExactSolver::auto`] factorises by LU: defined with the memory model
 /// of a build, which depends on it.
@@ -30,34 +32,42 @@ const CG_MAX_ITERATIONS: usize = 2000;
 /// Two ways: an LU factorisation with partial pivoting ([`ExactSolver::new`]), or conjugate
 /// gradients on the symmetric positive definite reflecting subsystem
 /// `(B_r − G_rr) M_r = B_r M0_r + G_rk M0_k` (`B = A/ρ`, docs/math.md "Zero reflectance";
-/// [`ExactSolver::iterative`]), which borrows `G` and needs no n×n copy.
+/// [`ExactSolver::iterative`]), which shares the form-factor operator and needs no n×n copy.
 #[derive(Debug)]
-pub struct ExactSolver<'g> {
+pub struct ExactSolver {
     n: usize,
-    kind: Kind<'g>,
+    kind: Kind,
 }
 
 #[derive(Debug)]
-enum Kind<'g> {
+enum Kind {
     Lu(PartialPivLu<f64>),
     Cg {
-        g: MatRef<'g, f64>,
+        g: Arc<dyn FormFactorOperator>,
         area: Vec<f64>,
         reflectance: Vec<f64>,
     },
 }
 
-impl<'g> ExactSolver<'g> {
+impl ExactSolver {
     /// Factorises `I − R F` with `(R F)_ij = ρ_i G_ij / A_i` (`G` in m², `A` in m²).
     ///
     /// Inputs are checked as for [`crate::radiosity::eigen::modes`] (symmetric finite `G`, `A > 0`,
     /// `ρ ∈ [0, 1)`). `O(n³)`.
-    pub fn new(g: MatRef<'_, f64>, area: &[f64], reflectance: &[f64]) -> Result<Self, EigenError> {
+    pub fn new(
+        g: &dyn FormFactorOperator,
+        area: &[f64],
+        reflectance: &[f64],
+    ) -> Result<Self, EigenError> {
         check_inputs(g, area, reflectance)?;
-        let n = g.nrows();
+        let n = g.len();
+        let entry = |i: usize, j: usize| match g.dense() {
+            Some(dense) => dense[(i, j)],
+            None => g.entry(i, j),
+        };
         let a = Mat::<f64>::from_fn(n, n, |i, j| {
             let id = if i == j { 1.0 } else { 0.0 };
-            id - reflectance[i] / area[i] * g[(i, j)]
+            id - reflectance[i] / area[i] * entry(i, j)
         });
         let lu = a.partial_piv_lu();
         // With ρ < 1 and row sums of F ≤ 1 the matrix is diagonally dominant; a zero pivot
@@ -72,16 +82,17 @@ impl<'g> ExactSolver<'g> {
         })
     }
 
-    /// Conjugate gradients on `G` (borrowed), to [`CG_TOLERANCE`]: `O(n²)` per iteration and
-    /// no n×n allocation. Inputs are checked as for [`ExactSolver::new`].
+    /// Conjugate gradients on the operator `G` (shared), to [`CG_TOLERANCE`]: one product
+    /// with `G` per iteration and no n×n allocation. Inputs are checked as for
+    /// [`ExactSolver::new`].
     pub fn iterative(
-        g: MatRef<'g, f64>,
+        g: Arc<dyn FormFactorOperator>,
         area: &[f64],
         reflectance: &[f64],
     ) -> Result<Self, EigenError> {
-        check_inputs(g, area, reflectance)?;
+        check_inputs(g.as_ref(), area, reflectance)?;
         Ok(Self {
-            n: g.nrows(),
+            n: g.len(),
             kind: Kind::Cg {
                 g,
                 area: area.to_vec(),
@@ -90,12 +101,17 @@ impl<'g> ExactSolver<'g> {
         })
     }
 
-    /// LU up to [`EXACT_LU_MAX`] patches, conjugate gradients above.
-    pub fn auto(g: MatRef<'g, f64>, area: &[f64], reflectance: &[f64]) -> Result<Self, EigenError> {
-        if g.nrows() <= EXACT_LU_MAX {
-            Self::new(g, area, reflectance)
+    /// LU up to [`EXACT_LU_MAX`] patches of a dense f64 operator, conjugate gradients above
+    /// and on every other operator.
+    pub fn auto(
+        g: &Arc<dyn FormFactorOperator>,
+        area: &[f64],
+        reflectance: &[f64],
+    ) -> Result<Self, EigenError> {
+        if g.len() <= EXACT_LU_MAX && g.dense().is_some() {
+            Self::new(g.as_ref(), area, reflectance)
         } else {
-            Self::iterative(g, area, reflectance)
+            Self::iterative(Arc::clone(g), area, reflectance)
         }
     }
 
@@ -146,7 +162,7 @@ impl<'g> ExactSolver<'g> {
                 g,
                 area,
                 reflectance,
-            } => cg(*g, area, reflectance, m0),
+            } => cg(g.as_ref(), area, reflectance, m0),
         }
     }
 }
@@ -154,8 +170,8 @@ impl<'g> ExactSolver<'g> {
 /// Block conjugate gradients (independent scalars per column, one `G` product per iteration
 /// for all columns) on `(B_r − G_rr) M_r = B_r M0_r + G_rk M0_k`, Jacobi-preconditioned;
 /// black rows keep `M0`.
-fn cg(g: MatRef<'_, f64>, area: &[f64], rho: &[f64], m0: MatRef<'_, f64>) -> Mat<f64> {
-    let n = g.nrows();
+fn cg(g: &dyn FormFactorOperator, area: &[f64], rho: &[f64], m0: MatRef<'_, f64>) -> Mat<f64> {
+    let n = g.len();
     let c = m0.ncols();
     let par = faer::get_global_parallelism();
     let reflecting = |i: usize| rho[i] > 0.0;
@@ -165,7 +181,7 @@ fn cg(g: MatRef<'_, f64>, area: &[f64], rho: &[f64], m0: MatRef<'_, f64>) -> Mat
     // Right-hand side: B M0 on reflecting rows plus G times the black emission.
     let black = Mat::<f64>::from_fn(n, c, |i, j| if reflecting(i) { 0.0 } else { m0[(i, j)] });
     let mut rhs = Mat::<f64>::zeros(n, c);
-    matmul(rhs.as_mut(), Accum::Replace, g, black.as_ref(), 1.0, par);
+    g.apply(rhs.as_mut(), black.as_ref(), par);
     for j in 0..c {
         for i in 0..n {
             rhs[(i, j)] = if reflecting(i) {
@@ -175,16 +191,23 @@ fn cg(g: MatRef<'_, f64>, area: &[f64], rho: &[f64], m0: MatRef<'_, f64>) -> Mat
             };
         }
     }
+    let g_diagonal = g.diagonal();
     let diag: Vec<f64> = (0..n)
-        .map(|i| if reflecting(i) { b[i] - g[(i, i)] } else { 1.0 })
+        .map(|i| {
+            if reflecting(i) {
+                b[i] - g_diagonal[i]
+            } else {
+                1.0
+            }
+        })
         .collect();
     // S x = B x − G x on reflecting rows (x is zero on black rows).
     let apply = |x: MatRef<'_, f64>, out: &mut Mat<f64>| {
-        matmul(out.as_mut(), Accum::Replace, g, x, -1.0, par);
+        g.apply(out.as_mut(), x, par);
         for j in 0..c {
             for i in 0..n {
                 out[(i, j)] = if reflecting(i) {
-                    out[(i, j)] + b[i] * x[(i, j)]
+                    b[i] * x[(i, j)] - out[(i, j)]
                 } else {
                     0.0
                 };
@@ -269,7 +292,7 @@ mod tests {
         let n = 50;
         let (g, area) = closed_room(n);
         for rho in [0.2, 0.5, 0.9] {
-            let s = ExactSolver::new(g.as_ref(), &area, &vec![rho; n]).expect("lu");
+            let s = ExactSolver::new(&g, &area, &vec![rho; n]).expect("lu");
             let e = 300.0;
             let m = s.solve(&vec![e; n]);
             let want = e / (1.0 - rho);
@@ -293,7 +316,7 @@ mod tests {
                 }
             })
             .collect();
-        let s = ExactSolver::new(g.as_ref(), &area, &rho).expect("lu");
+        let s = ExactSolver::new(&g, &area, &rho).expect("lu");
         let m0 = Mat::<f64>::from_fn(n, 3, |i, c| ((i * (c + 3) + c) % 7) as f64);
         let mm = s.solve_many(m0.as_ref());
         for c in 0..3 {
@@ -328,8 +351,8 @@ mod tests {
                 }
             })
             .collect();
-        let lu = ExactSolver::new(g.as_ref(), &area, &rho).expect("lu");
-        let cg = ExactSolver::iterative(g.as_ref(), &area, &rho).expect("cg");
+        let lu = ExactSolver::new(&g, &area, &rho).expect("lu");
+        let cg = ExactSolver::iterative(Arc::new(g.clone()), &area, &rho).expect("cg");
         assert_eq!(cg.method(), "conjugate gradients");
         let m0 = Mat::<f64>::from_fn(n, 4, |i, c| ((i * (c + 5) + 3 * c) % 11) as f64);
         let a = lu.solve_many(m0.as_ref());

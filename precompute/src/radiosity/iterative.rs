@@ -3,7 +3,7 @@
 //! iteration (progressive refinement, shooting the patch with the most unshot flux).
 
 /// The radiosity system of one band in the form the iterative methods use.
-pub struct System<'a> {
+pub struct BandSystem<'a> {
     n: usize,
     /// Row `i` of `G` (= column `i`, G symmetric), m².
     g: &'a [f64],
@@ -11,13 +11,13 @@ pub struct System<'a> {
     rho: &'a [f64],
 }
 
-impl<'a> System<'a> {
+impl<'a> BandSystem<'a> {
     /// The system with `g` the rows of `G = A F` (row-major, n × n, m²), patch areas `area`
     /// (m²) and reflectances `rho`, all of length n.
     pub fn new(g: &'a [f64], area: &'a [f64], rho: &'a [f64]) -> Self {
         assert_eq!(g.len(), area.len() * area.len(), "G must be n × n");
         assert_eq!(rho.len(), area.len(), "one reflectance per patch");
-        System {
+        BandSystem {
             n: area.len(),
             g,
             area,
@@ -26,7 +26,7 @@ impl<'a> System<'a> {
     }
 }
 
-impl System<'_> {
+impl BandSystem<'_> {
     fn g_row(&self, i: usize) -> &[f64] {
         self.g.get(i * self.n..(i + 1) * self.n).unwrap_or(&[])
     }

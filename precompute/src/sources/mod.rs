@@ -143,7 +143,7 @@ impl ChannelLight {
     /// `G = A F` (m²), `area` the patch areas (m²), `output_rows` the sensor and zone rows.
     pub fn external(
         &self,
-        g: &faer::Mat<f64>,
+        g: &dyn crate::formfactor::FormFactorOperator,
         area: &[f64],
         output_rows: &[Vec<f64>],
     ) -> ExternalLight {

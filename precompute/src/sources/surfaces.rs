@@ -3,10 +3,9 @@
 //! exitance sends through the form factors, `F e` on the patches and `Σ_j R_oj e_j` at the
 //! outputs, occlusion included (the form factors and output rows carry it).
 
-use faer::Mat;
-
 use super::ChannelLight;
 use crate::formfactor::exchange;
+use crate::formfactor::FormFactorOperator;
 use crate::scene::Scene;
 
 /// The light of every channel of `scene` from its emitting surfaces, in channel order.
@@ -15,7 +14,7 @@ use crate::scene::Scene;
 /// sensor and zone rows of [`crate::formfactor::outputs::output_rows`].
 pub fn channel_lights(
     scene: &Scene,
-    g: &Mat<f64>,
+    g: &dyn FormFactorOperator,
     area: &[f64],
     output_rows: &[Vec<f64>],
 ) -> Vec<ChannelLight> {

@@ -29,7 +29,6 @@ use crate::error::Result;
 use crate::formfactor::FormFactorOptions;
 use crate::pipeline::{self, Prepared};
 use crate::radiosity::eigen::{Formulation, Solver};
-use crate::radiosity::exact::ExactSolver;
 use crate::radiosity::model::Model;
 
 pub use markdown::markdown;
@@ -214,13 +213,12 @@ fn cases(prepared: &Prepared, opts: &VerifyOptions) -> Vec<(CaseKind, Case)> {
 /// Errors of every metric of `case` at each p of `modes` for `model`.
 fn case_curve(
     model: &Model,
-    solvers: &[ExactSolver],
     kind: CaseKind,
     case: &Case,
     modes: &[usize],
     sensors: usize,
     outputs: usize,
-) -> CaseCurve {
+) -> Result<CaseCurve> {
     let mut curve = CaseCurve {
         case: case.name.clone(),
         kind,
@@ -228,9 +226,9 @@ fn case_curve(
         zones: vec![vec![0.0; modes.len()]; outputs - sensors],
         sensors: vec![vec![0.0; modes.len()]; sensors],
     };
-    accuracy::sweep(model, solvers, case, modes, |pt| {
+    accuracy::sweep(model, case, modes, |pt| {
         let t = pt.step;
-        let e = metric::patch_error(&model.area, pt.exitance, pt.exact);
+        let e = metric::patch_error(model.area(), pt.exitance, pt.exact);
         curve.patches[t] = curve.patches[t].max(e);
         // Sensors and zones; grid points (past them) are not among the metrics.
         let readings = metric::reading_errors(&pt.outputs[..outputs], &pt.exact_outputs[..outputs]);
@@ -242,8 +240,8 @@ fn case_curve(
             };
             *slot = slot.max(r);
         }
-    });
-    curve
+    })?;
+    Ok(curve)
 }
 
 /// Runs the whole report for the scene at `path`.
@@ -265,32 +263,19 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
     let bar = stage_bar(opts.progress, 3 * formulation_list.len());
     for formulation in formulation_list {
         bar.set_message(format!("verify, {}: eigenmodes", formulation.name()));
-        let model = Model::new(
-            scene,
-            prepared.g.clone(),
-            prepared.output_rows.clone(),
-            prepared.lights.clone(),
-            formulation,
-            n,
-            Solver::Dense,
-        )?;
-        let solvers = (0..bands)
-            .map(|b| model.exact_solver(b))
-            .collect::<std::result::Result<Vec<_>, _>>()?;
+        let model = Model::new(&prepared.system, formulation, n, Solver::Dense)?;
         if modes.is_empty() {
             modes = accuracy::mode_ladder(accuracy::modes_held(&model).max(1));
             if m > 0 {
-                baseline_error = Some(superposition_error(
-                    &model, &solvers, &cases, sensors, outputs,
-                ));
+                baseline_error = Some(superposition_error(&model, &cases, sensors, outputs)?);
             }
         }
         bar.inc(1);
         bar.set_message(format!("verify, {}: error curves", formulation.name()));
         let curves = cases
             .iter()
-            .map(|(kind, case)| case_curve(&model, &solvers, *kind, case, &modes, sensors, outputs))
-            .collect();
+            .map(|(kind, case)| case_curve(&model, *kind, case, &modes, sensors, outputs))
+            .collect::<Result<Vec<_>>>()?;
         bar.inc(1);
         bar.set_message(format!("verify, {}: basis sizes", formulation.name()));
         let mut basis_bytes = Vec::with_capacity(modes.len());
@@ -343,28 +328,27 @@ fn stage_bar(show: bool, steps: usize) -> indicatif::ProgressBar {
 /// channel-only case: worst error per metric.
 fn superposition_error(
     model: &Model,
-    solvers: &[ExactSolver],
     cases: &[(CaseKind, Case)],
     sensors: usize,
     outputs: usize,
-) -> [f64; 3] {
+) -> Result<[f64; 3]> {
     let m = model.channel_count();
     let mut worst = [0.0f64; 3];
-    for (b, solver) in solvers.iter().enumerate() {
+    for b in 0..model.bands.len() {
         // The model's exact per-channel responses, as the basis stores them.
         let responses: Vec<&[f64]> = (0..m).map(|c| model.channel_response(c, b)).collect();
         for (kind, case) in cases {
             if *kind == CaseKind::EmitterPattern {
                 continue;
             }
-            let exact = model.exact(solver, b, &case.levels, &case.extra[b]);
+            let exact = model.system.exact(b, &case.levels, &case.extra[b])?;
             let mut sum = vec![0.0; exact.len()];
             for (c, l) in case.levels.iter().enumerate() {
                 for (s, r) in sum.iter_mut().zip(responses[c]) {
                     *s += l * r;
                 }
             }
-            worst[0] = worst[0].max(metric::patch_error(&model.area, &sum, &exact));
+            worst[0] = worst[0].max(metric::patch_error(model.area(), &sum, &exact));
             let (got, want) = (
                 model.readings(b, &sum, &case.levels),
                 model.readings(b, &exact, &case.levels),
@@ -376,7 +360,7 @@ fn superposition_error(
             }
         }
     }
-    worst
+    Ok(worst)
 }
 
 impl FormulationReport {

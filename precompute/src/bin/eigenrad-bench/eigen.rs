@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::Result;
-use eigenrad_precompute::formfactor::FormFactorOptions;
+use anyhow::{Context, Result};
+use eigenrad_precompute::formfactor::{DenseF32, FormFactorOptions};
 use eigenrad_precompute::pipeline;
 use eigenrad_precompute::radiosity::eigen::{self, Formulation, Solver};
 
@@ -29,11 +29,12 @@ fn compare(path: &Path, dense_max: usize) -> Result<()> {
     let prepared = pipeline::prepare(path, &FormFactorOptions::default())?;
     let rho: Vec<f64> = prepared.scene.reflectance.iter().map(|r| r[0]).collect();
     let nr = rho.iter().filter(|&&r| r > 0.0).count();
-    let g = prepared.g.as_ref();
+    let g = prepared.system.operator();
+    let area = &prepared.system.area;
     let t = Instant::now();
     let partial = eigen::modes(
         g,
-        &prepared.area,
+        area,
         &rho,
         Formulation::Split,
         REFERENCE_MODES,
@@ -44,7 +45,7 @@ fn compare(path: &Path, dense_max: usize) -> Result<()> {
         let t = Instant::now();
         let dense = eigen::modes(
             g,
-            &prepared.area,
+            area,
             &rho,
             Formulation::Split,
             REFERENCE_MODES,
@@ -63,10 +64,10 @@ fn compare(path: &Path, dense_max: usize) -> Result<()> {
     // The same partial eigensolve on G rounded to f32: what storing G in single precision
     // would cost in accuracy (the eigenvalues μ are dimensionless, in (0, 1]).
     let n = rho.len();
-    let g32 = faer::Mat::<f64>::from_fn(n, n, |i, j| f64::from(g[(i, j)] as f32));
+    let g32 = DenseF32::from_f64(g.dense().context("the benchmark's operator is dense f64")?);
     let rounded = eigen::modes(
-        g32.as_ref(),
-        &prepared.area,
+        &g32,
+        area,
         &rho,
         Formulation::Split,
         REFERENCE_MODES,

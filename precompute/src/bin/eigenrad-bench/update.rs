@@ -15,7 +15,7 @@ use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline;
 use eigenrad_precompute::radiosity::eigen::{Formulation, Solver};
 use eigenrad_precompute::radiosity::exact::ExactSolver;
-use eigenrad_precompute::radiosity::iterative::System;
+use eigenrad_precompute::radiosity::iterative::BandSystem;
 use eigenrad_precompute::radiosity::model::Model;
 use eigenrad_precompute::scene::Scene;
 use eigenrad_runtime::{Basis, Evaluator, Precision};
@@ -111,20 +111,12 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
             path.display()
         );
     }
-    let model = Model::new(
-        &scene,
-        prepared.g,
-        prepared.output_rows,
-        prepared.lights,
-        Formulation::Split,
-        MODES,
-        Solver::Auto,
-    )?;
+    let model = Model::new(&prepared.system, Formulation::Split, MODES, Solver::Auto)?;
     println!(
         "\n## {}: {n} patches, {} channels, {} sensors and zones (prepared in {:.1} s)\n",
         path.display(),
         scene.channels.len(),
-        model.output_rows.len(),
+        model.system.output_count(),
         t.elapsed().as_secs_f64()
     );
     let bench = Bench::new(&model)?;
@@ -144,9 +136,9 @@ fn update(path: &Path, skip_lu: bool) -> Result<()> {
 /// What every row of one scene is measured against: the model, its exact solver and the
 /// exact solutions of the accuracy cases.
 struct Bench<'m> {
-    model: &'m Model,
+    model: &'m Model<'m>,
     /// The LU factorisation of the one band.
-    exact: ExactSolver<'m>,
+    exact: ExactSolver,
     /// Patches.
     n: usize,
     /// Channels.
@@ -158,8 +150,8 @@ struct Bench<'m> {
 }
 
 impl<'m> Bench<'m> {
-    fn new(model: &'m Model) -> Result<Self> {
-        let exact = ExactSolver::new(model.g.as_ref(), &model.area, Self::rho(model))?;
+    fn new(model: &'m Model<'m>) -> Result<Self> {
+        let exact = ExactSolver::new(model.system.operator(), model.area(), Self::rho(model))?;
         let m = model.channel_count();
         let mut bench = Bench {
             model,
@@ -184,13 +176,13 @@ impl<'m> Bench<'m> {
     }
 
     /// Reflectance of the one band.
-    fn rho(model: &Model) -> &[f64] {
-        &model.bands[0].reflectance
+    fn rho<'a>(model: &'a Model<'_>) -> &'a [f64] {
+        model.reflectance(0)
     }
 
     /// Initial exitance of every patch for channel levels `l`.
     fn m0(&self, l: &[f64]) -> Vec<f64> {
-        self.model.initial_exitance(0, l, &[])
+        self.model.system.initial_exitance(0, l, &[])
     }
 
     /// Level vector number `k` in f32, as firmware receives it.
@@ -204,7 +196,7 @@ impl<'m> Bench<'m> {
         let (mut ep, mut eo) = (0.0f64, 0.0f64);
         for (l, (x, o)) in self.cases.iter().zip(&self.truth) {
             let (gx, go) = solve(l);
-            ep = ep.max(patch_error(&self.model.area, &gx, x));
+            ep = ep.max(patch_error(self.model.area(), &gx, x));
             eo = eo.max(worst_reading(&go, o).error);
         }
         (eo, ep)
@@ -278,7 +270,7 @@ impl<'m> Bench<'m> {
     /// (2) Exact per-channel superposition, f32 tables as firmware would hold them.
     fn superposition(&self) -> Row {
         let (n, m) = (self.n, self.m);
-        let outputs = self.model.output_rows.len();
+        let outputs = self.model.system.output_count();
         let patch_table: Vec<Vec<f32>> = (0..m)
             .map(|c| {
                 let r = self.model.channel_response(c, 0);
@@ -351,7 +343,9 @@ impl<'m> Bench<'m> {
         if !skip_lu {
             let per_update_s = per_call(|| {
                 k += 1;
-                if let Ok(lu) = ExactSolver::new(model.g.as_ref(), &model.area, Self::rho(model)) {
+                if let Ok(lu) =
+                    ExactSolver::new(model.system.operator(), model.area(), Self::rho(model))
+                {
                     let l = level_vector(k, m);
                     let x = lu.solve(&self.m0(&l));
                     black_box(model.readings(0, &x, &l));
@@ -382,9 +376,9 @@ impl<'m> Bench<'m> {
         let (n, m, model) = (self.n, self.m, self.model);
         let g_rows: Vec<f64> = (0..n)
             .flat_map(|i| (0..n).map(move |j| (i, j)))
-            .map(|(i, j)| model.g[(j, i)])
+            .map(|(i, j)| model.system.operator().entry(j, i))
             .collect();
-        let sys = System::new(&g_rows, &model.area, Self::rho(model));
+        let sys = BandSystem::new(&g_rows, model.area(), Self::rho(model));
         let mut k = 0usize;
         let mut counts = (0usize, 0usize);
         let sw_s = per_call(|| {

@@ -22,18 +22,20 @@ use faer::matrix_free::LinOp;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Col, Mat, MatMut, MatRef, Par, Side};
 
+use crate::formfactor::operator::FormFactorOperator;
+
 /// `H = diag(s) G[r, r] diag(s)` applied on the fly: the only n×n matrix touched is `G`.
 ///
 /// `r` lists the reflecting patches (indices into `G`), `s_i = sqrt(ρ_i / A_i)` on them.
 #[derive(Debug)]
 pub(crate) struct ScaledOp<'a> {
-    g: MatRef<'a, f64>,
+    g: &'a dyn FormFactorOperator,
     r: &'a [usize],
     s: &'a [f64],
 }
 
 impl<'a> ScaledOp<'a> {
-    pub(crate) fn new(g: MatRef<'a, f64>, r: &'a [usize], s: &'a [f64]) -> Self {
+    pub(crate) fn new(g: &'a dyn FormFactorOperator, r: &'a [usize], s: &'a [f64]) -> Self {
         debug_assert_eq!(r.len(), s.len());
         Self { g, r, s }
     }
@@ -45,7 +47,7 @@ impl<'a> ScaledOp<'a> {
 
     /// `out = H rhs`; `rhs` and `out` are `n_r × k`.
     pub(crate) fn apply_to(&self, mut out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par) {
-        let n = self.g.nrows();
+        let n = self.g.len();
         let k = rhs.ncols();
         let mut scattered = Mat::<f64>::zeros(n, k);
         for j in 0..k {
@@ -54,14 +56,7 @@ impl<'a> ScaledOp<'a> {
             }
         }
         let mut full = Mat::<f64>::zeros(n, k);
-        matmul(
-            full.as_mut(),
-            Accum::Replace,
-            self.g,
-            scattered.as_ref(),
-            1.0,
-            par,
-        );
+        self.g.apply(full.as_mut(), scattered.as_ref(), par);
         for j in 0..k {
             for (i, (&ri, &si)) in self.r.iter().zip(self.s).enumerate() {
                 out[(i, j)] = si * full[(ri, j)];

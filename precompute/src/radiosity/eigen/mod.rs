@@ -22,6 +22,8 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatRef, Par, Side};
 use krylov::{block_lanczos, KrylovSettings, ScaledOp};
 
+use crate::formfactor::operator::FormFactorOperator;
+
 /// Which eigenproblem the basis diagonalises: the runtime's own type, so that the name a
 /// basis records is the one the precompute used.
 pub use eigenrad_runtime::Formulation;
@@ -155,18 +157,11 @@ pub enum EigenError {
 
 /// Checks `g` (n×n, finite, symmetric), `area` (> 0) and `reflectance` (in `[0, 1)`).
 pub(crate) fn check_inputs(
-    g: MatRef<'_, f64>,
+    g: &dyn FormFactorOperator,
     area: &[f64],
     reflectance: &[f64],
 ) -> Result<(), EigenError> {
-    let n = g.nrows();
-    if g.ncols() != n {
-        return Err(EigenError::DimensionMismatch {
-            what: "G columns",
-            expected: n,
-            found: g.ncols(),
-        });
-    }
+    let n = g.len();
     if area.len() != n {
         return Err(EigenError::DimensionMismatch {
             what: "area",
@@ -198,7 +193,7 @@ pub(crate) fn check_inputs(
     let mut gmax = 0.0f64;
     for j in 0..n {
         for i in 0..n {
-            let x = g[(i, j)];
+            let x = g.entry(i, j);
             if !x.is_finite() {
                 return Err(EigenError::NonFinite { row: i, col: j });
             }
@@ -208,7 +203,7 @@ pub(crate) fn check_inputs(
     let mut worst = (0.0f64, 0, 0);
     for j in 0..n {
         for i in j + 1..n {
-            let d = (g[(i, j)] - g[(j, i)]).abs();
+            let d = (g.entry(i, j) - g.entry(j, i)).abs();
             if d > worst.0 {
                 worst = (d, i, j);
             }
@@ -257,7 +252,7 @@ pub fn split_weight(mu: f64) -> f64 {
 /// has an explicit residual `‖H u − μ u‖₂ ≤` [`RESIDUAL_TOLERANCE`], else
 /// [`EigenError::NoConvergence`].
 pub fn modes(
-    g: MatRef<'_, f64>,
+    g: &dyn FormFactorOperator,
     area: &[f64],
     reflectance: &[f64],
     formulation: Formulation,
@@ -272,7 +267,7 @@ pub fn modes(
         return Ok(Modes {
             formulation,
             values: Vec::new(),
-            vectors: Mat::zeros(g.nrows(), 0),
+            vectors: Mat::zeros(g.len(), 0),
             solver_used: if solver == Solver::Partial {
                 Solver::Partial
             } else {
@@ -324,9 +319,14 @@ fn scatter(n: usize, r: &[usize], scale: &[f64], u: MatRef<'_, f64>, cols: &[usi
     v
 }
 
-fn split_dense(g: MatRef<'_, f64>, r: &[usize], s: &[f64], p: usize) -> Result<Modes, EigenError> {
+fn split_dense(
+    g: &dyn FormFactorOperator,
+    r: &[usize],
+    s: &[f64],
+    p: usize,
+) -> Result<Modes, EigenError> {
     let nr = r.len();
-    let h = Mat::<f64>::from_fn(nr, nr, |i, j| s[i] * g[(r[i], r[j])] * s[j]);
+    let h = Mat::<f64>::from_fn(nr, nr, |i, j| s[i] * g.entry(r[i], r[j]) * s[j]);
     let evd = h
         .self_adjoint_eigen(Side::Lower)
         .map_err(|_| EigenError::DenseNoConvergence)?;
@@ -361,7 +361,7 @@ fn split_dense(g: MatRef<'_, f64>, r: &[usize], s: &[f64], p: usize) -> Result<M
     Ok(Modes {
         formulation: Formulation::Split,
         values: order.iter().map(|&k| mu[k]).collect(),
-        vectors: scatter(g.nrows(), r, s, u, &order),
+        vectors: scatter(g.len(), r, s, u, &order),
         solver_used: Solver::Dense,
         method: Method::Dense,
         max_residual,
@@ -384,7 +384,7 @@ fn split_key(mu: f64) -> f64 {
 /// Split modes from the partial solver (block Lanczos with full reorthogonalisation, see
 /// [`krylov`]); `Ok(None)` when the problem is too small for a Krylov method to pay off.
 fn split_partial(
-    g: MatRef<'_, f64>,
+    g: &dyn FormFactorOperator,
     r: &[usize],
     s: &[f64],
     p: usize,
@@ -406,7 +406,7 @@ fn split_partial(
     let order: Vec<usize> = (0..p).collect();
     Ok(Some(Modes {
         formulation: Formulation::Split,
-        vectors: scatter(g.nrows(), r, s, pairs.vectors.as_ref(), &order),
+        vectors: scatter(g.len(), r, s, pairs.vectors.as_ref(), &order),
         values: pairs.values,
         solver_used: Solver::Partial,
         method: Method::Lanczos,
@@ -415,7 +415,7 @@ fn split_partial(
 }
 
 fn seed_dense(
-    g: MatRef<'_, f64>,
+    g: &dyn FormFactorOperator,
     area: &[f64],
     reflectance: &[f64],
     r: &[usize],
@@ -428,7 +428,7 @@ fn seed_dense(
         } else {
             0.0
         };
-        b - g[(r[i], r[j])]
+        b - g.entry(r[i], r[j])
     });
     let evd = smat
         .self_adjoint_eigen(Side::Lower)
@@ -451,7 +451,7 @@ fn seed_dense(
     Ok(Modes {
         formulation: Formulation::Seed,
         values: lambda,
-        vectors: scatter(g.nrows(), r, &vec![1.0; nr], u, &order),
+        vectors: scatter(g.len(), r, &vec![1.0; nr], u, &order),
         solver_used: Solver::Dense,
         method: Method::Dense,
         max_residual,
@@ -485,12 +485,12 @@ impl Modes {
     #[track_caller]
     pub fn exitance(
         &self,
-        g: MatRef<'_, f64>,
+        g: &dyn FormFactorOperator,
         area: &[f64],
         reflectance: &[f64],
         m0: &[f64],
     ) -> Vec<f64> {
-        let n = g.nrows();
+        let n = g.len();
         assert!(
             area.len() == n && reflectance.len() == n && m0.len() == n && self.vectors.nrows() == n,
             "Modes::exitance: dimensions disagree"
@@ -500,7 +500,7 @@ impl Modes {
         let mut source = vec![0.0; n];
         for i in 0..n {
             if reflectance[i] > 0.0 {
-                let gk: f64 = black.iter().map(|&k| g[(i, k)] * m0[k]).sum();
+                let gk: f64 = black.iter().map(|&k| g.entry(i, k) * m0[k]).sum();
                 source[i] = area[i] / reflectance[i] * m0[i] + gk;
             }
         }
@@ -510,7 +510,7 @@ impl Modes {
                 let mut m = m0.to_vec();
                 for i in 0..n {
                     if reflectance[i] > 0.0 && !black.is_empty() {
-                        let gk: f64 = black.iter().map(|&k| g[(i, k)] * m0[k]).sum();
+                        let gk: f64 = black.iter().map(|&k| g.entry(i, k) * m0[k]).sum();
                         m[i] += reflectance[i] / area[i] * gk;
                     }
                 }

@@ -178,6 +178,51 @@ pub fn sun_light(
     sun::light(scene, occluders, direction, opts, &glazing(scene))
 }
 
+/// One moment's sky as the room's light sources see it: every sky patch's luminance, the
+/// exterior's and the sun's.
+#[derive(Clone, Copy, Debug)]
+pub struct SkyMoment<'a> {
+    /// The sky's patches (site frame).
+    pub patches: SkyPatches,
+    /// Each patch's centre luminance, cd/m², in the patches' order.
+    pub luminances: &'a [f64],
+    /// Global horizontal illuminance of the unobstructed sky and sun, lux: the exterior
+    /// glows at `E_gh / π` cd/m².
+    pub global_horizontal_lux: f64,
+    /// Direct normal illuminance of the sun, lux (0: no sun).
+    pub direct_normal_lux: f64,
+    /// Unit vector towards the sun, room frame.
+    pub toward_sun: Vec3,
+}
+
+/// The daylight of one moment through the scene's windows, as one light (emission of
+/// diffusing windows, direct illuminance everywhere): each sky patch's response times its
+/// centre luminance, the exterior's times `E_gh / π`, the sun's times its direct normal
+/// illuminance. `solve --time` and `render --time` light the room with it.
+///
+/// # Panics
+///
+/// As [`sky_response`]: without a site, or in a scene of more than one band.
+pub fn moment_light(
+    scene: &Scene,
+    occluders: &Occluders,
+    moment: &SkyMoment<'_>,
+    opts: &DaylightOptions,
+) -> ChannelLight {
+    let response = sky_response(scene, occluders, moment.patches, opts);
+    let mut light = response
+        .exterior
+        .scaled(moment.global_horizontal_lux / std::f64::consts::PI);
+    for (luminance, response) in moment.luminances.iter().zip(&response.sky) {
+        light.add_scaled(response, *luminance);
+    }
+    if moment.direct_normal_lux > 0.0 {
+        let sun = sun_light(scene, occluders, moment.toward_sun, opts);
+        light.add_scaled(&sun, moment.direct_normal_lux);
+    }
+    light
+}
+
 /// Transmittance of window `w` (index into [`Scene::windows`]) at incidence angle `theta`
 /// (rad): the glazing's, or a test's.
 pub(crate) type Transmittance<'a> = dyn Fn(usize, f64) -> f64 + Sync + 'a;

@@ -126,8 +126,7 @@ fn eigen_sphere_rank_one_exact_with_one_mode() {
     let avg = m0.iter().zip(&area).map(|(m, a)| m * a).sum::<f64>() / total;
     let expect: Vec<f64> = m0.iter().map(|m| m + rho * avg / (1.0 - rho)).collect();
     for solver in [Solver::Dense, Solver::Partial] {
-        let modes =
-            modes(g.as_ref(), &area, &refl, Formulation::Split, 1, solver).expect("sphere modes");
+        let modes = modes(&g, &area, &refl, Formulation::Split, 1, solver).expect("sphere modes");
         assert!(
             (modes.values[0] - rho).abs() < 1e-12,
             "{solver:?}: μ = {}",
@@ -141,7 +140,7 @@ fn eigen_sphere_rank_one_exact_with_one_mode() {
                 "{solver:?}: v not constant"
             );
         }
-        let m = modes.exitance(g.as_ref(), &area, &refl, &m0);
+        let m = modes.exitance(&g, &area, &refl, &m0);
         let err = max_abs_diff(&m, &expect) / max_abs(&expect);
         assert!(
             err < 1e-12,
@@ -158,15 +157,7 @@ fn eigen_split_full_basis_matches_exact_solve() {
     let s = random_room(80, 4, 11);
     let n = s.g.nrows();
     let nr = s.rho.iter().filter(|r| **r > 0.0).count();
-    let modes = modes(
-        s.g.as_ref(),
-        &s.area,
-        &s.rho,
-        Formulation::Split,
-        n,
-        Solver::Dense,
-    )
-    .expect("modes");
+    let modes = modes(&s.g, &s.area, &s.rho, Formulation::Split, n, Solver::Dense).expect("modes");
     assert_eq!(modes.len(), nr, "p > n_r returns n_r modes");
     // Vᵀ B V = I on reflecting patches
     let mut worst: f64 = 0.0;
@@ -201,7 +192,7 @@ fn eigen_split_full_basis_matches_exact_solve() {
         assert!(split_weight(w[0]).abs() >= split_weight(w[1]).abs());
     }
     // emitters on reflecting patches only
-    let exact = ExactSolver::new(s.g.as_ref(), &s.area, &s.rho).expect("lu");
+    let exact = ExactSolver::new(&s.g, &s.area, &s.rho).expect("lu");
     let mut rng = Rng::new(5);
     let m0: Vec<f64> = (0..n)
         .map(|i| {
@@ -213,7 +204,7 @@ fn eigen_split_full_basis_matches_exact_solve() {
         })
         .collect();
     let want = exact.solve(&m0);
-    let got = modes.exitance(s.g.as_ref(), &s.area, &s.rho, &m0);
+    let got = modes.exitance(&s.g, &s.area, &s.rho, &m0);
     let err = max_abs_diff(&got, &want) / max_abs(&want);
     assert!(err < 1e-10, "split p = n_r vs exact: {err:e}");
 }
@@ -224,18 +215,10 @@ fn eigen_split_full_basis_matches_exact_solve() {
 fn eigen_seed_full_basis_matches_exact_solve() {
     let s = random_room(70, 3, 12);
     let n = s.g.nrows();
-    let modes = modes(
-        s.g.as_ref(),
-        &s.area,
-        &s.rho,
-        Formulation::Seed,
-        n,
-        Solver::Auto,
-    )
-    .expect("modes");
+    let modes = modes(&s.g, &s.area, &s.rho, Formulation::Seed, n, Solver::Auto).expect("modes");
     assert!(modes.values[0] > 0.0);
     assert!(modes.values.windows(2).all(|w| w[0] <= w[1]));
-    let exact = ExactSolver::new(s.g.as_ref(), &s.area, &s.rho).expect("lu");
+    let exact = ExactSolver::new(&s.g, &s.area, &s.rho).expect("lu");
     let mut rng = Rng::new(6);
     let m0: Vec<f64> = (0..n)
         .map(|i| {
@@ -247,18 +230,11 @@ fn eigen_seed_full_basis_matches_exact_solve() {
         })
         .collect();
     let want = exact.solve(&m0);
-    let got = modes.exitance(s.g.as_ref(), &s.area, &s.rho, &m0);
+    let got = modes.exitance(&s.g, &s.area, &s.rho, &m0);
     let err = max_abs_diff(&got, &want) / max_abs(&want);
     assert!(err < 1e-10, "seed p = n_r vs exact: {err:e}");
     assert!(matches!(
-        super::modes(
-            s.g.as_ref(),
-            &s.area,
-            &s.rho,
-            Formulation::Seed,
-            4,
-            Solver::Partial
-        ),
+        super::modes(&s.g, &s.area, &s.rho, Formulation::Seed, 4, Solver::Partial),
         Err(EigenError::Unsupported(_))
     ));
 }
@@ -270,7 +246,7 @@ fn eigen_seed_full_basis_matches_exact_solve() {
 fn eigen_black_emitters_exact_both_formulations() {
     let s = random_room(60, 5, 13);
     let n = s.g.nrows();
-    let exact = ExactSolver::new(s.g.as_ref(), &s.area, &s.rho).expect("lu");
+    let exact = ExactSolver::new(&s.g, &s.area, &s.rho).expect("lu");
     let mut rng = Rng::new(8);
     // Only black patches emit, then everything emits.
     let black_only: Vec<f64> = (0..n)
@@ -286,10 +262,10 @@ fn eigen_black_emitters_exact_both_formulations() {
         .map(|i| black_only[i] + rng.range(0.0, 10.0))
         .collect();
     for f in [Formulation::Split, Formulation::Seed] {
-        let modes = modes(s.g.as_ref(), &s.area, &s.rho, f, n, Solver::Dense).expect("modes");
+        let modes = modes(&s.g, &s.area, &s.rho, f, n, Solver::Dense).expect("modes");
         for m0 in [&black_only, &all] {
             let want = exact.solve(m0);
-            let got = modes.exitance(s.g.as_ref(), &s.area, &s.rho, m0);
+            let got = modes.exitance(&s.g, &s.area, &s.rho, m0);
             assert!(got.iter().all(|x| x.is_finite()));
             let err = max_abs_diff(&got, &want) / max_abs(&want);
             assert!(err < 1e-10, "{f:?} black emitters: {err:e}");
@@ -303,7 +279,7 @@ fn eigen_black_emitters_exact_both_formulations() {
 fn eigen_truncation_split_beats_seed() {
     let s = smooth_room(150, 0.7, 21);
     let n = s.g.nrows();
-    let exact = ExactSolver::new(s.g.as_ref(), &s.area, &s.rho).expect("lu");
+    let exact = ExactSolver::new(&s.g, &s.area, &s.rho).expect("lu");
     let mut rng = Rng::new(9);
     let m0: Vec<f64> = (0..n)
         .map(|_| {
@@ -317,26 +293,11 @@ fn eigen_truncation_split_beats_seed() {
     let want = exact.solve(&m0);
     let norm = want.iter().map(|x| x * x).sum::<f64>().sqrt();
     for p in [4, 8, 16] {
-        let split = modes(
-            s.g.as_ref(),
-            &s.area,
-            &s.rho,
-            Formulation::Split,
-            p,
-            Solver::Dense,
-        )
-        .expect("split");
-        let seed = modes(
-            s.g.as_ref(),
-            &s.area,
-            &s.rho,
-            Formulation::Seed,
-            p,
-            Solver::Dense,
-        )
-        .expect("seed");
+        let split =
+            modes(&s.g, &s.area, &s.rho, Formulation::Split, p, Solver::Dense).expect("split");
+        let seed = modes(&s.g, &s.area, &s.rho, Formulation::Seed, p, Solver::Dense).expect("seed");
         let rel = |m: &Modes| {
-            let got = m.exitance(s.g.as_ref(), &s.area, &s.rho, &m0);
+            let got = m.exitance(&s.g, &s.area, &s.rho, &m0);
             got.iter()
                 .zip(&want)
                 .map(|(a, b)| (a - b).powi(2))
@@ -359,7 +320,7 @@ fn eigen_rejects_bad_input() {
     rho[2] = 1.0;
     assert!(matches!(
         r(modes(
-            s.g.as_ref(),
+            &s.g,
             &s.area,
             &rho,
             Formulation::Split,
@@ -372,7 +333,7 @@ fn eigen_rejects_bad_input() {
     area[4] = 0.0;
     assert!(matches!(
         r(modes(
-            s.g.as_ref(),
+            &s.g,
             &area,
             &s.rho,
             Formulation::Split,
@@ -383,7 +344,7 @@ fn eigen_rejects_bad_input() {
     ));
     assert!(matches!(
         r(modes(
-            s.g.as_ref(),
+            &s.g,
             &s.area[..9],
             &s.rho,
             Formulation::Split,
@@ -396,7 +357,7 @@ fn eigen_rejects_bad_input() {
     g[(1, 3)] *= 1.001;
     assert!(matches!(
         r(modes(
-            g.as_ref(),
+            &g,
             &s.area,
             &s.rho,
             Formulation::Split,
@@ -408,7 +369,7 @@ fn eigen_rejects_bad_input() {
     g[(1, 3)] = f64::NAN;
     assert!(matches!(
         r(modes(
-            g.as_ref(),
+            &g,
             &s.area,
             &s.rho,
             Formulation::Split,
@@ -419,18 +380,10 @@ fn eigen_rejects_bad_input() {
     ));
     // all black: no modes, exitance = M0
     let black = vec![0.0; 10];
-    let m = modes(
-        s.g.as_ref(),
-        &s.area,
-        &black,
-        Formulation::Split,
-        3,
-        Solver::Auto,
-    )
-    .expect("all black");
+    let m = modes(&s.g, &s.area, &black, Formulation::Split, 3, Solver::Auto).expect("all black");
     assert!(m.is_empty());
     let m0 = vec![1.0; 10];
-    assert_eq!(m.exitance(s.g.as_ref(), &s.area, &black, &m0), m0);
+    assert_eq!(m.exitance(&s.g, &s.area, &black, &m0), m0);
 }
 
 /// docs/math.md, "Why a reading's error can grow with p". The split expansion truncated at p
@@ -444,16 +397,9 @@ fn eigen_split_truncation_error_never_grows_in_the_b_norm() {
     let mut grew = 0usize;
     for (s, seed) in [(random_room(60, 0, 21), 1), (smooth_room(60, 0.7, 22), 2)] {
         let n = s.g.nrows();
-        let all = modes(
-            s.g.as_ref(),
-            &s.area,
-            &s.rho,
-            Formulation::Split,
-            n,
-            Solver::Dense,
-        )
-        .expect("modes");
-        let exact = ExactSolver::new(s.g.as_ref(), &s.area, &s.rho).expect("lu");
+        let all =
+            modes(&s.g, &s.area, &s.rho, Formulation::Split, n, Solver::Dense).expect("modes");
+        let exact = ExactSolver::new(&s.g, &s.area, &s.rho).expect("lu");
         let mut rng = Rng::new(seed);
         // A random pattern over every patch, and one patch emitting alone.
         let random: Vec<f64> = (0..n).map(|_| rng.range(0.0, 50.0)).collect();
@@ -474,7 +420,7 @@ fn eigen_split_truncation_error_never_grows_in_the_b_norm() {
                     vectors: all.vectors.subcols(0, p).to_owned(),
                     ..all.clone()
                 };
-                let got = truncated.exitance(s.g.as_ref(), &s.area, &s.rho, &m0);
+                let got = truncated.exitance(&s.g, &s.area, &s.rho, &m0);
                 let error: Vec<f64> = got.iter().zip(&want).map(|(g, w)| g - w).collect();
                 let e = b_norm(&error);
                 if let Some((e_before, error_before)) = &previous {

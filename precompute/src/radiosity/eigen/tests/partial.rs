@@ -14,19 +14,11 @@ fn eigen_partial_agrees_with_dense() {
     s.rho[17] = 0.0;
     let p = 24;
     let t = Instant::now();
-    let dense = modes(
-        s.g.as_ref(),
-        &s.area,
-        &s.rho,
-        Formulation::Split,
-        p,
-        Solver::Dense,
-    )
-    .expect("dense");
+    let dense = modes(&s.g, &s.area, &s.rho, Formulation::Split, p, Solver::Dense).expect("dense");
     let td = t.elapsed();
     let t = Instant::now();
     let part = modes(
-        s.g.as_ref(),
+        &s.g,
         &s.area,
         &s.rho,
         Formulation::Split,
@@ -90,15 +82,8 @@ pub(crate) fn partial_terminates(n: usize, p: usize) {
     let area = vec![1.0; n];
     let rho = vec![0.5; n];
     let t = Instant::now();
-    let m = modes(
-        g.as_ref(),
-        &area,
-        &rho,
-        Formulation::Split,
-        p,
-        Solver::Partial,
-    )
-    .expect("partial on random symmetric");
+    let m = modes(&g, &area, &rho, Formulation::Split, p, Solver::Partial)
+        .expect("partial on random symmetric");
     println!(
         "random symmetric n = {n}, p = {p}: {:?} via {:?}, max residual {:e}",
         t.elapsed(),
@@ -118,15 +103,7 @@ pub(crate) fn partial_terminates(n: usize, p: usize) {
     }
     if n <= 1500 {
         // The kept modes are the top-|c| ones: compare with the dense solve (1e-8).
-        let d = modes(
-            g.as_ref(),
-            &area,
-            &rho,
-            Formulation::Split,
-            p,
-            Solver::Dense,
-        )
-        .expect("dense");
+        let d = modes(&g, &area, &rho, Formulation::Split, p, Solver::Dense).expect("dense");
         let err = max_abs_diff(&d.values, &m.values);
         assert!(err < 1e-8, "partial vs dense eigenvalues differ by {err:e}");
     }
@@ -161,7 +138,7 @@ fn eigen_faer_krylov_schur_issue_262() {
         let g = random_symmetric(n, 41);
         let r: Vec<usize> = (0..n).collect();
         let s = vec![0.5f64.sqrt(); n];
-        let op = krylov::ScaledOp::new(g.as_ref(), &r, &s);
+        let op = krylov::ScaledOp::new(&g, &r, &s);
         let params = PartialEigenParams {
             min_dim: 48,
             max_dim: 96,
@@ -201,15 +178,7 @@ fn eigen_timing() {
     for n in [1000, 2000] {
         let s = smooth_room(n, 0.8, 51);
         let t = Instant::now();
-        let m = modes(
-            s.g.as_ref(),
-            &s.area,
-            &s.rho,
-            Formulation::Split,
-            64,
-            Solver::Dense,
-        )
-        .expect("dense");
+        let m = modes(&s.g, &s.area, &s.rho, Formulation::Split, 64, Solver::Dense).expect("dense");
         println!(
             "dense   n = {n}, p = 64: {:?} (residual {:e})",
             t.elapsed(),
@@ -220,7 +189,7 @@ fn eigen_timing() {
         let s = smooth_room(n, 0.8, 52);
         let t = Instant::now();
         let m = modes(
-            s.g.as_ref(),
+            &s.g,
             &s.area,
             &s.rho,
             Formulation::Split,
@@ -237,7 +206,7 @@ fn eigen_timing() {
         let g = random_symmetric(n, 53);
         let t = Instant::now();
         let m = modes(
-            g.as_ref(),
+            &g,
             &vec![1.0; n],
             &vec![0.5; n],
             Formulation::Split,
@@ -263,7 +232,7 @@ fn eigen_block_lanczos_agrees_with_single_vector() {
     s.rho[3] = 0.0;
     let r: Vec<usize> = (0..s.rho.len()).filter(|&i| s.rho[i] > 0.0).collect();
     let w: Vec<f64> = r.iter().map(|&i| (s.rho[i] / s.area[i]).sqrt()).collect();
-    let op = krylov::ScaledOp::new(s.g.as_ref(), &r, &w);
+    let op = krylov::ScaledOp::new(&s.g, &r, &w);
     let settings = krylov::KrylovSettings {
         tol: 1e-11,
         accept: RESIDUAL_TOLERANCE,
