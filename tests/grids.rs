@@ -23,7 +23,7 @@ use eigenrad::precompute::formfactor::{self, FormFactorOptions, Occluders};
 use eigenrad::precompute::geometry::Vec3;
 use eigenrad::precompute::pipeline::{self, BuildOptions, ModeSelection};
 use eigenrad::precompute::radiosity::eigen::Solver;
-use eigenrad::precompute::scene;
+use eigenrad::precompute::scene::{self, FieldOfView};
 
 /// The exact path against the same exact exitance and point form factors: both are the same
 /// f64 sums in another order, 1e-9 relative.
@@ -112,7 +112,7 @@ fn independent(path: &Path, exact: &Readout) -> Vec<Vec<f64>> {
                     let f = formfactor::point_form_factors(
                         Vec3::new(x, y, z),
                         normal,
-                        None,
+                        FieldOfView::HEMISPHERE,
                         &scene.patches,
                         &occluders,
                     );

@@ -11,11 +11,20 @@ use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use crate::error::{Error, Result};
+/// A file that could not be written: the target's path and the operating system's error. The
+/// commands report it as [`crate::Error::Io`].
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {reason}", path.display())]
+pub struct WriteError {
+    /// The file.
+    pub path: PathBuf,
+    /// The operating system's error.
+    pub reason: std::io::Error,
+}
 
 /// Writes `bytes` to `path` atomically.
-pub fn write(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io = |reason| Error::Io {
+pub fn write(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+    let io = |reason| WriteError {
         path: path.to_path_buf(),
         reason,
     };

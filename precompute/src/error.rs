@@ -103,3 +103,21 @@ pub enum Error {
     #[error("evaluator thread: {0}")]
     Thread(String),
 }
+
+impl From<crate::atomic::WriteError> for Error {
+    fn from(e: crate::atomic::WriteError) -> Error {
+        Error::Io {
+            path: e.path,
+            reason: e.reason,
+        }
+    }
+}
+
+impl From<crate::daylight::sun::SunError> for Error {
+    fn from(e: crate::daylight::sun::SunError) -> Error {
+        Error::Daylight {
+            what: e.what,
+            reason: e.reason,
+        }
+    }
+}

@@ -1,24 +1,27 @@
 //! Host precompute for eigenrad: scene in; form factors, eigenbasis, serialized basis and an
 //! accuracy report out. The `eigenrad` command is a thin layer over this library.
 //!
-//! The modules are the pipeline's stages, each using only the ones above it:
+//! The modules are the pipeline's stages, each using only the ones above it (no module
+//! imports one below it, and none imports another that imports it):
 //!
 //! | module | stage |
 //! |---|---|
 //! | [`geometry`] | points, polygons, patches |
+//! | [`atomic`] | files written atomically: outputs and cache entries |
 //! | [`memory`] | what a build of n patches holds, the solvers' size thresholds, the machine's memory |
-//! | [`scene`] | scene files, OBJ/MTL, meshing |
-//! | [`formfactor`] | form factors with occlusion, sensor and zone rows, their health |
+//! | [`daylight`] | the sun's position from date, time and site; the site's and the room's frames (the sky models are the runtime's) |
+//! | [`scene`] | scene files, OBJ/MTL, meshing, the receivers every light path walks |
+//! | [`formfactor`] | the form-factor operator, form factors with occlusion, sensor and zone rows, their health |
 //! | [`cache`] | the patch form factors and sensor and zone rows kept on disk between runs, keyed by their content |
 //! | [`sources`] | what emits light: per channel, its emission and direct irradiance |
-//! | [`radiosity`] | the model (`G`, `ρ`, `b`), exact solves, eigenmodes |
+//! | [`radiosity`] | the room's system (operator, `ρ`, receivers, lights) and its exact solves, eigenmodes, expansions |
+//! | `error` | the umbrella [`Error`]: every stage's error, for the stages below and the commands |
 //! | [`basis`] | a model and its modes as the runtime's tables |
 //! | [`accuracy`] | test cases, the error figures, the truncation sweep, evaluation through the runtime |
 //! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
 //! | [`picture`] | false-colour pictures: a work plane's plan with isolux lines, the surfaces unfolded (`eigenrad render`) |
 //! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
-//! | [`daylight`] | the sun's position from date, time and site; the site's and the room's frames (the sky models are the runtime's) |
-//! | [`cli`] | what the commands compute and print, atomic file writes |
+//! | [`cli`] | what the commands compute and print |
 pub mod accuracy;
 pub mod atomic;
 pub mod basis;

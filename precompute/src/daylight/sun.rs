@@ -11,7 +11,20 @@
 use chrono::{DateTime, Datelike, FixedOffset};
 use solar_positioning::{delta_t, Location, RefractionCorrection, SolarPositions};
 
-use crate::error::{Error, Result};
+/// A site, a time or the sun's position that cannot be used: `what` names the input (a
+/// command-line flag or a quantity), `reason` says what is wrong. The commands report it as
+/// [`crate::Error::Daylight`].
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{what}: {reason}")]
+pub struct SunError {
+    /// The input: `--lat`, `--lon`, `--elevation`, `--time` or `sun position`.
+    pub what: String,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+/// The result of this module's functions.
+pub type Result<T> = std::result::Result<T, SunError>;
 
 /// Where the room is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -54,8 +67,8 @@ pub struct SunPosition {
     pub azimuth: f64,
 }
 
-fn daylight_error(what: &str, reason: impl Into<String>) -> Error {
-    Error::Daylight {
+fn daylight_error(what: &str, reason: impl Into<String>) -> SunError {
+    SunError {
         what: what.to_owned(),
         reason: reason.into(),
     }

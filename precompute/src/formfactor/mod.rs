@@ -51,6 +51,7 @@ pub use health::{
 pub(crate) use quadrature::{for_each_on_cell, gauss_legendre, split_cell};
 
 use crate::geometry::{Patch, Vec3};
+use crate::scene::FieldOfView;
 use faer::Mat;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use kernel::Cone;
@@ -262,14 +263,14 @@ fn row_sums(m: &Mat<f64>) -> Vec<f64> {
     sums
 }
 
-/// Differential element (a point sensor at `point`, metres, facing the unit `normal`, optional
-/// field-of-view half-angle in radians: only directions within that cone of the normal count)
+/// Differential element (a point sensor at `point`, metres, facing the unit `normal`; only
+/// directions within its `field` of view count)
 /// to every patch: `F_sj` (dimensionless) such that irradiance `E = Σ_j F_sj M_j` (W/m² from
 /// exitances in W/m², or lux from lm/m²). With occlusion by `occluders`.
 pub fn point_form_factors(
     point: Vec3,
     normal: Vec3,
-    half_angle: Option<f64>,
+    field: FieldOfView,
     patches: &[Patch],
     occluders: &Occluders,
 ) -> Vec<f64> {
@@ -283,7 +284,7 @@ pub fn point_form_factors(
         refine_gaps: false,
     };
     let normal = normal.normalized();
-    let cone = half_angle.and_then(|a| Cone::new(normal, a));
+    let cone = field.half_angle().and_then(|a| Cone::new(normal, a));
     let viewer = Viewer {
         point,
         normal,

@@ -8,7 +8,7 @@ use crate::formfactor::operator::FormFactorOperator;
 use rayon::prelude::*;
 
 use crate::formfactor::{self, FormFactorOptions, Occluders};
-use crate::geometry::Vec3;
+use crate::scene::receivers::{receivers, Receiver};
 use crate::scene::{Scene, Zone, ZoneKind};
 
 /// Area of a zone, m².
@@ -19,19 +19,7 @@ pub fn zone_area(scene: &Scene, zone: &Zone) -> f64 {
     }
 }
 
-/// Every zone's grid points in output order: (zone index, position in m, unit normal).
-pub fn grid_points(scene: &Scene) -> impl Iterator<Item = (usize, Vec3, Vec3)> + '_ {
-    scene.zones.iter().enumerate().flat_map(|(z, zone)| {
-        zone.grid
-            .iter()
-            .flat_map(move |g| g.points().map(move |(p, normal)| (z, p, normal)))
-    })
-}
-
-/// Number of sensors plus zones: the index of the first grid point among the outputs.
-pub fn grid_offset(scene: &Scene) -> usize {
-    scene.sensors.len() + scene.zones.len()
-}
+pub use crate::scene::receivers::{grid_offset, grid_points};
 
 /// One row per sensor (point form factors with occlusion and field of view), then one per
 /// zone (area-weighted average of its patches' or receivers' form-factor rows), then one per
@@ -46,22 +34,15 @@ pub fn output_rows(
     opts: &FormFactorOptions,
 ) -> Vec<Vec<f64>> {
     let n = scene.patches.len();
-    let mut rows: Vec<Vec<f64>> = scene
-        .sensors
-        .par_iter()
-        .map(|s| {
-            formfactor::point_form_factors(
-                s.position,
-                s.normal,
-                s.half_angle,
-                &scene.patches,
-                occluders,
-            )
-        })
-        .collect();
-    for zone in &scene.zones {
-        let row = match &zone.kind {
-            ZoneKind::Surfaces(patches) => {
+    let all: Vec<Receiver> = receivers(scene).collect();
+    all.par_iter()
+        .map(|receiver| match *receiver {
+            Receiver::Point {
+                position,
+                normal,
+                field,
+            } => formfactor::point_form_factors(position, normal, field, &scene.patches, occluders),
+            Receiver::Surfaces(patches) => {
                 // Σ_i A_i F_ij / Σ A_i = Σ_i G_ij / Σ A_i, a row of G at a time.
                 let total: f64 = patches.iter().map(|&i| area[i]).sum();
                 let mut sum = vec![0.0; n];
@@ -74,7 +55,7 @@ pub fn output_rows(
                 }
                 sum.iter().map(|s| s / total).collect()
             }
-            ZoneKind::WorkPlane { receivers, .. } => {
+            Receiver::Plane(receivers) => {
                 let f =
                     formfactor::receiver_form_factors(receivers, &scene.patches, occluders, opts);
                 let total: f64 = receivers.iter().map(|r| r.area).sum();
@@ -89,12 +70,6 @@ pub fn output_rows(
                     })
                     .collect()
             }
-        };
-        rows.push(row);
-    }
-    let points: Vec<(usize, Vec3, Vec3)> = grid_points(scene).collect();
-    rows.par_extend(points.par_iter().map(|&(_, position, normal)| {
-        formfactor::point_form_factors(position, normal, None, &scene.patches, occluders)
-    }));
-    rows
+        })
+        .collect()
 }

@@ -427,7 +427,13 @@ fn point_under_rectangle_corner_matches_howell_b3() {
     let (a, b, c) = (1.3, 0.7, 0.9);
     let rect = grid(v(0.0, 0.0, c), v(0.0, b, 0.0), v(a, 0.0, 0.0), 1, 1, 0);
     let occ = Occluders::new(&rect);
-    let f = point_form_factors(v(0.0, 0.0, 0.0), v(0.0, 0.0, 1.0), None, &rect, &occ);
+    let f = point_form_factors(
+        v(0.0, 0.0, 0.0),
+        v(0.0, 0.0, 1.0),
+        FieldOfView::HEMISPHERE,
+        &rect,
+        &occ,
+    );
     let exact = howell_b3(a, b, c);
     println!(
         "B-3: F = {:.9}, exact {exact:.9}, error {:.1e}",
@@ -463,8 +469,8 @@ fn rays_take_over_beyond_the_shadow_capacities() {
     let per_patch = Occluders::new(&scene);
     let per_face = Occluders::with_faces(&scene, &faces);
     let (x, up) = (v(1.9, 1.6, 0.1), v(0.0, 0.0, 1.0));
-    let rays = point_form_factors(x, up, None, &scene, &per_patch);
-    let exact = point_form_factors(x, up, None, &scene, &per_face);
+    let rays = point_form_factors(x, up, FieldOfView::HEMISPHERE, &scene, &per_patch);
+    let exact = point_form_factors(x, up, FieldOfView::HEMISPHERE, &scene, &per_face);
     let ceiling = |f: &[f64]| -> f64 {
         (0..first)
             .filter(|&i| scene[i].normal.z < -0.5)
@@ -500,13 +506,13 @@ fn points_in_closed_room_see_everything() {
     let occ_empty = Occluders::new(&empty);
     let occ_full = Occluders::new(&furnished);
     for (p, n) in sensors {
-        let s: f64 = point_form_factors(p, n, None, &empty, &occ_empty)
+        let s: f64 = point_form_factors(p, n, FieldOfView::HEMISPHERE, &empty, &occ_empty)
             .iter()
             .sum();
         println!("point {p:?}: Σ F = {s:.9} (empty room)");
         assert!((s - 1.0).abs() < 1e-6);
         if p.z > 1.2 || p.z < 0.5 || p.x < 1.5 || p.x > 2.5 {
-            let s: f64 = point_form_factors(p, n, None, &furnished, &occ_full)
+            let s: f64 = point_form_factors(p, n, FieldOfView::HEMISPHERE, &furnished, &occ_full)
                 .iter()
                 .sum();
             println!("point {p:?}: Σ F = {s:.9} (with blocker)");
@@ -525,7 +531,7 @@ fn point_field_of_view_sees_sin_squared_of_ceiling() {
     let f = point_form_factors(
         v(2.0, 1.5, 1.5),
         v(0.0, 0.0, 1.0),
-        Some(alpha),
+        FieldOfView::cone(Some(alpha)),
         &empty,
         &occ,
     );

@@ -22,6 +22,7 @@ mod observers;
 mod openings;
 pub mod photometry;
 mod primitives;
+pub mod receivers;
 #[cfg(test)]
 mod tests;
 mod winding;
@@ -38,6 +39,7 @@ pub use grid::Grid;
 pub use inputs::{inputs, SceneInputs};
 #[cfg(test)]
 pub(crate) use luminaires::frame as luminaire_frame;
+pub use receivers::{FieldOfView, Receiver};
 
 /// The spectral bands a scene is computed in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

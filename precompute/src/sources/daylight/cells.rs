@@ -6,6 +6,7 @@ use super::outside::{centre, clip};
 use super::Ctx;
 use crate::formfactor::{for_each_on_cell, split_cell, Shaft};
 use crate::geometry::Vec3;
+use crate::scene::FieldOfView;
 
 /// Most Gauss–Legendre points per side (a cell's samples live in a fixed buffer).
 pub(super) const MAX_ORDER: usize = 8;
@@ -18,8 +19,8 @@ const NOTHING: usize = usize::MAX;
 pub(super) struct Viewer<'a> {
     pub(super) x: Vec3,
     pub(super) normal: Vec3,
-    /// Cosine of a sensor's half-angle: only directions within it count.
-    pub(super) cone: Option<f64>,
+    /// What it sees: only directions within it count.
+    pub(super) field: FieldOfView,
     /// Patches whose faces do not block (the receiving patch, the window patch).
     pub(super) ignore: &'a [usize],
 }
@@ -61,7 +62,7 @@ impl Ctx<'_> {
     }
 
     /// [`Ctx::window_pane`] for window patch `j` seen from a point `x` facing `normal` (within
-    /// the cone of cosine `cone`): the pane, its shaft to the point, and the point as viewer,
+    /// its `field` of view): the pane, its shaft to the point, and the point as viewer,
     /// with the window patch itself not blocking.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn window_patch_at_point(
@@ -69,7 +70,7 @@ impl Ctx<'_> {
         j: usize,
         x: Vec3,
         normal: Vec3,
-        cone: Option<f64>,
+        field: FieldOfView,
         sample: &Sample,
         scale: f64,
         acc: &mut [f64],
@@ -86,7 +87,7 @@ impl Ctx<'_> {
         let v = Viewer {
             x,
             normal,
-            cone,
+            field,
             ignore: &ignore,
         };
         self.window_pane(v, &shaft, pane, sample, scale, acc);
@@ -193,7 +194,7 @@ impl Ctx<'_> {
         let d = d / r;
         let cx = v.normal.dot(d);
         let cw = -pane.normal.dot(d);
-        if !(cx > 0.0 && cw > 0.0) || v.cone.is_some_and(|c| cx < c) {
+        if !(cw > 0.0 && v.field.admits(cx)) {
             return None;
         }
         let clear = shaft.is_clear() || self.occluders.visible_in(shaft, v.x, y, v.ignore);

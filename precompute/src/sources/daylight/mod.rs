@@ -61,7 +61,8 @@ use rayon::prelude::*;
 use super::ChannelLight;
 use crate::formfactor::{gauss_legendre, Occluders};
 use crate::geometry::{Patch, Vec3};
-use crate::scene::{Scene, ZoneKind};
+use crate::scene::receivers::{receivers, Receiver};
+use crate::scene::{FieldOfView, Scene};
 
 mod cells;
 pub mod nodes;
@@ -394,7 +395,7 @@ impl<'a> Ctx<'a> {
                 let v = Viewer {
                     x,
                     normal: p.normal,
-                    cone: None,
+                    field: FieldOfView::HEMISPHERE,
                     ignore: &ignore,
                 };
                 let lambert = |_: Vec3, _: Vec3, _: f64| Some((0, std::f64::consts::FRAC_1_PI));
@@ -406,20 +407,20 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// [`Ctx::lambertian_on_patch`] at a point facing `normal`, within the cone of cosine
-    /// `cone`.
+    /// [`Ctx::lambertian_on_patch`] at a point facing `normal`, within its `field`
+    /// of view.
     fn lambertian_at_point(
         &self,
         x: Vec3,
         normal: Vec3,
-        cone: Option<f64>,
+        field: FieldOfView,
         panes: &[(usize, Vec<f64>)],
         acc: &mut [f64],
     ) {
         for (j, exitance) in panes {
             let lambert = |_: Vec3, _: Vec3, _: f64| Some((0, std::f64::consts::FRAC_1_PI));
             let mut f = [0.0];
-            self.window_patch_at_point(*j, x, normal, cone, &lambert, 1.0, &mut f);
+            self.window_patch_at_point(*j, x, normal, field, &lambert, 1.0, &mut f);
             for (a, e) in acc.iter_mut().zip(exitance) {
                 *a += f[0] * e;
             }
@@ -428,13 +429,13 @@ impl<'a> Ctx<'a> {
 
     /// One light per bin from what every receiver gets: `on_patch(patch, ignore)` (the mean
     /// irradiance per bin on a scene patch or a work-plane receiver), `on_point(x, normal,
-    /// cone)` (at a sensor or grid point), and the `emission` of every patch per bin.
+    /// field)` (at a sensor or grid point), and the `emission` of every patch per bin.
     fn gather(
         &self,
         bins: usize,
         emission: &[Vec<f64>],
         on_patch: &(dyn Fn(&Patch, Option<usize>) -> Vec<f64> + Sync),
-        on_point: &(dyn Fn(Vec3, Vec3, Option<f64>) -> Vec<f64> + Sync),
+        on_point: &(dyn Fn(Vec3, Vec3, FieldOfView) -> Vec<f64> + Sync),
     ) -> Vec<ChannelLight> {
         let scene = self.scene;
         let patches: Vec<Vec<f64>> = scene
@@ -443,42 +444,40 @@ impl<'a> Ctx<'a> {
             .enumerate()
             .map(|(i, p)| on_patch(p, Some(i)))
             .collect();
-        let mut outputs: Vec<Vec<f64>> = scene
-            .sensors
-            .par_iter()
-            .map(|s| on_point(s.position, s.normal, s.half_angle.map(f64::cos)))
-            .collect();
-        for zone in &scene.zones {
+        let mean = |members: Vec<(f64, Vec<f64>)>, area: f64| {
             let mut mean = vec![0.0; bins];
-            let (members, area): (Vec<(f64, Vec<f64>)>, f64) = match &zone.kind {
-                ZoneKind::Surfaces(list) => (
+            for (a, e) in members {
+                for (m, v) in mean.iter_mut().zip(e) {
+                    *m += a * v / area;
+                }
+            }
+            mean
+        };
+        let all: Vec<Receiver> = receivers(scene).collect();
+        let outputs: Vec<Vec<f64>> = all
+            .par_iter()
+            .map(|receiver| match *receiver {
+                Receiver::Point {
+                    position,
+                    normal,
+                    field,
+                } => on_point(position, normal, field),
+                Receiver::Surfaces(list) => mean(
                     list.iter()
                         .map(|&i| (scene.patches[i].area, patches[i].clone()))
                         .collect(),
                     list.iter().map(|&i| scene.patches[i].area).sum(),
                 ),
                 // Receivers do not block light: nothing to ignore.
-                ZoneKind::WorkPlane { receivers, .. } => (
+                Receiver::Plane(receivers) => mean(
                     receivers
                         .par_iter()
                         .map(|r| (r.area, on_patch(r, None)))
                         .collect(),
                     receivers.iter().map(|r| r.area).sum(),
                 ),
-            };
-            for (a, e) in members {
-                for (m, v) in mean.iter_mut().zip(e) {
-                    *m += a * v / area;
-                }
-            }
-            outputs.push(mean);
-        }
-        let points: Vec<_> = crate::formfactor::outputs::grid_points(scene).collect();
-        outputs.par_extend(
-            points
-                .par_iter()
-                .map(|&(_, position, normal)| on_point(position, normal, None)),
-        );
+            })
+            .collect();
         (0..bins)
             .map(|b| ChannelLight {
                 emission: vec![emission.iter().map(|e| e[b]).collect()],

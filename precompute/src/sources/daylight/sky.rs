@@ -8,7 +8,7 @@ use super::outside::{Outside, Seen};
 use super::{facing, Aperture, Ctx, DaylightOptions, SkyResponse, Transmittance};
 use crate::formfactor::{for_each_on_cell, Occluders, Shaft};
 use crate::geometry::{Patch, Vec3};
-use crate::scene::Scene;
+use crate::scene::{FieldOfView, Scene};
 
 /// [`super::sky_response`] with the transmittance `tau` in place of the glazings'.
 pub(crate) fn response(
@@ -34,9 +34,9 @@ pub(crate) fn response(
         ctx.lambertian_on_patch(p, ignore, &panes, &mut acc);
         acc
     };
-    let on_point = |x: Vec3, normal: Vec3, cone: Option<f64>| {
-        let mut acc = ctx.sky_at_point(x, normal, cone, bins);
-        ctx.lambertian_at_point(x, normal, cone, &panes, &mut acc);
+    let on_point = |x: Vec3, normal: Vec3, field: FieldOfView| {
+        let mut acc = ctx.sky_at_point(x, normal, field, bins);
+        ctx.lambertian_at_point(x, normal, field, &panes, &mut acc);
         acc
     };
     let mut sky = ctx.gather(bins, &emission, &on_patch, &on_point);
@@ -115,7 +115,7 @@ impl Ctx<'_> {
                 let v = Viewer {
                     x,
                     normal: p.normal,
-                    cone: None,
+                    field: FieldOfView::HEMISPHERE,
                     ignore: &t.ignore,
                 };
                 self.window_pane(v, &t.shaft, pane, sample, weight / p.area, &mut acc);
@@ -124,20 +124,20 @@ impl Ctx<'_> {
         acc
     }
 
-    /// Illuminance per bin at a point facing `normal` (within the cone of cosine `cone`)
+    /// Illuminance per bin at a point facing `normal` (within its `field` of view)
     /// from the clear windows.
     pub(super) fn sky_at_point(
         &self,
         x: Vec3,
         normal: Vec3,
-        cone: Option<f64>,
+        field: FieldOfView,
         bins: usize,
     ) -> Vec<f64> {
         let mut acc = vec![0.0; bins];
         for a in self.apertures.iter().filter(|a| !a.diffusing) {
             let sample = self.clear_sample(a.window);
             for &j in &a.patches {
-                self.window_patch_at_point(j, x, normal, cone, &sample, 1.0, &mut acc);
+                self.window_patch_at_point(j, x, normal, field, &sample, 1.0, &mut acc);
             }
         }
         acc

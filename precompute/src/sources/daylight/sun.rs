@@ -7,7 +7,7 @@ use super::outside::{area, clip, ray_polygon, Outside};
 use super::{Aperture, ChannelLight, Ctx, DaylightOptions, Transmittance};
 use crate::formfactor::Occluders;
 use crate::geometry::{doubled_vector_area, Patch, Vec3};
-use crate::scene::Scene;
+use crate::scene::{FieldOfView, Scene};
 
 /// [`super::sun_light`] with the transmittance `tau` in place of the glazings'.
 pub(crate) fn light(
@@ -38,9 +38,9 @@ pub(crate) fn light(
         ctx.lambertian_on_patch(p, ignore, &panes, &mut acc);
         acc
     };
-    let on_point = |x: Vec3, normal: Vec3, cone: Option<f64>| {
-        let mut acc = vec![ctx.sun_at_point(x, normal, cone, s)];
-        ctx.lambertian_at_point(x, normal, cone, &panes, &mut acc);
+    let on_point = |x: Vec3, normal: Vec3, field: FieldOfView| {
+        let mut acc = vec![ctx.sun_at_point(x, normal, field, s)];
+        ctx.lambertian_at_point(x, normal, field, &panes, &mut acc);
         acc
     };
     let mut lights = ctx.gather(1, &emission, &on_patch, &on_point);
@@ -120,11 +120,11 @@ impl Ctx<'_> {
     }
 
     /// Illuminance (lux per lux of direct normal illuminance) at a point facing `normal`
-    /// (within the cone of cosine `cone`) from the sun in direction `s` through the clear
+    /// (within its `field` of view) from the sun in direction `s` through the clear
     /// windows.
-    fn sun_at_point(&self, x: Vec3, normal: Vec3, cone: Option<f64>, s: Vec3) -> f64 {
+    fn sun_at_point(&self, x: Vec3, normal: Vec3, field: FieldOfView, s: Vec3) -> f64 {
         let cx = normal.dot(s);
-        if cx.is_nan() || cx <= 0.0 || cone.is_some_and(|c| cx < c) {
+        if !field.admits(cx) {
             return 0.0;
         }
         let mut e = 0.0;

@@ -105,7 +105,13 @@ fn window_form_factor(x: Vec3, normal: Vec3, z0: f64, z1: f64) -> f64 {
         ]),
         0,
     );
-    formfactor::point_form_factors(x, normal, None, &[part], &Occluders::new(&[]))[0]
+    formfactor::point_form_factors(
+        x,
+        normal,
+        scene::FieldOfView::HEMISPHERE,
+        &[part],
+        &Occluders::new(&[]),
+    )[0]
 }
 
 /// Howell's catalogue, B-3: a point facing a parallel rectangle `[x1, x2] × [y1, y2]` at
@@ -248,7 +254,7 @@ half_angle = 30
     let within = formfactor::point_form_factors(
         s.position,
         s.normal,
-        s.half_angle,
+        scene::FieldOfView::cone(s.half_angle),
         &[window],
         &Occluders::new(&[]),
     )[0];
@@ -349,7 +355,7 @@ fn a_patch_is_its_area_mean() {
             for b in 0..n {
                 let x =
                     v[0] + u * ((a as f64 + 0.5) / n as f64) + w * ((b as f64 + 0.5) / n as f64);
-                let e = ctx.sky_at_point(x, p.normal, None, bins);
+                let e = ctx.sky_at_point(x, p.normal, scene::FieldOfView::HEMISPHERE, bins);
                 for (r, e) in reference.iter_mut().zip(e) {
                     *r += e / (n * n) as f64;
                 }

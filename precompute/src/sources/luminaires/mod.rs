@@ -55,7 +55,8 @@ use super::ChannelLight;
 use crate::formfactor::{for_each_on_cell, gauss_legendre, split_cell, Occluders, Shaft};
 use crate::geometry::{Patch, Vec3};
 use crate::scene::photometry::OpeningShape;
-use crate::scene::{Luminaire, Scene, ZoneKind};
+use crate::scene::receivers::{receivers, Receiver};
+use crate::scene::{FieldOfView, Luminaire, Scene};
 
 mod flux;
 #[cfg(test)]
@@ -127,10 +128,10 @@ pub fn lights_and_flux(
     let (n, m) = (scene.patches.len(), scene.channels.len());
     let gl = gauss_legendre(opts.order.max(1));
     let mut patches = vec![vec![0.0; n]; m];
-    let mut sensors = vec![vec![0.0; scene.sensors.len()]; m];
-    let mut planes = vec![vec![0.0; scene.zones.len()]; m];
-    let points: Vec<_> = crate::formfactor::outputs::grid_points(scene).collect();
-    let mut on_points = vec![vec![0.0; points.len()]; m];
+    // Every receiver in output order: points and work planes lit directly here, surface
+    // zones averaged from their patches once every luminaire has lit them.
+    let all: Vec<Receiver> = receivers(scene).collect();
+    let mut outputs = vec![vec![0.0; all.len()]; m];
     let mut accounts = Vec::with_capacity(scene.luminaires.len());
     for lum in &scene.luminaires {
         let source = Source::new(lum, occluders, opts, &gl);
@@ -151,49 +152,45 @@ pub fn lights_and_flux(
         for (sum, e) in patches[c].iter_mut().zip(on_patches) {
             *sum += e;
         }
-        for (sum, s) in sensors[c].iter_mut().zip(&scene.sensors) {
-            let cone = s.half_angle.map(f64::cos);
-            *sum += source.point(s.position, s.normal, cone, &[]);
-        }
-        for (sum, zone) in planes[c].iter_mut().zip(&scene.zones) {
-            if let ZoneKind::WorkPlane { receivers, .. } = &zone.kind {
-                // Receivers do not block light: nothing to ignore.
-                let lumens: f64 = receivers
-                    .par_iter()
-                    .map(|r| r.area * source.patch(r, &[]))
-                    .sum();
-                *sum += lumens / receivers.iter().map(|r| r.area).sum::<f64>();
-            }
-        }
-        let at_points: Vec<f64> = points
+        let direct: Vec<f64> = all
             .par_iter()
-            .map(|&(_, position, normal)| source.point(position, normal, None, &[]))
+            .map(|receiver| match *receiver {
+                Receiver::Point {
+                    position,
+                    normal,
+                    field,
+                } => source.point(position, normal, field, &[]),
+                Receiver::Plane(receivers) => {
+                    // Receivers do not block light: nothing to ignore.
+                    let lumens: f64 = receivers
+                        .par_iter()
+                        .map(|r| r.area * source.patch(r, &[]))
+                        .sum();
+                    lumens / receivers.iter().map(|r| r.area).sum::<f64>()
+                }
+                Receiver::Surfaces(_) => 0.0,
+            })
             .collect();
-        for (sum, e) in on_points[c].iter_mut().zip(at_points) {
+        for (sum, e) in outputs[c].iter_mut().zip(direct) {
             *sum += e;
         }
     }
     let lights = (0..m)
         .map(|c| {
-            let mut outputs = sensors[c].clone();
-            for (z, zone) in scene.zones.iter().enumerate() {
-                outputs.push(match &zone.kind {
-                    ZoneKind::Surfaces(members) => {
-                        let area: f64 = members.iter().map(|&i| scene.patches[i].area).sum();
-                        let lumens: f64 = members
-                            .iter()
-                            .map(|&i| scene.patches[i].area * patches[c][i])
-                            .sum();
-                        lumens / area
-                    }
-                    ZoneKind::WorkPlane { .. } => planes[c][z],
-                });
+            for (out, receiver) in outputs[c].iter_mut().zip(&all) {
+                if let Receiver::Surfaces(members) = *receiver {
+                    let area: f64 = members.iter().map(|&i| scene.patches[i].area).sum();
+                    let lumens: f64 = members
+                        .iter()
+                        .map(|&i| scene.patches[i].area * patches[c][i])
+                        .sum();
+                    *out = lumens / area;
+                }
             }
-            outputs.extend_from_slice(&on_points[c]);
             ChannelLight {
                 emission: vec![vec![0.0; n]; bands],
                 patch_irradiance: vec![patches[c].clone(); bands],
-                output_irradiance: vec![outputs; bands],
+                output_irradiance: vec![outputs[c].clone(); bands],
             }
         })
         .collect();
@@ -286,11 +283,11 @@ impl<'a> Source<'a> {
         }
     }
 
-    /// Illuminance, lux, at `x` (m) facing the unit `normal`; `cone` is the cosine of a
-    /// sensor's half-angle (only light within it counts); `ignore` the receiving patch.
-    pub fn point(&self, x: Vec3, normal: Vec3, cone: Option<f64>, ignore: &[usize]) -> f64 {
+    /// Illuminance, lux, at `x` (m) facing the unit `normal`; only light within `field`
+    /// counts; `ignore` the receiving patch.
+    pub fn point(&self, x: Vec3, normal: Vec3, field: FieldOfView, ignore: &[usize]) -> f64 {
         let shaft = self.shaft(&[x], normal, ignore);
-        self.lit(x, normal, cone, ignore, shaft.as_ref()).lux
+        self.lit(x, normal, field, ignore, shaft.as_ref()).lux
     }
 
     /// The occluders that may cut light from the opening to a receiver (its `corners`, one for
@@ -334,7 +331,7 @@ impl<'a> Source<'a> {
         &self,
         x: Vec3,
         normal: Vec3,
-        cone: Option<f64>,
+        field: FieldOfView,
         ignore: &[usize],
         shaft: Option<&Shaft>,
     ) -> Received {
@@ -350,7 +347,7 @@ impl<'a> Source<'a> {
             let r2 = v.dot(v);
             let cos = normal.dot(v) / r2.sqrt();
             // NaN (a piece at the point itself) counts as behind.
-            if cos.is_nan() || cos <= 0.0 || cone.is_some_and(|c| cos < c) {
+            if !field.admits(cos) {
                 return;
             }
             let intensity = self.lum.intensity(-v) * share;
@@ -427,7 +424,7 @@ impl<'a> Source<'a> {
         let (mut lumens, mut seen, mut hidden) = (0.0, false, false);
         let (mut first, mut uniform) = (None, true);
         for_each_on_cell(corners, self.gl, |x, w| {
-            let r = self.lit(x, normal, None, ignore, shaft);
+            let r = self.lit(x, normal, FieldOfView::HEMISPHERE, ignore, shaft);
             lumens += w * r.lux;
             seen |= r.lux > 0.0;
             hidden |= r.hidden;

@@ -13,7 +13,7 @@ use crate::geometry::{Patch, Polygon, Vec3};
 use crate::scene::photometry::{
     Distribution, Format, Identity, LampGeometry, Opening, OpeningShape, Photometry, Symmetry, Tilt,
 };
-use crate::scene::{self, luminaire_frame, Luminaire};
+use crate::scene::{self, luminaire_frame, FieldOfView, Luminaire};
 
 fn photometry(
     symmetry: Symmetry,
@@ -140,7 +140,7 @@ fn point_source_over_a_plane_at_points_and_over_patches() {
     let source = Source::new(&lum, &occluders, &opts, &gl);
     // At points: E = I h / (r² + h²)^{3/2}, to rounding.
     for r in [0.0, 0.3, 1.0, 1.9] {
-        let e = source.point(Vec3::new(r, 0.0, 0.0), UP, None, &[]);
+        let e = source.point(Vec3::new(r, 0.0, 0.0), UP, FieldOfView::HEMISPHERE, &[]);
         let exact = i * h / (r * r + h * h).powf(1.5);
         assert!(relative(e, exact) < 1e-12, "r = {r}: {e} against {exact}");
     }
@@ -156,7 +156,7 @@ fn point_source_over_a_plane_at_points_and_over_patches() {
     let p = &patches[27];
     let v = &p.polygon.vertices;
     let exact = i * solid_angle(v[0].x, v[2].x, v[0].y, v[2].y, h) / p.area;
-    let centroid = source.point(p.centroid, UP, None, &[]);
+    let centroid = source.point(p.centroid, UP, FieldOfView::HEMISPHERE, &[]);
     assert!(relative(centroid, exact) > 1e-2);
 }
 
@@ -171,9 +171,12 @@ fn a_blocker_shadows_a_sensor_and_a_patch() {
     let opts = LuminaireOptions::default();
     let gl = gauss_legendre(opts.order);
     let source = Source::new(&lum, &occluders, &opts, &gl);
-    assert_eq!(source.point(Vec3::new(0.1, 0.2, 0.0), UP, None, &[]), 0.0);
+    assert_eq!(
+        source.point(Vec3::new(0.1, 0.2, 0.0), UP, FieldOfView::HEMISPHERE, &[]),
+        0.0
+    );
     let far = Vec3::new(1.5, 0.0, 0.0);
-    let e = source.point(far, UP, None, &[]);
+    let e = source.point(far, UP, FieldOfView::HEMISPHERE, &[]);
     assert!(relative(e, 50.0 * 2.0 / (1.5f64 * 1.5 + 4.0).powf(1.5)) < 1e-12);
     // The blocker's shadow is the square of side 1.2 m around the origin: the four central
     // patches lose exactly that area's share of their light, the rest nothing.
@@ -304,7 +307,7 @@ fn aim_and_spin_turn_the_distribution() {
     let on_wall = source.point(
         Vec3::new(2.0, 0.0, 1.0),
         Vec3::new(-1.0, 0.0, 0.0),
-        None,
+        FieldOfView::HEMISPHERE,
         &[0],
     );
     assert!(relative(on_wall, 1000.0 / 4.0) < 1e-12, "{on_wall}");
@@ -329,10 +332,14 @@ fn aim_and_spin_turn_the_distribution() {
         let l = lopsided(spin);
         let s = Source::new(&l, &occluders, &opts, &gl);
         assert!(
-            relative(s.point(bright, UP, None, &[]), lit) < 1e-12,
+            relative(s.point(bright, UP, FieldOfView::HEMISPHERE, &[]), lit) < 1e-12,
             "spin {spin}"
         );
-        assert_eq!(s.point(dark, UP, None, &[]), 0.0, "spin {spin}");
+        assert_eq!(
+            s.point(dark, UP, FieldOfView::HEMISPHERE, &[]),
+            0.0,
+            "spin {spin}"
+        );
     }
 }
 
@@ -372,7 +379,10 @@ fn a_large_opening_near_a_plane_converges_to_its_exitance_form_factor() {
                 ..LuminaireOptions::default()
             };
             let s = Source::new(&lum, &occluders, &opts, &gl);
-            let error = relative(s.point(Vec3::new(x, 0.0, 0.0), UP, None, &[]), exact);
+            let error = relative(
+                s.point(Vec3::new(x, 0.0, 0.0), UP, FieldOfView::HEMISPHERE, &[]),
+                exact,
+            );
             assert!(
                 error < previous,
                 "x = {x}: not converging: {errors:?} then {error}"
@@ -602,8 +612,18 @@ fn tilt_tables_multiply_each_luminaire_by_the_factor_at_its_tilt() {
         assert_eq!(plain.tilt_factor, 1.0);
         let nadir = tilted.nadir;
         let x = at + nadir * d;
-        let lit = Source::new(&tilted, &occluders, &opts, &gl).point(x, -nadir, None, &[]);
-        let bare = Source::new(&plain, &occluders, &opts, &gl).point(x, -nadir, None, &[]);
+        let lit = Source::new(&tilted, &occluders, &opts, &gl).point(
+            x,
+            -nadir,
+            FieldOfView::HEMISPHERE,
+            &[],
+        );
+        let bare = Source::new(&plain, &occluders, &opts, &gl).point(
+            x,
+            -nadir,
+            FieldOfView::HEMISPHERE,
+            &[],
+        );
         assert!(relative(bare, i / (d * d)) < 1e-12, "{bare}");
         assert!(
             relative(lit, factor * i / (d * d)) < 1e-12,

@@ -1,0 +1,131 @@
+//! The receivers of a scene, the one enumeration every light path walks: the sensors, then
+//! the zones, then every calculation-grid point, in the order of a basis' outputs. The form
+//! factors, the luminaires' direct light and the daylight each say what one receiver gets;
+//! the order, and what a sensor sees, are decided here.
+
+use super::{Scene, ZoneKind};
+use crate::geometry::{Patch, Vec3};
+
+/// The directions a point receiver takes light from: the front hemisphere of its normal, or
+/// a cone of half-angle `α` around it (a shielded photocell).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FieldOfView {
+    /// `α`, radians; `None`: the whole front hemisphere.
+    half_angle: Option<f64>,
+    /// `cos α`, computed once: the quadratures test it at every sample.
+    cos_half_angle: Option<f64>,
+}
+
+impl FieldOfView {
+    /// The whole front hemisphere (grid points, an unshielded sensor).
+    pub const HEMISPHERE: FieldOfView = FieldOfView {
+        half_angle: None,
+        cos_half_angle: None,
+    };
+
+    /// A cone of `half_angle` radians around the normal; `None` is the hemisphere.
+    pub fn cone(half_angle: Option<f64>) -> FieldOfView {
+        FieldOfView {
+            half_angle,
+            cos_half_angle: half_angle.map(f64::cos),
+        }
+    }
+
+    /// The cone's half-angle, radians, as the scene gives it; `None` for the hemisphere.
+    pub fn half_angle(&self) -> Option<f64> {
+        self.half_angle
+    }
+
+    /// `cos α`: a direction at a smaller cosine to the normal is outside; `None` for the
+    /// hemisphere.
+    pub fn cos_half_angle(&self) -> Option<f64> {
+        self.cos_half_angle
+    }
+
+    /// Whether light arriving at cosine `cos` to the normal counts: in front of the receiver
+    /// and inside its cone. NaN never counts.
+    pub fn admits(&self, cos: f64) -> bool {
+        cos > 0.0 && !self.cos_half_angle.is_some_and(|c| cos < c)
+    }
+}
+
+/// One receiver: what an output reads.
+#[derive(Clone, Copy, Debug)]
+pub enum Receiver<'s> {
+    /// A point facing a unit normal: a sensor, or a grid point (hemisphere).
+    Point {
+        /// Position, m.
+        position: Vec3,
+        /// Unit normal of its face.
+        normal: Vec3,
+        /// What it sees.
+        field: FieldOfView,
+    },
+    /// A surface zone: the area-weighted mean over these patches (indices into
+    /// [`Scene::patches`]).
+    Surfaces(&'s [usize]),
+    /// A work plane: the area-weighted mean over its receiving patches, which block no light.
+    Plane(&'s [Patch]),
+}
+
+/// Every receiver of `scene` in output order: the sensors, the zones, then every zone's grid
+/// points.
+pub fn receivers(scene: &Scene) -> impl Iterator<Item = Receiver<'_>> + '_ {
+    let sensors = scene.sensors.iter().map(|s| Receiver::Point {
+        position: s.position,
+        normal: s.normal,
+        field: FieldOfView::cone(s.half_angle),
+    });
+    let zones = scene.zones.iter().map(|z| match &z.kind {
+        ZoneKind::Surfaces(list) => Receiver::Surfaces(list),
+        ZoneKind::WorkPlane { receivers, .. } => Receiver::Plane(receivers),
+    });
+    let points = grid_points(scene).map(|(_, position, normal)| Receiver::Point {
+        position,
+        normal,
+        field: FieldOfView::HEMISPHERE,
+    });
+    sensors.chain(zones).chain(points)
+}
+
+/// Every zone's grid points in output order: (zone index, position in m, unit normal).
+pub fn grid_points(scene: &Scene) -> impl Iterator<Item = (usize, Vec3, Vec3)> + '_ {
+    scene.zones.iter().enumerate().flat_map(|(z, zone)| {
+        zone.grid
+            .iter()
+            .flat_map(move |g| g.points().map(move |(p, normal)| (z, p, normal)))
+    })
+}
+
+/// Number of sensors plus zones: the index of the first grid point among the outputs.
+pub fn grid_offset(scene: &Scene) -> usize {
+    scene.sensors.len() + scene.zones.len()
+}
+
+/// Number of outputs: sensors, zones and grid points.
+pub fn output_count(scene: &Scene) -> usize {
+    grid_offset(scene) + grid_points(scene).count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cone admits what is inside it and in front, the hemisphere everything in front;
+    /// nothing behind or NaN.
+    #[test]
+    fn field_of_view_admits_its_cone() {
+        let cone = FieldOfView::cone(Some(60f64.to_radians()));
+        assert!(cone.admits(1.0));
+        assert!(cone.admits(0.51));
+        assert!(!cone.admits(0.49));
+        assert!(!cone.admits(-0.5));
+        assert!(!cone.admits(f64::NAN));
+        let all = FieldOfView::HEMISPHERE;
+        assert!(all.admits(1e-9));
+        assert!(!all.admits(0.0));
+        assert!(!all.admits(f64::NAN));
+        assert_eq!(all.cos_half_angle(), None);
+        assert!((cone.cos_half_angle().unwrap_or(0.0) - 0.5).abs() < 1e-15);
+    }
+}
