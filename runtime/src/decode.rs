@@ -3,8 +3,9 @@
 //! black patches, channel tables, outputs, grids, daylight.
 //!
 //! Each section checks its tables' lengths against the counts and every stored value against
-//! its range, so that the evaluator reads the tables without checking them again. Sections
-//! run in payload order and the first failure is returned.
+//! its range, so that the evaluator reads the tables without checking them again.
+//! [`Basis::from_bytes`], defined here, runs the sections in payload order and returns the
+//! first failure.
 
 use crate::basis::{Basis, MIN_REFLECTANCE};
 use crate::error::{Error, Result};
@@ -29,34 +30,41 @@ struct Settings {
     precision: Precision,
 }
 
-/// Decodes and checks `bytes`, section by section.
-pub(crate) fn basis(bytes: &[u8]) -> Result<Basis<'_>> {
-    let body = format::check_header(bytes)?;
-    let raw = format::decode_payload(body)?;
-    let Settings {
-        bands,
-        quantity,
-        formulation,
-        precision,
-    } = settings(&raw)?;
-    let counts = counts(&raw, bands)?;
-    names(&raw, &counts)?;
-    eigenvalues(&raw, &counts, formulation)?;
-    patch_tables(&raw, &counts)?;
-    modes(&raw, &counts, precision)?;
-    black_patches(&raw, &counts)?;
-    channel_tables(&raw, &counts, precision)?;
-    outputs(&raw, &counts, precision)?;
-    grids(&raw, &counts, precision)?;
-    daylight(&raw, &counts, quantity, precision)?;
-    Ok(Basis {
-        quantity,
-        formulation,
-        precision,
-        counts,
-        byte_len: format::HEADER_LEN + body.len(),
-        tables: raw,
-    })
+impl<'a> Basis<'a> {
+    /// Decodes and validates a basis in place.
+    ///
+    /// Checks the magic, the format version, the CRC-32 of the payload, every table length
+    /// against the counts, and that every stored number is finite and in range, section by
+    /// section of `docs/format.md`. Vector data stays where it is (flash): only slice
+    /// headers are kept. Any byte string gives `Ok` or an `Err`; none panics.
+    pub fn from_bytes(bytes: &'a [u8]) -> Result<Self> {
+        let body = format::check_header(bytes)?;
+        let raw = format::decode_payload(body)?;
+        let Settings {
+            bands,
+            quantity,
+            formulation,
+            precision,
+        } = settings(&raw)?;
+        let counts = counts(&raw, bands)?;
+        names(&raw, &counts)?;
+        eigenvalues(&raw, &counts, formulation)?;
+        patch_tables(&raw, &counts)?;
+        modes(&raw, &counts, precision)?;
+        black_patches(&raw, &counts)?;
+        channel_tables(&raw, &counts, precision)?;
+        outputs(&raw, &counts, precision)?;
+        grids(&raw, &counts, precision)?;
+        daylight(&raw, &counts, quantity, precision)?;
+        Ok(Basis {
+            quantity,
+            formulation,
+            precision,
+            counts,
+            byte_len: format::HEADER_LEN + body.len(),
+            tables: raw,
+        })
+    }
 }
 
 /// Settings: `bands`, `quantity`, `formulation`, `precision`.
