@@ -1,6 +1,5 @@
 //! A decoded, validated basis: views into the caller's bytes, nothing copied.
 
-use crate::decode;
 use crate::error::{Error, Result};
 use crate::format::{Counts, Formulation, MatrixBytes, Payload, Precision, Quantity, NO_CHANNEL};
 use crate::storage::{f32_at, u16_at, u32_at, Matrix};
@@ -94,17 +93,9 @@ pub struct Site {
     pub utc_offset_minutes: f32,
 }
 
+// The accessors trust the tables: `Basis::from_bytes`, in `decode.rs`, checked them. It
+// lives there so that decoding builds on this type and this module imports nothing of it.
 impl<'a> Basis<'a> {
-    /// Decodes and validates a basis in place.
-    ///
-    /// Checks the magic, the format version, the CRC-32 of the payload, every table length
-    /// against the counts, and that every stored number is finite and in range, section by
-    /// section of `docs/format.md`. Vector data stays where it is (flash): only slice
-    /// headers are kept. Any byte string gives `Ok` or an `Err`; none panics.
-    pub fn from_bytes(bytes: &'a [u8]) -> Result<Self> {
-        decode::basis(bytes)
-    }
-
     /// Spectral bands: 1 (photopic) or 3 (RGB).
     pub fn bands(&self) -> usize {
         self.counts.bands

@@ -17,7 +17,7 @@
 //! or −1.25); this is −1.26, as in Radiance's `gendaylit.c` and DOE-2's daylighting code; the
 //! difference is below 0.03 lm/W at any sun height.
 
-use super::perez::{clearness_bin, Conditions};
+use super::conditions::{clearness_bin, Conditions};
 use crate::error::{Error, Result};
 
 /// Precipitable water (cm) when none is known: 2 cm, Radiance `gendaylit`'s default (its

@@ -31,6 +31,7 @@
 //! use the sky models links none of them.
 
 pub mod cie;
+mod conditions;
 pub mod efficacy;
 pub mod glazing;
 pub mod patches;
@@ -79,6 +80,22 @@ pub(crate) fn check_sun(sun: [f32; 3]) -> Result<[f32; 3]> {
         });
     }
     Ok(sun)
+}
+
+/// `x` in [min, max] (NaN is not), else [`Error::OutOfRange`] with `what` and `range`, the
+/// same bounds in words (no float formatting on the controller).
+pub(crate) fn check_range(
+    x: f32,
+    what: &'static str,
+    min: f32,
+    max: f32,
+    range: &'static str,
+) -> Result<()> {
+    if x >= min && x <= max {
+        Ok(())
+    } else {
+        Err(Error::OutOfRange { what, range })
+    }
 }
 
 /// Gauss–Legendre nodes and weights of order 16 on [−1, 1], the non-negative half (the rule

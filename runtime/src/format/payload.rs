@@ -1,0 +1,347 @@
+//! The payload's wire type, [`Payload`], with [`MatrixBytes`], and its reader: postcard's
+//! encoding of the struct, read field by field in the struct's order.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+
+/// `patch_channel` value of a patch that belongs to no channel.
+pub const NO_CHANNEL: u16 = u16::MAX;
+
+/// A matrix stored row-major in the basis' [`Precision`], with one scale per column: the
+/// value at `(row, col)` is `stored(row, col) × scale[col]` (`scale` is empty for `F32`).
+///
+/// [`Precision`]: super::Precision
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, Default, PartialEq)]
+pub struct MatrixBytes<'a> {
+    /// One little-endian `f32` per column (empty for `F32` storage).
+    #[serde(borrow)]
+    pub scales: &'a [u8],
+    /// `rows × cols` values, row-major.
+    #[serde(borrow)]
+    pub data: &'a [u8],
+}
+
+/// The payload: settings, counts, names, then tables of little-endian numbers, in the order
+/// and with the names of `docs/format.md`'s payload table.
+///
+/// `n` patches, `p` modes, `B` bands (1 or 3), `m` channels, `S` sensors, `Z` zones,
+/// `O = S + Z` outputs (sensors first, then zones), and `G` grid points (every zone's, zone
+/// by zone, piece by piece: the sum of `grid_lattice`'s kept points). Lengths are in values; see
+/// `docs/format.md` for the byte layout and the meaning of every table. A decoded payload is
+/// only parsed; [`Basis::from_bytes`](crate::Basis::from_bytes) is what checks its tables.
+#[derive(Serialize, Deserialize, Clone, Copy, Debug, Default, PartialEq)]
+pub struct Payload<'a> {
+    /// `B`: 1 (photopic) or 3 (RGB).
+    pub bands: u8,
+    /// [`Quantity`](super::Quantity) as its discriminant.
+    pub quantity: u8,
+    /// [`Formulation`](super::Formulation) as its discriminant.
+    pub formulation: u8,
+    /// [`Precision`](super::Precision) as its discriminant.
+    pub precision: u8,
+    /// `n`.
+    pub patch_count: u32,
+    /// `p`.
+    pub mode_count: u32,
+    /// Number of named surfaces.
+    pub surface_count: u32,
+    /// `m`.
+    pub channel_count: u32,
+    /// `S`.
+    pub sensor_count: u32,
+    /// `Z`.
+    pub zone_count: u32,
+    /// Postcard strings, one after the other: surfaces, channels, sensors, zones.
+    #[serde(borrow)]
+    pub names: &'a [u8],
+    /// `B × p` `f32`: per band, `μ_k` (split) or `λ_k` (seed).
+    #[serde(borrow)]
+    pub eigenvalues: &'a [u8],
+    /// `n` `f32`: patch area, m².
+    #[serde(borrow)]
+    pub patch_area: &'a [u8],
+    /// `n × 3` `f32`: patch centroid, m.
+    #[serde(borrow)]
+    pub patch_centroid: &'a [u8],
+    /// `n` `u16`: index of the surface the patch belongs to.
+    #[serde(borrow)]
+    pub patch_surface: &'a [u8],
+    /// `n` `u16`: channel driving the patch's emission, or [`NO_CHANNEL`].
+    #[serde(borrow)]
+    pub patch_channel: &'a [u8],
+    /// `n × B` `f32`: reflectance ρ, 0 or in `[1e-6, 1)`.
+    #[serde(borrow)]
+    pub patch_reflectance: &'a [u8],
+    /// `n × B` `f32`: exitance emitted at channel level 1 (W/m² or lux).
+    #[serde(borrow)]
+    pub patch_emission: &'a [u8],
+    /// `n × (B·p)` matrix: mode vectors, patch-major; column `b·p + k` is mode `k` of band `b`.
+    #[serde(borrow)]
+    pub modes: MatrixBytes<'a>,
+    /// Ascending `u32` patch indices whose reflectance is 0 in at least one band.
+    #[serde(borrow)]
+    pub black_patches: &'a [u8],
+    /// `black × B × p` `f32`: mode-space response to unit exitance of each black patch, with
+    /// the mode coefficient included (split `v_k·G e_j/(1−μ_k)`, seed `v_k·G e_j/λ_k`).
+    #[serde(borrow)]
+    pub black_projection: &'a [u8],
+    /// `n × (m·B)` matrix: each channel's exact exitance on every patch at level 1,
+    /// emission included (W/m² or lux), from the exact solve at build time. Column `c·B + b`.
+    #[serde(borrow)]
+    pub channel_response: MatrixBytes<'a>,
+    /// `S × 7` `f32`: sensor position (m), unit normal, field-of-view half-angle (rad, π for
+    /// a full hemisphere).
+    #[serde(borrow)]
+    pub sensor_geometry: &'a [u8],
+    /// `Z` `f32`: zone area, m².
+    #[serde(borrow)]
+    pub zone_area: &'a [u8],
+    /// `O × B × p` `f32`: each output's irradiance per unit mode amplitude.
+    #[serde(borrow)]
+    pub output_modes: &'a [u8],
+    /// `O × B × m` `f32`: each output's exact irradiance from each channel alone at level 1
+    /// (W/m² or lux).
+    #[serde(borrow)]
+    pub output_channels: &'a [u8],
+    /// `n × O` matrix: view factor from each output to each patch (a zone's is
+    /// area-averaged), for direct light from exitance set patch by patch.
+    #[serde(borrow)]
+    pub output_view: MatrixBytes<'a>,
+    /// `Z` `u32`: the pieces of each zone's calculation grid (0: the zone has none). `Q` is
+    /// their sum.
+    #[serde(borrow)]
+    pub grid_pieces: &'a [u8],
+    /// `Q × 3` `u32`: each piece's lattice, cells along its first and second side, and the
+    /// points it keeps (the cell centres on the piece's area, at most the product).
+    #[serde(borrow)]
+    pub grid_lattice: &'a [u8],
+    /// `Q × 7` `f32`: each piece's layout: largest spacing `p` (m), cell sides (m), band
+    /// left out at the walls (m), the unit normal its points face.
+    #[serde(borrow)]
+    pub grid_layout: &'a [u8],
+    /// `G × 3` `f32`: grid point positions, m.
+    #[serde(borrow)]
+    pub grid_position: &'a [u8],
+    /// `G × B × p` `f32`: each grid point's irradiance per unit mode amplitude.
+    #[serde(borrow)]
+    pub grid_modes: &'a [u8],
+    /// `G × B × m` `f32`: each grid point's exact irradiance from each channel alone at
+    /// level 1 (W/m² or lux).
+    #[serde(borrow)]
+    pub grid_channels: &'a [u8],
+    /// `G × n` matrix: view factor from each grid point to each patch, for direct light from
+    /// exitance set patch by patch.
+    #[serde(borrow)]
+    pub grid_view: MatrixBytes<'a>,
+    /// The daylight's sky: 0 when the basis carries no daylight, 1 for Tregenza's 145
+    /// patches, `n` for Reinhart's subdivision MF:n ([`crate::sky::patches::SkyPatches`]).
+    /// With daylight, `D` = the sky's patches + 1 (the exterior) + the sun nodes is the
+    /// number of daylight nodes; without, every daylight table is empty.
+    pub sky_subdivision: u8,
+    /// Empty, or 5 `f32`: latitude (° north), longitude (° east), elevation (m), the compass
+    /// bearing of the scene's +y axis (°, clockwise from true north) and the site's UTC
+    /// offset (minutes).
+    #[serde(borrow)]
+    pub daylight_site: &'a [u8],
+    /// Empty, or 2 `u32`: the sun grid's declinations and hour angles (rows and columns).
+    #[serde(borrow)]
+    pub sun_lattice: &'a [u8],
+    /// Empty, or 4 `f32`, degrees: the first declination, the step between declinations,
+    /// the first hour angle, the step between hour angles.
+    #[serde(borrow)]
+    pub sun_spacing: &'a [u8],
+    /// Ascending `u32` indices `row · columns + column` of the sun grid's nodes that light
+    /// the room; the others light nothing.
+    #[serde(borrow)]
+    pub sun_nodes: &'a [u8],
+    /// `O × D` `f32`: each output's exact illuminance (lux) per unit of each daylight node:
+    /// per cd/m² of a sky patch, per cd/m² of `E_gh/π` of the exterior, per lux of direct
+    /// normal illuminance of the sun at a node.
+    #[serde(borrow)]
+    pub daylight_outputs: &'a [u8],
+    /// `p × D` `f32`: the mode amplitudes of each daylight node's exact exitance.
+    #[serde(borrow)]
+    pub daylight_modes: &'a [u8],
+    /// `G × D` matrix: each grid point's exact illuminance per unit of each daylight node.
+    #[serde(borrow)]
+    pub daylight_grid: MatrixBytes<'a>,
+}
+
+/// Decodes the postcard payload that fills `body` exactly, borrowing its tables.
+///
+/// The payload is postcard's encoding of [`Payload`]: its fields in order, each `u8` as a
+/// byte, each `u32` as a varint, each table as a varint length and its bytes. They are read
+/// here in three loops (settings, counts, tables) rather than through `Payload`'s derived
+/// `Deserialize`, whose code per field is several times larger in flash; the bytes read are
+/// the same (`decode_payload_reads_what_postcard_derives` in the tests).
+pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
+    fn take<'a, T: Deserialize<'a>>(rest: &mut &'a [u8]) -> Result<T> {
+        let (value, tail) =
+            postcard::take_from_bytes::<T>(rest).map_err(|_| Error::DecodePayload)?;
+        *rest = tail;
+        Ok(value)
+    }
+    let mut rest = body;
+    let mut settings = [0u8; 4];
+    for slot in &mut settings {
+        *slot = take(&mut rest)?;
+    }
+    let mut counts = [0u32; 6];
+    for slot in &mut counts {
+        *slot = take(&mut rest)?;
+    }
+    let mut tables: [&[u8]; 28] = [&[]; 28];
+    for slot in &mut tables {
+        *slot = take(&mut rest)?;
+    }
+    let sky_subdivision: u8 = take(&mut rest)?;
+    let mut daylight: [&[u8]; 8] = [&[]; 8];
+    for slot in &mut daylight {
+        *slot = take(&mut rest)?;
+    }
+    if !rest.is_empty() {
+        return Err(Error::DecodeLength {
+            field: "payload length",
+            expected: body.len() - rest.len(),
+            found: body.len(),
+        });
+    }
+    let [bands, quantity, formulation, precision] = settings;
+    let [patch_count, mode_count, surface_count, channel_count, sensor_count, zone_count] = counts;
+    let matrix = |scales, data| MatrixBytes { scales, data };
+    let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_pieces, grid_lattice, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
+        tables;
+    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data] =
+        daylight;
+    Ok(Payload {
+        bands,
+        quantity,
+        formulation,
+        precision,
+        patch_count,
+        mode_count,
+        surface_count,
+        channel_count,
+        sensor_count,
+        zone_count,
+        names,
+        eigenvalues,
+        patch_area,
+        patch_centroid,
+        patch_surface,
+        patch_channel,
+        patch_reflectance,
+        patch_emission,
+        modes: matrix(modes_scales, modes_data),
+        black_patches,
+        black_projection,
+        channel_response: matrix(response_scales, response_data),
+        sensor_geometry,
+        zone_area,
+        output_modes,
+        output_channels,
+        output_view: matrix(view_scales, view_data),
+        grid_pieces,
+        grid_lattice,
+        grid_layout,
+        grid_position,
+        grid_modes,
+        grid_channels,
+        grid_view: matrix(grid_view_scales, grid_view_data),
+        sky_subdivision,
+        daylight_site,
+        sun_lattice,
+        sun_spacing,
+        sun_nodes,
+        daylight_outputs,
+        daylight_modes,
+        daylight_grid: matrix(daylight_grid_scales, daylight_grid_data),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::indexing_slicing)]
+    use super::*;
+
+    /// Every field set to a value of its own (tables of distinct lengths and contents, counts
+    /// that need multi-byte varints), encoded by postcard from the struct, reads back equal
+    /// through `decode_payload`, and equal to what `Payload`'s derived `Deserialize` reads:
+    /// the three loops take the fields in the struct's order.
+    #[test]
+    fn decode_payload_reads_what_postcard_derives() {
+        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..36u8)
+            .map(|k| {
+                (0..=k)
+                    .map(|i| k.wrapping_mul(31).wrapping_add(i))
+                    .collect()
+            })
+            .collect();
+        let t = |k: usize| store[k].as_slice();
+        let m = |k: usize| MatrixBytes {
+            scales: t(k),
+            data: t(k + 1),
+        };
+        let payload = Payload {
+            bands: 3,
+            quantity: 1,
+            formulation: 2,
+            precision: 7,
+            patch_count: 1,
+            mode_count: 300,
+            surface_count: 70_000,
+            channel_count: 5,
+            sensor_count: u32::MAX,
+            zone_count: 129,
+            names: t(0),
+            eigenvalues: t(1),
+            patch_area: t(2),
+            patch_centroid: t(3),
+            patch_surface: t(4),
+            patch_channel: t(5),
+            patch_reflectance: t(6),
+            patch_emission: t(7),
+            modes: m(8),
+            black_patches: t(10),
+            black_projection: t(11),
+            channel_response: m(12),
+            sensor_geometry: t(14),
+            zone_area: t(15),
+            output_modes: t(16),
+            output_channels: t(17),
+            output_view: m(18),
+            grid_pieces: t(20),
+            grid_lattice: t(21),
+            grid_layout: t(22),
+            grid_position: t(23),
+            grid_modes: t(24),
+            grid_channels: t(25),
+            grid_view: m(26),
+            sky_subdivision: 9,
+            daylight_site: t(28),
+            sun_lattice: t(29),
+            sun_spacing: t(30),
+            sun_nodes: t(31),
+            daylight_outputs: t(32),
+            daylight_modes: t(33),
+            daylight_grid: m(34),
+        };
+        let mut buffer = [0u8; 1024];
+        let body = postcard::to_slice(&payload, &mut buffer).unwrap();
+        assert_eq!(decode_payload(body).unwrap(), payload);
+        assert_eq!(postcard::from_bytes::<Payload<'_>>(body).unwrap(), payload);
+        // One byte short or one byte over is an error, as before.
+        let len = body.len();
+        assert_eq!(
+            decode_payload(&body[..len - 1]).unwrap_err(),
+            Error::DecodePayload
+        );
+        let mut longer = buffer;
+        longer[len] = 0;
+        assert!(matches!(
+            decode_payload(&longer[..len + 1]),
+            Err(Error::DecodeLength { .. })
+        ));
+    }
+}
