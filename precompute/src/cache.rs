@@ -128,6 +128,7 @@ pub fn key(patches: &[Patch], faces: &[Face], opts: &FormFactorOptions) -> [u8; 
         visibility_depth,
         visibility_cell_share,
         occluded_order,
+        operator: _,
     } = opts;
     let mut h = Sha256::new();
     h.update(b"eigenrad patch form factors\0");

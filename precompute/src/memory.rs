@@ -1,7 +1,7 @@
 //! What a build of n patches holds in memory, the sizes at which its solvers change method
 //! (and with it what they hold), and how much of the machine a build may take.
 //!
-//! The radiosity system is dense, so a build's memory is its n × n matrices of f64: the
+//! The radiosity system is dense, so a build's memory is its n × n matrices: the
 //! scene check (before meshing, from the estimated patch count) and the pipeline's check
 //! (after meshing, before the form factors are allocated) both refuse a scene for which
 //! [`build_bytes`] exceeds [`budget_bytes`]. The thresholds live here, not with the solvers
@@ -9,7 +9,7 @@
 //! stage.
 //!
 //! At its peak a build of `n` patches, `n_r` of them reflecting in a band, holds `G`
-//! (`n²`) and, one after the other:
+//! (`n²` entries of f64, or of f32 above [`AUTO_F32_ABOVE`] patches) and, one after the other:
 //!
 //! - while the modes are computed, for a band with `n_r ≤` [`AUTO_DENSE_MAX`] (the dense
 //!   eigensolver): `5 n_r²`, namely the scaled matrix `H`, the eigenvectors `U` and faer's
@@ -27,7 +27,7 @@
 //!
 //! It is the model of `eigenrad build` with the default solver and the split formulation.
 //! `--solver dense`, `--formulation seed` and `eigenrad verify` run the dense eigensolver at
-//! any size, and `eigenrad verify` also copies `G`: on scenes near the budget they need more.
+//! any size: on scenes near the budget they need more.
 
 use std::sync::OnceLock;
 
@@ -43,6 +43,23 @@ pub const EXACT_LU_MAX: usize = 3000;
 /// p = 32; docs/performance.md): dense 0.2 s and partial 0.2 s at 1061 reflecting patches,
 /// 0.7 s and 0.6 s at 1944, 14.7 s and 2.4 s at 4766. The crossover is near n = 2000.
 pub const AUTO_DENSE_MAX: usize = 2000;
+
+/// Above this many patches the form-factor operator's `auto` storage is single precision
+/// ([`crate::formfactor::OperatorChoice::Auto`]): half the memory, entries within `2⁻²⁴`
+/// relative (docs/math.md, "One room, one system"). At and below it the f64 matrix
+/// (268 MB at this size) still fits an entry of the form-factor cache, which keeps a second run
+/// of the same scene fast, and the exact reference up to [`EXACT_LU_MAX`] is an LU of it.
+pub const AUTO_F32_ABOVE: usize = 5792;
+
+/// Bytes of one entry of the form-factor operator of `patches` patches under the `auto`
+/// storage: 8 (f64) up to [`AUTO_F32_ABOVE`], 4 (f32) above.
+pub fn auto_operator_entry_bytes(patches: f64) -> f64 {
+    if patches > AUTO_F32_ABOVE as f64 {
+        4.0
+    } else {
+        ENTRY_BYTES
+    }
+}
 
 /// Share of physical memory a build may plan to use: the rest is left to the per-patch data
 /// the model does not count, the program and the rest of the machine.
@@ -73,6 +90,12 @@ pub fn dense_eigen_bytes(reflecting: f64) -> f64 {
 /// for `patches` patches with `reflecting[b]` reflecting patches in band `b` (one entry per
 /// band). Counts may be estimates.
 pub fn build_bytes(patches: f64, reflecting: &[f64]) -> f64 {
+    build_bytes_stored(patches, reflecting, auto_operator_entry_bytes(patches))
+}
+
+/// [`build_bytes`] with the form-factor operator stored at `entry_bytes` bytes an entry (8 for
+/// f64, 4 for f32).
+pub fn build_bytes_stored(patches: f64, reflecting: &[f64], entry_bytes: f64) -> f64 {
     let eigen = reflecting
         .iter()
         .filter(|&&r| r <= AUTO_DENSE_MAX as f64)
@@ -83,7 +106,7 @@ pub fn build_bytes(patches: f64, reflecting: &[f64]) -> f64 {
     } else {
         0.0
     };
-    matrix_bytes(patches) + eigen.max(reference)
+    patches * patches * entry_bytes + eigen.max(reference)
 }
 
 /// Bytes of a receiver form-factor matrix (`receivers × patches` f64): what a work plane of

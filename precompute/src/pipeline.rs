@@ -15,8 +15,9 @@ use crate::accuracy::{self, Case};
 use crate::basis;
 use crate::cache;
 use crate::error::{Error, Result};
+use crate::formfactor::{self, FormFactorHealth, FormFactorOperator, FormFactorOptions};
 use crate::formfactor::{exchange, outputs};
-use crate::formfactor::{FormFactorHealth, FormFactorOperator, FormFactorOptions, Occluders};
+use crate::formfactor::{Occluders, Storage};
 use crate::memory;
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::radiosity::{Model, System};
@@ -136,6 +137,8 @@ pub struct BuildReport {
     pub bytes: usize,
     /// Form-factor health.
     pub form_factors: FormFactorHealth,
+    /// How the form-factor operator was stored while the room was solved.
+    pub operator: OperatorReport,
     /// Each luminaire's flux: stated, integrated, reaching the surfaces, escaping.
     pub luminaires: Vec<LuminaireFlux>,
     /// Accuracy per case, through the runtime.
@@ -149,6 +152,15 @@ pub struct BuildReport {
     pub daylight: Option<DaylightReport>,
     /// Time per stage.
     pub timings: Vec<Stage>,
+}
+
+/// The form-factor operator a build solved the room with (`--operator`).
+#[derive(Clone, Debug, Serialize)]
+pub struct OperatorReport {
+    /// `dense f64` or `dense f32`.
+    pub storage: &'static str,
+    /// Bytes it held.
+    pub bytes: usize,
 }
 
 /// What a basis' daylight holds, what it costs in flash and how close it reads.
@@ -211,7 +223,8 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let reflecting: Vec<f64> = (0..scene.bands.count())
         .map(|b| scene.reflectance.iter().filter(|r| r[b] > 0.0).count() as f64)
         .collect();
-    let needed = memory::build_bytes(n as f64, &reflecting);
+    let storage = opts.operator.storage(n);
+    let needed = memory::build_bytes_stored(n as f64, &reflecting, storage.entry_bytes() as f64);
     let available = memory::budget_bytes();
     if needed > available {
         return Err(Error::TooLarge(format!(
@@ -237,13 +250,26 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         )));
     }
     let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
-    let ff = timed(&mut timings, "form factors", || {
-        cache::form_factors(&scene.patches, &scene.faces, &occluders, opts)
-    });
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
     let names: Vec<String> = scene.surfaces.iter().map(|s| s.name.clone()).collect();
-    let form_factor_health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
-    let g: Arc<dyn FormFactorOperator> = Arc::new(exchange::exchange_areas(ff.matrix, &area));
+    let (g, form_factor_health): (Arc<dyn FormFactorOperator>, _) =
+        timed(&mut timings, "form factors", || match storage {
+            Storage::F64 => {
+                let ff = cache::form_factors(&scene.patches, &scene.faces, &occluders, opts);
+                let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
+                let g: Arc<dyn FormFactorOperator> =
+                    Arc::new(exchange::exchange_areas(ff.matrix, &area));
+                (g, health)
+            }
+            // Not cached: an f32 operator is chosen where the f64 one outgrows the cache's
+            // entries (`memory::AUTO_F32_ABOVE`).
+            Storage::F32 => {
+                let ff = formfactor::patch_form_factors_f32(&scene.patches, &occluders, opts);
+                let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
+                let g: Arc<dyn FormFactorOperator> = Arc::new(ff.matrix);
+                (g, health)
+            }
+        });
     let output_rows = timed(&mut timings, "sensors and zones", || {
         cache::output_rows(&scene, g.as_ref(), &area, &occluders, opts)
     });
@@ -399,6 +425,10 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         modes: p,
         bytes: bytes.len(),
         form_factors: form_factor_health,
+        operator: OperatorReport {
+            storage: system.operator().storage(),
+            bytes: system.operator().stored_bytes(),
+        },
         luminaires: luminaire_flux,
         accuracy,
         grids,

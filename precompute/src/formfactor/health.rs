@@ -92,8 +92,8 @@ pub const CLOSED_TOLERANCE: f64 = 1e-2;
 impl FormFactorHealth {
     /// The health of `ff`, the form factors between `patches`, which were cut from `faces`;
     /// `surfaces` names the surfaces `Patch::surface` indexes.
-    pub fn of(
-        ff: &FormFactors,
+    pub fn of<M>(
+        ff: &FormFactors<M>,
         patches: &[Patch],
         faces: &[Face],
         surfaces: &[String],

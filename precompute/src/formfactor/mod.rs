@@ -42,7 +42,7 @@ mod visibility;
 
 pub use bvh::Occluders;
 pub(crate) use bvh::Shaft;
-pub use operator::{DenseF32, FormFactorOperator};
+pub use operator::{DenseF32, FormFactorOperator, OperatorChoice, Storage};
 // The patch rules, for the direct light of sources that are not patches (`crate::sources`).
 pub use health::{
     CavityClosure, FormFactorHealth, PairDisagreement, RowMiss, CAVITY_TOLERANCE, CLOSED_TOLERANCE,
@@ -94,6 +94,9 @@ pub struct FormFactorOptions {
     /// visibility is smooth over the source even where each term jumps at a shadow edge, so the
     /// row still sums to 1. Default 5.
     pub occluded_order: usize,
+    /// How the patch form factors are stored while the room is solved (`--operator`):
+    /// f64, f32, or by size (the default). It does not enter the pair integrals.
+    pub operator: OperatorChoice,
 }
 
 impl Default for FormFactorOptions {
@@ -107,6 +110,7 @@ impl Default for FormFactorOptions {
             visibility_depth: 4,
             visibility_cell_share: 1e-3,
             occluded_order: 5,
+            operator: OperatorChoice::Auto,
         }
     }
 }
@@ -117,10 +121,11 @@ const RECIPROCITY_FLOOR: f64 = 1e-3;
 
 /// Result for a set of patches that are both the emitters, receivers and occluders.
 #[derive(Clone, Debug)]
-pub struct FormFactors {
+pub struct FormFactors<M = Mat<f64>> {
     /// F, n×n, row i = from patch i, after enforcing reciprocity: `A_i F_ij == A_j F_ji`
-    /// (G = A F symmetrised by averaging G and Gᵀ). Dimensionless.
-    pub matrix: Mat<f64>,
+    /// (G = A F symmetrised by averaging G and Gᵀ). Dimensionless. In single precision
+    /// ([`patch_form_factors_f32`]), `G` itself as its operator ([`DenseF32`]).
+    pub matrix: M,
     /// Worst reciprocity mismatch of the raw matrix before symmetrising:
     /// max over pairs of `|A_i F_ij − A_j F_ji| / max(A_i F_ij, A_j F_ji, 10⁻³ min(A_i, A_j))`.
     /// The floor keeps pairs that exchange almost nothing (a sliver seen past a blocker) from
@@ -180,6 +185,72 @@ pub fn patch_form_factors_with(
     occluders: &Occluders,
     opts: &FormFactorOptions,
 ) -> FormFactors {
+    let mut m = raw_transposed::<f64>(patches, occluders, opts);
+    let areas: Vec<f64> = patches.iter().map(|p| p.area).collect();
+    let mut stats = PairStats::default();
+    for j in 0..areas.len() {
+        for i in 0..j {
+            let (ai, aj) = (areas[i], areas[j]);
+            let g = stats.add(i, j, ai * m[(j, i)], aj * m[(i, j)], ai, aj);
+            m[(i, j)] = if ai > 0.0 { g / ai } else { 0.0 };
+            m[(j, i)] = if aj > 0.0 { g / aj } else { 0.0 };
+        }
+    }
+    let row_sums = row_sums(&m);
+    FormFactors {
+        matrix: m,
+        reciprocity_mismatch: stats.worst,
+        reciprocity_share: stats.worst_share,
+        row_sums,
+        worst_pairs: stats.worst_pairs,
+    }
+}
+
+/// [`patch_form_factors_with`] stored in single precision as the operator itself
+/// ([`DenseF32`]: `4 n²` bytes at every stage, the raw form factors included): the same pair
+/// integrals, each raw value rounded to f32, symmetrised in f64 and rounded once more.
+pub fn patch_form_factors_f32(
+    patches: &[Patch],
+    occluders: &Occluders,
+    opts: &FormFactorOptions,
+) -> FormFactors<DenseF32> {
+    let mut m = raw_transposed::<f32>(patches, occluders, opts);
+    let areas: Vec<f64> = patches.iter().map(|p| p.area).collect();
+    let root: Vec<f64> = areas.iter().map(|a| a.sqrt()).collect();
+    let mut stats = PairStats::default();
+    for j in 0..areas.len() {
+        for i in 0..j {
+            let (ai, aj) = (areas[i], areas[j]);
+            let gij = ai * f64::from(m[(j, i)]);
+            let gji = aj * f64::from(m[(i, j)]);
+            let g = stats.add(i, j, gij, gji, ai, aj);
+            // Both halves of the pair from the one value: the stored matrix is symmetric.
+            let scaled = (g / (root[i] * root[j])) as f32;
+            m[(i, j)] = scaled;
+            m[(j, i)] = scaled;
+        }
+    }
+    let operator = DenseF32::from_scaled(m, root);
+    let row_sums = operator.form_factor_row_sums(&areas);
+    FormFactors {
+        matrix: operator,
+        reciprocity_mismatch: stats.worst,
+        reciprocity_share: stats.worst_share,
+        row_sums,
+        worst_pairs: stats.worst_pairs,
+    }
+}
+
+/// The raw form factors, transposed: `m[(j, i)] = F_ij` (the diagonal 0), column `i` holding
+/// row `i` of F so that rows are filled in parallel contiguously.
+fn raw_transposed<T: faer::traits::ComplexField + From<f32> + Send + Sync>(
+    patches: &[Patch],
+    occluders: &Occluders,
+    opts: &FormFactorOptions,
+) -> Mat<T>
+where
+    f64: StoreAs<T>,
+{
     let n = patches.len();
     let prepared = Prepared::new(patches, max_order(opts));
     let ctx = Context {
@@ -190,66 +261,67 @@ pub fn patch_form_factors_with(
         refine_gaps: true,
     };
     let bar = progress_bar(n, opts.progress, "form factors");
-    // Column i holds row i of the raw F, so that rows are filled in parallel contiguously.
-    let mut m = Mat::<f64>::zeros(n, n);
+    let mut m = Mat::<T>::zeros(n, n);
     m.par_col_iter_mut().enumerate().for_each(|(i, mut col)| {
         for (j, x) in col.as_mut().iter_mut().enumerate() {
             *x = if i == j {
-                0.0
+                T::from(0.0f32)
             } else {
-                ctx.pair(&prepared, i, j, &[i, j])
+                ctx.pair(&prepared, i, j, &[i, j]).store()
             };
         }
         bar.inc(1);
     });
     bar.finish_and_clear();
-    let areas: Vec<f64> = patches.iter().map(|p| p.area).collect();
-    let (reciprocity_mismatch, reciprocity_share, worst_pairs) =
-        symmetrise_transposed(&mut m, &areas);
-    let row_sums = row_sums(&m);
-    FormFactors {
-        matrix: m,
-        reciprocity_mismatch,
-        reciprocity_share,
-        row_sums,
-        worst_pairs,
+    m
+}
+
+/// A form factor (f64) stored as the matrix's entry type.
+trait StoreAs<T> {
+    fn store(self) -> T;
+}
+
+impl StoreAs<f64> for f64 {
+    fn store(self) -> f64 {
+        self
     }
 }
 
-/// Turns `m` holding the raw Fᵀ (`m[(j, i)] = F_ij`) into the symmetrised F in place:
-/// `G = A F`, `G_sym = (G + Gᵀ)/2`, `F = A⁻¹ G_sym` (docs/math.md). Returns the worst reciprocity
-/// mismatch of the raw matrix, relative and as a share of the output
-/// ([`FormFactors::reciprocity_mismatch`], [`FormFactors::reciprocity_share`]), and the worst
-/// pairs ([`FormFactors::worst_pairs`]).
-fn symmetrise_transposed(m: &mut Mat<f64>, areas: &[f64]) -> (f64, f64, Vec<(usize, usize, f64)>) {
-    let n = areas.len();
-    let mut worst = 0.0_f64;
-    let mut worst_share = 0.0_f64;
-    let mut worst_pairs: Vec<(usize, usize, f64)> = Vec::with_capacity(WORST_PAIRS + 1);
-    for j in 0..n {
-        for i in 0..j {
-            let (ai, aj) = (areas[i], areas[j]);
-            let gij = ai * m[(j, i)];
-            let gji = aj * m[(i, j)];
-            let big = gij.max(gji).max(RECIPROCITY_FLOOR * ai.min(aj));
-            if big > 0.0 {
-                worst = worst.max((gij - gji).abs() / big);
-                let share = (gij - gji).abs() / ai.min(aj);
-                worst_share = worst_share.max(share);
-                let last = worst_pairs.last().map_or(0.0, |w| w.2);
-                if share > 0.0 && (worst_pairs.len() < WORST_PAIRS || share > last) {
-                    // Kept sorted, worst first; ties keep the earlier pair (deterministic).
-                    let at = worst_pairs.partition_point(|w| w.2 >= share);
-                    worst_pairs.insert(at, (i, j, share));
-                    worst_pairs.truncate(WORST_PAIRS);
-                }
-            }
-            let g = 0.5 * (gij + gji);
-            m[(i, j)] = if ai > 0.0 { g / ai } else { 0.0 };
-            m[(j, i)] = if aj > 0.0 { g / aj } else { 0.0 };
-        }
+impl StoreAs<f32> for f64 {
+    fn store(self) -> f32 {
+        self as f32
     }
-    (worst, worst_share, worst_pairs)
+}
+
+/// The reciprocity figures of the raw pairs, gathered while they are symmetrised
+/// ([`FormFactors::reciprocity_mismatch`], [`FormFactors::reciprocity_share`],
+/// [`FormFactors::worst_pairs`]).
+#[derive(Default)]
+struct PairStats {
+    worst: f64,
+    worst_share: f64,
+    worst_pairs: Vec<(usize, usize, f64)>,
+}
+
+impl PairStats {
+    /// Records the pair `i < j` with raw exchange areas `gij = A_i F_ij` and `gji = A_j F_ji`
+    /// (m²) and areas `ai`, `aj`; returns the symmetrised `G_ij = (gij + gji)/2` (docs/math.md).
+    fn add(&mut self, i: usize, j: usize, gij: f64, gji: f64, ai: f64, aj: f64) -> f64 {
+        let big = gij.max(gji).max(RECIPROCITY_FLOOR * ai.min(aj));
+        if big > 0.0 {
+            self.worst = self.worst.max((gij - gji).abs() / big);
+            let share = (gij - gji).abs() / ai.min(aj);
+            self.worst_share = self.worst_share.max(share);
+            let last = self.worst_pairs.last().map_or(0.0, |w| w.2);
+            if share > 0.0 && (self.worst_pairs.len() < WORST_PAIRS || share > last) {
+                // Kept sorted, worst first; ties keep the earlier pair (deterministic).
+                let at = self.worst_pairs.partition_point(|w| w.2 >= share);
+                self.worst_pairs.insert(at, (i, j, share));
+                self.worst_pairs.truncate(WORST_PAIRS);
+            }
+        }
+        0.5 * (gij + gji)
+    }
 }
 
 /// Row sums of a square matrix, summed column by column (contiguous in faer's layout).

@@ -75,6 +75,49 @@ pub trait FormFactorOperator: Send + Sync + std::fmt::Debug {
     }
 }
 
+/// How the form-factor operator is stored (`--operator`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum OperatorChoice {
+    /// f64 up to [`crate::memory::AUTO_F32_ABOVE`] patches, f32 above.
+    #[default]
+    Auto,
+    /// The dense f64 matrix, `8 n²` bytes.
+    Dense,
+    /// The dense f32 matrix ([`DenseF32`]), `4 n²` bytes.
+    DenseF32,
+}
+
+/// The precision an operator is stored in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Storage {
+    /// f64.
+    F64,
+    /// f32.
+    F32,
+}
+
+impl OperatorChoice {
+    /// The storage this choice takes for `patches` patches.
+    pub fn storage(self, patches: usize) -> Storage {
+        match self {
+            OperatorChoice::Dense => Storage::F64,
+            OperatorChoice::DenseF32 => Storage::F32,
+            OperatorChoice::Auto if patches > crate::memory::AUTO_F32_ABOVE => Storage::F32,
+            OperatorChoice::Auto => Storage::F64,
+        }
+    }
+}
+
+impl Storage {
+    /// Bytes of one entry.
+    pub fn entry_bytes(self) -> usize {
+        match self {
+            Storage::F64 => 8,
+            Storage::F32 => 4,
+        }
+    }
+}
+
 /// The dense f64 matrix: 8 n² bytes, every product a matrix product.
 impl FormFactorOperator for Mat<f64> {
     fn len(&self) -> usize {
@@ -115,33 +158,59 @@ impl FormFactorOperator for Mat<f64> {
     }
 }
 
-/// The dense matrix in single precision: half the memory of f64, each entry rounded to
-/// about 6e-8 relative. Products accumulate in f64.
+/// The dense matrix in single precision: half the memory of f64 (`4 n²` bytes). It stores
+/// the symmetric `S = A^-½ G A^-½` (dimensionless, each pair rounded once from its one
+/// symmetrised value), so that every entry `G_ij = S_ij √(A_i A_j)` it reports is exactly
+/// symmetric and within `2⁻²⁴` relative of the f64 value. Products accumulate in f64.
 #[derive(Debug, Clone)]
 pub struct DenseF32 {
-    g: Mat<f32>,
+    /// `S`, n × n, f32.
+    scaled: Mat<f32>,
+    /// `√A_i`, m.
+    root_area: Vec<f64>,
 }
 
 impl DenseF32 {
-    /// `g` rounded to f32.
-    pub fn from_f64(g: MatRef<'_, f64>) -> DenseF32 {
-        DenseF32 {
-            g: Mat::from_fn(g.nrows(), g.ncols(), |i, j| g[(i, j)] as f32),
-        }
-    }
-
-    /// Columns of `G` converted to f64 a panel at a time, so that a product with a block
+    /// Columns of `S` converted to f64 a panel at a time, so that a product with a block
     /// runs as f64 matrix products over a bounded workspace.
     const PANEL: usize = 256;
+
+    /// The operator of `S` (symmetric, n × n) and `√A` (m, n values).
+    #[track_caller]
+    pub fn from_scaled(scaled: Mat<f32>, root_area: Vec<f64>) -> DenseF32 {
+        assert!(
+            scaled.nrows() == root_area.len() && scaled.ncols() == root_area.len(),
+            "DenseF32: S is {} × {}, √A has {} values",
+            scaled.nrows(),
+            scaled.ncols(),
+            root_area.len()
+        );
+        DenseF32 { scaled, root_area }
+    }
+
+    /// `g` (n × n, symmetric, m²) rounded to single precision, over patches of areas `area`
+    /// (m²). Pairs are read from the upper triangle, so the result is symmetric even where
+    /// `g` is only symmetric to rounding.
+    pub fn from_f64(g: MatRef<'_, f64>, area: &[f64]) -> DenseF32 {
+        let root: Vec<f64> = area.iter().map(|a| a.sqrt()).collect();
+        let scaled = Mat::from_fn(g.nrows(), g.ncols(), |i, j| {
+            let (a, b) = (i.min(j), i.max(j));
+            (g[(a, b)] / (root[a] * root[b])) as f32
+        });
+        DenseF32::from_scaled(scaled, root)
+    }
 }
 
 impl FormFactorOperator for DenseF32 {
     fn len(&self) -> usize {
-        self.g.nrows()
+        self.scaled.nrows()
     }
 
     fn apply(&self, mut out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par) {
-        let n = self.g.nrows();
+        // G x = D S D x with D = diag(√A).
+        let n = self.len();
+        let root = &self.root_area;
+        let scaled_rhs = Mat::<f64>::from_fn(n, rhs.ncols(), |i, c| root[i] * rhs[(i, c)]);
         out.fill(0.0);
         let mut panel = Mat::<f64>::zeros(n, Self::PANEL.min(n.max(1)));
         let mut start = 0;
@@ -149,27 +218,33 @@ impl FormFactorOperator for DenseF32 {
             let width = Self::PANEL.min(n - start);
             for j in 0..width {
                 for i in 0..n {
-                    panel[(i, j)] = f64::from(self.g[(i, start + j)]);
+                    panel[(i, j)] = f64::from(self.scaled[(i, start + j)]);
                 }
             }
             matmul(
                 out.rb_mut(),
                 Accum::Add,
                 panel.as_ref().get(.., 0..width),
-                rhs.get(start..start + width, ..),
+                scaled_rhs.as_ref().get(start..start + width, ..),
                 1.0,
                 par,
             );
             start += width;
         }
+        for c in 0..out.ncols() {
+            for i in 0..n {
+                out[(i, c)] *= root[i];
+            }
+        }
     }
 
     fn entry(&self, i: usize, j: usize) -> f64 {
-        f64::from(self.g[(i, j)])
+        // The product of the roots is commutative, so entry(i, j) == entry(j, i) exactly.
+        f64::from(self.scaled[(i, j)]) * (self.root_area[i] * self.root_area[j])
     }
 
     fn stored_bytes(&self) -> usize {
-        4 * self.g.nrows() * self.g.ncols()
+        4 * self.scaled.nrows() * self.scaled.ncols() + 8 * self.root_area.len()
     }
 
     fn storage(&self) -> &'static str {
@@ -188,17 +263,33 @@ mod tests {
         })
     }
 
-    /// The f32 operator's product equals the f64 product of its own rounded entries (to f64
-    /// rounding, 1e-13 relative), over more columns than one panel.
+    fn areas(n: usize) -> Vec<f64> {
+        (0..n).map(|i| 0.5 + ((i * 7) % 5) as f64 * 0.3).collect()
+    }
+
+    /// Each entry of the f32 operator is the f64 entry within f32 rounding (2⁻²⁴ relative,
+    /// twice: S rounded, then scaled back), exactly symmetric, and its product equals the f64
+    /// product of its own entries (to 1e-13 relative) over more columns than one panel.
     #[test]
-    fn f32_product_matches_rounded_matrix() {
+    fn f32_entries_and_products() {
         let n = 300;
         let g = symmetric(n);
-        let op = DenseF32::from_f64(g.as_ref());
-        let rounded = Mat::<f64>::from_fn(n, n, |i, j| op.entry(i, j));
+        let area = areas(n);
+        let op = DenseF32::from_f64(g.as_ref(), &area);
+        for i in 0..n {
+            for j in 0..n {
+                let e = op.entry(i, j);
+                assert_eq!(e.to_bits(), op.entry(j, i).to_bits(), "({i}, {j})");
+                assert!(
+                    (e - g[(i, j)]).abs() <= g[(i, j)].abs() * 1.2e-7,
+                    "({i}, {j})"
+                );
+            }
+        }
+        let own = Mat::<f64>::from_fn(n, n, |i, j| op.entry(i, j));
         let x = Mat::<f64>::from_fn(n, 3, |i, c| ((i * (c + 2)) % 13) as f64 - 6.0);
         let mut want = Mat::<f64>::zeros(n, 3);
-        rounded.apply(want.as_mut(), x.as_ref(), Par::Seq);
+        own.apply(want.as_mut(), x.as_ref(), Par::Seq);
         let mut got = Mat::<f64>::zeros(n, 3);
         op.apply(got.as_mut(), x.as_ref(), Par::Seq);
         let scale = (0..n).fold(0.0f64, |s, i| s.max(want[(i, 0)].abs()));
@@ -208,21 +299,18 @@ mod tests {
                 assert!(d < 1e-13, "({i}, {c}): {d:e}");
             }
         }
-        // And each entry is the f64 entry to f32 rounding (2^-24 relative).
-        for i in 0..n {
-            for j in 0..n {
-                assert!((op.entry(i, j) - g[(i, j)]).abs() <= g[(i, j)].abs() * 6.0e-8);
-            }
-        }
-        assert_eq!(op.stored_bytes() * 2, g.stored_bytes());
+        assert_eq!(op.stored_bytes(), g.stored_bytes() / 2 + 8 * n);
+        assert_eq!(op.storage(), "dense f32");
     }
 
-    /// The default row, diagonal and vector product agree with the dense matrix's own.
+    /// The default row, diagonal, vector product and row sums agree with the dense matrix's
+    /// own to f32 rounding.
     #[test]
     fn default_methods_agree_with_dense() {
         let n = 40;
         let g = symmetric(n);
-        let op = DenseF32::from_f64(g.as_ref());
+        let area = areas(n);
+        let op = DenseF32::from_f64(g.as_ref(), &area);
         let mut row = vec![0.0; n];
         op.row(7, &mut row);
         for (j, x) in row.iter().enumerate() {
@@ -234,11 +322,12 @@ mod tests {
         let a = g.apply_vector(&x);
         let b = op.apply_vector(&x);
         for (p, q) in a.iter().zip(&b) {
-            assert!((p - q).abs() <= 1e-6 * p.abs());
+            assert!((p - q).abs() <= 2.4e-7 * p.abs());
         }
-        let area = vec![2.0; n];
         let sums = g.form_factor_row_sums(&area);
-        let want: f64 = (0..n).map(|j| g[(5, j)]).sum::<f64>() / 2.0;
+        let want: f64 = (0..n).map(|j| g[(5, j)]).sum::<f64>() / area[5];
         assert!((sums[5] - want).abs() < 1e-12 * want);
+        let sums32 = op.form_factor_row_sums(&area);
+        assert!((sums32[5] - want).abs() < 2.4e-7 * want);
     }
 }

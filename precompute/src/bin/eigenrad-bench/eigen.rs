@@ -64,7 +64,8 @@ fn compare(path: &Path, dense_max: usize) -> Result<()> {
     // The same partial eigensolve on G rounded to f32: what storing G in single precision
     // would cost in accuracy (the eigenvalues μ are dimensionless, in (0, 1]).
     let n = rho.len();
-    let g32 = DenseF32::from_f64(g.dense().context("the benchmark's operator is dense f64")?);
+    let dense = g.dense().context("the benchmark's operator is dense f64")?;
+    let g32 = DenseF32::from_f64(dense, area);
     let rounded = eigen::modes(
         &g32,
         area,

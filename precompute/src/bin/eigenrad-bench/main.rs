@@ -22,7 +22,8 @@ mod update;
 use std::path::PathBuf;
 
 use anyhow::Result;
-use clap::{Parser, Subcommand};
+use clap::{Parser, Subcommand, ValueEnum};
+use eigenrad_precompute::formfactor::OperatorChoice;
 use eigenrad_precompute::pipeline;
 
 /// The eigenbasis row every ratio is relative to, and the mode count of `eigen`: the default
@@ -34,6 +35,27 @@ const REFERENCE_MODES: usize = pipeline::DEFAULT_MODES;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+}
+
+/// How the form-factor operator is stored (`eigenrad build --operator`).
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum OperatorArg {
+    /// f64 up to 5792 patches, f32 above.
+    Auto,
+    /// Dense f64.
+    Dense,
+    /// Dense f32.
+    DenseF32,
+}
+
+impl From<OperatorArg> for OperatorChoice {
+    fn from(a: OperatorArg) -> OperatorChoice {
+        match a {
+            OperatorArg::Auto => OperatorChoice::Auto,
+            OperatorArg::Dense => OperatorChoice::Dense,
+            OperatorArg::DenseF32 => OperatorChoice::DenseF32,
+        }
+    }
 }
 
 #[derive(Subcommand)]
@@ -51,11 +73,17 @@ enum Command {
     Scale {
         /// Scene files.
         scenes: Vec<PathBuf>,
+        /// How the form-factor operator is stored.
+        #[arg(long, value_enum, default_value_t = OperatorArg::Auto)]
+        operator: OperatorArg,
     },
     /// (internal) One row of `scale`, in this process.
     ScaleOne {
         /// Scene file.
         scene: PathBuf,
+        /// How the form-factor operator is stored.
+        #[arg(long, value_enum, default_value_t = OperatorArg::Auto)]
+        operator: OperatorArg,
     },
     /// The room's response to the sky and to one sun direction through its windows, against
     /// the time to prepare the scene (scenes with a `[site]` and glazed windows).
@@ -79,11 +107,11 @@ fn main() -> Result<()> {
             machine();
             update::run(&scenes, skip_lu)?;
         }
-        Command::Scale { scenes } => {
+        Command::Scale { scenes, operator } => {
             machine();
-            scale::run(&scenes)?;
+            scale::run(&scenes, operator)?;
         }
-        Command::ScaleOne { scene } => scale::one(&scene)?,
+        Command::ScaleOne { scene, operator } => scale::one(&scene, operator)?,
         Command::Daylight { scenes } => {
             machine();
             daylight::run(&scenes)?;

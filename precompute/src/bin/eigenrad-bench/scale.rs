@@ -6,27 +6,37 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context as _, Result};
+use clap::ValueEnum as _;
+use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline::{self, BuildOptions};
 
+use crate::OperatorArg;
+
 /// The table's columns; the build's wall time is [`TOTAL_COLUMN`].
-const HEADER: &str = "| patches | meshing s | BVH s | form factors s | sensors & zones s | eigenbasis s | exact reference s | serialization s | verification s | total s | CPU s | peak MB |";
+const HEADER: &str = "| patches | operator | meshing s | BVH s | form factors s | sensors & zones s | eigenbasis s | exact reference s | serialization s | verification s | total s | CPU s | peak MB |";
 
 /// Index of `total s` among the columns of [`HEADER`].
-const TOTAL_COLUMN: usize = 9;
+const TOTAL_COLUMN: usize = 10;
 
 /// Prints the table's header, then runs `eigenrad-bench scale-one` on each scene in a child
 /// process, which prints its row. With more than one scene, each scene's total time is then
 /// given against the first's (e.g. the office with photometric luminaires against the
 /// Lambertian office, in one run).
-pub(crate) fn run(scenes: &[PathBuf]) -> Result<()> {
+pub(crate) fn run(scenes: &[PathBuf], operator: OperatorArg) -> Result<()> {
     println!("{HEADER}");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let exe = std::env::current_exe()?;
     let mut totals = Vec::new();
     for s in scenes {
         let out = std::process::Command::new(&exe)
             .arg("scale-one")
             .arg(s)
+            .arg("--operator")
+            .arg(
+                operator
+                    .to_possible_value()
+                    .map_or("auto".into(), |v| v.get_name().to_owned()),
+            )
             .stderr(std::process::Stdio::inherit())
             .output()?;
         if !out.status.success() {
@@ -87,7 +97,7 @@ fn cpu_seconds() -> f64 {
 }
 
 /// One row of the table: builds the scene at `path` with the default options in this process.
-pub(crate) fn one(path: &Path) -> Result<()> {
+pub(crate) fn one(path: &Path, operator: OperatorArg) -> Result<()> {
     let start = Instant::now();
     let scene =
         eigenrad_precompute::scene::load(path).with_context(|| format!("{}", path.display()))?;
@@ -97,7 +107,14 @@ pub(crate) fn one(path: &Path) -> Result<()> {
     black_box(occ.len());
     drop(occ);
     drop(scene);
-    let (_bytes, report) = pipeline::build(path, &BuildOptions::default())?;
+    let options = BuildOptions {
+        form_factors: FormFactorOptions {
+            operator: operator.into(),
+            ..FormFactorOptions::default()
+        },
+        ..BuildOptions::default()
+    };
+    let (_bytes, report) = pipeline::build(path, &options)?;
     let total = start.elapsed().as_secs_f64();
     let stage = |name: &str| {
         report
@@ -108,8 +125,9 @@ pub(crate) fn one(path: &Path) -> Result<()> {
             .sum::<f64>()
     };
     println!(
-        "| {} | {:.2} | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {:.1} | {:.1} | {:.0} |",
+        "| {} | {} | {:.2} | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {:.1} | {:.1} | {:.0} |",
         report.patches,
+        report.operator.storage,
         stage("scene"),
         bvh_s,
         stage("form factors"),
