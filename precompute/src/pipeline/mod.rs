@@ -1,0 +1,351 @@
+//! `eigenrad build`: scene → form factors → modes → basis bytes, with a report of every
+//! stage and the accuracy of the result measured through the runtime. The report's types and
+//! its checks through the runtime are in `report`, the calculation grids' readouts in `grids`.
+
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+use eigenrad_runtime::Precision;
+
+use crate::accuracy::runtime_eval;
+use crate::accuracy::{self, Case};
+use crate::basis;
+use crate::cache;
+use crate::error::{Error, Result};
+use crate::formfactor::{self, FormFactorHealth, FormFactorOperator, FormFactorOptions};
+use crate::formfactor::{exchange, outputs};
+use crate::formfactor::{Occluders, Storage};
+use crate::memory;
+use crate::radiosity::eigen::{Formulation, Solver};
+use crate::radiosity::{Model, System};
+use crate::scene::{self, Scene};
+use crate::sources;
+use crate::sources::luminaires::LuminaireFlux;
+
+mod grids;
+mod report;
+
+pub use grids::{scene_grids, GridPoint, GridReadout, PieceLayout};
+use report::{grid_report, verify};
+pub use report::{output_names, BuildReport, CaseAccuracy, DaylightReport, OperatorReport, Stage};
+
+/// Modes kept when neither a count nor a tolerance is given. Channels are exact whatever the
+/// count; the modes carry exitance set patch by patch: on the example office (1070 patches)
+/// random emitter patterns read about 0.7 % off on the work plane and 1.4 % at the ceiling
+/// photocell at this count, 5 % in per-patch exitance (`docs/accuracy.md`, "Office"); use
+/// `--tolerance` for a stated bound.
+pub const DEFAULT_MODES: usize = 32;
+
+/// Most modes the tolerance search computes and tries: the eigensolve and the sweep grow with
+/// it, and a tolerance not reached by then is reported ([`Error::Tolerance`]) rather than
+/// searched further. At most [`runtime_eval::MAX_MODES`], so that the basis it picks can be
+/// verified through the runtime.
+pub const TOLERANCE_MAX_MODES: usize = 512;
+const _: () = assert!(TOLERANCE_MAX_MODES <= runtime_eval::MAX_MODES);
+
+/// How many modes to keep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ModeSelection {
+    /// Exactly this many per band (fewer if a band has fewer reflecting patches).
+    Count(usize),
+    /// The smallest count, up to [`TOLERANCE_MAX_MODES`], whose relative error against the
+    /// exact solve is at most this for every channel and every random emitter pattern.
+    Tolerance(f64),
+}
+
+/// Options of a build.
+#[derive(Clone, Debug)]
+pub struct BuildOptions {
+    /// Mode count or tolerance.
+    pub modes: ModeSelection,
+    /// Expansion.
+    pub formulation: Formulation,
+    /// Storage of the large tables.
+    pub precision: Precision,
+    /// Eigensolver path.
+    pub solver: Solver,
+    /// Form-factor settings.
+    pub form_factors: FormFactorOptions,
+    /// Random emitter patterns used by `--tolerance` and the report.
+    pub random_patterns: usize,
+    /// Store the zones' calculation grids (`--no-grids` leaves them out: a smaller basis,
+    /// the zones still read as area averages).
+    pub grids: bool,
+    /// Degrees between the sun grid's declinations and between its hour angles, for a scene
+    /// with daylight (`--sun-step`).
+    pub sun_step: [f64; 2],
+}
+
+impl Default for BuildOptions {
+    fn default() -> Self {
+        BuildOptions {
+            modes: ModeSelection::Count(DEFAULT_MODES),
+            formulation: Formulation::Split,
+            precision: Precision::F32,
+            solver: Solver::Auto,
+            form_factors: FormFactorOptions::default(),
+            random_patterns: 4,
+            grids: true,
+            sun_step: sources::daylight::nodes::DEFAULT_SUN_STEP,
+        }
+    }
+}
+
+/// A scene with its radiosity system: everything before the eigensolve.
+pub struct Prepared {
+    /// The scene.
+    pub scene: Scene,
+    /// The scene's occluders, built once and shared by the form factors, the luminaires and
+    /// the daylight.
+    pub occluders: Occluders,
+    /// The room's radiosity problem: form-factor operator, areas, reflectances, receivers,
+    /// the channels' light, and its exact solves.
+    pub system: System,
+    /// Where each luminaire's flux goes.
+    pub luminaire_flux: Vec<LuminaireFlux>,
+    /// Form-factor health.
+    pub form_factor_health: FormFactorHealth,
+    /// Stage timings so far.
+    pub timings: Vec<Stage>,
+}
+
+fn timed<T>(timings: &mut Vec<Stage>, stage: &'static str, f: impl FnOnce() -> T) -> T {
+    let start = Instant::now();
+    let out = f();
+    timings.push(Stage {
+        stage,
+        seconds: start.elapsed().as_secs_f64(),
+    });
+    out
+}
+
+/// Loads a scene and computes its form factors and output rows.
+pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
+    let mut timings = Vec::new();
+    let scene = timed(&mut timings, "scene and meshing", || scene::load(path))?;
+    let n = scene.patches.len();
+    // Refused before the n×n form factors are allocated (`memory::build_bytes`).
+    let reflecting: Vec<f64> = (0..scene.bands.count())
+        .map(|b| scene.reflectance.iter().filter(|r| r[b] > 0.0).count() as f64)
+        .collect();
+    let storage = opts.operator.storage(n);
+    let needed = memory::build_bytes_stored(n as f64, &reflecting, storage.entry_bytes() as f64);
+    let available = memory::budget_bytes();
+    if needed > available {
+        return Err(Error::TooLarge(format!(
+            "{}: {n} patches need about {:.1} GB for the form-factor matrix and the solvers' workspace, more than the {:.1} GB this machine can spare; raise `max_edge` to mesh coarser",
+            path.display(),
+            needed / 1e9,
+            available / 1e9
+        )));
+    }
+    // And before the output rows are: one per sensor, zone and grid point.
+    let points = outputs::grid_points(&scene).count();
+    let rows = outputs::grid_offset(&scene) + points;
+    let rows_needed = memory::output_bytes(rows as f64, n as f64);
+    if needed + rows_needed > available {
+        return Err(Error::TooLarge(format!(
+            "{}: {} sensors, {} zones and {points} calculation-grid points over {n} patches need about {:.1} GB for their rows on top of {:.1} GB for the form factors, more than the {:.1} GB this machine can spare; use fewer sensors or zones, a coarser `grid.spacing`, or `max_edge`",
+            path.display(),
+            scene.sensors.len(),
+            scene.zones.len(),
+            rows_needed / 1e9,
+            needed / 1e9,
+            available / 1e9
+        )));
+    }
+    let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
+    let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
+    let names: Vec<String> = scene.surfaces.iter().map(|s| s.name.clone()).collect();
+    let (g, form_factor_health): (Arc<dyn FormFactorOperator>, _) =
+        timed(&mut timings, "form factors", || match storage {
+            Storage::F64 => {
+                let ff = cache::form_factors(&scene.patches, &scene.faces, &occluders, opts);
+                let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
+                let g: Arc<dyn FormFactorOperator> =
+                    Arc::new(exchange::exchange_areas(ff.matrix, &area));
+                (g, health)
+            }
+            // Not cached: an f32 operator is chosen where the f64 one outgrows the cache's
+            // entries (`memory::AUTO_F32_ABOVE`).
+            Storage::F32 => {
+                let ff = formfactor::patch_form_factors_f32(&scene.patches, &occluders, opts);
+                let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
+                let g: Arc<dyn FormFactorOperator> = Arc::new(ff.matrix);
+                (g, health)
+            }
+        });
+    let output_rows = timed(&mut timings, "sensors and zones", || {
+        cache::output_rows(&scene, g.as_ref(), &area, &occluders, opts)
+    });
+    let (lights, luminaire_flux) = timed(&mut timings, "light sources", || {
+        let surfaces = sources::surfaces::channel_lights(&scene, g.as_ref(), &area, &output_rows);
+        if scene.luminaires.is_empty() {
+            // Left exactly as it is: scenes without luminaires build the bases they always did.
+            return (surfaces, Vec::new());
+        }
+        let options = sources::luminaires::LuminaireOptions::default();
+        let (luminaires, flux) = sources::luminaires::lights_and_flux(&scene, &occluders, &options);
+        let lights = surfaces
+            .iter()
+            .zip(&luminaires)
+            .map(|(s, l)| s.plus(l))
+            .collect();
+        (lights, flux)
+    });
+    let reflectance = (0..scene.bands.count())
+        .map(|b| scene.reflectance.iter().map(|r| r[b]).collect())
+        .collect();
+    let system = System::new(g, area, reflectance, output_rows, lights);
+    Ok(Prepared {
+        scene,
+        occluders,
+        system,
+        luminaire_flux,
+        form_factor_health,
+        timings,
+    })
+}
+
+/// Runs the whole build; returns the basis bytes and the report. Writes nothing.
+pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)> {
+    let prepared = prepare(path, &opts.form_factors)?;
+    let Prepared {
+        mut scene,
+        occluders,
+        mut system,
+        luminaire_flux,
+        form_factor_health,
+        mut timings,
+    } = prepared;
+    if !opts.grids {
+        // The grid points are the outputs after the sensors and zones: drop them all.
+        let keep = outputs::grid_offset(&scene);
+        for zone in &mut scene.zones {
+            zone.grid = None;
+        }
+        system = system.with_outputs(keep);
+    }
+    let n = scene.patches.len();
+    let p_max = match opts.modes {
+        ModeSelection::Count(p) => p.min(n),
+        ModeSelection::Tolerance(_) => n.min(TOLERANCE_MAX_MODES),
+    };
+    // The exact reference every figure is measured against, and the channels' exact
+    // responses the basis stores: LU for small scenes, conjugate gradients on G above
+    // `EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation). Made once, kept by the system.
+    timed(&mut timings, "exact channel responses (LU or CG)", || {
+        system.channel_responses().map(|_| ())
+    })?;
+    let model = timed(&mut timings, "eigenbasis", || {
+        Model::new(&system, opts.formulation, p_max, opts.solver)
+    })?;
+    let bands = model.bands.len();
+    let cases = accuracy::standard_cases(&scene, opts.random_patterns);
+    let available = accuracy::modes_held(&model);
+    let p = match opts.modes {
+        ModeSelection::Count(p) => p.min(available),
+        ModeSelection::Tolerance(t) => timed(&mut timings, "mode count search", || {
+            smallest_count(&model, &cases, available, t)
+        })?,
+    };
+    let daylight = if scene.site.is_some() && !scene.windows.is_empty() {
+        Some(timed(&mut timings, "daylight through the windows", || {
+            let nodes = sources::daylight::nodes::nodes(
+                &scene,
+                &occluders,
+                eigenrad_runtime::sky::patches::SkyPatches::TREGENZA,
+                opts.sun_step,
+                &sources::daylight::DaylightOptions::default(),
+            );
+            let responses = system.light_responses(0, &nodes.lights)?;
+            Ok::<_, Error>(basis::BasisDaylight { nodes, responses })
+        })?)
+    } else {
+        None
+    };
+    let (bytes, daylight_bytes) = timed(&mut timings, "serialization", || {
+        serialize(&scene, &model, p, opts.precision, daylight.as_ref())
+    })?;
+    let accuracy = timed(&mut timings, "verification through the runtime", || {
+        verify(&model, &cases, &bytes, &scene)
+    })?;
+    let (grids, grid_figure_error) = timed(&mut timings, "grids through the runtime", || {
+        grid_report(&model, &bytes, &scene)
+    })?;
+    let daylight = match &daylight {
+        None => None,
+        Some(d) => Some(timed(&mut timings, "daylight through the runtime", || {
+            DaylightReport::of(d, daylight_bytes, &scene, &occluders, &model, &bytes)
+        })?),
+    };
+    let report = BuildReport {
+        scene: scene.name.clone(),
+        patches: n,
+        aspect: crate::geometry::aspect_summary(&scene.patches),
+        bands,
+        unit: scene.bands.unit(),
+        formulation: opts.formulation.name(),
+        precision: opts.precision.name(),
+        modes: p,
+        bytes: bytes.len(),
+        form_factors: form_factor_health,
+        operator: OperatorReport {
+            storage: system.operator().storage(),
+            bytes: system.operator().stored_bytes(),
+        },
+        luminaires: luminaire_flux,
+        accuracy,
+        grids,
+        grid_figure_error,
+        daylight,
+        timings,
+    };
+    Ok((bytes, report))
+}
+
+/// The smallest mode count up to `available` at which every case is within `tolerance` of
+/// the exact solve ([`ModeSelection::Tolerance`]).
+fn smallest_count(
+    model: &Model,
+    cases: &[Case],
+    available: usize,
+    tolerance: f64,
+) -> Result<usize> {
+    let ladder = accuracy::mode_ladder(available.max(1));
+    let curves = cases
+        .iter()
+        .map(|c| accuracy::curve(model, c, &ladder))
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    accuracy::smallest_p(&curves, tolerance).ok_or_else(|| Error::Tolerance {
+        tolerance,
+        modes: available,
+        best: curves
+            .iter()
+            .map(|c| {
+                let last = |e: &[f64]| e.last().copied().unwrap_or(f64::NAN);
+                last(&c.patch_error).max(last(&c.reading_error))
+            })
+            .fold(0.0, f64::max),
+    })
+}
+
+/// The basis bytes of the first `p` modes of `model`, and the bytes its daylight adds.
+fn serialize(
+    scene: &Scene,
+    model: &Model,
+    p: usize,
+    precision: Precision,
+    daylight: Option<&basis::BasisDaylight>,
+) -> std::result::Result<(Vec<u8>, usize), eigenrad_runtime::Error> {
+    let mut tables = basis::basis_tables(scene, model, p, precision);
+    let Some(d) = daylight else {
+        return tables.to_bytes().map(|b| (b, 0));
+    };
+    let without = tables.to_bytes()?.len();
+    basis::daylight_tables(&mut tables, scene, model, d);
+    let bytes = tables.to_bytes()?;
+    let added = bytes.len() - without;
+    Ok((bytes, added))
+}

@@ -1,0 +1,271 @@
+//! What `eigenrad build` reports, and the checks of the written basis through the runtime
+//! that fill it: every case against the exact solve, the grids' figures, the daylight.
+
+use serde::Serialize;
+
+use super::grids::{scene_grids, GridReadout, PieceLayout};
+use crate::accuracy::metric::Worst;
+use crate::accuracy::{self, runtime_eval, Case};
+use crate::basis::BasisDaylight;
+use crate::error::Result;
+use crate::formfactor::{FormFactorHealth, Occluders};
+use crate::radiosity::Model;
+use crate::scene::Scene;
+use crate::sources::luminaires::LuminaireFlux;
+
+/// Accuracy of the written basis for one test case, evaluated through the runtime.
+#[derive(Clone, Debug, Serialize)]
+pub struct CaseAccuracy {
+    /// Case name.
+    pub case: String,
+    /// [`accuracy::metric::patch_error`], worst band.
+    pub patch_error: f64,
+    /// The patch whose exitance is furthest from its own exact value, worst band.
+    pub worst_patch: Worst,
+    /// The surface it belongs to.
+    pub worst_patch_surface: String,
+    /// The sensor or zone (sensors first, then zones) whose reading is furthest from its own
+    /// exact value, worst band.
+    pub worst_reading: Worst,
+    /// Its name.
+    pub worst_reading_name: String,
+}
+
+/// Time spent in one stage.
+#[derive(Clone, Debug, Serialize)]
+pub struct Stage {
+    /// Stage name.
+    pub stage: &'static str,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// What `eigenrad build` reports.
+#[derive(Clone, Debug, Serialize)]
+pub struct BuildReport {
+    /// Scene name.
+    pub scene: String,
+    /// Number of patches.
+    pub patches: usize,
+    /// Median and worst aspect ratio of the patches.
+    pub aspect: crate::geometry::AspectSummary,
+    /// Number of bands.
+    pub bands: usize,
+    /// Unit of exitance and irradiance.
+    pub unit: &'static str,
+    /// Formulation.
+    pub formulation: &'static str,
+    /// Storage precision.
+    pub precision: &'static str,
+    /// Modes kept per band.
+    pub modes: usize,
+    /// Basis size in bytes.
+    pub bytes: usize,
+    /// Form-factor health.
+    pub form_factors: FormFactorHealth,
+    /// How the form-factor operator was stored while the room was solved.
+    pub operator: OperatorReport,
+    /// Each luminaire's flux: stated, integrated, reaching the surfaces, escaping.
+    pub luminaires: Vec<LuminaireFlux>,
+    /// Accuracy per case, through the runtime.
+    pub accuracy: Vec<CaseAccuracy>,
+    /// Every zone's calculation grid with every channel at level 1, through the runtime.
+    pub grids: Vec<GridReadout>,
+    /// Largest relative difference of any grid figure (`E_avg`, `E_min`, `E_max`, `U_o`)
+    /// through the runtime from the same figure of the exact solve, every channel at level 1.
+    pub grid_figure_error: f64,
+    /// The daylight the basis carries (a scene with a site and glazed windows).
+    pub daylight: Option<DaylightReport>,
+    /// Time per stage.
+    pub timings: Vec<Stage>,
+}
+
+/// The form-factor operator a build solved the room with (`--operator`).
+#[derive(Clone, Debug, Serialize)]
+pub struct OperatorReport {
+    /// `dense f64` or `dense f32`.
+    pub storage: &'static str,
+    /// Bytes it held.
+    pub bytes: usize,
+}
+
+/// What a basis' daylight holds, what it costs in flash and how close it reads.
+#[derive(Clone, Debug, Serialize)]
+pub struct DaylightReport {
+    /// The sky's patches: `tregenza` or `reinhart MF:n`.
+    pub sky: String,
+    /// Number of sky patches.
+    pub sky_patches: usize,
+    /// The sun grid: declinations and hour angles.
+    pub sun_grid: [usize; 2],
+    /// Degrees between its declinations and between its hour angles.
+    pub sun_step_deg: [f64; 2],
+    /// The grid's nodes that light the room (stored).
+    pub sun_nodes: usize,
+    /// Every node: sky patches, the exterior, the sun nodes.
+    pub nodes: usize,
+    /// Bytes the daylight section adds to the basis.
+    pub bytes: usize,
+    /// The sun read between the grid's nodes against the exact sun.
+    pub sun_interpolation: crate::accuracy::daylight::SunInterpolation,
+    /// A sky state read through the runtime against the exact solve.
+    pub check: crate::accuracy::daylight::DaylightCheck,
+}
+
+impl DaylightReport {
+    /// The report of the daylight `d` the basis `bytes` carries (`bytes_added` of them),
+    /// read through the runtime and against the exact sun.
+    pub(super) fn of(
+        d: &BasisDaylight,
+        bytes_added: usize,
+        scene: &Scene,
+        occluders: &Occluders,
+        model: &Model,
+        bytes: &[u8],
+    ) -> Result<DaylightReport> {
+        let grid = &d.nodes.sun_grid;
+        Ok(DaylightReport {
+            sky: if d.nodes.patches.subdivision() == 1 {
+                "tregenza".to_owned()
+            } else {
+                format!("reinhart MF:{}", d.nodes.patches.subdivision())
+            },
+            sky_patches: d.nodes.patches.count(),
+            sun_grid: [grid.rows, grid.columns],
+            sun_step_deg: [grid.declination_step, grid.hour_step].map(f64::from),
+            sun_nodes: d.nodes.sun_nodes.len(),
+            nodes: d.nodes.len(),
+            bytes: bytes_added,
+            sun_interpolation: accuracy::daylight::sun_interpolation(scene, occluders, model, d)?,
+            check: accuracy::daylight::through_runtime(bytes, model, d)?,
+        })
+    }
+}
+
+/// `sensor NAME` for every sensor, `zone NAME` for every zone, then `zone NAME point I` for
+/// every grid point: the outputs in the model's order.
+pub fn output_names(scene: &Scene) -> Vec<String> {
+    let sensors = scene.sensors.iter().map(|s| format!("sensor {}", s.name));
+    let points = scene.zones.iter().flat_map(|z| {
+        let count = z.grid.as_ref().map_or(0, |g| g.len());
+        (0..count).map(move |i| format!("zone {} point {i}", z.name))
+    });
+    sensors
+        .chain(scene.zones.iter().map(|z| format!("zone {}", z.name)))
+        .chain(points)
+        .collect()
+}
+
+/// The grids with every channel at level 1 through the runtime, and the largest relative
+/// difference of their figures from those of the exact solve.
+pub(super) fn grid_report(
+    model: &Model,
+    bytes: &[u8],
+    scene: &Scene,
+) -> Result<(Vec<GridReadout>, f64)> {
+    let levels = vec![1.0; model.channel_count()];
+    let got = runtime_eval::evaluate(bytes, &vec![1.0f32; levels.len()], &[], false)?;
+    let basis = eigenrad_runtime::Basis::from_bytes(bytes)?;
+    let mut exact = vec![Vec::new(); model.system.output_count()];
+    for b in 0..model.bands.len() {
+        let m = model
+            .system
+            .exact_many(b, &[(levels.as_slice(), &[][..])])?;
+        for (slot, r) in exact.iter_mut().zip(model.readings(b, &m[0], &levels)) {
+            slot.push(r);
+        }
+    }
+    let reference = scene_grids(scene, &exact);
+    let mut grids = Vec::new();
+    let mut next = 0;
+    for (z, zone) in scene.zones.iter().enumerate() {
+        let Some(g) = &zone.grid else { continue };
+        let positions = (0..g.len())
+            .map(|i| basis.grid_point(z, i).map(|p| p.map(f64::from)))
+            .collect::<std::result::Result<Vec<_>, _>>()?;
+        grids.push(GridReadout::new(
+            zone.name.clone(),
+            g.pieces.iter().map(PieceLayout::from).collect(),
+            positions,
+            &got.grid[next..next + g.len()],
+            got.figures[z].as_deref(),
+        ));
+        next += g.len();
+    }
+    let mut worst = 0.0f64;
+    for (r, e) in grids.iter().zip(&reference) {
+        for (x, y) in [
+            (&r.average, &e.average),
+            (&r.minimum, &e.minimum),
+            (&r.maximum, &e.maximum),
+            (&r.uniformity, &e.uniformity),
+        ] {
+            for (a, b) in x.iter().zip(y) {
+                worst = worst.max((a - b).abs() / b.abs().max(1e-12));
+            }
+        }
+    }
+    Ok((grids, worst))
+}
+
+/// Evaluates the encoded basis through the runtime for every case and compares with the
+/// exact solve.
+pub(super) fn verify(
+    model: &Model,
+    cases: &[Case],
+    bytes: &[u8],
+    scene: &Scene,
+) -> Result<Vec<CaseAccuracy>> {
+    let output_names = output_names(scene);
+    // Every case's exact solution at once, per band.
+    let exact_all = (0..model.bands.len())
+        .map(|b| {
+            let inputs: Vec<(&[f64], &[f64])> = cases
+                .iter()
+                .map(|c| (c.levels.as_slice(), c.extra[b].as_slice()))
+                .collect();
+            model.system.exact_many(b, &inputs)
+        })
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    let mut out = Vec::new();
+    for (index, case) in cases.iter().enumerate() {
+        let levels: Vec<f32> = case.levels.iter().map(|&l| l as f32).collect();
+        let got = runtime_eval::evaluate(bytes, &levels, &case.extra, true)?;
+        let mut patch_error = 0.0f64;
+        let mut worst_patch = Worst::default();
+        let mut worst_reading = Worst::default();
+        for b in 0..model.bands.len() {
+            let exact = &exact_all[b][index];
+            let exitance: Vec<f64> = got.exitance.iter().map(|e| e[b]).collect();
+            let patches = accuracy::metric::patch_error(model.area(), &exitance, exact);
+            patch_error = patch_error.max(patches);
+            worst_patch = worst_patch.max(accuracy::metric::worst_reading(&exitance, exact));
+            let readings: Vec<f64> = got
+                .sensors
+                .iter()
+                .chain(&got.zones)
+                .chain(&got.grid)
+                .map(|r| r[b])
+                .collect();
+            let exact_readings = model.readings(b, exact, &case.levels);
+            worst_reading =
+                worst_reading.max(accuracy::metric::worst_reading(&readings, &exact_readings));
+        }
+        out.push(CaseAccuracy {
+            case: case.name.clone(),
+            patch_error,
+            worst_patch,
+            worst_reading,
+            worst_reading_name: output_names
+                .get(worst_reading.index)
+                .cloned()
+                .unwrap_or_default(),
+            worst_patch_surface: scene
+                .patches
+                .get(worst_patch.index)
+                .map(|p| scene.surfaces[p.surface].name.clone())
+                .unwrap_or_default(),
+        });
+    }
+    Ok(out)
+}
