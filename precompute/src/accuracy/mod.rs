@@ -10,6 +10,7 @@ pub mod runtime_eval;
 
 use crate::radiosity::eigen::EigenError;
 use crate::radiosity::model::Model;
+use crate::radiosity::System;
 use crate::scene::Scene;
 use rng::Rng;
 
@@ -202,18 +203,51 @@ pub struct SweepPoint<'s> {
     pub exact_outputs: &'s [f64],
 }
 
-/// Evaluates `case` with the first p modes for every p of `modes` (ascending), adding one
-/// mode's contribution at a time, and shows each point to `visit` together with the exact
-/// solve. Shared by `--tolerance`, the build report and `eigenrad verify`.
+/// The exact solutions of a set of cases, solved once and shared by every figure that is
+/// measured against them (the tolerance search, the build report, both formulations of
+/// `eigenrad verify`).
+pub struct ExactCases {
+    /// `by_band[b][k]`: exitance of every patch for case `k` in band `b`, W/m² or lux.
+    by_band: Vec<Vec<Vec<f64>>>,
+}
+
+impl ExactCases {
+    /// Every case of `cases` solved exactly by `system`, one solve per band with a right-hand
+    /// side per case.
+    pub fn solve(system: &System, cases: &[Case]) -> Result<ExactCases, EigenError> {
+        let by_band = (0..system.band_count())
+            .map(|b| {
+                let inputs: Vec<(&[f64], &[f64])> = cases
+                    .iter()
+                    .map(|c| (c.levels.as_slice(), c.extra[b].as_slice()))
+                    .collect();
+                system.exact_many(b, &inputs)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(ExactCases { by_band })
+    }
+
+    /// Exact exitance of case `k` (in the order solved) in band `b`.
+    pub fn exitance(&self, k: usize, b: usize) -> &[f64] {
+        &self.by_band[b][k]
+    }
+}
+
+/// Evaluates `case` (number `k` of `exact`) with the first p modes for every p of `modes`
+/// (ascending), adding one mode's contribution at a time, and shows each point to `visit`
+/// together with the exact solve. Shared by `--tolerance`, the build report and
+/// `eigenrad verify`.
 pub fn sweep(
     model: &Model,
     case: &Case,
+    exact: (&ExactCases, usize),
     modes: &[usize],
     mut visit: impl FnMut(SweepPoint<'_>),
-) -> Result<(), EigenError> {
+) {
+    let (solutions, k) = exact;
     for b in 0..model.bands.len() {
-        let exact = model.system.exact(b, &case.levels, &case.extra[b])?;
-        let exact_outputs = model.readings(b, &exact, &case.levels);
+        let exact = solutions.exitance(k, b);
+        let exact_outputs = model.readings(b, exact, &case.levels);
         let (mut m, amplitude) = model.expansion(b, &case.levels, &case.extra[b]);
         let v = &model.bands[b].modes.vectors;
         let mut done = 0;
@@ -229,32 +263,31 @@ pub fn sweep(
             visit(SweepPoint {
                 step: t,
                 exitance: &m,
-                exact: &exact,
+                exact,
                 outputs: &outputs,
                 exact_outputs: &exact_outputs,
             });
         }
     }
-    Ok(())
 }
 
 /// Error curves of `case` for every p in `modes` (ascending), against the exact solve.
-pub fn curve(model: &Model, case: &Case, modes: &[usize]) -> Result<Curve, EigenError> {
+pub fn curve(model: &Model, case: &Case, exact: (&ExactCases, usize), modes: &[usize]) -> Curve {
     let mut patch_error = vec![0.0f64; modes.len()];
     let mut reading_error = vec![0.0f64; modes.len()];
-    sweep(model, case, modes, |pt| {
+    sweep(model, case, exact, modes, |pt| {
         let t = pt.step;
         let patches = metric::patch_error(model.area(), pt.exitance, pt.exact);
         patch_error[t] = patch_error[t].max(patches);
         let readings = metric::worst_reading(pt.outputs, pt.exact_outputs);
         reading_error[t] = reading_error[t].max(readings.error);
-    })?;
-    Ok(Curve {
+    });
+    Curve {
         case: case.name.clone(),
         modes: modes.to_vec(),
         patch_error,
         reading_error,
-    })
+    }
 }
 
 /// The smallest p at which, for every curve, the patch error and every sensor's and zone's

@@ -9,7 +9,7 @@ use std::time::Instant;
 use eigenrad_runtime::Precision;
 
 use crate::accuracy::runtime_eval;
-use crate::accuracy::{self, Case};
+use crate::accuracy::{self, Case, ExactCases};
 use crate::basis;
 use crate::cache;
 use crate::error::{Error, Result};
@@ -243,11 +243,16 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     })?;
     let bands = model.bands.len();
     let cases = accuracy::standard_cases(&scene, opts.random_patterns);
+    let exact = timed(
+        &mut timings,
+        "exact reference of the report's cases",
+        || ExactCases::solve(&system, &cases),
+    )?;
     let available = accuracy::modes_held(&model);
     let p = match opts.modes {
         ModeSelection::Count(p) => p.min(available),
         ModeSelection::Tolerance(t) => timed(&mut timings, "mode count search", || {
-            smallest_count(&model, &cases, available, t)
+            smallest_count(&model, &cases, &exact, available, t)
         })?,
     };
     let daylight = if scene.site.is_some() && !scene.windows.is_empty() {
@@ -269,7 +274,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         serialize(&scene, &model, p, opts.precision, daylight.as_ref())
     })?;
     let accuracy = timed(&mut timings, "verification through the runtime", || {
-        verify(&model, &cases, &bytes, &scene)
+        verify(&model, &cases, &exact, &bytes, &scene)
     })?;
     let (grids, grid_figure_error) = timed(&mut timings, "grids through the runtime", || {
         grid_report(&model, &bytes, &scene)
@@ -310,14 +315,16 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
 fn smallest_count(
     model: &Model,
     cases: &[Case],
+    exact: &ExactCases,
     available: usize,
     tolerance: f64,
 ) -> Result<usize> {
     let ladder = accuracy::mode_ladder(available.max(1));
-    let curves = cases
+    let curves: Vec<_> = cases
         .iter()
-        .map(|c| accuracy::curve(model, c, &ladder))
-        .collect::<std::result::Result<Vec<_>, _>>()?;
+        .enumerate()
+        .map(|(k, c)| accuracy::curve(model, c, (exact, k), &ladder))
+        .collect();
     accuracy::smallest_p(&curves, tolerance).ok_or_else(|| Error::Tolerance {
         tolerance,
         modes: available,

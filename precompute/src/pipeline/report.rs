@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use super::grids::{scene_grids, GridReadout, PieceLayout};
 use crate::accuracy::metric::Worst;
-use crate::accuracy::{self, runtime_eval, Case};
+use crate::accuracy::{self, runtime_eval, Case, ExactCases};
 use crate::basis::BasisDaylight;
 use crate::error::Result;
 use crate::formfactor::{FormFactorHealth, Occluders};
@@ -213,20 +213,11 @@ pub(super) fn grid_report(
 pub(super) fn verify(
     model: &Model,
     cases: &[Case],
+    exact: &ExactCases,
     bytes: &[u8],
     scene: &Scene,
 ) -> Result<Vec<CaseAccuracy>> {
     let output_names = output_names(scene);
-    // Every case's exact solution at once, per band.
-    let exact_all = (0..model.bands.len())
-        .map(|b| {
-            let inputs: Vec<(&[f64], &[f64])> = cases
-                .iter()
-                .map(|c| (c.levels.as_slice(), c.extra[b].as_slice()))
-                .collect();
-            model.system.exact_many(b, &inputs)
-        })
-        .collect::<std::result::Result<Vec<_>, _>>()?;
     let mut out = Vec::new();
     for (index, case) in cases.iter().enumerate() {
         let levels: Vec<f32> = case.levels.iter().map(|&l| l as f32).collect();
@@ -235,7 +226,7 @@ pub(super) fn verify(
         let mut worst_patch = Worst::default();
         let mut worst_reading = Worst::default();
         for b in 0..model.bands.len() {
-            let exact = &exact_all[b][index];
+            let exact = exact.exitance(index, b);
             let exitance: Vec<f64> = got.exitance.iter().map(|e| e[b]).collect();
             let patches = accuracy::metric::patch_error(model.area(), &exitance, exact);
             patch_error = patch_error.max(patches);

@@ -23,7 +23,7 @@ use eigenrad_runtime::Precision;
 use serde::Serialize;
 
 use crate::accuracy::rng::Rng;
-use crate::accuracy::{self, metric, Case};
+use crate::accuracy::{self, metric, Case, ExactCases};
 use crate::basis;
 use crate::error::Result;
 use crate::formfactor::FormFactorOptions;
@@ -215,10 +215,11 @@ fn case_curve(
     model: &Model,
     kind: CaseKind,
     case: &Case,
+    exact: (&ExactCases, usize),
     modes: &[usize],
     sensors: usize,
     outputs: usize,
-) -> Result<CaseCurve> {
+) -> CaseCurve {
     let mut curve = CaseCurve {
         case: case.name.clone(),
         kind,
@@ -226,7 +227,7 @@ fn case_curve(
         zones: vec![vec![0.0; modes.len()]; outputs - sensors],
         sensors: vec![vec![0.0; modes.len()]; sensors],
     };
-    accuracy::sweep(model, case, modes, |pt| {
+    accuracy::sweep(model, case, exact, modes, |pt| {
         let t = pt.step;
         let e = metric::patch_error(model.area(), pt.exitance, pt.exact);
         curve.patches[t] = curve.patches[t].max(e);
@@ -240,8 +241,8 @@ fn case_curve(
             };
             *slot = slot.max(r);
         }
-    })?;
-    Ok(curve)
+    });
+    curve
 }
 
 /// Runs the whole report for the scene at `path`.
@@ -255,6 +256,9 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
     // Sensors and zones: the outputs the tables report (grid points come after them).
     let outputs = crate::formfactor::outputs::grid_offset(scene);
     let cases = cases(&prepared, opts);
+    // Solved once: both formulations and the baseline are measured against the same solutions.
+    let plain: Vec<Case> = cases.iter().map(|(_, c)| c.clone()).collect();
+    let exact = ExactCases::solve(&prepared.system, &plain)?;
 
     let mut formulations = Vec::new();
     let mut modes = Vec::new();
@@ -267,15 +271,20 @@ pub fn verify(path: &Path, opts: &VerifyOptions) -> Result<VerifyReport> {
         if modes.is_empty() {
             modes = accuracy::mode_ladder(accuracy::modes_held(&model).max(1));
             if m > 0 {
-                baseline_error = Some(superposition_error(&model, &cases, sensors, outputs)?);
+                baseline_error = Some(superposition_error(
+                    &model, &cases, &exact, sensors, outputs,
+                ));
             }
         }
         bar.inc(1);
         bar.set_message(format!("verify, {}: error curves", formulation.name()));
         let curves = cases
             .iter()
-            .map(|(kind, case)| case_curve(&model, *kind, case, &modes, sensors, outputs))
-            .collect::<Result<Vec<_>>>()?;
+            .enumerate()
+            .map(|(k, (kind, case))| {
+                case_curve(&model, *kind, case, (&exact, k), &modes, sensors, outputs)
+            })
+            .collect();
         bar.inc(1);
         bar.set_message(format!("verify, {}: basis sizes", formulation.name()));
         let mut basis_bytes = Vec::with_capacity(modes.len());
@@ -329,29 +338,30 @@ fn stage_bar(show: bool, steps: usize) -> indicatif::ProgressBar {
 fn superposition_error(
     model: &Model,
     cases: &[(CaseKind, Case)],
+    exact: &ExactCases,
     sensors: usize,
     outputs: usize,
-) -> Result<[f64; 3]> {
+) -> [f64; 3] {
     let m = model.channel_count();
     let mut worst = [0.0f64; 3];
     for b in 0..model.bands.len() {
         // The model's exact per-channel responses, as the basis stores them.
         let responses: Vec<&[f64]> = (0..m).map(|c| model.channel_response(c, b)).collect();
-        for (kind, case) in cases {
+        for (k, (kind, case)) in cases.iter().enumerate() {
             if *kind == CaseKind::EmitterPattern {
                 continue;
             }
-            let exact = model.system.exact(b, &case.levels, &case.extra[b])?;
+            let exact = exact.exitance(k, b);
             let mut sum = vec![0.0; exact.len()];
             for (c, l) in case.levels.iter().enumerate() {
                 for (s, r) in sum.iter_mut().zip(responses[c]) {
                     *s += l * r;
                 }
             }
-            worst[0] = worst[0].max(metric::patch_error(model.area(), &sum, &exact));
+            worst[0] = worst[0].max(metric::patch_error(model.area(), &sum, exact));
             let (got, want) = (
                 model.readings(b, &sum, &case.levels),
-                model.readings(b, &exact, &case.levels),
+                model.readings(b, exact, &case.levels),
             );
             let (got, want) = (&got[..outputs], &want[..outputs]);
             for (o, r) in metric::reading_errors(got, want).into_iter().enumerate() {
@@ -360,7 +370,7 @@ fn superposition_error(
             }
         }
     }
-    Ok(worst)
+    worst
 }
 
 impl FormulationReport {
