@@ -14,7 +14,8 @@ use crate::formfactor::FormFactorOptions;
 use crate::picture::{Format, Net, NetInput, NetPatch, Plan, PlanInput};
 use crate::scene::{self, Scene, ZoneKind};
 
-use super::readout::{self, DaylightArgs, LevelArgs, Readout};
+use super::levels::LevelArgs;
+use super::readout::{self, DaylightArgs, Readout};
 use super::units::{readout_in, Units};
 
 /// What colours the surfaces.
