@@ -169,19 +169,7 @@ fn runtime_err(what: &str) -> impl Fn(eigenrad_runtime::Error) -> Error + '_ {
 /// `eigenrad sky`.
 pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
     let site = request.site;
-    sun::check_site(&site)?;
-    if !(request.north.is_finite() && request.north.abs() <= 360.0) {
-        return Err(err(
-            "--north",
-            format!("{} is not an angle from −360° to 360°", request.north),
-        ));
-    }
-    if !(request.water.is_finite() && (0.0..=10.0).contains(&request.water)) {
-        return Err(err(
-            "--water",
-            format!("{} cm is outside 0 cm to 10 cm", request.water),
-        ));
-    }
+    check_request(request)?;
     let patches = SkyPatches::reinhart(request.subdivision).map_err(runtime_err("--mf"))?;
     let time = sun::parse_time(&request.time)?;
     let position = sun::position(&site, &time, &sun::SunOptions::default())?;
@@ -196,98 +184,12 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
     }
     let site_sun = daylight::room_direction(position.altitude, position.azimuth, 0.0);
     let sun_room = daylight::site_to_room(site_sun, request.north);
-    // The sky in the site's frame (the patches' frame), in f32 as the controller has it.
-    let sun32 = site_sun.map(|x| x as f32);
-    let zenith = (position.zenith.to_radians() as f32).min(core::f32::consts::FRAC_PI_2);
     let sin_alt = position.altitude.to_radians().sin();
-
-    let built = match request.input {
-        SkyInput::Cie {
-            sky_type,
-            diffuse_horizontal,
-            direct_normal,
-        } => {
-            let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", 2.0e5)?;
-            check_flag(direct_normal, "--dni-lux", "lux", 1.5e5)?;
-            let sky = if sky_type == 0 {
-                CieSky::traditional_overcast(sun32)
-            } else {
-                CieSky::standard(sky_type, sun32)
-            }
-            .map_err(runtime_err("--cie"))?;
-            let lz = sky
-                .zenith_luminance_for(dhi)
-                .map_err(runtime_err("--dhi-lux"))?;
-            let name = if sky_type == 0 {
-                "CIE traditional overcast".to_owned()
-            } else {
-                format!("CIE type {sky_type}")
-            };
-            Built {
-                model: name,
-                sky: Box::new(sky),
-                scale: f64::from(lz),
-                diffuse_lux: diffuse_horizontal,
-                direct_lux: direct_normal,
-                perez: None,
-            }
-        }
-        SkyInput::PerezIrradiance {
-            direct_normal,
-            diffuse_horizontal,
-        } => {
-            let dni = check_flag(direct_normal, "--dni", "W/m²", 1400.0)?;
-            let dhi = check_flag(diffuse_horizontal, "--dhi", "W/m²", 1000.0)?;
-            if dhi <= 0.0 {
-                return Err(err(
-                    "--dhi",
-                    "the Perez sky needs a diffuse horizontal irradiance above 0 W/m²",
-                ));
-            }
-            let c = perez::Conditions::from_irradiance(dhi, dni, zenith, sun::day_of_year(&time))
-                .map_err(runtime_err("--dni/--dhi"))?;
-            perez_parts(
-                &c,
-                sun32,
-                request.water as f32,
-                f64::from(dhi),
-                f64::from(dni),
-            )?
-        }
-        SkyInput::PerezIlluminance {
-            direct_normal,
-            diffuse_horizontal,
-        } => {
-            let dni = check_flag(direct_normal, "--dni-lux", "lux", 1.5e5)?;
-            let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", 2.0e5)?;
-            if dhi <= 0.0 {
-                return Err(err(
-                    "--dhi-lux",
-                    "the Perez sky needs a diffuse horizontal illuminance above 0 lux",
-                ));
-            }
-            let (c, dhi_w, dni_w) = perez::Conditions::from_illuminance(
-                dhi,
-                dni,
-                zenith,
-                sun::day_of_year(&time),
-                request.water as f32,
-            )
-            .map_err(runtime_err("--dni-lux/--dhi-lux"))?;
-            let mut built = perez_parts(
-                &c,
-                sun32,
-                request.water as f32,
-                f64::from(dhi_w),
-                f64::from(dni_w),
-            )?;
-            // Scaled to the illuminances given, not to their round trip through the
-            // efficacies.
-            built.scale *= diffuse_horizontal / built.diffuse_lux;
-            built.diffuse_lux = diffuse_horizontal;
-            built.direct_lux = direct_normal;
-            built
-        }
+    let sun_state = SunState {
+        // The sky in the site's frame (the patches' frame), in f32 as the controller has it.
+        direction: site_sun.map(|x| x as f32),
+        zenith: (position.zenith.to_radians() as f32).min(core::f32::consts::FRAC_PI_2),
+        day_of_year: sun::day_of_year(&time),
     };
     let Built {
         model,
@@ -296,30 +198,9 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
         diffuse_lux,
         direct_lux,
         perez,
-    } = built;
+    } = built_sky(request.input, &sun_state, request.water)?;
     let zenith_luminance = f64::from(relative.relative_luminance([0.0, 0.0, 1.0])) * scale;
-
-    let mut patch_reports = Vec::with_capacity(patches.count());
-    let mut patch_sum = 0.0f64;
-    for i in 0..patches.count() {
-        let Some(p) = patches.patch(i) else { break };
-        let luminance = f64::from(relative.relative_luminance(p.direction)) * scale;
-        patch_sum += luminance * f64::from(p.projected_solid_angle);
-        let dir = p.direction.map(f64::from);
-        let altitude = 0.5 * (f64::from(p.altitude[0]) + f64::from(p.altitude[1]));
-        patch_reports.push(PatchReport {
-            index: i,
-            altitude_deg: if i + 1 == patches.count() {
-                90.0
-            } else {
-                altitude.to_degrees()
-            },
-            azimuth_deg: f64::from(p.azimuth).to_degrees(),
-            direction_room: daylight::site_to_room(dir, request.north),
-            solid_angle_sr: f64::from(p.solid_angle),
-            luminance_cd_m2: luminance,
-        });
-    }
+    let (patch_reports, patch_sum) = patch_reports(&patches, &*relative, scale, request.north);
     Ok(SkyReport {
         time: time.to_rfc3339(),
         site: [site.latitude, site.longitude, site.elevation],
@@ -341,6 +222,181 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
         patch_diffuse_horizontal_lux: patch_sum,
         patches: patch_reports,
     })
+}
+
+/// Checks the site, the room's bearing (`--north`) and the precipitable water (`--water`) of
+/// `request`.
+fn check_request(request: &SkyRequest) -> Result<()> {
+    sun::check_site(&request.site)?;
+    if !(request.north.is_finite() && request.north.abs() <= 360.0) {
+        return Err(err(
+            "--north",
+            format!("{} is not an angle from −360° to 360°", request.north),
+        ));
+    }
+    if !(request.water.is_finite() && (0.0..=10.0).contains(&request.water)) {
+        return Err(err(
+            "--water",
+            format!("{} cm is outside 0 cm to 10 cm", request.water),
+        ));
+    }
+    Ok(())
+}
+
+/// The sun as the sky models take it, in f32 as the controller has it.
+struct SunState {
+    /// Direction in the site's frame (the sky patches' frame), unit vector.
+    direction: [f32; 3],
+    /// Zenith angle, radians, at most π/2.
+    zenith: f32,
+    /// Day of the year, 1 to 366 (the Perez sky's extraterrestrial irradiance).
+    day_of_year: u16,
+}
+
+/// The sky `input` asks for under `sun`, with `water` cm of precipitable water for the Perez
+/// efficacies; each flag checked against what daylight can give.
+fn built_sky(input: SkyInput, sun: &SunState, water: f64) -> Result<Built> {
+    match input {
+        SkyInput::Cie {
+            sky_type,
+            diffuse_horizontal,
+            direct_normal,
+        } => cie_sky(sky_type, diffuse_horizontal, direct_normal, sun),
+        SkyInput::PerezIrradiance {
+            direct_normal,
+            diffuse_horizontal,
+        } => perez_from_irradiance(direct_normal, diffuse_horizontal, sun, water),
+        SkyInput::PerezIlluminance {
+            direct_normal,
+            diffuse_horizontal,
+        } => perez_from_illuminance(direct_normal, diffuse_horizontal, sun, water),
+    }
+}
+
+/// A CIE sky of `sky_type` (0: the traditional overcast sky) scaled to `diffuse_horizontal`
+/// lux, with a sun of `direct_normal` lux.
+fn cie_sky(
+    sky_type: u8,
+    diffuse_horizontal: f64,
+    direct_normal: f64,
+    sun: &SunState,
+) -> Result<Built> {
+    let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", 2.0e5)?;
+    check_flag(direct_normal, "--dni-lux", "lux", 1.5e5)?;
+    let sky = if sky_type == 0 {
+        CieSky::traditional_overcast(sun.direction)
+    } else {
+        CieSky::standard(sky_type, sun.direction)
+    }
+    .map_err(runtime_err("--cie"))?;
+    let lz = sky
+        .zenith_luminance_for(dhi)
+        .map_err(runtime_err("--dhi-lux"))?;
+    let name = if sky_type == 0 {
+        "CIE traditional overcast".to_owned()
+    } else {
+        format!("CIE type {sky_type}")
+    };
+    Ok(Built {
+        model: name,
+        sky: Box::new(sky),
+        scale: f64::from(lz),
+        diffuse_lux: diffuse_horizontal,
+        direct_lux: direct_normal,
+        perez: None,
+    })
+}
+
+/// The Perez sky of a direct normal and a diffuse horizontal irradiance, W/m².
+fn perez_from_irradiance(
+    direct_normal: f64,
+    diffuse_horizontal: f64,
+    sun: &SunState,
+    water: f64,
+) -> Result<Built> {
+    let dni = check_flag(direct_normal, "--dni", "W/m²", 1400.0)?;
+    let dhi = check_flag(diffuse_horizontal, "--dhi", "W/m²", 1000.0)?;
+    if dhi <= 0.0 {
+        return Err(err(
+            "--dhi",
+            "the Perez sky needs a diffuse horizontal irradiance above 0 W/m²",
+        ));
+    }
+    let c = perez::Conditions::from_irradiance(dhi, dni, sun.zenith, sun.day_of_year)
+        .map_err(runtime_err("--dni/--dhi"))?;
+    perez_parts(
+        &c,
+        sun.direction,
+        water as f32,
+        f64::from(dhi),
+        f64::from(dni),
+    )
+}
+
+/// The Perez sky of a direct normal and a diffuse horizontal illuminance, lux.
+fn perez_from_illuminance(
+    direct_normal: f64,
+    diffuse_horizontal: f64,
+    sun: &SunState,
+    water: f64,
+) -> Result<Built> {
+    let dni = check_flag(direct_normal, "--dni-lux", "lux", 1.5e5)?;
+    let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", 2.0e5)?;
+    if dhi <= 0.0 {
+        return Err(err(
+            "--dhi-lux",
+            "the Perez sky needs a diffuse horizontal illuminance above 0 lux",
+        ));
+    }
+    let (c, dhi_w, dni_w) =
+        perez::Conditions::from_illuminance(dhi, dni, sun.zenith, sun.day_of_year, water as f32)
+            .map_err(runtime_err("--dni-lux/--dhi-lux"))?;
+    let mut built = perez_parts(
+        &c,
+        sun.direction,
+        water as f32,
+        f64::from(dhi_w),
+        f64::from(dni_w),
+    )?;
+    // Scaled to the illuminances given, not to their round trip through the
+    // efficacies.
+    built.scale *= diffuse_horizontal / built.diffuse_lux;
+    built.diffuse_lux = diffuse_horizontal;
+    built.direct_lux = direct_normal;
+    Ok(built)
+}
+
+/// Every patch of `patches` under `relative` times `scale` (cd/m²), directions turned into
+/// the room's axes by `north` (degrees); and the diffuse horizontal illuminance of their
+/// centre luminances, lux.
+fn patch_reports(
+    patches: &SkyPatches,
+    relative: &dyn RelativeSky,
+    scale: f64,
+    north: f64,
+) -> (Vec<PatchReport>, f64) {
+    let mut patch_reports = Vec::with_capacity(patches.count());
+    let mut patch_sum = 0.0f64;
+    for i in 0..patches.count() {
+        let Some(p) = patches.patch(i) else { break };
+        let luminance = f64::from(relative.relative_luminance(p.direction)) * scale;
+        patch_sum += luminance * f64::from(p.projected_solid_angle);
+        let dir = p.direction.map(f64::from);
+        let altitude = 0.5 * (f64::from(p.altitude[0]) + f64::from(p.altitude[1]));
+        patch_reports.push(PatchReport {
+            index: i,
+            altitude_deg: if i + 1 == patches.count() {
+                90.0
+            } else {
+                altitude.to_degrees()
+            },
+            azimuth_deg: f64::from(p.azimuth).to_degrees(),
+            direction_room: daylight::site_to_room(dir, north),
+            solid_angle_sr: f64::from(p.solid_angle),
+            luminance_cd_m2: luminance,
+        });
+    }
+    (patch_reports, patch_sum)
 }
 
 /// The Perez sky of `c` with its figures.
