@@ -1,9 +1,11 @@
 //! What the `eigenrad` subcommands compute and print, kept in the library so tests can call
-//! it; `main.rs` only parses arguments. One file per command (`readout/` for `solve` and
-//! `eval`, with the channel levels they take in `levels.rs`), the build and verify outputs in
-//! `report.rs`, and what every command shares: atomic writes, the check that no output
-//! replaces an input, JSON and standard output.
+//! it. Each command's arguments, and how they turn into a call here and an output, are in
+//! [`args`] (one file per command); `main.rs` only runs it. One file per command
+//! (`readout/` for `solve` and `eval`, with the channel levels they take in `levels.rs`), the
+//! build and verify outputs in `report.rs`, and what every command shares: atomic writes, the
+//! check that no output replaces an input, JSON and standard output.
 
+pub mod args;
 mod form_factors;
 mod gains;
 pub mod guard;
