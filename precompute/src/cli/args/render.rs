@@ -25,7 +25,8 @@ use crate::{picture, scene};
         "time",
         help(
             "Daylight at this date and time through the scene's windows, under the sky the sky \
-             flags give, as `solve --time` (not with --basis)"
+             flags give, as `solve --time`; with --basis, from the daylight the basis carries, \
+             as `eval --time` (the plan only: the surfaces need the exact solve)"
         )
     )
 )]
