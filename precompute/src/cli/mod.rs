@@ -1,14 +1,18 @@
 //! What the `eigenrad` subcommands compute and print, kept in the library so tests can call
-//! it; `main.rs` only parses arguments. One file per command (`readout.rs` for `solve` and
-//! `eval`), the build and verify outputs in `report.rs`, and what every command shares:
-//! atomic writes, the check that no output replaces an input, JSON and standard output.
+//! it. Each command's arguments, and how they turn into a call here and an output, are in
+//! [`args`] (one file per command); `main.rs` only runs it. One file per command
+//! (`readout/` for `solve` and `eval`, with the channel levels they take in `levels.rs`), the
+//! build and verify outputs in `report.rs`, and what every command shares: atomic writes, the
+//! check that no output replaces an input, JSON and standard output.
 
+pub mod args;
 mod form_factors;
 mod gains;
 pub mod guard;
 /// Atomic writes ([`crate::atomic`]), which every command's output goes through.
 pub use crate::atomic;
 mod inspect;
+mod levels;
 mod readout;
 mod render;
 mod report;
@@ -25,9 +29,10 @@ pub use form_factors::{
 };
 pub use gains::{format_gains, gains, gains_csv, Gain, Gains};
 pub use inspect::{format_inspect, inspect, BasisInfo};
+pub use levels::{parse_levels, Level, LevelArgs};
 pub use readout::{
-    eval, eval_with_daylight, format_readout, grids_csv, parse_levels, solve, solve_with_daylight,
-    DaylightArgs, DaylightReadout, Level, LevelArgs, PatchReading, Reading, Readout,
+    eval, eval_with_daylight, format_readout, grids_csv, solve, solve_with_daylight, DaylightArgs,
+    DaylightReadout, PatchReading, Reading, Readout,
 };
 pub use render::{render, Pictures, RenderRequest, SurfaceQuantity};
 pub use report::{format_build_report, verify_outputs, write_svgs};

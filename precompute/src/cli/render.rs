@@ -11,10 +11,13 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::formfactor::FormFactorOptions;
+use crate::geometry::Vec3;
 use crate::picture::{Format, Net, NetInput, NetPatch, Plan, PlanInput};
+use crate::pipeline::GridReadout;
 use crate::scene::{self, Scene, ZoneKind};
 
-use super::readout::{self, DaylightArgs, LevelArgs, Readout};
+use super::levels::LevelArgs;
+use super::readout::{self, DaylightArgs, Readout};
 use super::units::{readout_in, Units};
 
 /// What colours the surfaces.
@@ -179,7 +182,7 @@ fn check_basis_matches(
         )));
     }
     for (z, g) in scene_grids.iter().zip(&r.grids) {
-        let grid: Vec<crate::geometry::Vec3> = z
+        let grid: Vec<Vec3> = z
             .grid
             .as_ref()
             .map_or_else(Vec::new, |g| g.points().map(|(p, _)| p).collect());
@@ -212,10 +215,32 @@ pub fn render(request: &RenderRequest<'_>) -> Result<Pictures> {
     } else {
         None
     };
+    let native = native_readout(request, &scene)?;
+    let readout = readout_in(native.clone(), request.units)?;
+    let notes = notes(request, &readout);
+    let plan = match zone {
+        None => None,
+        Some(zone) => Some(plan_picture(&scene, path, zone, &readout, notes.clone())?),
+    };
+    let surfaces = request
+        .surfaces
+        .map(|quantity| surfaces_picture(&scene, quantity, &readout, &native, notes));
+    Ok(Pictures {
+        plan,
+        surfaces,
+        readout,
+    })
+}
+
+/// The readings in the scene's or the basis' own units (lux or W/m²), with the patches when
+/// the surfaces are drawn: the basis through the runtime, checked against the scene, or the
+/// scene's exact solve.
+fn native_readout(request: &RenderRequest<'_>, scene: &Scene) -> Result<Readout> {
+    let path = request.scene;
     let patches = request.surfaces.is_some();
-    let native = match request.basis {
+    match request.basis {
         Some((basis_path, _)) if request.daylight.is_some() && patches => {
-            return Err(render_error(
+            Err(render_error(
                 path,
                 format!(
                     "{} holds the daylight of its patches only through its modes, too coarse for a picture of the surfaces (docs/math.md, \"Daylight in the basis\"); leave out --basis to draw them from the exact solve",
@@ -231,8 +256,8 @@ pub fn render(request: &RenderRequest<'_>) -> Result<Pictures> {
                 request.daylight,
                 patches,
             )?;
-            check_basis_matches(&scene, path, basis_path, &r)?;
-            r
+            check_basis_matches(scene, path, basis_path, &r)?;
+            Ok(r)
         }
         None => readout::solve_with_daylight(
             path,
@@ -240,12 +265,15 @@ pub fn render(request: &RenderRequest<'_>) -> Result<Pictures> {
             request.daylight,
             patches,
             request.form_factors,
-        )?,
-    };
-    let readout = readout_in(native.clone(), request.units)?;
-    let bands = readout.bands.len();
-    let rgb_note =
-        (bands > 1).then(|| "values: the sum of the red, green and blue bands".to_owned());
+        ),
+    }
+}
+
+/// The lines under every picture's title: where the readings come from, the channels'
+/// levels, the daylight's sky and, for several bands, how they were summed.
+fn notes(request: &RenderRequest<'_>, readout: &Readout) -> Vec<String> {
+    let rgb_note = (readout.bands.len() > 1)
+        .then(|| "values: the sum of the red, green and blue bands".to_owned());
     let levels = format!(
         "levels: {}",
         readout
@@ -263,7 +291,7 @@ pub fn render(request: &RenderRequest<'_>) -> Result<Pictures> {
             "the basis {} through the runtime, as `eval` (what the controller reads)",
             b.display()
         ),
-        None => format!("the exact solve of {}, as `solve`", path.display()),
+        None => format!("the exact solve of {}, as `solve`", request.scene.display()),
     };
     let mut notes = vec![format!("from {source}"), levels];
     if let Some(d) = &readout.daylight {
@@ -273,160 +301,185 @@ pub fn render(request: &RenderRequest<'_>) -> Result<Pictures> {
         ));
     }
     notes.extend(rgb_note);
+    notes
+}
 
-    let plan = match zone {
-        None => None,
-        Some(zone) => {
-            let grid = readout
-                .grids
-                .iter()
-                .find(|g| g.zone == zone.name)
-                .ok_or_else(|| {
-                    render_error(path, format!("zone `{}` has no grid readings", zone.name))
-                })?;
-            let [piece] = grid.pieces[..] else {
-                return Err(render_error(
-                    path,
-                    format!(
-                        "zone `{}`'s grid has {} pieces (the band around a task area): a plan \
-                         draws a grid of one piece, a work plane or a task area",
-                        zone.name,
-                        grid.pieces.len()
-                    ),
-                ));
-            };
-            let values: Vec<f64> = grid.points.iter().map(|p| total(&p.irradiance)).collect();
-            let figures = if bands == 1 {
-                [
-                    grid.average[0],
-                    grid.minimum[0],
-                    grid.maximum[0],
-                    grid.uniformity[0],
-                ]
-            } else {
-                match eigenrad_runtime::Figures::of(values.iter().copied()) {
-                    Some(f) => [f.average, f.minimum, f.maximum, f.uniformity],
-                    None => [f64::NAN; 4],
-                }
-            };
-            let (height, floor) = match &zone.kind {
-                ZoneKind::WorkPlane { height, receivers } => {
-                    (*height, receivers.first().map(|r| r.surface))
-                }
-                ZoneKind::Surfaces(_) => (f64::NAN, None),
-            };
-            // The room's outline: its floor's extent (the work plane's receivers lie above it).
-            let mut room = [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]];
-            let grow = |p: crate::geometry::Vec3, r: &mut [[f64; 2]; 2]| {
-                r[0] = [r[0][0].min(p.x), r[0][1].min(p.y)];
-                r[1] = [r[1][0].max(p.x), r[1][1].max(p.y)];
-            };
-            if let Some(f) = floor {
-                for p in &scene.patches[scene.surfaces[f].patch_range.clone()] {
+/// The plan of `zone`'s work plane from the readings of its calculation grid (one piece),
+/// with the room's outline and the luminaires seen from above.
+fn plan_picture(
+    scene: &Scene,
+    path: &Path,
+    zone: &scene::Zone,
+    readout: &Readout,
+    notes: Vec<String>,
+) -> Result<Plan> {
+    let grid = readout
+        .grids
+        .iter()
+        .find(|g| g.zone == zone.name)
+        .ok_or_else(|| render_error(path, format!("zone `{}` has no grid readings", zone.name)))?;
+    let [piece] = grid.pieces[..] else {
+        return Err(render_error(
+            path,
+            format!(
+                "zone `{}`'s grid has {} pieces (the band around a task area): a plan \
+                 draws a grid of one piece, a work plane or a task area",
+                zone.name,
+                grid.pieces.len()
+            ),
+        ));
+    };
+    let values: Vec<f64> = grid.points.iter().map(|p| total(&p.irradiance)).collect();
+    let figures = plan_figures(grid, &values, readout.bands.len());
+    let (height, floor) = match &zone.kind {
+        ZoneKind::WorkPlane { height, receivers } => {
+            (*height, receivers.first().map(|r| r.surface))
+        }
+        ZoneKind::Surfaces(_) => (f64::NAN, None),
+    };
+    Ok(Plan::new(PlanInput {
+        title: format!(
+            "{}: {} at {:.2} m above the floor, illuminance ({})",
+            scene.name, zone.name, height, readout.unit
+        ),
+        notes,
+        unit: readout.unit,
+        counts: piece.counts,
+        cell: piece.cell_m,
+        border: piece.border_m,
+        points: grid
+            .points
+            .iter()
+            .map(|p| [p.position_m[0], p.position_m[1]])
+            .collect(),
+        values,
+        room: room_outline(scene, floor, grid),
+        figures,
+        luminaires: luminaire_outlines(scene),
+        luminaire_points: scene
+            .luminaires
+            .iter()
+            .map(|l| [l.position.x, l.position.y])
+            .collect(),
+    }))
+}
+
+/// `E_avg`, `E_min`, `E_max` and `U_o` of a plan's `values`: the grid's own for one band, of
+/// the bands' sums for several.
+fn plan_figures(grid: &GridReadout, values: &[f64], bands: usize) -> [f64; 4] {
+    if bands == 1 {
+        [
+            grid.average[0],
+            grid.minimum[0],
+            grid.maximum[0],
+            grid.uniformity[0],
+        ]
+    } else {
+        match eigenrad_runtime::Figures::of(values.iter().copied()) {
+            Some(f) => [f.average, f.minimum, f.maximum, f.uniformity],
+            None => [f64::NAN; 4],
+        }
+    }
+}
+
+/// A rectangle in plan, `[[x_min, y_min], [x_max, y_max]]` (m); empty while `x_min > x_max`.
+type Extent = [[f64; 2]; 2];
+
+/// No rectangle yet: any point grows it.
+const EMPTY: Extent = [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]];
+
+/// `extent` grown to hold `p` seen from above.
+fn grow(p: Vec3, extent: &mut Extent) {
+    extent[0] = [extent[0][0].min(p.x), extent[0][1].min(p.y)];
+    extent[1] = [extent[1][0].max(p.x), extent[1][1].max(p.y)];
+}
+
+/// The room's outline: its floor's extent (the work plane's receivers lie above it), or the
+/// grid's when the work plane names no floor.
+fn room_outline(scene: &Scene, floor: Option<usize>, grid: &GridReadout) -> Extent {
+    let mut room = EMPTY;
+    if let Some(f) = floor {
+        for p in &scene.patches[scene.surfaces[f].patch_range.clone()] {
+            for &v in &p.polygon.vertices {
+                grow(v, &mut room);
+            }
+        }
+    }
+    if room[0][0] > room[1][0] || room[0][0].is_nan() {
+        for p in &grid.points {
+            grow(Vec3::new(p.position_m[0], p.position_m[1], 0.0), &mut room);
+        }
+    }
+    room
+}
+
+/// Luminaires: each emitting surface's patches that face down, seen from above.
+fn luminaire_outlines(scene: &Scene) -> Vec<Extent> {
+    let mut luminaires = Vec::new();
+    for channel in &scene.channels {
+        for &s in &channel.surfaces {
+            let mut r = EMPTY;
+            for p in &scene.patches[scene.surfaces[s].patch_range.clone()] {
+                if p.normal.z < -0.5 {
                     for &v in &p.polygon.vertices {
-                        grow(v, &mut room);
+                        grow(v, &mut r);
                     }
                 }
             }
-            if room[0][0] > room[1][0] || room[0][0].is_nan() {
-                for p in &grid.points {
-                    grow(
-                        crate::geometry::Vec3::new(p.position_m[0], p.position_m[1], 0.0),
-                        &mut room,
-                    );
-                }
+            if r[0][0] <= r[1][0] {
+                luminaires.push(r);
             }
-            // Luminaires: each emitting surface's patches that face down, seen from above.
-            let mut luminaires = Vec::new();
-            for channel in &scene.channels {
-                for &s in &channel.surfaces {
-                    let mut r = [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]];
-                    for p in &scene.patches[scene.surfaces[s].patch_range.clone()] {
-                        if p.normal.z < -0.5 {
-                            for &v in &p.polygon.vertices {
-                                grow(v, &mut r);
-                            }
-                        }
-                    }
-                    if r[0][0] <= r[1][0] {
-                        luminaires.push(r);
-                    }
-                }
-            }
-            Some(Plan::new(PlanInput {
-                title: format!(
-                    "{}: {} at {:.2} m above the floor, illuminance ({})",
-                    scene.name, zone.name, height, readout.unit
-                ),
-                notes: notes.clone(),
-                unit: readout.unit,
-                counts: piece.counts,
-                cell: piece.cell_m,
-                border: piece.border_m,
-                points: grid
-                    .points
-                    .iter()
-                    .map(|p| [p.position_m[0], p.position_m[1]])
-                    .collect(),
-                values,
-                room,
-                figures,
-                luminaires,
-                luminaire_points: scene
-                    .luminaires
-                    .iter()
-                    .map(|l| [l.position.x, l.position.y])
-                    .collect(),
-            }))
         }
-    };
+    }
+    luminaires
+}
 
-    let surfaces = match request.surfaces {
-        None => None,
-        Some(quantity) => {
-            let converted = readout.patches.as_deref().unwrap_or_default();
-            let raw = native.patches.as_deref().unwrap_or_default();
-            let photometric = native.unit == "lux";
-            let (unit, label) = match quantity {
-                SurfaceQuantity::Illuminance => (readout.unit, "illuminance E"),
-                SurfaceQuantity::Luminance if photometric => ("cd/m²", "luminance L = M/π"),
-                SurfaceQuantity::Luminance => ("W/(m²·sr)", "radiance L = M/π"),
-            };
-            let patches = scene
-                .patches
-                .iter()
-                .enumerate()
-                .map(|(i, p)| NetPatch {
-                    vertices: p.polygon.vertices.iter().map(|v| v.to_array()).collect(),
-                    normal: p.normal.to_array(),
-                    value: match quantity {
-                        SurfaceQuantity::Illuminance => converted
-                            .get(i)
-                            .and_then(|r| r.irradiance.as_deref())
-                            .map(total),
-                        SurfaceQuantity::Luminance => raw
-                            .get(i)
-                            .map(|r| total(&r.exitance) / std::f64::consts::PI),
-                    },
-                    emits: scene.emission[i].iter().any(|&e| e > 0.0),
-                })
-                .collect();
-            Some(Net::new(NetInput {
-                title: format!(
-                    "{}: the room's surfaces unfolded, {label} ({unit})",
-                    scene.name
-                ),
-                notes,
-                unit,
-                quantity: label,
-                patches,
-            }))
-        }
+/// The room's surfaces unfolded, each patch coloured by `quantity`: its irradiance in the
+/// units asked for (`readout`), or its luminance from the exitance in the readings' own
+/// units (`native`).
+fn surfaces_picture(
+    scene: &Scene,
+    quantity: SurfaceQuantity,
+    readout: &Readout,
+    native: &Readout,
+    notes: Vec<String>,
+) -> Net {
+    let converted = readout.patches.as_deref().unwrap_or_default();
+    let raw = native.patches.as_deref().unwrap_or_default();
+    let photometric = native.unit == "lux";
+    let (unit, label) = match quantity {
+        SurfaceQuantity::Illuminance => (readout.unit, "illuminance E"),
+        SurfaceQuantity::Luminance if photometric => ("cd/m²", "luminance L = M/π"),
+        SurfaceQuantity::Luminance => ("W/(m²·sr)", "radiance L = M/π"),
     };
-    Ok(Pictures {
-        plan,
-        surfaces,
-        readout,
+    let patches = scene
+        .patches
+        .iter()
+        .enumerate()
+        .map(|(i, p)| NetPatch {
+            vertices: p.polygon.vertices.iter().map(|v| v.to_array()).collect(),
+            normal: p.normal.to_array(),
+            value: match quantity {
+                SurfaceQuantity::Illuminance => converted
+                    .get(i)
+                    .and_then(|r| r.irradiance.as_deref())
+                    .map(total),
+                SurfaceQuantity::Luminance => raw
+                    .get(i)
+                    .map(|r| total(&r.exitance) / std::f64::consts::PI),
+            },
+            emits: scene.emission[i].iter().any(|&e| e > 0.0),
+        })
+        .collect();
+    Net::new(NetInput {
+        title: format!(
+            "{}: the room's surfaces unfolded, {label} ({unit})",
+            scene.name
+        ),
+        notes,
+        unit,
+        quantity: label,
+        patches,
     })
 }
 

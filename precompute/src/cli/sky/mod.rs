@@ -1,13 +1,18 @@
 //! `eigenrad sky`: the sun's position and a sky's figures for a site, a time and a weather
-//! state, through the runtime's sky models (what a controller will compute).
+//! state, through the runtime's sky models (what a controller will compute): the request and
+//! the report here, the sky models in `models.rs`, the report as text in `format.rs`.
 
-use std::fmt::Write as _;
+mod format;
+mod models;
 
-use eigenrad_runtime::sky::{cie::CieSky, efficacy, patches::SkyPatches, perez, RelativeSky};
+use eigenrad_runtime::sky::{patches::SkyPatches, RelativeSky};
 use serde::Serialize;
 
 use crate::daylight::{self, sun};
 use crate::error::{Error, Result};
+
+pub use format::format_sky;
+use models::{built_sky, Built, SunState};
 
 /// Which sky, and what drives it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,17 +97,6 @@ pub struct PerezReport {
     pub direct_normal_w_m2: f64,
 }
 
-/// A sky built for the report: its relative luminance, the factor to cd/m², and its
-/// illuminances (lux).
-struct Built {
-    model: String,
-    sky: Box<dyn RelativeSky>,
-    scale: f64,
-    diffuse_lux: f64,
-    direct_lux: f64,
-    perez: Option<PerezReport>,
-}
-
 /// What `eigenrad sky` reports. Illuminances in lux, luminances in cd/m², angles in degrees.
 #[derive(Clone, Debug, Serialize)]
 pub struct SkyReport {
@@ -139,6 +133,7 @@ pub struct SkyReport {
     pub patches: Vec<PatchReport>,
 }
 
+/// An error about daylight, naming the flag (`what`) it concerns.
 fn err(what: &str, reason: impl Into<String>) -> Error {
     Error::Daylight {
         what: what.to_owned(),
@@ -146,22 +141,7 @@ fn err(what: &str, reason: impl Into<String>) -> Error {
     }
 }
 
-fn check_flag(value: f64, flag: &str, unit: &str, max: f64) -> Result<f32> {
-    if !value.is_finite() {
-        return Err(err(flag, format!("{value} is not a number of {unit}")));
-    }
-    if value < 0.0 {
-        return Err(err(flag, format!("{value} {unit} is negative")));
-    }
-    if value > max {
-        return Err(err(
-            flag,
-            format!("{value} {unit} is above {max} {unit}, more than daylight gives"),
-        ));
-    }
-    Ok(value as f32)
-}
-
+/// The runtime's error about `what` (a flag, or the model it built) as a daylight error.
 fn runtime_err(what: &str) -> impl Fn(eigenrad_runtime::Error) -> Error + '_ {
     move |e| err(what, e.to_string())
 }
@@ -169,19 +149,7 @@ fn runtime_err(what: &str) -> impl Fn(eigenrad_runtime::Error) -> Error + '_ {
 /// `eigenrad sky`.
 pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
     let site = request.site;
-    sun::check_site(&site)?;
-    if !(request.north.is_finite() && request.north.abs() <= 360.0) {
-        return Err(err(
-            "--north",
-            format!("{} is not an angle from −360° to 360°", request.north),
-        ));
-    }
-    if !(request.water.is_finite() && (0.0..=10.0).contains(&request.water)) {
-        return Err(err(
-            "--water",
-            format!("{} cm is outside 0 cm to 10 cm", request.water),
-        ));
-    }
+    check_request(request)?;
     let patches = SkyPatches::reinhart(request.subdivision).map_err(runtime_err("--mf"))?;
     let time = sun::parse_time(&request.time)?;
     let position = sun::position(&site, &time, &sun::SunOptions::default())?;
@@ -196,98 +164,12 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
     }
     let site_sun = daylight::room_direction(position.altitude, position.azimuth, 0.0);
     let sun_room = daylight::site_to_room(site_sun, request.north);
-    // The sky in the site's frame (the patches' frame), in f32 as the controller has it.
-    let sun32 = site_sun.map(|x| x as f32);
-    let zenith = (position.zenith.to_radians() as f32).min(core::f32::consts::FRAC_PI_2);
     let sin_alt = position.altitude.to_radians().sin();
-
-    let built = match request.input {
-        SkyInput::Cie {
-            sky_type,
-            diffuse_horizontal,
-            direct_normal,
-        } => {
-            let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", 2.0e5)?;
-            check_flag(direct_normal, "--dni-lux", "lux", 1.5e5)?;
-            let sky = if sky_type == 0 {
-                CieSky::traditional_overcast(sun32)
-            } else {
-                CieSky::standard(sky_type, sun32)
-            }
-            .map_err(runtime_err("--cie"))?;
-            let lz = sky
-                .zenith_luminance_for(dhi)
-                .map_err(runtime_err("--dhi-lux"))?;
-            let name = if sky_type == 0 {
-                "CIE traditional overcast".to_owned()
-            } else {
-                format!("CIE type {sky_type}")
-            };
-            Built {
-                model: name,
-                sky: Box::new(sky),
-                scale: f64::from(lz),
-                diffuse_lux: diffuse_horizontal,
-                direct_lux: direct_normal,
-                perez: None,
-            }
-        }
-        SkyInput::PerezIrradiance {
-            direct_normal,
-            diffuse_horizontal,
-        } => {
-            let dni = check_flag(direct_normal, "--dni", "W/m²", 1400.0)?;
-            let dhi = check_flag(diffuse_horizontal, "--dhi", "W/m²", 1000.0)?;
-            if dhi <= 0.0 {
-                return Err(err(
-                    "--dhi",
-                    "the Perez sky needs a diffuse horizontal irradiance above 0 W/m²",
-                ));
-            }
-            let c = perez::Conditions::from_irradiance(dhi, dni, zenith, sun::day_of_year(&time))
-                .map_err(runtime_err("--dni/--dhi"))?;
-            perez_parts(
-                &c,
-                sun32,
-                request.water as f32,
-                f64::from(dhi),
-                f64::from(dni),
-            )?
-        }
-        SkyInput::PerezIlluminance {
-            direct_normal,
-            diffuse_horizontal,
-        } => {
-            let dni = check_flag(direct_normal, "--dni-lux", "lux", 1.5e5)?;
-            let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", 2.0e5)?;
-            if dhi <= 0.0 {
-                return Err(err(
-                    "--dhi-lux",
-                    "the Perez sky needs a diffuse horizontal illuminance above 0 lux",
-                ));
-            }
-            let (c, dhi_w, dni_w) = perez::Conditions::from_illuminance(
-                dhi,
-                dni,
-                zenith,
-                sun::day_of_year(&time),
-                request.water as f32,
-            )
-            .map_err(runtime_err("--dni-lux/--dhi-lux"))?;
-            let mut built = perez_parts(
-                &c,
-                sun32,
-                request.water as f32,
-                f64::from(dhi_w),
-                f64::from(dni_w),
-            )?;
-            // Scaled to the illuminances given, not to their round trip through the
-            // efficacies.
-            built.scale *= diffuse_horizontal / built.diffuse_lux;
-            built.diffuse_lux = diffuse_horizontal;
-            built.direct_lux = direct_normal;
-            built
-        }
+    let sun_state = SunState {
+        // The sky in the site's frame (the patches' frame), in f32 as the controller has it.
+        direction: site_sun.map(|x| x as f32),
+        zenith: (position.zenith.to_radians() as f32).min(core::f32::consts::FRAC_PI_2),
+        day_of_year: sun::day_of_year(&time),
     };
     let Built {
         model,
@@ -296,30 +178,9 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
         diffuse_lux,
         direct_lux,
         perez,
-    } = built;
+    } = built_sky(request.input, &sun_state, request.water)?;
     let zenith_luminance = f64::from(relative.relative_luminance([0.0, 0.0, 1.0])) * scale;
-
-    let mut patch_reports = Vec::with_capacity(patches.count());
-    let mut patch_sum = 0.0f64;
-    for i in 0..patches.count() {
-        let Some(p) = patches.patch(i) else { break };
-        let luminance = f64::from(relative.relative_luminance(p.direction)) * scale;
-        patch_sum += luminance * f64::from(p.projected_solid_angle);
-        let dir = p.direction.map(f64::from);
-        let altitude = 0.5 * (f64::from(p.altitude[0]) + f64::from(p.altitude[1]));
-        patch_reports.push(PatchReport {
-            index: i,
-            altitude_deg: if i + 1 == patches.count() {
-                90.0
-            } else {
-                altitude.to_degrees()
-            },
-            azimuth_deg: f64::from(p.azimuth).to_degrees(),
-            direction_room: daylight::site_to_room(dir, request.north),
-            solid_angle_sr: f64::from(p.solid_angle),
-            luminance_cd_m2: luminance,
-        });
-    }
+    let (patch_reports, patch_sum) = patch_reports(&patches, &*relative, scale, request.north);
     Ok(SkyReport {
         time: time.to_rfc3339(),
         site: [site.latitude, site.longitude, site.elevation],
@@ -343,119 +204,56 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
     })
 }
 
-/// The Perez sky of `c` with its figures.
-fn perez_parts(
-    c: &perez::Conditions,
-    sun32: [f32; 3],
-    water: f32,
-    dhi_w: f64,
-    dni_w: f64,
-) -> Result<Built> {
-    let sky = perez::PerezSky::new(c, sun32).map_err(runtime_err("Perez sky"))?;
-    let kd = efficacy::diffuse(c, water).map_err(runtime_err("--water"))?;
-    let kb = efficacy::direct(c, water).map_err(runtime_err("--water"))?;
-    let diffuse_lux = dhi_w * f64::from(kd);
-    let direct_lux = dni_w * f64::from(kb);
-    let scale = f64::from(
-        sky.luminance_scale(diffuse_lux as f32)
-            .map_err(runtime_err("Perez sky"))?,
-    );
-    let perez = PerezReport {
-        clearness: f64::from(c.clearness),
-        brightness: f64::from(c.brightness),
-        coefficients: sky.coefficients().map(f64::from),
-        diffuse_efficacy_lm_w: f64::from(kd),
-        direct_efficacy_lm_w: f64::from(kb),
-        diffuse_horizontal_w_m2: dhi_w,
-        direct_normal_w_m2: dni_w,
-    };
-    Ok(Built {
-        model: "Perez".to_owned(),
-        sky: Box::new(sky),
-        scale,
-        diffuse_lux,
-        direct_lux,
-        perez: Some(perez),
-    })
+/// Checks the site, the room's bearing (`--north`) and the precipitable water (`--water`) of
+/// `request`.
+fn check_request(request: &SkyRequest) -> Result<()> {
+    sun::check_site(&request.site)?;
+    if !(request.north.is_finite() && request.north.abs() <= 360.0) {
+        return Err(err(
+            "--north",
+            format!("{} is not an angle from −360° to 360°", request.north),
+        ));
+    }
+    if !(request.water.is_finite() && (0.0..=10.0).contains(&request.water)) {
+        return Err(err(
+            "--water",
+            format!("{} cm is outside 0 cm to 10 cm", request.water),
+        ));
+    }
+    Ok(())
 }
 
-/// The report as text: one quantity a line, each with its unit.
-pub fn format_sky(r: &SkyReport) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "time                         {}", r.time);
-    let _ = writeln!(
-        s,
-        "site                         {:.4}° N, {:.4}° E, {:.1} m; scene +y at {:.1}° from true north",
-        r.site[0], r.site[1], r.site[2], r.north_deg
-    );
-    let _ = writeln!(
-        s,
-        "sun                          altitude {:.3}°, azimuth {:.3}° (clockwise from north), zenith {:.3}°",
-        r.sun.altitude, r.sun.azimuth, r.sun.zenith
-    );
-    let d = r.sun_direction_room;
-    let _ = writeln!(
-        s,
-        "sun direction (scene axes)   ({:.4}, {:.4}, {:.4})",
-        d[0], d[1], d[2]
-    );
-    let _ = writeln!(s, "sky                          {}", r.model);
-    if let Some(p) = &r.perez {
-        let _ = writeln!(
-            s,
-            "clearness ε, brightness Δ    {:.4}, {:.4}",
-            p.clearness, p.brightness
-        );
-        let c = p.coefficients;
-        let _ = writeln!(
-            s,
-            "Perez a, b, c, d, e          {:.4}, {:.4}, {:.4}, {:.4}, {:.4}",
-            c[0], c[1], c[2], c[3], c[4]
-        );
-        let _ = writeln!(
-            s,
-            "efficacy                     diffuse {:.2} lm/W, direct {:.2} lm/W",
-            p.diffuse_efficacy_lm_w, p.direct_efficacy_lm_w
-        );
-        let _ = writeln!(
-            s,
-            "irradiance                   diffuse horizontal {:.1} W/m², direct normal {:.1} W/m²",
-            p.diffuse_horizontal_w_m2, p.direct_normal_w_m2
-        );
+/// Every patch of `patches` under `relative` times `scale` (cd/m²), directions turned into
+/// the room's axes by `north` (degrees); and the diffuse horizontal illuminance of their
+/// centre luminances, lux.
+fn patch_reports(
+    patches: &SkyPatches,
+    relative: &dyn RelativeSky,
+    scale: f64,
+    north: f64,
+) -> (Vec<PatchReport>, f64) {
+    let mut patch_reports = Vec::with_capacity(patches.count());
+    let mut patch_sum = 0.0f64;
+    for i in 0..patches.count() {
+        let Some(p) = patches.patch(i) else { break };
+        let luminance = f64::from(relative.relative_luminance(p.direction)) * scale;
+        patch_sum += luminance * f64::from(p.projected_solid_angle);
+        let dir = p.direction.map(f64::from);
+        let altitude = 0.5 * (f64::from(p.altitude[0]) + f64::from(p.altitude[1]));
+        patch_reports.push(PatchReport {
+            index: i,
+            altitude_deg: if i + 1 == patches.count() {
+                90.0
+            } else {
+                altitude.to_degrees()
+            },
+            azimuth_deg: f64::from(p.azimuth).to_degrees(),
+            direction_room: daylight::site_to_room(dir, north),
+            solid_angle_sr: f64::from(p.solid_angle),
+            luminance_cd_m2: luminance,
+        });
     }
-    let _ = writeln!(
-        s,
-        "zenith luminance             {:.1} cd/m²",
-        r.zenith_luminance_cd_m2
-    );
-    let _ = writeln!(
-        s,
-        "diffuse horizontal           {:.1} lux",
-        r.diffuse_horizontal_lux
-    );
-    let _ = writeln!(
-        s,
-        "direct                       {:.1} lux normal, {:.1} lux horizontal",
-        r.direct_normal_lux, r.direct_horizontal_lux
-    );
-    let _ = writeln!(
-        s,
-        "global horizontal            {:.1} lux",
-        r.global_horizontal_lux
-    );
-    let rel = if r.diffuse_horizontal_lux > 0.0 {
-        100.0 * (r.patch_diffuse_horizontal_lux / r.diffuse_horizontal_lux - 1.0)
-    } else {
-        0.0
-    };
-    let _ = writeln!(
-        s,
-        "{:<28} {} patches: diffuse horizontal {:.1} lux from centre luminances ({rel:+.2} %)",
-        r.patch_set,
-        r.patches.len(),
-        r.patch_diffuse_horizontal_lux
-    );
-    s
+    (patch_reports, patch_sum)
 }
 
 #[cfg(test)]

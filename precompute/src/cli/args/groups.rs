@@ -1,0 +1,120 @@
+//! Argument groups several commands take, each written once and flattened into the commands
+//! (`#[command(flatten)]`): channel levels, the unit of illuminance, JSON output and the
+//! form-factor cache.
+//!
+//! A command whose help says more than the group's (what `--json` prints, what a level is
+//! relative to) words its own with `#[command(mut_arg(ID, help(TEXT)))]` on its arguments:
+//! the flag, its parsing and what it does stay the group's.
+
+use std::io::IsTerminal;
+
+use clap::{Args, ValueEnum};
+use serde::Serialize;
+
+use crate::cache;
+use crate::cli;
+use crate::formfactor::FormFactorOptions;
+
+/// Sets an argument's help to `text` (as a doc comment does: one line, no final full stop),
+/// for `#[command(mut_arg(ID, help(TEXT)))]`.
+pub(super) fn help(text: &'static str) -> impl FnOnce(clap::Arg) -> clap::Arg {
+    move |arg| arg.help(text)
+}
+
+/// Channel levels, relative or as DALI arc power levels: `solve`, `eval` and `render`.
+#[derive(Args)]
+pub(super) struct ChannelLevels {
+    /// Channel level, relative (1 = as built); repeatable. Channels default to 1.
+    #[arg(long = "level", value_name = "NAME=VALUE")]
+    levels: Vec<String>,
+    /// Channel level as a DALI arc power level, 0 (off) to 254 (100 %) on the IEC 62386-102
+    /// curve, as the firmware converts it; repeatable. Not with --level for one channel.
+    #[arg(long = "arc", value_name = "NAME=ARC")]
+    arcs: Vec<String>,
+}
+
+impl ChannelLevels {
+    /// The levels as given; the command checks them against its channels' names.
+    pub(super) fn level_args(&self) -> cli::LevelArgs {
+        cli::LevelArgs {
+            levels: self.levels.clone(),
+            arcs: self.arcs.clone(),
+        }
+    }
+}
+
+/// The unit of illuminance a command prints: `solve`, `eval`, `render` and `inspect --gains`.
+#[derive(Args)]
+pub(super) struct UnitsFlag {
+    /// Unit of illuminance (and exitance) printed.
+    #[arg(long, value_enum, default_value = "lux")]
+    units: UnitsArg,
+}
+
+impl UnitsFlag {
+    /// The unit asked for.
+    pub(super) fn units(&self) -> cli::Units {
+        match self.units {
+            UnitsArg::Lux => cli::Units::Native,
+            UnitsArg::Fc => cli::Units::Footcandles,
+        }
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum UnitsArg {
+    /// Lux for a photometric basis or scene (W/m² for a radiometric one, whatever is asked).
+    Lux,
+    /// Footcandles: 1 fc = 1 lm/ft² = 10.7639 lx (photometric only).
+    Fc,
+}
+
+/// `--json`: one JSON document on standard output instead of the text.
+#[derive(Args)]
+pub(super) struct JsonFlag {
+    /// Print one JSON document on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+impl JsonFlag {
+    /// Prints `value` on standard output: as one JSON document with `--json`, else as `text`
+    /// writes it.
+    pub(super) fn print<T: Serialize>(
+        &self,
+        value: &T,
+        text: impl FnOnce(&T) -> String,
+    ) -> anyhow::Result<()> {
+        cli::print(&if self.json {
+            cli::json(value)?
+        } else {
+            text(value)
+        })?;
+        Ok(())
+    }
+}
+
+/// The form-factor cache of the commands that compute form factors.
+#[derive(Args)]
+pub(super) struct CacheArgs {
+    /// Compute the form factors without reading or writing the form-factor cache
+    /// ($EIGENRAD_CACHE_DIR, else $XDG_CACHE_HOME/eigenrad, else ~/.cache/eigenrad).
+    #[arg(long)]
+    no_cache: bool,
+}
+
+impl CacheArgs {
+    /// Form-factor settings for a command: the defaults, a progress bar only where someone
+    /// watches (never in logs, pipes or tests), and the cache unless `--no-cache`.
+    pub(super) fn form_factors(&self) -> FormFactorOptions {
+        FormFactorOptions {
+            progress: std::io::stderr().is_terminal(),
+            cache: if self.no_cache {
+                None
+            } else {
+                cache::default_dir()
+            },
+            ..FormFactorOptions::default()
+        }
+    }
+}
