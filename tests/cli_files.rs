@@ -275,3 +275,50 @@ fn cli_build_refuses_output_rows_beyond_memory_before_computing_them() {
     );
     assert!(!dir.join("big.basis").exists());
 }
+
+/// `--operator` chooses how the form factors are stored and the report says so: the cube's
+/// build in f32 reads what the f64 build reads (sensor and zone readings within 1e-6
+/// relative: entries within 2⁻²⁴, the responses within 2u ρmax/(1 − ρmax) of docs/math.md),
+/// and `auto` keeps f64 at this size.
+#[test]
+fn cli_operator_flag_chooses_the_storage_and_the_report_names_it() {
+    let dir = scratch("operator");
+    let report = |extra: &[&str], out: &str| -> serde_json::Value {
+        let mut args = vec!["--json"];
+        args.extend_from_slice(extra);
+        let o = build(&dir, &scene(1.0), out, &args);
+        assert!(o.status.success(), "build failed: {}", stderr(&o));
+        serde_json::from_slice(&o.stdout).expect("build --json prints one JSON document")
+    };
+    let auto = report(&[], "auto.basis");
+    let f32 = report(&["--operator", "dense-f32"], "f32.basis");
+    let f64 = report(&["--operator", "dense"], "f64.basis");
+    assert_eq!(auto["operator"]["storage"], "dense f64");
+    assert_eq!(f64["operator"]["storage"], "dense f64");
+    assert_eq!(f32["operator"]["storage"], "dense f32");
+    let n = f64["patches"].as_u64().expect("patches");
+    assert_eq!(f32["operator"]["bytes"].as_u64(), Some(4 * n * n + 8 * n));
+    assert_eq!(f64["operator"]["bytes"].as_u64(), Some(8 * n * n));
+    // The exact solve through either operator: the same readings.
+    let path = dir.join("cube.toml");
+    std::fs::write(&path, scene(1.0)).expect("write the scene");
+    let path = path.to_str().expect("a UTF-8 path");
+    let readings = |operator: &str| -> Vec<f64> {
+        let o = run(&["solve", path, "--json", "--operator", operator]);
+        assert!(o.status.success(), "solve failed: {}", stderr(&o));
+        let r: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON document");
+        let sensors = r["sensors"].as_array().expect("sensors").iter();
+        sensors
+            .chain(r["zones"].as_array().expect("zones"))
+            .map(|s| s["irradiance"][0].as_f64().expect("irradiance"))
+            .collect()
+    };
+    let (a, b) = (readings("dense"), readings("dense-f32"));
+    assert!(!a.is_empty() && a.len() == b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert!((x - y).abs() <= 1e-6 * x.abs(), "{x} against {y}");
+    }
+    let bad = run(&["build", "x.toml", "-o", "y.basis", "--operator", "sparse"]);
+    assert!(!bad.status.success());
+    assert!(stderr(&bad).contains("dense-f32"), "{}", stderr(&bad));
+}

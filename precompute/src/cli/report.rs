@@ -20,6 +20,12 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
     s += &super::form_factors::format_health(&r.form_factors);
     let _ = writeln!(
         s,
+        "form-factor operator: {}, {:.1} MB",
+        r.operator.storage,
+        r.operator.bytes as f64 / 1e6
+    );
+    let _ = writeln!(
+        s,
         "basis: {} modes, formulation {}, storage {}, {} bytes -> {}",
         r.modes,
         r.formulation,

@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use crate::cache;
 use crate::cli;
-use crate::formfactor::FormFactorOptions;
+use crate::formfactor::{FormFactorOptions, OperatorChoice};
 
 /// Sets an argument's help to `text` (as a doc comment does: one line, no final full stop),
 /// for `#[command(mut_arg(ID, help(TEXT)))]`.
@@ -101,6 +101,31 @@ pub(super) struct CacheArgs {
     /// ($EIGENRAD_CACHE_DIR, else $XDG_CACHE_HOME/eigenrad, else ~/.cache/eigenrad).
     #[arg(long)]
     no_cache: bool,
+    /// How the form factors are stored while the room is solved: f64 up to 5792 patches and
+    /// f32 above (auto), or always one of them
+    #[arg(long, value_enum, default_value_t = OperatorArg::Auto)]
+    operator: OperatorArg,
+}
+
+/// How the form-factor operator is stored (`--operator`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub(super) enum OperatorArg {
+    /// f64 up to 5792 patches (where the form-factor cache keeps it), f32 above
+    Auto,
+    /// The dense matrix in f64: 8 n² bytes
+    Dense,
+    /// The dense matrix in f32: 4 n² bytes, entries within 2⁻²⁴ of the f64 ones (not cached)
+    DenseF32,
+}
+
+impl From<OperatorArg> for OperatorChoice {
+    fn from(a: OperatorArg) -> OperatorChoice {
+        match a {
+            OperatorArg::Auto => OperatorChoice::Auto,
+            OperatorArg::Dense => OperatorChoice::Dense,
+            OperatorArg::DenseF32 => OperatorChoice::DenseF32,
+        }
+    }
 }
 
 impl CacheArgs {
@@ -114,6 +139,7 @@ impl CacheArgs {
             } else {
                 cache::default_dir()
             },
+            operator: self.operator.into(),
             ..FormFactorOptions::default()
         }
     }
