@@ -232,14 +232,15 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         ModeSelection::Count(p) => p.min(n),
         ModeSelection::Tolerance(_) => n.min(TOLERANCE_MAX_MODES),
     };
+    let modes = timed(&mut timings, "eigenbasis", || {
+        Model::modes(&system, opts.formulation, p_max, opts.solver)
+    })?;
     // The exact reference every figure is measured against, and the channels' exact
     // responses the basis stores: LU for small scenes, conjugate gradients on G above
-    // `EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation). Made once, kept by the system.
-    timed(&mut timings, "exact channel responses (LU or CG)", || {
-        system.channel_responses().map(|_| ())
-    })?;
-    let model = timed(&mut timings, "eigenbasis", || {
-        Model::new(&system, opts.formulation, p_max, opts.solver)
+    // `EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation). Made once, kept by the system,
+    // after the modes, whose dense workspace is gone by then.
+    let model = timed(&mut timings, "exact channel responses (LU or CG)", || {
+        Model::from_modes(&system, opts.formulation, modes)
     })?;
     let bands = model.bands.len();
     let cases = accuracy::standard_cases(&scene, opts.random_patterns);

@@ -70,6 +70,17 @@ impl<'s> Model<'s> {
         modes: usize,
         solver: Solver,
     ) -> Result<Model<'s>, eigen::EigenError> {
+        let bands = Model::modes(system, formulation, modes, solver)?;
+        Model::from_modes(system, formulation, bands)
+    }
+
+    /// The modes of every band of `system` ([`Model::new`] without the channels' responses).
+    pub fn modes(
+        system: &System,
+        formulation: Formulation,
+        modes: usize,
+        solver: Solver,
+    ) -> Result<Vec<BandModel>, eigen::EigenError> {
         let g = system.operator();
         let mut bands = Vec::with_capacity(system.band_count());
         for reflectance in &system.reflectance {
@@ -83,6 +94,18 @@ impl<'s> Model<'s> {
             );
             bands.push(BandModel { modes: m, g_modes });
         }
+        Ok(bands)
+    }
+
+    /// The model of `system` with the modes `bands` (from [`Model::modes`] in `formulation`)
+    /// and the channels' exact responses, solved now if the system has not solved them yet.
+    /// Solved after the modes, so that an LU factorisation and the dense eigensolver's
+    /// workspace are never held at once (`crate::memory`).
+    pub fn from_modes(
+        system: &'s System,
+        formulation: Formulation,
+        bands: Vec<BandModel>,
+    ) -> Result<Model<'s>, eigen::EigenError> {
         let responses = system.channel_responses()?;
         Ok(Model {
             system,
