@@ -21,9 +21,10 @@
 //!   above it hold a few vectors per case, not counted.
 //!
 //! Checked against `eigenrad-bench scale` and `eigen` (docs/performance.md): the model gives
-//! 55, 184, 196 and 785 MB for the office at 1101, 2028, 4947 and 9905 patches, whose builds
-//! peaked at 77, 212, 278 and 875 MB (the rest is per-patch data and the program itself), and
-//! 4.4 GB for the dense eigensolve at 9905 patches, which peaked at 4.1 GB.
+//! 55, 184, 196 and 785 MB for the office at 1101, 2028, 4947 and 9905 patches in f64, whose
+//! builds peaked at 77, 212, 278 and 875 MB (the rest is per-patch data and the program
+//! itself); 392 MB at 9905 patches in f32 (the `auto` storage there), which peaked at 547 MB;
+//! and 4.4 GB for the dense eigensolve at 9905 patches, which peaked at 4.1 GB.
 //!
 //! It is the model of `eigenrad build` with the default solver and the split formulation.
 //! `--solver dense`, `--formulation seed` and `eigenrad verify` run the dense eigensolver at
