@@ -175,11 +175,24 @@ mod tests {
     }
 
     /// The scene of `tests/scenes/too_many_patches.toml` (8.8e7 patches) needs one matrix of
-    /// 6.2e16 bytes: far beyond any machine.
+    /// 3.1e16 bytes in f32 (the `auto` storage at that size), 6.2e16 in f64: far beyond any
+    /// machine.
     #[test]
     fn huge_scenes_need_the_form_factors_alone() {
         let n = 8.8e7;
-        assert_eq!(build_bytes(n, &[n]), matrix_bytes(n));
+        assert_eq!(build_bytes(n, &[n]), matrix_bytes(n) / 2.0);
+        assert_eq!(build_bytes_stored(n, &[n], 8.0), matrix_bytes(n));
         assert!(build_bytes(n, &[n]) > 1e16);
+    }
+
+    /// `auto` keeps f64 up to its threshold and halves the operator's bytes above it.
+    #[test]
+    fn auto_storage_halves_the_operator_above_its_threshold() {
+        let at = AUTO_F32_ABOVE as f64;
+        assert_eq!(auto_operator_entry_bytes(at), 8.0);
+        assert_eq!(auto_operator_entry_bytes(at + 1.0), 4.0);
+        // At and below the threshold the f64 matrix fits an entry of the form-factor cache.
+        assert!(matrix_bytes(at) <= (256u64 << 20) as f64);
+        assert!(matrix_bytes(at + 1.0) > (256u64 << 20) as f64);
     }
 }
