@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::Path;
 
+use super::channels::Emitters;
 use super::contacts::{self, Footprint};
 use super::context::{unique, Ctx, MaterialInfo, RawSurface};
 use super::error::SceneError;
@@ -14,7 +15,7 @@ use super::openings::CONTACT_TOLERANCE;
 use super::{
     channels, daylight, limits, luminaires, obj, observers, openings, primitives, winding,
 };
-use super::{Bands, Scene, Surface};
+use super::{Bands, Luminaire, Scene, Surface, Window};
 use crate::geometry::{Aabb, Face, Patch, Polygon, Vec3};
 
 /// Default planarity tolerance: a corner may sit 0.1 % of the face's diagonal off its plane.
@@ -41,36 +42,13 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
 
     // Faces wound against their neighbours, exterior surfaces set apart, openings cut out of
     // room faces, and the patch count checked against memory: all before meshing.
-    for range in &geometry.obj_surfaces {
-        winding::check(&geometry.raw[range.clone()], &flip[range.clone()])?;
-    }
-    let mut is_obj = vec![false; geometry.raw.len()];
-    for i in geometry.obj_surfaces.iter().flat_map(|r| r.clone()) {
-        is_obj[i] = true;
-    }
+    check_obj_windings(&geometry, &flip)?;
+    let mut is_obj = obj_surfaces(&geometry);
     let outside = daylight::take_exterior(&mut geometry.raw, &mut flip, &mut split, &mut is_obj);
     daylight::check_references(&ctx, &file, &geometry.raw, &outside)?;
     let obstructions =
         daylight::obstructions(&ctx, &outside, &materials, &geometry.rooms, planarity)?;
-    let mut claimed = vec![false; geometry.raw.len()];
-    let standing: Vec<(String, Vec3, Vec3)> = geometry
-        .blocks
-        .iter()
-        .zip(&file.block)
-        .filter(|(_, def)| !def.get_ref().bottom && !def.get_ref().exterior)
-        .map(|(b, _)| b.clone())
-        .collect();
-    for (r, faces) in file.room.iter().zip(geometry.room_faces.clone()) {
-        openings::cut(
-            &ctx,
-            r,
-            faces,
-            &mut geometry.raw,
-            &flip,
-            &mut claimed,
-            &standing,
-        )?;
-    }
+    let claimed = cut_openings(&ctx, &file, &mut geometry, &flip)?;
     limits::check(
         &geometry.raw,
         ctx.bands,
@@ -79,8 +57,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     )?;
 
     let raw = &geometry.raw;
-    let objects: Vec<usize> = (0..raw.len()).filter(|&i| is_obj[i]).collect();
-    let footprints = contacts::footprints(raw, &objects, contact_tolerance(raw));
+    let footprints = obj_footprints(raw, &is_obj);
     let meshed = mesh(
         raw,
         &materials,
@@ -91,51 +68,14 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         planarity,
     )?;
     let luminaires = luminaires::place(&ctx, &file.luminaire, &file.channel)?;
-    let lit: Vec<bool> = (0..file.channel.len())
-        .map(|k| luminaires.iter().any(|l| l.channel == k))
-        .collect();
-    let emitters = channels::resolve(
-        &ctx,
-        &file.channel,
-        &lit,
-        &meshed.surfaces,
-        &meshed.patches,
-        raw,
-        &meshed.material_emission,
-    )?;
-    let mut emission = Vec::with_capacity(meshed.patches.len());
-    let mut channel_of_patch = Vec::with_capacity(meshed.patches.len());
-    for p in &meshed.patches {
-        emission.push(emitters.surface_emission[p.surface].clone());
-        channel_of_patch.push(emitters.channel_of_surface[p.surface]);
-    }
-
-    // A room's own face may be glazed; any other window in a room face must be an opening.
-    let mut in_place = claimed.clone();
-    for i in geometry.room_faces.iter().flat_map(|r| r.clone()) {
-        in_place[i] = true;
-    }
-    let windows = daylight::windows(
-        &ctx,
-        &file,
-        raw,
-        &materials,
-        &emitters.channel_of_surface,
-        &geometry.rooms,
-        &in_place,
-    )?;
-    let inside_blocks: Vec<(String, Vec3, Vec3)> = geometry
-        .blocks
-        .iter()
-        .zip(&file.block)
-        .filter(|(_, def)| !def.get_ref().exterior)
-        .map(|(b, _)| b.clone())
-        .collect();
+    let emitters = resolve_channels(&ctx, &file, &luminaires, &meshed, raw)?;
+    let (emission, channel_of_patch) = patch_emission(&meshed.patches, &emitters);
+    let windows = glazed_windows(&ctx, &file, &geometry, &claimed, &materials, &emitters)?;
     let sensors = observers::sensors(
         &ctx,
         &file.sensor,
         &geometry.rooms,
-        &inside_blocks,
+        &inside_blocks(&file, &geometry),
         extent(raw),
     )?;
     let zones = observers::zones(
@@ -164,6 +104,132 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         windows,
         obstructions,
     })
+}
+
+/// Checks each OBJ file's faces for one wound against its neighbours ([`winding::check`]),
+/// with the `flip` of the `[surfaces]` tables applied.
+fn check_obj_windings(geometry: &Geometry, flip: &[bool]) -> Result<(), SceneError> {
+    for range in &geometry.obj_surfaces {
+        winding::check(&geometry.raw[range.clone()], &flip[range.clone()])?;
+    }
+    Ok(())
+}
+
+/// Which of the surfaces come from OBJ files, by index into `geometry.raw`.
+fn obj_surfaces(geometry: &Geometry) -> Vec<bool> {
+    let mut is_obj = vec![false; geometry.raw.len()];
+    for i in geometry.obj_surfaces.iter().flat_map(|r| r.clone()) {
+        is_obj[i] = true;
+    }
+    is_obj
+}
+
+/// Cuts every room's openings, and the footprints of the blocks standing on its floor, out of
+/// its faces ([`openings::cut`]); returns which surfaces became an opening.
+fn cut_openings(
+    ctx: &Ctx,
+    file: &SceneFile,
+    geometry: &mut Geometry,
+    flip: &[bool],
+) -> Result<Vec<bool>, SceneError> {
+    let mut claimed = vec![false; geometry.raw.len()];
+    let standing: Vec<(String, Vec3, Vec3)> = geometry
+        .blocks
+        .iter()
+        .zip(&file.block)
+        .filter(|(_, def)| !def.get_ref().bottom && !def.get_ref().exterior)
+        .map(|(b, _)| b.clone())
+        .collect();
+    for (r, faces) in file.room.iter().zip(geometry.room_faces.clone()) {
+        openings::cut(
+            ctx,
+            r,
+            faces,
+            &mut geometry.raw,
+            flip,
+            &mut claimed,
+            &standing,
+        )?;
+    }
+    Ok(claimed)
+}
+
+/// The footprints of the OBJ objects (`is_obj`) on the faces they stand on, within
+/// [`contact_tolerance`].
+fn obj_footprints(raw: &[RawSurface], is_obj: &[bool]) -> Vec<Footprint> {
+    let objects: Vec<usize> = (0..raw.len()).filter(|&i| is_obj[i]).collect();
+    contacts::footprints(raw, &objects, contact_tolerance(raw))
+}
+
+/// The channels resolved against the meshed surfaces ([`channels::resolve`]), each knowing
+/// whether luminaires are in it.
+fn resolve_channels(
+    ctx: &Ctx,
+    file: &SceneFile,
+    luminaires: &[Luminaire],
+    meshed: &Meshed,
+    raw: &[RawSurface],
+) -> Result<Emitters, SceneError> {
+    let lit: Vec<bool> = (0..file.channel.len())
+        .map(|k| luminaires.iter().any(|l| l.channel == k))
+        .collect();
+    channels::resolve(
+        ctx,
+        &file.channel,
+        &lit,
+        &meshed.surfaces,
+        &meshed.patches,
+        raw,
+        &meshed.material_emission,
+    )
+}
+
+/// Each patch's emission per band at level 1 and the channel driving it: its surface's.
+fn patch_emission(patches: &[Patch], emitters: &Emitters) -> (Vec<Vec<f64>>, Vec<Option<usize>>) {
+    let mut emission = Vec::with_capacity(patches.len());
+    let mut channel_of_patch = Vec::with_capacity(patches.len());
+    for p in patches {
+        emission.push(emitters.surface_emission[p.surface].clone());
+        channel_of_patch.push(emitters.channel_of_surface[p.surface]);
+    }
+    (emission, channel_of_patch)
+}
+
+/// The glazed surfaces ([`daylight::windows`]); `claimed` marks the surfaces that became an
+/// opening.
+fn glazed_windows(
+    ctx: &Ctx,
+    file: &SceneFile,
+    geometry: &Geometry,
+    claimed: &[bool],
+    materials: &BTreeMap<String, MaterialInfo>,
+    emitters: &Emitters,
+) -> Result<Vec<Window>, SceneError> {
+    // A room's own face may be glazed; any other window in a room face must be an opening.
+    let mut in_place = claimed.to_vec();
+    for i in geometry.room_faces.iter().flat_map(|r| r.clone()) {
+        in_place[i] = true;
+    }
+    daylight::windows(
+        ctx,
+        file,
+        &geometry.raw,
+        materials,
+        &emitters.channel_of_surface,
+        &geometry.rooms,
+        &in_place,
+    )
+}
+
+/// The blocks inside the rooms (all but exterior ones): name and corners, m.
+fn inside_blocks(file: &SceneFile, geometry: &Geometry) -> Vec<(String, Vec3, Vec3)> {
+    geometry
+        .blocks
+        .iter()
+        .zip(&file.block)
+        .filter(|(_, def)| !def.get_ref().exterior)
+        .map(|(b, _)| b.clone())
+        .collect()
 }
 
 /// The scene's planarity tolerance (a share of each face's diagonal), [`PLANARITY`] unless

@@ -1,0 +1,187 @@
+//! Sensors: where they are, where they face, and that they can see the room.
+
+use toml::Spanned;
+
+use crate::geometry::Vec3;
+use crate::scene::context::{unique, Ctx};
+use crate::scene::error::SceneError;
+use crate::scene::file::SensorDef;
+use crate::scene::openings::CONTACT_TOLERANCE;
+use crate::scene::Sensor;
+
+/// Reads and checks the sensors; `rooms` and `blocks` are (name, min, max) in metres.
+pub(crate) fn sensors(
+    ctx: &Ctx,
+    defs: &[Spanned<SensorDef>],
+    rooms: &[(String, Vec3, Vec3)],
+    blocks: &[(String, Vec3, Vec3)],
+    extent: Option<(Vec3, Vec3)>,
+) -> Result<Vec<Sensor>, SceneError> {
+    unique(
+        "sensor",
+        defs.iter().map(|s| (s.get_ref().name.as_str(), ctx.at(s))),
+    )?;
+    let mut sensors = Vec::with_capacity(defs.len());
+    for def in defs {
+        let s = def.get_ref();
+        let what = format!("sensor `{}`", s.name);
+        let position = ctx.point(&s.position, &format!("{what}.position"))?;
+        let n = s.normal.get_ref();
+        let normal = Vec3::new(n[0], n[1], n[2]);
+        if !(normal.is_finite() && normal.length() > 0.0) {
+            return Err(SceneError::Invalid {
+                at: ctx.at(&s.normal),
+                field: format!("{what}.normal"),
+                message: format!("must be a finite, non-zero vector, found {n:?}"),
+            });
+        }
+        let half_angle = match &s.half_angle {
+            Some(a) if !(*a.get_ref() > 0.0 && *a.get_ref() <= 90.0) => {
+                return Err(SceneError::OutOfRange {
+                    at: ctx.at(a),
+                    field: format!("{what}.half_angle"),
+                    message: format!("must be in (0, 90] degrees, found {}", a.get_ref()),
+                })
+            }
+            Some(a) => Some(a.get_ref().to_radians()),
+            None => None,
+        };
+        let normal = normal.normalized();
+        placement(ctx, s, &what, position, normal, rooms, blocks, extent)?;
+        sensors.push(Sensor {
+            name: s.name.clone(),
+            position,
+            normal,
+            half_angle,
+        });
+    }
+
+    Ok(sensors)
+}
+
+/// In a scene without rooms, how far a sensor may lie from the box around the faces, in
+/// diagonals of that box.
+const FAR_OUTSIDE: f64 = 10.0;
+
+/// Face names of a box by axis and side (min, max): a room's, then a block's.
+const ROOM_FACES: [[&str; 2]; 3] = [
+    ["wall_xmin", "wall_xmax"],
+    ["wall_ymin", "wall_ymax"],
+    ["floor", "ceiling"],
+];
+const BLOCK_FACES: [[&str; 2]; 3] = [
+    ["side_xmin", "side_xmax"],
+    ["side_ymin", "side_ymax"],
+    ["bottom", "top"],
+];
+
+/// Checks that a sensor (position in metres, unit normal) can see the room: it is inside a
+/// room (when the scene has rooms) or, in a scene without rooms (OBJ geometry, quads), within
+/// [`FAR_OUTSIDE`] diagonals of the box around its faces (`extent`); not inside a block, and not lying on a room or block
+/// face while facing into it.
+#[allow(clippy::too_many_arguments)]
+fn placement(
+    ctx: &Ctx,
+    s: &SensorDef,
+    what: &str,
+    p: Vec3,
+    n: Vec3,
+    rooms: &[(String, Vec3, Vec3)],
+    blocks: &[(String, Vec3, Vec3)],
+    extent: Option<(Vec3, Vec3)>,
+) -> Result<(), SceneError> {
+    let written = |v: Vec3| (v / ctx.unit).to_array();
+    let position_error = |message: String| SceneError::OutOfRange {
+        at: ctx.at(&s.position),
+        field: format!("{what}.position"),
+        message,
+    };
+    let facing_error = |face: String| SceneError::Invalid {
+        at: ctx.at(&s.normal),
+        field: format!("{what}.normal"),
+        message: format!(
+            "the sensor at {:?} lies on `{face}` and faces into it (normal {:?}): it would see \
+             nothing; turn its normal away from that face or move it off the face",
+            written(p),
+            n.to_array()
+        ),
+    };
+    if let (true, Some((lo, hi))) = (rooms.is_empty(), extent) {
+        // Distance from the box around the faces; a sensor may look at a panel from a few of
+        // its sizes away, but not from many: that is a unit or `translate` slip.
+        let outside = Vec3::new(
+            (lo.x - p.x).max(p.x - hi.x).max(0.0),
+            (lo.y - p.y).max(p.y - hi.y).max(0.0),
+            (lo.z - p.z).max(p.z - hi.z).max(0.0),
+        )
+        .length();
+        let diagonal = (hi - lo).length();
+        if outside > FAR_OUTSIDE * diagonal {
+            return Err(position_error(format!(
+                "{:?} is {:.3e} m from the scene, whose faces span {:?} to {:?}: more than \
+                 {FAR_OUTSIDE} times the scene's size (a unit or `translate` mistake?)",
+                written(p),
+                outside,
+                written(lo),
+                written(hi)
+            )));
+        }
+    }
+    if !rooms.is_empty() {
+        let within = |lo: &Vec3, hi: &Vec3, tol: f64| {
+            (0..3).all(|k| p.axis(k) >= lo.axis(k) - tol && p.axis(k) <= hi.axis(k) + tol)
+        };
+        let Some((name, lo, hi)) = rooms
+            .iter()
+            .find(|(_, lo, hi)| within(lo, hi, CONTACT_TOLERANCE * (*hi - *lo).length()))
+        else {
+            return Err(position_error(format!(
+                "{:?} is outside every room ({}); a sensor there would see nothing of the scene",
+                written(p),
+                rooms
+                    .iter()
+                    .map(|(r, lo, hi)| format!(
+                        "`{r}` spans {:?} to {:?}",
+                        written(*lo),
+                        written(*hi)
+                    ))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            )));
+        };
+        let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
+        for k in 0..3 {
+            // Room faces look into the room: +axis at the min side, −axis at the max side.
+            for (side, plane, inward) in [(0, lo.axis(k), 1.0), (1, hi.axis(k), -1.0)] {
+                if (p.axis(k) - plane).abs() <= tol && n.axis(k) * inward < 0.0 {
+                    return Err(facing_error(format!("{name}.{}", ROOM_FACES[k][side])));
+                }
+            }
+        }
+    }
+    for (name, lo, hi) in blocks {
+        let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
+        let strictly = (0..3).all(|k| p.axis(k) > lo.axis(k) + tol && p.axis(k) < hi.axis(k) - tol);
+        if strictly {
+            return Err(position_error(format!(
+                "{:?} is inside block `{name}` (from {:?} to {:?}): a sensor there would see \
+                 nothing",
+                written(p),
+                written(*lo),
+                written(*hi)
+            )));
+        }
+        for k in 0..3 {
+            let on_face_extent = (0..3)
+                .filter(|&j| j != k)
+                .all(|j| p.axis(j) >= lo.axis(j) - tol && p.axis(j) <= hi.axis(j) + tol);
+            // Block faces look out of the block: −axis at the min side, +axis at the max side.
+            for (side, plane, outward) in [(0, lo.axis(k), -1.0), (1, hi.axis(k), 1.0)] {
+                if on_face_extent && (p.axis(k) - plane).abs() <= tol && n.axis(k) * outward < 0.0 {
+                    return Err(facing_error(format!("{name}.{}", BLOCK_FACES[k][side])));
+                }
+            }
+        }
+    }
+    Ok(())
+}
