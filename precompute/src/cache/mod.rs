@@ -53,6 +53,13 @@ pub use lookup::{form_factors, output_rows};
 /// patches). Larger ones are recomputed every time rather than fill the disk unasked.
 pub const MAX_ENTRY_BYTES: u64 = 256 << 20;
 
+// The form factors `auto` keeps in f64 fit an entry (`memory::AUTO_F32_ABOVE`): a second run
+// of the same scene reads them back.
+const _: () = {
+    let n = crate::memory::AUTO_F32_ABOVE as u64;
+    assert!(8 * n * n <= MAX_ENTRY_BYTES);
+};
+
 /// The folder the `eigenrad` commands keep form factors in: `$EIGENRAD_CACHE_DIR`, else
 /// `$XDG_CACHE_HOME/eigenrad`, else `$HOME/.cache/eigenrad`; `None` when none of them is set.
 pub fn default_dir() -> Option<PathBuf> {
