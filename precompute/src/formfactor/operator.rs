@@ -75,17 +75,26 @@ pub trait FormFactorOperator: Send + Sync + std::fmt::Debug {
     }
 }
 
-/// How the form-factor operator is stored (`--operator`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+/// How the form-factor operator is stored (`--operator`; the help texts are the command
+/// line's).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum OperatorChoice {
     /// f64 up to [`crate::memory::AUTO_F32_ABOVE`] patches, f32 above.
     #[default]
+    #[value(help = "f64 up to 5792 patches (where the form-factor cache keeps it), f32 above")]
     Auto,
     /// The dense f64 matrix, `8 n²` bytes.
+    #[value(help = "The dense matrix in f64: 8 n² bytes")]
     Dense,
     /// The dense f32 matrix ([`DenseF32`]), `4 n²` bytes.
+    #[value(
+        help = "The dense matrix in f32: 4 n² bytes, entries within 2⁻²⁴ of the f64 ones (not cached)"
+    )]
     DenseF32,
 }
+
+// The help names the threshold: keep them together.
+const _: () = assert!(crate::memory::AUTO_F32_ABOVE == 5792);
 
 /// The precision an operator is stored in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -22,7 +22,7 @@ mod update;
 use std::path::PathBuf;
 
 use anyhow::Result;
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand};
 use eigenrad_precompute::formfactor::OperatorChoice;
 use eigenrad_precompute::pipeline;
 
@@ -35,27 +35,6 @@ const REFERENCE_MODES: usize = pipeline::DEFAULT_MODES;
 struct Cli {
     #[command(subcommand)]
     command: Command,
-}
-
-/// How the form-factor operator is stored (`eigenrad build --operator`).
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum OperatorArg {
-    /// f64 up to 5792 patches, f32 above.
-    Auto,
-    /// Dense f64.
-    Dense,
-    /// Dense f32.
-    DenseF32,
-}
-
-impl From<OperatorArg> for OperatorChoice {
-    fn from(a: OperatorArg) -> OperatorChoice {
-        match a {
-            OperatorArg::Auto => OperatorChoice::Auto,
-            OperatorArg::Dense => OperatorChoice::Dense,
-            OperatorArg::DenseF32 => OperatorChoice::DenseF32,
-        }
-    }
 }
 
 #[derive(Subcommand)]
@@ -74,16 +53,16 @@ enum Command {
         /// Scene files.
         scenes: Vec<PathBuf>,
         /// How the form-factor operator is stored.
-        #[arg(long, value_enum, default_value_t = OperatorArg::Auto)]
-        operator: OperatorArg,
+        #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
+        operator: OperatorChoice,
     },
     /// (internal) One row of `scale`, in this process.
     ScaleOne {
         /// Scene file.
         scene: PathBuf,
         /// How the form-factor operator is stored.
-        #[arg(long, value_enum, default_value_t = OperatorArg::Auto)]
-        operator: OperatorArg,
+        #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
+        operator: OperatorChoice,
     },
     /// The room's response to the sky and to one sun direction through its windows, against
     /// the time to prepare the scene (scenes with a `[site]` and glazed windows).

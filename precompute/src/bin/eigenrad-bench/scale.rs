@@ -10,7 +10,7 @@ use clap::ValueEnum as _;
 use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline::{self, BuildOptions};
 
-use crate::OperatorArg;
+use eigenrad_precompute::formfactor::OperatorChoice;
 
 /// The table's columns; the build's wall time is [`TOTAL_COLUMN`].
 const HEADER: &str = "| patches | operator | meshing s | BVH s | form factors s | sensors & zones s | eigenbasis s | exact reference s | serialization s | verification s | total s | CPU s | peak MB |";
@@ -22,7 +22,7 @@ const TOTAL_COLUMN: usize = 10;
 /// process, which prints its row. With more than one scene, each scene's total time is then
 /// given against the first's (e.g. the office with photometric luminaires against the
 /// Lambertian office, in one run).
-pub(crate) fn run(scenes: &[PathBuf], operator: OperatorArg) -> Result<()> {
+pub(crate) fn run(scenes: &[PathBuf], operator: OperatorChoice) -> Result<()> {
     println!("{HEADER}");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let exe = std::env::current_exe()?;
@@ -97,7 +97,7 @@ fn cpu_seconds() -> f64 {
 }
 
 /// One row of the table: builds the scene at `path` with the default options in this process.
-pub(crate) fn one(path: &Path, operator: OperatorArg) -> Result<()> {
+pub(crate) fn one(path: &Path, operator: OperatorChoice) -> Result<()> {
     let start = Instant::now();
     let scene =
         eigenrad_precompute::scene::load(path).with_context(|| format!("{}", path.display()))?;
@@ -109,7 +109,7 @@ pub(crate) fn one(path: &Path, operator: OperatorArg) -> Result<()> {
     drop(scene);
     let options = BuildOptions {
         form_factors: FormFactorOptions {
-            operator: operator.into(),
+            operator,
             ..FormFactorOptions::default()
         },
         ..BuildOptions::default()

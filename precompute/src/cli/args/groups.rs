@@ -103,29 +103,8 @@ pub(super) struct CacheArgs {
     no_cache: bool,
     /// How the form factors are stored while the room is solved: f64 up to 5792 patches and
     /// f32 above (auto), or always one of them
-    #[arg(long, value_enum, default_value_t = OperatorArg::Auto)]
-    operator: OperatorArg,
-}
-
-/// How the form-factor operator is stored (`--operator`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub(super) enum OperatorArg {
-    /// f64 up to 5792 patches (where the form-factor cache keeps it), f32 above
-    Auto,
-    /// The dense matrix in f64: 8 n² bytes
-    Dense,
-    /// The dense matrix in f32: 4 n² bytes, entries within 2⁻²⁴ of the f64 ones (not cached)
-    DenseF32,
-}
-
-impl From<OperatorArg> for OperatorChoice {
-    fn from(a: OperatorArg) -> OperatorChoice {
-        match a {
-            OperatorArg::Auto => OperatorChoice::Auto,
-            OperatorArg::Dense => OperatorChoice::Dense,
-            OperatorArg::DenseF32 => OperatorChoice::DenseF32,
-        }
-    }
+    #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
+    operator: OperatorChoice,
 }
 
 impl CacheArgs {
@@ -139,7 +118,7 @@ impl CacheArgs {
             } else {
                 cache::default_dir()
             },
-            operator: self.operator.into(),
+            operator: self.operator,
             ..FormFactorOptions::default()
         }
     }
