@@ -148,30 +148,38 @@ mod tests {
     use super::*;
 
     /// The model against the peaks `eigenrad-bench` measured on the office
-    /// (docs/performance.md, "Precompute scaling"; one band): it accounts for at least 70 %
-    /// of each build's peak and overestimates none by more than 10 %.
+    /// (docs/performance.md, "Precompute scaling" and "The operator in f32"; one band): it
+    /// accounts for at least 70 % of each build's peak and overestimates none by more than
+    /// 10 %.
     #[test]
     fn model_accounts_for_the_measured_peaks() {
-        // (patches, reflecting, measured peak in MB, dense eigensolve forced)
+        // (patches, reflecting, measured peak in MB, bytes per operator entry, dense
+        // eigensolve forced)
         let measured = [
-            (1101.0, 1061.0, 77.0, false),
-            (2028.0, 1944.0, 212.0, false),
-            (4947.0, 4766.0, 278.0, false),
-            (9905.0, 9514.0, 875.0, false),
-            (9905.0, 9514.0, 4100.0, true),
+            (1101.0, 1061.0, 77.0, 8.0, false),
+            (2028.0, 1944.0, 212.0, 8.0, false),
+            (4947.0, 4766.0, 278.0, 8.0, false),
+            (9905.0, 9514.0, 875.0, 8.0, false),
+            (9905.0, 9514.0, 547.0, 4.0, false),
+            (9905.0, 9514.0, 4100.0, 8.0, true),
         ];
-        for (n, nr, peak, dense) in measured {
+        for (n, nr, peak, entry, dense) in measured {
             let model = if dense {
                 matrix_bytes(n) + dense_eigen_bytes(nr)
             } else {
-                build_bytes(n, &[nr])
+                build_bytes_stored(n, &[nr], entry)
             } / 1e6;
             let share = model / peak;
             assert!(
                 (0.7..=1.1).contains(&share),
-                "{n} patches: model {model:.0} MB against a peak of {peak} MB"
+                "{n} patches, {entry} bytes an entry: model {model:.0} MB against a peak of {peak} MB"
             );
         }
+        // The 9905-patch office is stored in f32 by default.
+        assert_eq!(
+            build_bytes(9905.0, &[9514.0]),
+            build_bytes_stored(9905.0, &[9514.0], 4.0)
+        );
     }
 
     /// The scene of `tests/scenes/too_many_patches.toml` (8.8e7 patches) needs one matrix of
