@@ -212,3 +212,10 @@ pub fn random(
     t.grid_view = (0..g * n).map(|_| rng.range(0.0, 0.05)).collect();
     t
 }
+
+/// Recomputes the header checksum after a payload edit, so that a test reaches the check
+/// it is about rather than stopping at the checksum.
+pub fn reseal(bytes: &mut [u8]) {
+    let crc = eigenrad_runtime::format::crc32(&bytes[eigenrad_runtime::format::HEADER_LEN..]);
+    bytes[16..20].copy_from_slice(&crc.to_le_bytes());
+}
