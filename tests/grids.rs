@@ -450,6 +450,29 @@ fn json_and_csv_list_the_same_points() {
             "{}",
             common::stderr(&o)
         );
+        // In footcandles the header says so, and every value is the lux value over 10.7639.
+        let fc = dir.join(format!("{command}-fc.csv"));
+        let o = common::run(&[
+            command,
+            input.to_str().unwrap(),
+            "--units",
+            "fc",
+            "--csv",
+            fc.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{command}: {}", common::stderr(&o));
+        let fc_text = std::fs::read_to_string(&fc).unwrap();
+        let fc_lines: Vec<&str> = fc_text.lines().collect();
+        assert_eq!(fc_lines[0], "zone,point,x_m,y_m,z_m,photopic_fc");
+        for (line, lux_line) in fc_lines[1..].iter().zip(&lines[1..]) {
+            let value = |l: &str| -> f64 { l.split(',').nth(5).unwrap().parse().unwrap() };
+            let (f, l) = (value(line), value(lux_line));
+            // 1 fc = 1/0.3048² lx exactly; the two files print f64 to the last digit.
+            assert!(
+                (f * 10.763_910_416_709_722 - l).abs() <= 1e-12 * l.abs(),
+                "{line}"
+            );
+        }
         let missing = dir.join("no-such-folder/grid.csv");
         let o = common::run(&[
             command,

@@ -11,6 +11,7 @@ use crate::pipeline::{GridReadout, PieceLayout};
 pub fn grids_csv(r: &Readout) -> String {
     let unit = match r.unit {
         "lux" => "lux",
+        "fc" => "fc",
         _ => "W_per_m2",
     };
     // With daylight, each point's daylight part follows its total, band by band.
