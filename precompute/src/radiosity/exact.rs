@@ -61,7 +61,8 @@ impl ExactSolver {
     ) -> Result<Self, EigenError> {
         check_inputs(g, area, reflectance)?;
         let n = g.len();
-        let entry = |i: usize, j: usize| match g.dense() {
+        let dense = g.dense();
+        let entry = |i: usize, j: usize| match dense {
             Some(dense) => dense[(i, j)],
             None => g.entry(i, j),
         };

@@ -211,13 +211,7 @@ impl System {
     /// patches (W/m² or lux).
     pub fn patch_irradiance(&self, b: usize, m: &[f64], levels: &[f64]) -> Vec<f64> {
         let mut e = self.apply_f(m);
-        for (c, &l) in levels.iter().enumerate() {
-            if let Some(e_ext) = &self.external[c].patches[b] {
-                for (x, d) in e.iter_mut().zip(e_ext) {
-                    *x += l * d;
-                }
-            }
-        }
+        add_external_irradiance(&mut e, &self.external, b, levels);
         e
     }
 
@@ -291,11 +285,7 @@ impl System {
                 let mut readings = self.outputs(&exitance);
                 add_external_readings(&mut readings, std::slice::from_ref(ext), b, &[1.0]);
                 let mut irradiance = self.apply_f(&exitance);
-                if let Some(e_ext) = &ext.patches[b] {
-                    for (x, d) in irradiance.iter_mut().zip(e_ext) {
-                        *x += d;
-                    }
-                }
+                add_external_irradiance(&mut irradiance, std::slice::from_ref(ext), b, &[1.0]);
                 (LightResponse { exitance, readings }, irradiance)
             })
             .collect())
@@ -346,6 +336,18 @@ pub fn add_external_readings(
         if let Some(direct) = &external[c].outputs[b] {
             for (o, d) in out.iter_mut().zip(direct) {
                 *o += l * d;
+            }
+        }
+    }
+}
+
+/// Adds to the patch irradiance `e` of band `b` the direct light from beyond the patches of
+/// every channel at its level.
+fn add_external_irradiance(e: &mut [f64], external: &[ExternalLight], b: usize, levels: &[f64]) {
+    for (c, &l) in levels.iter().enumerate() {
+        if let Some(e_ext) = &external[c].patches[b] {
+            for (x, d) in e.iter_mut().zip(e_ext) {
+                *x += l * d;
             }
         }
     }
