@@ -239,6 +239,19 @@ impl Scale {
         (0..=n).map(|k| self.min + k as f64 * self.step).collect()
     }
 
+    /// The isolux levels of a plan whose values run from `lo` to `hi` on this scale: each round
+    /// value ([`Scale::ticks`]) strictly between them; none for a uniform field
+    /// ([`Scale::is_uniform`]), which has no lines to draw.
+    pub fn isolux_levels(&self, lo: f64, hi: f64) -> Vec<f64> {
+        if Scale::is_uniform(lo, hi) {
+            return Vec::new();
+        }
+        self.ticks()
+            .into_iter()
+            .filter(|&t| t > lo && t < hi)
+            .collect()
+    }
+
     /// The bin of `value`: `None` above the scale (beyond rounding) or not a number; values
     /// below `min` fall in the first bin.
     pub fn bin(&self, value: f64) -> Option<usize> {
