@@ -25,7 +25,7 @@ use eigenrad_runtime::target::Output;
 use eigenrad_runtime::{dali, Error};
 
 use session::Session;
-use sun::{Moment, SkyInput, SkyState};
+use sun::{Moment, SkyInput};
 
 /// The page's state: the opened basis, and the buffers of the calling convention.
 #[derive(Default)]
@@ -251,11 +251,6 @@ pub extern "C" fn plan(zone: usize) -> i32 {
     })
 }
 
-/// The sky state's figures as JSON into the text.
-fn sky_text(state: &SkyState) -> String {
-    json::sky(state)
-}
-
 fn moment(s: &Session, year: i32, month: u32, day: u32, minute: u32) -> Moment {
     let offset = s
         .basis
@@ -274,7 +269,7 @@ fn set_sky(year: i32, month: u32, day: u32, minute: u32, input: SkyInput) -> i32
     with_session(|s, _, _, text| {
         let m = moment(s, year, month, day, minute);
         let state = s.set_sky(m, input).map_err(|e| e.to_string())?;
-        *text = sky_text(state);
+        *text = json::sky(state);
         Ok(0)
     })
 }

@@ -338,6 +338,18 @@ mod tests {
         assert_eq!((s.min, s.max, s.step), (150.0, 250.0, 50.0));
     }
 
+    /// The isolux levels of 312–687 lx are the scale's round values inside that range, worked
+    /// by hand (ticks 300 to 700 every 100); a field within 1 % has none.
+    #[test]
+    fn isolux_levels_lie_inside_the_values() {
+        let s = Scale::around(312.0, 687.0, "lux");
+        assert_eq!(s.isolux_levels(312.0, 687.0), vec![400.0, 500.0, 600.0]);
+        // A level equal to an end value is no line: nothing lies beyond it.
+        assert_eq!(s.isolux_levels(300.0, 700.0), vec![400.0, 500.0, 600.0]);
+        let u = Scale::around(199.9, 200.1, "lux");
+        assert!(u.isolux_levels(199.9, 200.1).is_empty());
+    }
+
     /// Every value maps to a colour that maps back to within half a bin, and the bins
     /// follow the values.
     #[test]
