@@ -22,8 +22,8 @@
 //!
 //! It prints the time per page update measured in the browser (`performance.now()` around
 //! each of 400 slider updates: readings, levels, plan and colour bar) and writes a screenshot
-//! to `target/web-test/page.png` (and to `$EIGENRAD_WEB_SCREENSHOT` when set:
-//! `scripts/pictures.sh` puts it in `docs/pictures/`).
+//! of the office to `target/web-test/page.png` (and to `$EIGENRAD_WEB_SCREENSHOT` when set:
+//! `docs/pictures.md` says how it is put there), and one of the daylit room beside it.
 //!
 //! When `chromium`, `chromedriver` or the `wasm32-unknown-unknown` target is missing it
 //! prints `SKIPPED:` and passes; `scripts/test.sh` installs all three.
@@ -456,6 +456,8 @@ fn page_reads_what_eval_prints() {
         checked += check_readings(&browser, &reference, &what);
         cells += check_plan(&browser, &reference, "work_plane", &what);
     }
+    // The daylit room under the last sky, for a look (not in the docs).
+    std::fs::write(work.join("page-daylight.png"), browser.screenshot()).unwrap();
     println!(
         "{checked} readings and {cells} plan cells agree with eigenrad eval; largest relative \
          difference of a reading {:e}",

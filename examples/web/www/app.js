@@ -55,7 +55,7 @@ const page = (() => {
     setStatus(`${name}: ${(info.bytes / 1024).toFixed(1)} KiB, ${info.patches} patches, ` +
       `${info.modes} modes (${info.precision}, ${info.formulation}), ${info.channels.length} channels, ` +
       `${info.sensors.length} sensors, ${info.zones.length} zones` +
-      (info.daylight ? `, daylight at ${info.daylight.latitude}° N ${info.daylight.longitude}° E ` +
+      (info.daylight ? `, daylight at ${info.daylight.latitude.toFixed(2)}° N ${info.daylight.longitude.toFixed(2)}° E ` +
         `(${info.daylight.sky_patches} sky patches, ${info.daylight.sun_nodes} sun nodes)` : ", no daylight"));
     build();
     $("room").hidden = false;
@@ -107,7 +107,9 @@ const page = (() => {
       arc.addEventListener("change", () => setArc(c, Number(arc.value)));
       row.insertCell().appendChild(arc);
       const controlled = Object.assign(document.createElement("input"),
-        { type: "checkbox", checked: ch.emitters.length === 0, id: `controlled-${c}` });
+        // A channel named `window` is daylight standing in as a channel, not a luminaire (the
+        // firmware's controller has the same rule).
+        { type: "checkbox", checked: ch.name !== "window", id: `controlled-${c}` });
       row.insertCell().appendChild(controlled);
       const watts = Object.assign(document.createElement("input"),
         { type: "number", min: 0, step: "any", value: 30, id: `watts-${c}` });
