@@ -17,7 +17,7 @@ python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ig
 step "a browser for the page's test (Debian's chromium and chromium-driver; tests/web.rs drives them)"
 if ! command -v chromium >/dev/null || ! command -v chromedriver >/dev/null; then
   as_root() { if [[ $(id -u) -eq 0 ]]; then "$@"; elif command -v sudo >/dev/null; then sudo -n "$@"; else return 1; fi; }
-  { as_root apt-get update -qq && DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq chromium chromium-driver; } >/dev/null ||
+  { as_root apt-get update -qq && as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium chromium-driver; } >/dev/null ||
     echo "SKIPPED: chromium could not be installed; tests/web.rs will skip"
 fi
 
