@@ -8,11 +8,18 @@ step() { printf '\n== %s\n' "$*"; }
 
 step "toolchain components and targets"
 rustup component add rustfmt clippy >/dev/null 2>&1 || true
-rustup target add thumbv7em-none-eabihf thumbv6m-none-eabi
+rustup target add thumbv7em-none-eabihf thumbv6m-none-eabi wasm32-unknown-unknown
 
 step "reference programs (Radiance's ies2rad, oconv and rtrace from the pyradiance wheel, for the photometry and Radiance tests)"
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore pyradiance ||
     echo "SKIPPED: pyradiance unavailable; the comparisons with Radiance will skip"
+
+step "a browser for the page's test (Debian's chromium and chromium-driver; tests/web.rs drives them)"
+if ! command -v chromium >/dev/null || ! command -v chromedriver >/dev/null; then
+  as_root() { if [[ $(id -u) -eq 0 ]]; then "$@"; elif command -v sudo >/dev/null; then sudo -n "$@"; else return 1; fi; }
+  { as_root apt-get update -qq && as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium chromium-driver; } >/dev/null ||
+    echo "SKIPPED: chromium could not be installed; tests/web.rs will skip"
+fi
 
 step "formatting"
 cargo fmt --all -- --check
@@ -23,6 +30,11 @@ cargo clippy --workspace --all-targets -- -D warnings
 step "firmware example: formatting and lints (its own workspace)"
 (cd examples/firmware && cargo fmt -- --check &&
     CARGO_TARGET_DIR=../../target/firmware cargo clippy --release -- -D warnings)
+
+step "web example: formatting, lints and unit tests (its own workspace, built for wasm32-unknown-unknown)"
+(cd examples/web && cargo fmt -- --check &&
+    CARGO_TARGET_DIR=../../target/web cargo clippy --release --target wasm32-unknown-unknown -- -D warnings &&
+    CARGO_TARGET_DIR=../../target/web cargo test --release --quiet)
 
 step "documentation (warnings are errors)"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps

@@ -239,6 +239,19 @@ impl Scale {
         (0..=n).map(|k| self.min + k as f64 * self.step).collect()
     }
 
+    /// The isolux levels of a plan whose values run from `lo` to `hi` on this scale: each round
+    /// value ([`Scale::ticks`]) strictly between them; none for a uniform field
+    /// ([`Scale::is_uniform`]), which has no lines to draw.
+    pub fn isolux_levels(&self, lo: f64, hi: f64) -> Vec<f64> {
+        if Scale::is_uniform(lo, hi) {
+            return Vec::new();
+        }
+        self.ticks()
+            .into_iter()
+            .filter(|&t| t > lo && t < hi)
+            .collect()
+    }
+
     /// The bin of `value`: `None` above the scale (beyond rounding) or not a number; values
     /// below `min` fall in the first bin.
     pub fn bin(&self, value: f64) -> Option<usize> {
@@ -323,6 +336,18 @@ mod tests {
         assert!(Scale::is_uniform(199.0, 201.0) && !Scale::is_uniform(197.0, 201.0));
         let s = Scale::around(199.9, 200.1, "lux");
         assert_eq!((s.min, s.max, s.step), (150.0, 250.0, 50.0));
+    }
+
+    /// The isolux levels of 312–687 lx are the scale's round values inside that range, worked
+    /// by hand (ticks 300 to 700 every 100); a field within 1 % has none.
+    #[test]
+    fn isolux_levels_lie_inside_the_values() {
+        let s = Scale::around(312.0, 687.0, "lux");
+        assert_eq!(s.isolux_levels(312.0, 687.0), vec![400.0, 500.0, 600.0]);
+        // A level equal to an end value is no line: nothing lies beyond it.
+        assert_eq!(s.isolux_levels(300.0, 700.0), vec![400.0, 500.0, 600.0]);
+        let u = Scale::around(199.9, 200.1, "lux");
+        assert!(u.isolux_levels(199.9, 200.1).is_empty());
     }
 
     /// Every value maps to a colour that maps back to within half a bin, and the bins

@@ -74,7 +74,6 @@ impl Plan {
         let (lo, hi) = if lo <= hi { (lo, hi) } else { (0.0, 0.0) };
         let scale = Scale::around(lo, hi, input.unit);
         let isolux = match input.points.first() {
-            Some(_) if Scale::is_uniform(lo, hi) => Vec::new(),
             Some(&origin) => {
                 let lattice = Lattice {
                     counts: input.counts,
@@ -83,9 +82,8 @@ impl Plan {
                     values: &input.values,
                 };
                 scale
-                    .ticks()
+                    .isolux_levels(lo, hi)
                     .into_iter()
-                    .filter(|&t| t > lo && t < hi)
                     .map(|t| (t, isolines(&lattice, t)))
                     .filter(|(_, lines)| !lines.is_empty())
                     .collect()
