@@ -30,6 +30,7 @@
 //! Nothing here but [`sun_grid`] is called by the basis evaluators: a firmware that does not
 //! use the sky models links none of them.
 
+pub(crate) mod approx;
 pub mod cie;
 mod conditions;
 pub mod efficacy;
