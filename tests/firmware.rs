@@ -508,6 +508,8 @@ struct DaylightStep {
     /// Degrees clockwise from north.
     azimuth: f64,
     global_horizontal: f32,
+    /// The runtime's own sun position (`sky::sun`, f32): altitude and azimuth, degrees.
+    runtime_sun: Option<(f64, f64)>,
     sensors: Vec<(String, f64)>,
     zones: Vec<(String, f64)>,
     /// `(zone, [E_avg, E_min, E_max, U_o])` of each zone with a grid.
@@ -679,6 +681,12 @@ impl FirmwareRun {
                         global_horizontal: number(g, line),
                         ..DaylightStep::default()
                     });
+                }
+                ["daylight", "sun_runtime", k, "altitude", a, "azimuth", az] => {
+                    let day = run.daylight.as_mut().expect("runtime sun before setup");
+                    assert_eq!(number::<usize>(k, line) + 1, day.steps.len());
+                    let step = day.steps.last_mut().expect("runtime sun before a step");
+                    step.runtime_sun = Some((number(a, line), number(az, line)));
                 }
                 ["daylight", "reading", k, kind @ ("sensor" | "zone"), rest @ ..] => {
                     let day = run

@@ -161,6 +161,11 @@ pub fn horizontal_illuminance<S: RelativeSky + ?Sized>(sky: &S) -> f32 {
     };
     let quarter = core::f32::consts::FRAC_PI_4;
     let step = core::f32::consts::PI / QUADRATURE_AZIMUTHS as f32;
+    // The azimuths' sines and cosines are the same on every ring: once.
+    let mut azimuths = [(0.0f32, 0.0f32); QUADRATURE_AZIMUTHS];
+    for (k, slot) in azimuths.iter_mut().enumerate() {
+        *slot = approx::sin_cos((k as f32 + 0.5) * step);
+    }
     let mut total = 0.0f32;
     for &(x, w) in GAUSS_16.iter() {
         for sign in [-1.0f32, 1.0] {
@@ -168,9 +173,7 @@ pub fn horizontal_illuminance<S: RelativeSky + ?Sized>(sky: &S) -> f32 {
             let zenith = quarter * (1.0 + sign * x);
             let (sz, cz) = approx::sin_cos(zenith);
             let mut ring = 0.0f32;
-            for k in 0..QUADRATURE_AZIMUTHS {
-                let phi = (k as f32 + 0.5) * step;
-                let (sp, cp) = approx::sin_cos(phi);
+            for &(sp, cp) in azimuths.iter() {
                 // Azimuth φ from the sun's vertical plane: along (ux, uy) and its normal.
                 let dir = [sz * (cp * ux - sp * uy), sz * (cp * uy + sp * ux), cz];
                 ring += sky.relative_luminance(dir);
