@@ -44,7 +44,10 @@ fn basis_bytes() -> &'static [u8] {
     BYTES.get_or_init(|| {
         let dir = common::scratch("sky-single-precision");
         let out: PathBuf = dir.join("office-daylight.basis");
-        let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/office-daylight/scene.toml");
+        let scene = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/examples/office-daylight/scene.toml"
+        );
         let o = common::run(&["build", scene, "-o", out.to_str().unwrap()]);
         assert!(o.status.success(), "{}", common::stderr(&o));
         std::fs::read(&out).unwrap()
@@ -298,7 +301,10 @@ fn single_precision_sky_reads_as_the_f64_sky() {
             .collect();
         for (i, (a, b)) in lum32.iter().zip(&lum64).enumerate() {
             let rel = (f64::from(*a) - f64::from(*b)).abs() / f64::from(*b).max(1.0);
-            assert!(rel <= TOLERANCE, "{time} {kind:?}: patch {i}: {a} against {b}");
+            assert!(
+                rel <= TOLERANCE,
+                "{time} {kind:?}: patch {i}: {a} against {b}"
+            );
         }
 
         let global = diffuse + DIRECT_NORMAL * alt.sin();
@@ -319,5 +325,7 @@ fn single_precision_sky_reads_as_the_f64_sky() {
             worst = worst.max(rel);
         }
     }
-    println!("f32 sky against the f64 sky, daylight office: largest relative difference {worst:.2e}");
+    println!(
+        "f32 sky against the f64 sky, daylight office: largest relative difference {worst:.2e}"
+    );
 }

@@ -773,8 +773,8 @@ fn firmware_daylight_office() {
         // The runtime's own sun against SPA's (the host's, printed by the firmware).
         let (alt, az) = step.runtime_sun.expect("the runtime's sun at every step");
         let (a1, a2) = (alt.to_radians(), step.altitude.to_radians());
-        let cos = a1.sin() * a2.sin()
-            + a1.cos() * a2.cos() * (az - step.azimuth).to_radians().cos();
+        let cos =
+            a1.sin() * a2.sin() + a1.cos() * a2.cos() * (az - step.azimuth).to_radians().cos();
         let separation = cos.clamp(-1.0, 1.0).acos().to_degrees();
         assert!(
             separation <= RUNTIME_SUN_BOUND,

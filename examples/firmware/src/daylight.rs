@@ -309,13 +309,11 @@ pub fn run(basis: Basis<'_>, ticks: &mut Ticks, calibration: Calibration) -> Res
     let offset = libm::roundf(site.utc_offset_minutes) as i32;
     // The patches' geometry, once for the basis.
     let mut centres = [[0.0f32; 3]; SKY];
-    let centres = centres
-        .get_mut(..patches.count())
-        .ok_or(Error::Capacity {
-            what: "sky patches",
-            needed: patches.count(),
-            capacity: SKY,
-        })?;
+    let centres = centres.get_mut(..patches.count()).ok_or(Error::Capacity {
+        what: "sky patches",
+        needed: patches.count(),
+        capacity: SKY,
+    })?;
     patches.centres(centres)?;
     let centres = &*centres;
     let mut luminance = [0.0f32; SKY];
@@ -529,7 +527,12 @@ fn measure(
     let out = out.get_mut(..patches.count()).unwrap_or(&mut []);
     let sky_patches = ticks.count(REPS_SKY, |i| {
         let s = if i % 2 == 0 { &sky } else { &other };
-        black_box(patches).luminances_at(black_box(centres), black_box(s), black_box(zenith), out)?;
+        black_box(patches).luminances_at(
+            black_box(centres),
+            black_box(s),
+            black_box(zenith),
+            out,
+        )?;
         black_box(&*out);
         Ok::<(), Error>(())
     })?;

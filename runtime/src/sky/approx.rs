@@ -44,8 +44,7 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
     let r = ((x - k * A) - k * B) - k * C;
     let z = r * r;
     let s = r + r * z * ((-1.951_529_6e-4 * z + 8.332_161e-3) * z - 1.666_665_5e-1);
-    let c = 1.0 - 0.5 * z
-        + z * z * ((2.443_315_7e-5 * z - 1.388_731_6e-3) * z + 4.166_664_6e-2);
+    let c = 1.0 - 0.5 * z + z * z * ((2.443_315_7e-5 * z - 1.388_731_6e-3) * z + 4.166_664_6e-2);
     // k fits an i32 for every argument that reaches here; the cast saturates otherwise.
     match (k as i32) & 3 {
         0 => (s, c),
@@ -162,8 +161,7 @@ pub fn atan2(y: f32, x: f32) -> f32 {
     let z = t * t;
     let a = base
         + t
-        + t * z * (((8.053_744_5e-2 * z - 1.387_768_6e-1) * z + 1.997_771_1e-1) * z
-            - 3.333_295e-1);
+        + t * z * (((8.053_744_5e-2 * z - 1.387_768_6e-1) * z + 1.997_771_1e-1) * z - 3.333_295e-1);
     let a = if x < 0.0 { PI - a } else { a };
     if y < 0.0 {
         -a

@@ -357,9 +357,12 @@ mod tests {
                     assert!((c[k] - exact[k]).abs() <= 2.0e-7, "MF:{n} patch {i}");
                 }
             }
-            let cie = super::super::cie::CieSky::standard(12, super::super::direction(0.6, 2.0))
-                .unwrap();
-            let (mut a, mut b) = (std::vec![0.0f32; sky.count()], std::vec![0.0f32; sky.count()]);
+            let cie =
+                super::super::cie::CieSky::standard(12, super::super::direction(0.6, 2.0)).unwrap();
+            let (mut a, mut b) = (
+                std::vec![0.0f32; sky.count()],
+                std::vec![0.0f32; sky.count()],
+            );
             sky.luminances(&cie, 7000.0, &mut a).unwrap();
             sky.luminances_at(&centres, &cie, 7000.0, &mut b).unwrap();
             assert_eq!(a, b);

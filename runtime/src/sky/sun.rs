@@ -142,7 +142,13 @@ fn sin_cos_degrees(x: f32) -> (f32, f32) {
 /// does not exist included) is [`Error::OutOfRange`].
 pub fn position(latitude: f32, longitude: f32, time: Utc) -> Result<Position> {
     super::check_range(latitude, "site latitude (°)", -90.0, 90.0, "from -90 to 90")?;
-    super::check_range(longitude, "site longitude (°)", -180.0, 180.0, "from -180 to 180")?;
+    super::check_range(
+        longitude,
+        "site longitude (°)",
+        -180.0,
+        180.0,
+        "from -180 to 180",
+    )?;
     if !(1900..=2200).contains(&time.year) {
         return Err(Error::OutOfRange {
             what: "year of the sun's position",
