@@ -1,5 +1,5 @@
 //! The controller's sky in single precision against the same sky in `f64`, on the daylight
-//! office (`examples/office-daylight/scene.toml`, built by `eigenrad build`).
+//! office (`examples/office-daylight/scene.toml`, built as `eigenrad build` builds it).
 //!
 //! The runtime's sky models (`eigenrad_runtime::sky`) run in `f32` with polynomial sines,
 //! cosines, arccosines and exponentials; the reference here evaluates the same models in
@@ -14,13 +14,13 @@
 //! daylight differs by what the single-precision sky changes: within [`TOLERANCE`] of the
 //! `f64` sky's, at every moment.
 
-mod common;
-
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::path::PathBuf;
+use std::path::Path;
 use std::sync::OnceLock;
 
 use eigenrad_precompute::daylight::sun::{self as spa, Site, SunOptions};
+use eigenrad_precompute::formfactor::FormFactorOptions;
+use eigenrad_precompute::pipeline::{self, BuildOptions};
 use eigenrad_runtime::sky::cie::{CieSky, STANDARD_TYPES};
 use eigenrad_runtime::sky::patches::SkyPatches;
 use eigenrad_runtime::sky::perez::{
@@ -38,19 +38,23 @@ const DIRECT_NORMAL: f64 = 60_000.0;
 
 type Evaluator<'a> = DaylightEvaluator<'a, 145, 8, 0>;
 
-/// The daylight office's basis (f32 storage, default settings), built once per run.
+/// The daylight office's basis (f32 storage, default settings), built once per run, in
+/// process (the code behind `eigenrad build`, optimised as tests are).
 fn basis_bytes() -> &'static [u8] {
     static BYTES: OnceLock<Vec<u8>> = OnceLock::new();
     BYTES.get_or_init(|| {
-        let dir = common::scratch("sky-single-precision");
-        let out: PathBuf = dir.join("office-daylight.basis");
-        let scene = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/examples/office-daylight/scene.toml"
-        );
-        let o = common::run(&["build", scene, "-o", out.to_str().unwrap()]);
-        assert!(o.status.success(), "{}", common::stderr(&o));
-        std::fs::read(&out).unwrap()
+        let scene =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/office-daylight/scene.toml");
+        let opts = BuildOptions {
+            form_factors: FormFactorOptions {
+                cache: None,
+                ..FormFactorOptions::default()
+            },
+            ..BuildOptions::default()
+        };
+        let (bytes, report) = pipeline::build(&scene, &opts).expect("build");
+        assert!(report.daylight.is_some(), "a daylight section");
+        bytes
     })
 }
 

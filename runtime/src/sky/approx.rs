@@ -32,14 +32,14 @@ pub const SIN_COS_DOMAIN: f32 = 8192.0;
 /// Then Cephes' minimax polynomials for sine and cosine on [−π/4, π/4], and the quadrant
 /// `k mod 4` swaps and signs them.
 pub fn sin_cos(x: f32) -> (f32, f32) {
-    if !(x.abs() <= SIN_COS_DOMAIN) {
+    if x.is_nan() || x.abs() > SIN_COS_DOMAIN {
         return (0.0, 1.0);
     }
     // π/2 = A + B + C (Cephes' parts of π/4, doubled): A has 8 significant bits and B 11,
     // so k·A and k·B are exact for every k below 2¹³.
     const A: f32 = 1.570_312_5;
-    const B: f32 = 4.837_512_969_970_703e-4;
-    const C: f32 = 7.549_789_954_891_815e-8;
+    const B: f32 = 4.837_513e-4;
+    const C: f32 = 7.549_79e-8;
     let k = round(x * (2.0 / PI));
     let r = ((x - k * A) - k * B) - k * C;
     let z = r * r;
@@ -92,7 +92,7 @@ pub fn sqrt(x: f32) -> f32 {
 /// `asin x` for |x| ≤ 0.5, Cephes' minimax polynomial.
 fn asin_small(x: f32) -> f32 {
     let z = x * x;
-    let p = (((4.216_32e-2 * z + 2.418_131_1e-2) * z + 4.547_002_6e-2) * z + 7.495_300_3e-2) * z
+    let p = (((4.216_32e-2 * z + 2.418_131e-2) * z + 4.547_002_6e-2) * z + 7.495_300_3e-2) * z
         + 1.666_675_2e-1;
     x + x * z * p
 }
@@ -191,7 +191,7 @@ pub fn exp(x: f32) -> f32 {
     let p = (((((1.987_569_1e-4 * r + 1.398_2e-3) * r + 8.333_452e-3) * r + 4.166_579_6e-2) * r
         + 1.666_666_5e-1)
         * r
-        + 5.000_000_1e-1)
+        + 0.5)
         * z
         + r
         + 1.0;
