@@ -23,7 +23,10 @@
 //!   512 KiB of flash. The firmware also steps through the two solstices of sun and clear sky
 //!   on it; every step's daylight readings must agree with
 //!   `eigenrad eval --time ... --cie 12 --dhi-lux 10000 --dni-lux 60000 --json` within
-//!   [`DAYLIGHT_REL_TOL`] (`firmware/checks.rs`, `firmware_daylight_office`);
+//!   [`DAYLIGHT_REL_TOL`], the runtime's own sun position must be within 0.05° of SPA's at
+//!   every step, and a whole sky update by the runtime alone (sun, sky, patch luminances,
+//!   `set_sky`, every output) within 200 000 instructions (`firmware/checks.rs`,
+//!   `firmware_daylight_office`);
 //! - the Cornell box example (`examples/cornell-box/scene.toml`, three bands, one channel) as
 //!   `eigenrad build` makes it by default;
 //! - a random three-band basis (tables of plausible size but no room behind them, several
@@ -508,6 +511,8 @@ struct DaylightStep {
     /// Degrees clockwise from north.
     azimuth: f64,
     global_horizontal: f32,
+    /// The runtime's own sun position (`sky::sun`, f32): altitude and azimuth, degrees.
+    runtime_sun: Option<(f64, f64)>,
     sensors: Vec<(String, f64)>,
     zones: Vec<(String, f64)>,
     /// `(zone, [E_avg, E_min, E_max, U_o])` of each zone with a grid.
@@ -679,6 +684,12 @@ impl FirmwareRun {
                         global_horizontal: number(g, line),
                         ..DaylightStep::default()
                     });
+                }
+                ["daylight", "sun_runtime", k, "altitude", a, "azimuth", az] => {
+                    let day = run.daylight.as_mut().expect("runtime sun before setup");
+                    assert_eq!(number::<usize>(k, line) + 1, day.steps.len());
+                    let step = day.steps.last_mut().expect("runtime sun before a step");
+                    step.runtime_sun = Some((number(a, line), number(az, line)));
                 }
                 ["daylight", "reading", k, kind @ ("sensor" | "zone"), rest @ ..] => {
                     let day = run

@@ -187,12 +187,14 @@ const INSTRUCTIONS: [&str; 9] = [
 ];
 
 /// The day loop's timed operations (`measure` in `examples/firmware/src/daylight.rs`).
-const DAYLIGHT_INSTRUCTIONS: [&str; 5] = [
+const DAYLIGHT_INSTRUCTIONS: [&str; 7] = [
     "daylight_update_read_outputs",
     "daylight_update_read_outputs_modes",
     "daylight_sky",
     "daylight_sky_luminances",
     "daylight_sun_position",
+    "daylight_sun_position_runtime",
+    "daylight_sky_update",
 ];
 
 /// Instruction budgets for the office at 32 modes (issue 12, docs/embedded.md): a full update
@@ -583,6 +585,14 @@ const DAYLIGHT_DHI: f32 = 10_000.0;
 const DAYLIGHT_DNI: f32 = 60_000.0;
 const FW_SKY: usize = 145;
 
+/// Instruction budget of a whole sky update by the runtime alone on the daylight office (issue
+/// 30, docs/embedded.md): the sun's position (`sky::sun`), the CIE clear sky and its zenith
+/// luminance, the 145 patch luminances, `set_sky` and the read of every sensor and zone.
+const BUDGET_SKY_UPDATE: u64 = 200_000;
+/// The runtime's sun position against SPA's at every step of the day loop, degrees of
+/// separation (`eigenrad_runtime::sky::sun`'s stated bound).
+const RUNTIME_SUN_BOUND: f64 = 0.05;
+
 /// Instruction budget of a sky update plus the read of every sensor and zone on the daylight
 /// office at 32 modes, by a `DaylightEvaluator` without modes (issue 14, docs/embedded.md).
 const BUDGET_DAYLIGHT_UPDATE_READ_OUTPUTS: u64 = 20_000;
@@ -734,6 +744,7 @@ fn firmware_daylight_office() {
     // Every step against eval.
     let mut worst = (0.0f64, String::new());
     let mut worst_sun = 0.0f64;
+    let mut worst_runtime_sun = 0.0f64;
     let mut check = |what: &dyn Fn() -> String, firmware: f64, host: f64| {
         let relative = (firmware - host).abs() / host.abs().max(1.0);
         assert!(
@@ -759,6 +770,18 @@ fn firmware_daylight_office() {
             worst_sun = worst_sun.max((got - want).abs());
         }
         assert!(step.altitude > 0.0);
+        // The runtime's own sun against SPA's (the host's, printed by the firmware).
+        let (alt, az) = step.runtime_sun.expect("the runtime's sun at every step");
+        let (a1, a2) = (alt.to_radians(), step.altitude.to_radians());
+        let cos =
+            a1.sin() * a2.sin() + a1.cos() * a2.cos() * (az - step.azimuth).to_radians().cos();
+        let separation = cos.clamp(-1.0, 1.0).acos().to_degrees();
+        assert!(
+            separation <= RUNTIME_SUN_BOUND,
+            "step {k} ({}): the runtime's sun {alt}° {az}° is {separation}° from SPA's",
+            step.time
+        );
+        worst_runtime_sun = worst_runtime_sun.max(separation);
         let global = light["global_horizontal_lux"].as_f64().expect("E_gh");
         assert!(
             (f64::from(step.global_horizontal) - global).abs() <= 1e-6 * global,
@@ -802,7 +825,8 @@ fn firmware_daylight_office() {
     let (relative, at) = worst;
     eprintln!(
         "{name}: {} daylight steps ({} in June, {} in December) against eigenrad eval: \
-         largest relative difference {relative:e} ({at}), sun within {worst_sun:e}°",
+         largest relative difference {relative:e} ({at}), sun within {worst_sun:e}°, the \
+         runtime's sun within {worst_runtime_sun:e}° of SPA's",
         day.steps.len(),
         per_date[0].len(),
         per_date[1].len()
@@ -822,6 +846,12 @@ fn firmware_daylight_office() {
          {BUDGET_DAYLIGHT_UPDATE_READ_OUTPUTS_MODES}"
     );
     assert!(modal > update, "the modes cost");
+    let sky_update = run.instructions["daylight_sky_update"];
+    assert!(
+        sky_update <= BUDGET_SKY_UPDATE,
+        "whole sky update (runtime sun, sky, patch luminances, set_sky, outputs): {sky_update} \
+         instructions, budget {BUDGET_SKY_UPDATE}"
+    );
 
     // Flash: the daylight tables as the build reports them, and the whole firmware.
     let report = std::fs::read_to_string(work_dir().join(format!("{name}.report"))).unwrap();
@@ -856,6 +886,7 @@ fn parser_reads_daylight_records() {
         daylight zone work_plane 0\n\
         daylight step 0 time 2026-06-21T04:00+01:00 altitude 4.5e-1 azimuth 5.3e1 \
         global_horizontal 1.0473067e4\n\
+        daylight sun_runtime 0 altitude 4.5e-1 azimuth 5.3e1\n\
         daylight reading 0 sensor north desk 2.5e2\n\
         daylight reading 0 zone work_plane 2.75e2\n\
         daylight figures 0 average 2.7e2 minimum 1.1e2 maximum 9.5e2 uniformity 4e-1 zone \
@@ -869,6 +900,7 @@ fn parser_reads_daylight_records() {
     let step = &day.steps[0];
     assert_eq!(step.time, "2026-06-21T04:00+01:00");
     assert_eq!((step.altitude, step.azimuth), (0.45, 53.0));
+    assert_eq!(step.runtime_sun, Some((0.45, 53.0)));
     assert_eq!(step.sensors, vec![("north desk".to_string(), 250.0)]);
     assert_eq!(step.zones, vec![("work_plane".to_string(), 275.0)]);
     assert_eq!(

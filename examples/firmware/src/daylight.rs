@@ -17,7 +17,8 @@
 //!    normal illuminance [`DIRECT_NORMAL`]: one weather state all day, the sky's shape and
 //!    the sun moving with the sun's position, as
 //!    `eigenrad eval --cie 12 --dhi-lux 10000 --dni-lux 60000` has it;
-//! 3. fills every sky patch's luminance (`SkyPatches::luminances`), takes the global
+//! 3. fills every sky patch's luminance (`SkyPatches::luminances_at`, from the patches'
+//!    centres computed once before the loop), takes the global
 //!    horizontal illuminance `E_dh + E_n sin(altitude)` and calls `set_sky` on a
 //!    `DaylightEvaluator` without modes (`MODES` = 0, the state a controller that reads
 //!    sensors, zones and grids needs) and on one with modes (patch exitance); the two must
@@ -25,8 +26,11 @@
 //! 4. prints every sensor's and zone's daylight illuminance and the daylight figures of
 //!    every zone's calculation grid.
 //!
-//! Then it times a daylight update plus the read of every output on both evaluators, the
-//! sky and its patch luminances, and the sun's position.
+//! At each step it also computes the sun's position with the runtime alone
+//! (`sky::sun::position`, single precision) and prints it beside SPA's. Then it times a
+//! daylight update plus the read of every output on both evaluators, the sky and its patch
+//! luminances, both suns' positions, and a whole sky update as a controller without SPA
+//! makes it.
 //!
 //! Output, after the records of `main.rs` and `control.rs`:
 //!
@@ -36,6 +40,7 @@
 //! daylight_evaluator size_of <bytes> ram_bytes <bytes> capacity <sky> <outputs> <modes>
 //! daylight zone work_plane <z>                         the zone a controller keeps
 //! daylight step <k> time <YYYY-MM-DDTHH:MM+HH:MM> altitude <deg> azimuth <deg> global_horizontal <lux>
+//! daylight sun_runtime <k> altitude <deg> azimuth <deg>  the runtime's own sun position (f32)
 //! daylight reading <k> sensor <name> <lux>
 //! daylight reading <k> zone <name> <lux>
 //! daylight figures <k> average <lux> minimum <lux> maximum <lux> uniformity <u> zone <name>
@@ -225,11 +230,35 @@ fn position(site: &eigenrad_runtime::Site, moment: Moment) -> Result<Position, F
     })
 }
 
-/// The clear sky of `position` and every patch's luminance (cd/m²) into `out`.
-fn sky_luminances(patches: SkyPatches, position: &Position, out: &mut [f32]) -> Result<(), Error> {
-    let sky = CieSky::standard(SKY_TYPE, position.sun().direction)?;
+/// The clear sky of the sun in `direction` and every patch's luminance (cd/m²) into `out`,
+/// from the patches' centres computed once (`SkyPatches::centres`).
+fn sky_luminances(
+    patches: SkyPatches,
+    centres: &[[f32; 3]],
+    direction: [f32; 3],
+    out: &mut [f32],
+) -> Result<(), Error> {
+    let sky = CieSky::standard(SKY_TYPE, direction)?;
     let zenith = sky.zenith_luminance_for(DIFFUSE_HORIZONTAL)?;
-    patches.luminances(&sky, zenith, out)
+    patches.luminances_at(centres, &sky, zenith, out)
+}
+
+/// The sun's position at `moment` from `site` by the runtime alone
+/// (`eigenrad_runtime::sky::sun`, `f32`): the controller's way, without SPA.
+fn runtime_position(
+    site: &eigenrad_runtime::Site,
+    moment: Moment,
+) -> Result<sky::sun::Position, Error> {
+    sky::sun::position(
+        site.latitude,
+        site.longitude,
+        sky::sun::Utc {
+            year: moment.year,
+            month: moment.month as u8,
+            day: moment.day as u8,
+            seconds: ((moment.minute as i32 - moment.offset) * 60) as f32,
+        },
+    )
 }
 
 /// The day loop and the timings, on a one-band basis that carries daylight.
@@ -278,6 +307,15 @@ pub fn run(basis: Basis<'_>, ticks: &mut Ticks, calibration: Calibration) -> Res
     }
 
     let offset = libm::roundf(site.utc_offset_minutes) as i32;
+    // The patches' geometry, once for the basis.
+    let mut centres = [[0.0f32; 3]; SKY];
+    let centres = centres.get_mut(..patches.count()).ok_or(Error::Capacity {
+        what: "sky patches",
+        needed: patches.count(),
+        capacity: SKY,
+    })?;
+    patches.centres(centres)?;
+    let centres = &*centres;
     let mut luminance = [0.0f32; SKY];
     let luminance = luminance
         .get_mut(..patches.count())
@@ -300,7 +338,7 @@ pub fn run(basis: Basis<'_>, ticks: &mut Ticks, calibration: Calibration) -> Res
             if sun.altitude <= 0.0 {
                 continue;
             }
-            sky_luminances(patches, &sun, luminance)?;
+            sky_luminances(patches, centres, sun.sun().direction, luminance)?;
             let global = sun.global_horizontal();
             plain.set_sky(luminance, global, Some(sun.sun()))?;
             modal.set_sky(luminance, global, Some(sun.sun()))?;
@@ -312,6 +350,13 @@ pub fn run(basis: Basis<'_>, ticks: &mut Ticks, calibration: Calibration) -> Res
                 sun.azimuth,
                 global
             );
+            let ours = runtime_position(&site, moment)?;
+            hprintln!(
+                "daylight sun_runtime {} altitude {:e} azimuth {:e}",
+                step,
+                ours.altitude,
+                ours.azimuth
+            );
             report(&plain, &modal, step)?;
             step += 1;
         }
@@ -319,6 +364,7 @@ pub fn run(basis: Basis<'_>, ticks: &mut Ticks, calibration: Calibration) -> Res
     measure(
         &site,
         patches,
+        centres,
         &mut plain,
         &mut modal,
         ticks,
@@ -382,13 +428,19 @@ fn report(plain: &Plain<'_>, modal: &Modal<'_>, step: usize) -> Result<(), Fail>
 ///   between two skies ([`TIMED_HOURS`]) that differ in every patch and in the sun;
 /// - `daylight_sky`: the clear sky for a sun (`CieSky::standard`) and its zenith luminance
 ///   for the diffuse horizontal illuminance (`zenith_luminance_for`, a 512-point
-///   quadrature); `daylight_sky_luminances`: every patch's luminance
-///   (`SkyPatches::luminances`);
+///   quadrature); `daylight_sky_luminances`: every patch's luminance from the centres
+///   computed once (`SkyPatches::luminances_at`);
 /// - `daylight_sun_position`: the Julian date, ΔT and SPA's position of one moment (`f64`
-///   in software).
+///   in software); `daylight_sun_position_runtime`: the runtime's own (`sky::sun::position`,
+///   `f32`);
+/// - `daylight_sky_update`: all a controller without SPA does for a new sky state: the
+///   runtime's sun position, the clear sky, its patch luminances, `set_sky` and the read of
+///   every sensor and zone (on the evaluator without modes).
+#[allow(clippy::too_many_arguments)]
 fn measure(
     site: &eigenrad_runtime::Site,
     patches: SkyPatches,
+    centres: &[[f32; 3]],
     plain: &mut Plain<'_>,
     modal: &mut Modal<'_>,
     ticks: &mut Ticks,
@@ -413,7 +465,7 @@ fn measure(
     for ((sun, lum), &m) in suns.iter_mut().zip(&mut luminances).zip(&moments) {
         *sun = position(site, m)?;
         let lum = lum.get_mut(..patches.count()).unwrap_or(&mut []);
-        sky_luminances(patches, sun, lum)?;
+        sky_luminances(patches, centres, sun.sun().direction, lum)?;
     }
     let lum = |i: u32| -> &[f32] {
         let k = (i % 2) as usize;
@@ -475,7 +527,12 @@ fn measure(
     let out = out.get_mut(..patches.count()).unwrap_or(&mut []);
     let sky_patches = ticks.count(REPS_SKY, |i| {
         let s = if i % 2 == 0 { &sky } else { &other };
-        black_box(patches).luminances(black_box(s), black_box(zenith), out)?;
+        black_box(patches).luminances_at(
+            black_box(centres),
+            black_box(s),
+            black_box(zenith),
+            out,
+        )?;
         black_box(&*out);
         Ok::<(), Error>(())
     })?;
@@ -487,6 +544,34 @@ fn measure(
         let m = moments.get((i % 2) as usize).copied().unwrap_or(moments[0]);
         black_box(position(black_box(site), black_box(m))?);
         Ok::<(), Fail>(())
+    })?;
+    let sun_runtime = ticks.count(REPS_SKY, |i| {
+        let m = moments.get((i % 2) as usize).copied().unwrap_or(moments[0]);
+        black_box(runtime_position(black_box(site), black_box(m))?);
+        Ok::<(), Error>(())
+    })?;
+    // A whole sky update as a controller without SPA makes it: the runtime's sun position,
+    // the clear sky and its zenith luminance, the patch luminances, `set_sky` and every
+    // sensor's and zone's daylight.
+    let mut scratch = [0.0f32; SKY];
+    let scratch = scratch.get_mut(..patches.count()).unwrap_or(&mut []);
+    let sky_update = ticks.count(REPS_SKY, |i| {
+        let m = moments.get((i % 2) as usize).copied().unwrap_or(moments[0]);
+        let p = runtime_position(black_box(site), black_box(m))?;
+        sky_luminances(patches, centres, p.direction, scratch)?;
+        let global = DIFFUSE_HORIZONTAL + DIRECT_NORMAL * p.direction[2].max(0.0);
+        let s = Sun {
+            direction: p.direction,
+            direct_normal: DIRECT_NORMAL,
+        };
+        plain.set_sky(scratch, global, Some(s))?;
+        for o in 0..basis.sensor_count() {
+            black_box(plain.sensor_illuminance(o)?);
+        }
+        for z in 0..basis.zone_count() {
+            black_box(plain.zone_illuminance(z)?);
+        }
+        Ok::<(), Error>(())
     })?;
 
     for (what, reps, t, base) in [
@@ -510,6 +595,13 @@ fn measure(
             sun_position,
             baseline_sun,
         ),
+        (
+            "daylight_sun_position_runtime",
+            REPS_SKY,
+            sun_runtime,
+            baseline_sky,
+        ),
+        ("daylight_sky_update", REPS_SKY, sky_update, baseline_sky),
     ] {
         hprintln!(
             "timing {} reps {} ticks {} baseline_ticks {}",

@@ -21,7 +21,7 @@
 //! `E_h = 7π/9 L_z` exactly. Type 1 is the standard general sky's version of it, with a
 //! zenith-to-horizon ratio of `1 + 4 e^(−0.7) = 2.986`.
 
-use super::{angle_between, check_sun, RelativeSky};
+use super::{angle_between, approx, check_sun, RelativeSky};
 use crate::error::{Error, Result};
 
 /// The parameters of one standard sky type: gradation `a`, `b`, indicatrix `c`, `d`, `e`.
@@ -96,6 +96,9 @@ pub struct CieSky {
     sun: [f32; 3],
     /// `1 / (f(Z_s) φ(0))` for a general sky.
     scale: f32,
+    /// `exp(d π/2)` of the indicatrix, the same for every direction (0 for the traditional
+    /// overcast sky, which has no indicatrix).
+    horizon_term: f32,
 }
 
 impl CieSky {
@@ -121,8 +124,14 @@ impl CieSky {
                 range: "finite",
             });
         }
-        let zenith_sun = libm::acosf(sun[2].clamp(-1.0, 1.0));
-        let norm = indicatrix(&parameters, zenith_sun) * gradation(&parameters, 1.0);
+        let cos_zenith_sun = sun[2].clamp(-1.0, 1.0);
+        let horizon_term = approx::exp(d * core::f32::consts::FRAC_PI_2);
+        let norm = indicatrix(
+            &parameters,
+            horizon_term,
+            approx::acos(cos_zenith_sun),
+            cos_zenith_sun,
+        ) * gradation(&parameters, 1.0);
         if !(norm > 0.0 && norm.is_finite()) {
             return Err(Error::OutOfRange {
                 what: "CIE sky zenith luminance f(Z_s) φ(0)",
@@ -133,6 +142,7 @@ impl CieSky {
             kind: Kind::General(parameters),
             sun,
             scale: 1.0 / norm,
+            horizon_term,
         })
     }
 
@@ -143,6 +153,7 @@ impl CieSky {
             kind: Kind::TraditionalOvercast,
             sun: check_sun(sun)?,
             scale: 1.0,
+            horizon_term: 0.0,
         })
     }
 
@@ -183,15 +194,14 @@ fn gradation(p: &Parameters, cos_zenith: f32) -> f32 {
     if cos_zenith <= 0.0 {
         1.0
     } else {
-        1.0 + p.a * libm::expf(p.b / cos_zenith)
+        1.0 + p.a * approx::exp(p.b / cos_zenith)
     }
 }
 
-/// `f(χ)`, χ in rad.
-fn indicatrix(p: &Parameters, chi: f32) -> f32 {
-    let cos = libm::cosf(chi);
-    1.0 + p.c * (libm::expf(p.d * chi) - libm::expf(p.d * core::f32::consts::FRAC_PI_2))
-        + p.e * cos * cos
+/// `f(χ)` from χ (rad) and `cos χ`, with `exp(d π/2)` given (`horizon_term`, computed once
+/// per sky).
+fn indicatrix(p: &Parameters, horizon_term: f32, chi: f32, cos_chi: f32) -> f32 {
+    1.0 + p.c * (approx::exp(p.d * chi) - horizon_term) + p.e * cos_chi * cos_chi
 }
 
 impl RelativeSky for CieSky {
@@ -204,8 +214,10 @@ impl RelativeSky for CieSky {
         let value = match self.kind {
             Kind::TraditionalOvercast => (1.0 + 2.0 * cos_zenith) / 3.0,
             Kind::General(p) => {
-                let chi = angle_between(dir, self.sun);
-                indicatrix(&p, chi) * gradation(&p, cos_zenith) * self.scale
+                let (chi, cos_chi) = angle_between(dir, self.sun);
+                indicatrix(&p, self.horizon_term, chi, cos_chi)
+                    * gradation(&p, cos_zenith)
+                    * self.scale
             }
         };
         value.max(0.0)
@@ -346,7 +358,7 @@ mod tests {
         for (alt, az) in [(0.1f64, 0.3f64), (0.5, 2.0), (1.2, 3.1), (0.02, 0.0)] {
             let dir = direction(alt as f32, az as f32);
             let z = std::f64::consts::FRAC_PI_2 - alt;
-            let chi = f64::from(angle_between(dir, sun));
+            let chi = f64::from(angle_between(dir, sun).0);
             let kittler =
                 f(chi) * (1.0 - (-0.32 / z.cos()).exp()) / (f(zs) * (1.0 - (-0.32f64).exp()));
             let ours = f64::from(sky.relative_luminance(dir));

@@ -9,7 +9,7 @@
 //! from illuminances ([`Conditions::from_illuminance`]) and the sky's coefficients
 //! ([`Conditions::coefficients`]) are in `perez.rs`, with the sky they serve.
 
-use super::check_range;
+use super::{approx, check_range};
 use crate::error::Result;
 
 /// Upper bounds of the first seven clearness bins; the eighth is ε ≥ 6.2 (Perez et al. 1990,
@@ -34,7 +34,8 @@ pub fn clearness_bin(clearness: f32) -> usize {
 /// `m = 1 / (cos Z + 0.15 (93.885 − Z°)^−1.253)`, as Perez and `gendaylit` use it.
 pub fn air_mass(zenith: f32) -> f32 {
     let degrees = zenith.to_degrees().clamp(0.0, 90.0);
-    1.0 / (libm::cosf(degrees.to_radians()) + 0.15 * libm::powf(93.885 - degrees, -1.253))
+    let cos_zenith = approx::sin_cos(degrees.to_radians()).1;
+    1.0 / (cos_zenith + 0.15 * libm::powf(93.885 - degrees, -1.253))
 }
 
 /// Extraterrestrial normal irradiance (W/m²) on day `day_of_year` (1 = 1 January):
@@ -43,11 +44,9 @@ pub fn air_mass(zenith: f32) -> f32 {
 /// `Γ = 2π (day − 1)/365`.
 pub fn extraterrestrial_irradiance(day_of_year: u16) -> f32 {
     let g = 2.0 * core::f32::consts::PI * (f32::from(day_of_year.clamp(1, 366)) - 1.0) / 365.0;
-    let e0 = 1.00011
-        + 0.034221 * libm::cosf(g)
-        + 0.00128 * libm::sinf(g)
-        + 0.000719 * libm::cosf(2.0 * g)
-        + 0.000077 * libm::sinf(2.0 * g);
+    let (sin_g, cos_g) = approx::sin_cos(g);
+    let (sin_2g, cos_2g) = approx::sin_cos(2.0 * g);
+    let e0 = 1.00011 + 0.034221 * cos_g + 0.00128 * sin_g + 0.000719 * cos_2g + 0.000077 * sin_2g;
     SOLAR_CONSTANT * e0
 }
 

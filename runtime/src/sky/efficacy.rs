@@ -17,6 +17,7 @@
 //! or −1.25); this is −1.26, as in Radiance's `gendaylit.c` and DOE-2's daylighting code; the
 //! difference is below 0.03 lm/W at any sun height.
 
+use super::approx;
 use super::conditions::{clearness_bin, Conditions};
 use crate::error::{Error, Result};
 
@@ -87,25 +88,28 @@ fn row(table: &[[f32; 4]; 8], conditions: &Conditions, water: f32) -> Result<[f3
 /// Efficacy of the global horizontal irradiance, lm/W.
 pub fn global(conditions: &Conditions, water: f32) -> Result<f32> {
     let [a, b, c, d] = row(&GLOBAL, conditions, water)?;
-    Ok(a + b * water + c * libm::cosf(conditions.zenith) + d * libm::logf(conditions.brightness))
+    Ok(a + b * water
+        + c * approx::sin_cos(conditions.zenith).1
+        + d * libm::logf(conditions.brightness))
 }
 
 /// Efficacy of the diffuse horizontal irradiance, lm/W.
 pub fn diffuse(conditions: &Conditions, water: f32) -> Result<f32> {
     let [a, b, c, d] = row(&DIFFUSE, conditions, water)?;
-    Ok(a + b * water + c * libm::cosf(conditions.zenith) + d * libm::logf(conditions.brightness))
+    Ok(a + b * water
+        + c * approx::sin_cos(conditions.zenith).1
+        + d * libm::logf(conditions.brightness))
 }
 
 /// Efficacy of the direct normal irradiance, lm/W (never negative: the fit can dip below 0
 /// for a sun on the horizon).
 pub fn direct(conditions: &Conditions, water: f32) -> Result<f32> {
     let [a, b, c, d] = row(&DIRECT, conditions, water)?;
-    Ok(
-        (a + b * water
-            + c * libm::expf(5.73 * conditions.zenith - 5.0)
-            + d * conditions.brightness)
-            .max(0.0),
-    )
+    Ok((a
+        + b * water
+        + c * approx::exp(5.73 * conditions.zenith - 5.0)
+        + d * conditions.brightness)
+        .max(0.0))
 }
 
 #[cfg(test)]

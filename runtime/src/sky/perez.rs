@@ -30,7 +30,7 @@
 //! and Δ at least 0.2 for 1.065 < ε < 2.8; a state whose `b` comes out positive (a horizon
 //! brightening without bound) is refused, as `gendaylit` refuses it.
 
-use super::{check_range, check_sun, efficacy, RelativeSky};
+use super::{approx, check_range, check_sun, efficacy, RelativeSky};
 use crate::error::{Error, Result};
 
 // The state itself lives in `conditions.rs`, below both this sky and the efficacies; its
@@ -178,8 +178,8 @@ impl Conditions {
         let [ra, rb, rc, rd, re] = rows;
         let (c, d) = if bin == 0 {
             (
-                libm::expf(libm::powf(delta * (rc[0] + rc[1] * z), rc[2])) - rc[3],
-                -libm::expf(delta * (rd[0] + rd[1] * z)) + rd[2] + delta * rd[3],
+                approx::exp(libm::powf(delta * (rc[0] + rc[1] * z), rc[2])) - rc[3],
+                -approx::exp(delta * (rd[0] + rd[1] * z)) + rd[2] + delta * rd[3],
             )
         } else {
             (linear(rc), linear(rd))
@@ -247,13 +247,12 @@ impl RelativeSky for PerezSky {
         }
         let [a, b, c, d, e] = self.coefficients;
         let gradation = if cos_zenith > 0.0 {
-            1.0 + a * libm::expf(b / cos_zenith)
+            1.0 + a * approx::exp(b / cos_zenith)
         } else {
             1.0
         };
-        let gamma = super::angle_between(dir, self.sun);
-        let cos_gamma = libm::cosf(gamma);
-        let indicatrix = 1.0 + c * libm::expf(d * gamma) + e * cos_gamma * cos_gamma;
+        let (gamma, cos_gamma) = super::angle_between(dir, self.sun);
+        let indicatrix = 1.0 + c * approx::exp(d * gamma) + e * cos_gamma * cos_gamma;
         (gradation * indicatrix).max(0.0)
     }
 

@@ -20,6 +20,7 @@
 //! slightly off its true path and is read as a nearby `(δ, h)`: the weights clamp to the
 //! grid's edges.
 
+use super::approx;
 use crate::error::{Error, Result};
 
 /// A rectangular grid of `rows` declinations by `columns` hour angles, in degrees.
@@ -83,8 +84,8 @@ impl SunGrid {
     /// The sine and cosine of the latitude, which every conversion of a direction needs:
     /// computed once by a caller that converts many ([`SunGrid::weights_at`]).
     pub fn latitude_sin_cos(&self) -> [f32; 2] {
-        let phi = self.latitude.to_radians();
-        [libm::sinf(phi), libm::cosf(phi)]
+        let (sin, cos) = approx::sin_cos(self.latitude.to_radians());
+        [sin, cos]
     }
 
     /// Declination and hour angle (degrees) of the unit vector `direction` (site frame).
@@ -100,8 +101,7 @@ impl SunGrid {
     }
 
     /// [`SunGrid::weights`] with the latitude's sine and cosine given
-    /// ([`SunGrid::latitude_sin_cos`]): on a single-precision FPU `libm`'s sine and cosine
-    /// are most of the cost of a call.
+    /// ([`SunGrid::latitude_sin_cos`]), computed once by a caller that converts many.
     pub fn weights_at(
         &self,
         direction: [f32; 3],
@@ -143,8 +143,8 @@ impl SunGrid {
 fn declination_hour(direction: [f32; 3], [sin_phi, cos_phi]: [f32; 2]) -> (f32, f32) {
     let [east, north, up] = direction;
     let sin_declination = (north * cos_phi + up * sin_phi).clamp(-1.0, 1.0);
-    let declination = libm::asinf(sin_declination);
-    let hour = libm::atan2f(-east, up * cos_phi - north * sin_phi);
+    let declination = approx::asin(sin_declination);
+    let hour = approx::atan2(-east, up * cos_phi - north * sin_phi);
     (declination.to_degrees(), hour.to_degrees())
 }
 
