@@ -4,7 +4,40 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-step() { printf '\n== %s\n' "$*"; }
+# The last line says what passed, failed and was skipped, also when a step fails (the EXIT
+# trap): the steps, and the tests `cargo test` ran (summed from its `test result:` lines).
+results=$(mktemp)
+steps_passed=0 steps_failed=0 steps_skipped=0 current="" current_skipped=0
+finish_step() {
+  [[ -n $current ]] || return 0
+  if ((current_skipped)); then steps_skipped=$((steps_skipped + 1)); else steps_passed=$((steps_passed + 1)); fi
+  current=""
+}
+step() {
+  finish_step
+  current="$*" current_skipped=0
+  printf '\n== %s\n' "$*"
+}
+skipped() {
+  echo "SKIPPED: $*"
+  current_skipped=1
+}
+summary() {
+  local status=$?
+  if ((status != 0)) && [[ -n $current ]]; then
+    steps_failed=$((steps_failed + 1))
+    current=""
+  fi
+  finish_step
+  local tests
+  tests=$(awk '/^test result:/ { p += $4; f += $6; i += $8 }
+               END { printf "%d passed, %d failed, %d ignored", p, f, i }' "$results")
+  rm -f "$results"
+  printf '\n== summary\nsteps: %d passed, %d failed, %d skipped; tests: %s\n' \
+    "$steps_passed" "$steps_failed" "$steps_skipped" "$tests"
+  exit "$status"
+}
+trap summary EXIT
 
 step "toolchain components and targets"
 rustup component add rustfmt clippy >/dev/null 2>&1 || true
@@ -12,7 +45,7 @@ rustup target add thumbv7em-none-eabihf thumbv6m-none-eabi wasm32-unknown-unknow
 
 step "reference programs (Radiance's ies2rad, oconv and rtrace from the pyradiance wheel, for the photometry and Radiance tests)"
 python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore pyradiance ||
-    echo "SKIPPED: pyradiance unavailable; the comparisons with Radiance will skip"
+    skipped "pyradiance unavailable; the comparisons with Radiance will skip"
 
 step "a browser for the page's test (Debian's chromium and chromium-driver; tests/web.rs drives them)"
 if ! command -v chromium >/dev/null || ! command -v chromedriver >/dev/null; then
@@ -52,13 +85,13 @@ step "firmware under QEMU (installs qemu-system-arm when missing; tests/firmware
 status=0
 scripts/firmware.sh runtime/tests/data/tiny.basis target/firmware/tiny.out >/dev/null || status=$?
 if [[ $status -eq 77 ]]; then
-  echo "SKIPPED: QEMU is unavailable; the firmware tests in tests/firmware.rs will skip too"
+  skipped "QEMU is unavailable; the firmware tests in tests/firmware.rs will skip too"
 elif [[ $status -ne 0 ]]; then
   exit "$status"
 fi
 
 step "tests"
-cargo test --workspace
+cargo test --workspace 2>&1 | tee -a "$results"
 
 step "fuzz smoke run (runtime decoder and evaluator)"
 if rustup toolchain list | grep -q nightly; then
@@ -68,5 +101,5 @@ if rustup toolchain list | grep -q nightly; then
   (cd runtime/fuzz && cargo +nightly fuzz run decode_eval "$corpus" -- -max_total_time=30 -max_len=8192)
   rm -rf "$corpus"
 else
-  echo "SKIPPED: no nightly toolchain, cargo-fuzz needs one (the proptest properties still ran)"
+  skipped "no nightly toolchain, cargo-fuzz needs one (the proptest properties still ran)"
 fi

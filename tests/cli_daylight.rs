@@ -249,6 +249,11 @@ fn text_units_and_csv_carry_the_parts() {
         "{text}"
     );
     assert!(text.contains("under daylight alone:"), "{text}");
+    // Every lamp is off: the electric parts are 0 up to rounding, never shown as `-0.0000`.
+    assert!(
+        !text.contains("-0.0000") && !text.contains(" -0 "),
+        "a negative zero in: {text}"
+    );
     let table = cli::grids_csv(&readout);
     let mut lines = table.lines();
     assert_eq!(

@@ -700,6 +700,12 @@ fn obj_faults_name_their_file_line_and_cause() {
             "f 1 4 3 2",
             "defined further down",
         ),
+        (
+            "obj_huge_vertex.toml",
+            "huge_vertex.obj",
+            "v 1 1e300 1",
+            "vertex coordinate y = `1e300` is 1.000e300 m from the origin",
+        ),
     ] {
         let located = format!("{file}{}", line(file, at));
         expect(scene, file, &[&located, cause]);
@@ -714,5 +720,31 @@ fn obj_faults_name_their_file_line_and_cause() {
         "obj_mtl_not_utf8.toml",
         "not_utf8.mtl",
         &["not_utf8.mtl:3:", "not UTF-8"],
+    );
+}
+
+#[test]
+fn a_coordinate_beyond_the_largest_a_scene_may_span_is_named() {
+    expect(
+        "huge_coordinate.toml",
+        "huge_coordinate.toml",
+        &[
+            &line("huge_coordinate.toml", "2e9"),
+            "sensor `floor`.position",
+            "coordinate z = 2000000000 is 2.000e9 m from the origin",
+        ],
+    );
+}
+
+#[test]
+fn a_sensor_outside_a_closed_obj_scene_is_refused_with_its_extent() {
+    expect(
+        "obj_sensor_outside.toml",
+        "obj_sensor_outside.toml",
+        &[
+            &line("obj_sensor_outside.toml", "position = [7"),
+            "sensor `far`.position",
+            "outside the scene's closed geometry (faces enclosing [0.0, 0.0, 0.0] to [1.0, 1.0, 1.0])",
+        ],
     );
 }

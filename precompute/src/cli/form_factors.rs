@@ -1,6 +1,7 @@
 //! `eigenrad form-factors`: surface-to-surface form factors, area-weighted over each
 //! surface's patches.
 
+use super::figures::fixed;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -51,8 +52,8 @@ pub fn format_health(f: &FormFactorHealth) -> String {
             "closed scene".to_owned()
         } else {
             format!(
-                "open scene: {:.2} % of the light leaving the surfaces escapes through openings",
-                100.0 * f.escaping
+                "open scene: {} % of the light leaving the surfaces escapes through openings",
+                fixed(100.0 * f.escaping, 2)
             )
         }
     );

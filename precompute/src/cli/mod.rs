@@ -6,6 +6,7 @@
 //! check that no output replaces an input, JSON and standard output.
 
 pub mod args;
+mod figures;
 mod form_factors;
 mod gains;
 pub mod guard;

@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::atomic;
+use super::figures::fixed;
 use crate::error::{Error, Result};
 use crate::pipeline::BuildReport;
 use crate::verify::{self, VerifyReport};
@@ -88,11 +89,15 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             "  the sun between nodes, at the centres of {} cells, against the exact sun (relative to each reading's largest sun response; mean, 95th percentile, largest):",
             i.cells
         );
+        // A kind of reading the scene does not have is left out, not shown as errors of 0.
         for (what, e) in [
             ("zones", &i.zones),
             ("sensors", &i.sensors),
             ("grid points", &i.grid_points),
-        ] {
+        ]
+        .into_iter()
+        .filter(|(_, e)| e.count > 0)
+        {
             let _ = writeln!(
                 s,
                 "    {what:<12} {:.1e}  {:.1e}  {:.1e}",
@@ -151,18 +156,18 @@ fn write_luminaires(s: &mut String, r: &BuildReport) {
         "luminaires (lm): {:<24} {:>10} {:>10} {:>6} {:>10} {:>10} {:>10}",
         "name", "stated", "integrated", "tilt", "emitted", "received", "escaping"
     );
-    let lm = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.1}"));
+    let lm = |x: Option<f64>| x.map_or("-".to_string(), |v| fixed(v, 1));
     for l in &r.luminaires {
         let _ = writeln!(
             s,
-            "                 {:<24} {:>10} {:>10.1} {:>6.3} {:>10.1} {:>10.1} {:>10.1}",
+            "                 {:<24} {:>10} {:>10} {:>6} {:>10} {:>10} {:>10}",
             l.name,
             lm(l.stated),
-            l.integrated,
-            l.tilt_factor,
-            l.emitted,
-            l.received,
-            l.escaping
+            fixed(l.integrated, 1),
+            fixed(l.tilt_factor, 3),
+            fixed(l.emitted, 1),
+            fixed(l.received, 1),
+            fixed(l.escaping, 1)
         );
     }
     for w in r.luminaires.iter().filter_map(|l| l.warning.as_ref()) {

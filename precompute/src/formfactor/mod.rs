@@ -27,6 +27,7 @@
 
 mod bvh;
 mod closure;
+pub(crate) use closure::cavities;
 pub mod exchange;
 mod health;
 mod kernel;

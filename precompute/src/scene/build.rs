@@ -77,6 +77,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         &geometry.rooms,
         &inside_blocks(&file, &geometry),
         extent(raw),
+        &enclosures(&geometry.rooms, &meshed.faces),
     )?;
     let zones = observers::zones(
         &ctx,
@@ -396,6 +397,27 @@ fn extent(raw: &[RawSurface]) -> Option<(Vec3, Vec3)> {
         b.grow(*p);
     }
     (b.min.x <= b.max.x).then_some((b.min, b.max))
+}
+
+/// In a scene without rooms, the box (m) around each closed cavity its faces form
+/// ([`crate::formfactor::cavities`]); none in a scene with rooms (their sensors are checked
+/// against the rooms) or without a closed cavity.
+fn enclosures(rooms: &[(String, Vec3, Vec3)], faces: &[Face]) -> Vec<(Vec3, Vec3)> {
+    if !rooms.is_empty() {
+        return Vec::new();
+    }
+    crate::formfactor::cavities(faces)
+        .iter()
+        .map(|cavity| {
+            let mut b = Aabb::EMPTY;
+            for &f in cavity {
+                for p in &faces[f].polygon.vertices {
+                    b.grow(*p);
+                }
+            }
+            (b.min, b.max)
+        })
+        .collect()
 }
 
 /// [`CONTACT_TOLERANCE`] of the diagonal of everything in the scene, metres: how far an OBJ

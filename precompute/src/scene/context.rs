@@ -15,6 +15,11 @@ use eigenrad_runtime::{MAX_EXITANCE, MIN_REFLECTANCE};
 /// Luminance weights of linear RGB (ITU-R BT.709 primaries), used to make photopic values.
 pub(crate) const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
 
+/// Largest coordinate magnitude a scene may use, metres (1000 km): far beyond any building,
+/// and far enough inside `f64`'s range that squared lengths, areas and the patch-count
+/// estimate stay finite (a vertex at 1e300 m would make them infinite).
+pub(crate) const LARGEST_COORDINATE: f64 = 1e6;
+
 /// Parsing context: where the text came from, its bands and its length unit.
 pub(crate) struct Ctx<'a> {
     /// The scene file (for messages and relative paths).
@@ -80,7 +85,20 @@ impl Ctx<'_> {
                 message: format!("coordinates must be finite, found {c:?}"),
             });
         }
-        Ok(Vec3::new(c[0], c[1], c[2]) * self.unit)
+        let metres = Vec3::new(c[0], c[1], c[2]) * self.unit;
+        if let Some(axis) = (0..3).find(|&k| metres.axis(k).abs() > LARGEST_COORDINATE) {
+            return Err(SceneError::OutOfRange {
+                at: self.at(span),
+                field: field.into(),
+                message: format!(
+                    "coordinate {} = {} is {:.3e} m from the origin, beyond the ±{LARGEST_COORDINATE:.0e}                      m a scene may span (a unit mistake?)",
+                    ["x", "y", "z"][axis],
+                    c[axis],
+                    metres.axis(axis).abs()
+                ),
+            });
+        }
+        Ok(metres)
     }
 
     /// A positive finite length from the file, in metres.

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use toml::Spanned;
 
-use super::context::{Ctx, MaterialInfo, RawSurface};
+use super::context::{Ctx, MaterialInfo, RawSurface, LARGEST_COORDINATE};
 use super::error::{Location, SceneError};
 use super::file::{KeMeaning, NameBy, ObjDef, UpAxis};
 use crate::geometry::Vec3;
@@ -31,11 +31,12 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         .parent()
         .unwrap_or(Path::new(""))
         .join(o.file.get_ref());
+    let transform = Transform::new(ctx, o)?;
     let Loaded {
         models,
         materials,
         mtls,
-    } = read(o, &at, &path)?;
+    } = read(o, &at, &path, &transform)?;
     // Materials are located in their MTL file when there is one; tobj does not say which
     // file a material came from when there are several.
     let obj_at = Location::file(&path);
@@ -44,7 +45,6 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         _ => obj_at.clone(),
     };
     let infos = material_infos(ctx, &materials, &mtl_at, o.ke)?;
-    let transform = Transform::new(ctx, o)?;
     let max_edge = ctx.optional_length(o.max_edge.as_ref(), "obj.max_edge")?;
     let placed = Placement {
         transform,
@@ -66,9 +66,14 @@ struct Loaded {
     mtls: Vec<PathBuf>,
 }
 
-/// The OBJ file at `path` (named by `o`, written at `at`) and its MTL files, every file
-/// checked first so that an error names its line.
-fn read(o: &ObjDef, at: &Location, path: &Path) -> Result<Loaded, SceneError> {
+/// The OBJ file at `path` (named by `o`, written at `at`, placed by `transform`) and its MTL
+/// files, every file checked first so that an error names its line.
+fn read(
+    o: &ObjDef,
+    at: &Location,
+    path: &Path,
+    transform: &Transform,
+) -> Result<Loaded, SceneError> {
     let text = std::fs::read_to_string(path).map_err(|source| match source.kind() {
         std::io::ErrorKind::NotFound => SceneError::MissingFile {
             at: at.clone(),
@@ -110,7 +115,7 @@ fn read(o: &ObjDef, at: &Location, path: &Path) -> Result<Loaded, SceneError> {
         field: o.file.get_ref().clone(),
         message,
     };
-    if let Some(problem) = obj_problem(&text) {
+    if let Some(problem) = obj_problem(&text, transform) {
         return Err(located(path, problem));
     }
     let mut defined = HashSet::new();
@@ -301,9 +306,10 @@ fn faces(mesh: &tobj::Mesh, transform: &Transform) -> Vec<Vec<Vec3>> {
 }
 
 /// The first malformed line of an OBJ file (1-based) and what is wrong with it: a vertex
-/// whose coordinates are not numbers, a face with fewer than 3 corners or a corner index that
-/// is not a vertex of the file.
-fn obj_problem(text: &str) -> Option<(usize, String)> {
+/// whose coordinates are not numbers or lie beyond [`LARGEST_COORDINATE`] once placed by
+/// `transform`, a face with fewer than 3 corners or a corner index that is not a vertex of
+/// the file.
+fn obj_problem(text: &str, transform: &Transform) -> Option<(usize, String)> {
     let total = text
         .lines()
         .filter(|l| l.split_whitespace().next() == Some("v"))
@@ -330,6 +336,9 @@ fn obj_problem(text: &str) -> Option<(usize, String)> {
                     .find(|v| v.parse::<f64>().is_ok_and(|x| !x.is_finite()))
                 {
                     return Some((n + 1, format!("vertex coordinate `{bad}` is not finite")));
+                }
+                if let Some(problem) = out_of_range(&values, transform) {
+                    return Some((n + 1, problem));
                 }
             }
             Some("f") => {
@@ -383,6 +392,34 @@ fn obj_problem(text: &str) -> Option<(usize, String)> {
             "no faces (`f` lines): is this an OBJ file, and does it hold the geometry?".into(),
         )
     })
+}
+
+/// What is wrong with a vertex line's coordinates `values` (numbers, checked finite) when one
+/// of them, scaled, or the placed point lies beyond [`LARGEST_COORDINATE`]; `None` if none.
+fn out_of_range(values: &[&str], transform: &Transform) -> Option<String> {
+    let c: Vec<f64> = values.iter().map(|v| v.parse().unwrap_or(0.0)).collect();
+    let metres_per_unit = transform.scale * transform.unit;
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let metres = c.get(k).copied().unwrap_or(0.0) * metres_per_unit;
+        if metres.abs() > LARGEST_COORDINATE {
+            return Some(format!(
+                "vertex coordinate {axis} = `{}` is {:.3e} m from the origin (with `unit` and \
+                 `scale`), beyond the ±{LARGEST_COORDINATE:.0e} m a scene may span (a unit or \
+                 `scale` mistake?)",
+                values[k],
+                metres.abs()
+            ));
+        }
+    }
+    let placed = transform.apply(Vec3::new(c[0], c[1], c[2]));
+    let axis = (0..3).find(|&k| placed.axis(k).abs() > LARGEST_COORDINATE)?;
+    Some(format!(
+        "vertex `{}` is placed at {:.3e} m on the scene's {} axis (with `translate`), beyond \
+         the ±{LARGEST_COORDINATE:.0e} m a scene may span",
+        values.join(" "),
+        placed.axis(axis),
+        ["x", "y", "z"][axis]
+    ))
 }
 
 /// The names an MTL file defines (`newmtl NAME`).

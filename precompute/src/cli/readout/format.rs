@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 
 use super::{Reading, Readout};
+use crate::cli::figures::fixed;
 use crate::pipeline::{GridReadout, PieceLayout};
 
 /// Every grid point of `r` as CSV: a header naming the units, then one line per point, zones
@@ -34,8 +35,9 @@ pub fn grids_csv(r: &Readout) -> String {
             let _ = write!(s, "\"{zone}\",{i},{x:.4},{y:.4},{z:.4}");
             let day_point = day.and_then(|d| d.points.get(i));
             let parts = day_point.map(|d| d.irradiance.as_slice()).unwrap_or(&[]);
+            // `+ 0.0` turns a `-0.0` into `0`; every other value prints unchanged.
             for v in p.irradiance.iter().chain(parts) {
-                let _ = write!(s, ",{v}");
+                let _ = write!(s, ",{}", v + 0.0);
             }
             s.push('\n');
         }
@@ -45,12 +47,7 @@ pub fn grids_csv(r: &Readout) -> String {
 
 /// Two lines per grid: its layout, then its figures (`unit`: lux or W/m²).
 pub(in crate::cli) fn write_grids(s: &mut String, grids: &[GridReadout], unit: &str) {
-    let fmt = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x:.4}"))
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
+    let fmt = |v: &[f64]| v.iter().map(|&x| fixed(x, 4)).collect::<Vec<_>>().join(" ");
     let layout = |p: &PieceLayout| {
         let kept = if p.points < p.counts[0] * p.counts[1] {
             format!(" ({} on the area)", p.points)
@@ -93,12 +90,7 @@ pub(in crate::cli) fn write_grids(s: &mut String, grids: &[GridReadout], unit: &
 
 /// A readout as a table, one line per sensor and zone (and per patch when it has them).
 pub fn format_readout(r: &Readout) -> String {
-    let fmt = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x:.4}"))
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
+    let fmt = |v: &[f64]| v.iter().map(|&x| fixed(x, 4)).collect::<Vec<_>>().join(" ");
     let mut s = String::new();
     let _ = writeln!(
         s,

@@ -16,6 +16,7 @@ pub(crate) fn sensors(
     rooms: &[(String, Vec3, Vec3)],
     blocks: &[(String, Vec3, Vec3)],
     extent: Option<(Vec3, Vec3)>,
+    enclosures: &[(Vec3, Vec3)],
 ) -> Result<Vec<Sensor>, SceneError> {
     unique(
         "sensor",
@@ -48,6 +49,7 @@ pub(crate) fn sensors(
         };
         let normal = normal.normalized();
         placement(ctx, s, &what, position, normal, rooms, blocks, extent)?;
+        enclosed(ctx, s, &what, position, enclosures)?;
         sensors.push(Sensor {
             name: s.name.clone(),
             position,
@@ -74,6 +76,40 @@ const BLOCK_FACES: [[&str; 2]; 3] = [
     ["side_ymin", "side_ymax"],
     ["bottom", "top"],
 ];
+
+/// Checks that a sensor (position `p`, metres) of a scene without rooms whose faces close
+/// into cavities (`enclosures`, the box around each, metres) lies within one of them: outside
+/// them it would see only the backs of faces and read nothing.
+fn enclosed(
+    ctx: &Ctx,
+    s: &SensorDef,
+    what: &str,
+    p: Vec3,
+    enclosures: &[(Vec3, Vec3)],
+) -> Result<(), SceneError> {
+    let within = |(lo, hi): &(Vec3, Vec3)| {
+        let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
+        (0..3).all(|k| p.axis(k) >= lo.axis(k) - tol && p.axis(k) <= hi.axis(k) + tol)
+    };
+    if enclosures.is_empty() || enclosures.iter().any(within) {
+        return Ok(());
+    }
+    let written = |v: Vec3| (v / ctx.unit).to_array();
+    Err(SceneError::OutOfRange {
+        at: ctx.at(&s.position),
+        field: format!("{what}.position"),
+        message: format!(
+            "{:?} is outside the scene's closed geometry ({}): a sensor there sees only the \
+             backs of faces and would read nothing",
+            written(p),
+            enclosures
+                .iter()
+                .map(|(lo, hi)| format!("faces enclosing {:?} to {:?}", written(*lo), written(*hi)))
+                .collect::<Vec<_>>()
+                .join("; ")
+        ),
+    })
+}
 
 /// Checks that a sensor (position in metres, unit normal) can see the room: it is inside a
 /// room (when the scene has rooms) or, in a scene without rooms (OBJ geometry, quads), within

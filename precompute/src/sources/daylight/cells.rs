@@ -165,15 +165,47 @@ impl Ctx<'_> {
             }
         });
         let taken = &samples[..count];
-        let uniform = taken.iter().all(|s| s.0 == taken[0].0);
-        if !uniform && depth < self.opts.edge_depth && 2.0 * r > self.opts.edge_angle * distance {
-            return split(acc);
+        if depth < self.opts.edge_depth && 2.0 * r > self.opts.edge_angle * distance {
+            let first = taken.first().map_or(NOTHING, |s| s.0);
+            let uniform = taken.iter().all(|s| s.0 == first)
+                && (first == NOTHING || self.corners_agree(v, pane, corners, sample, first));
+            if !uniform {
+                return split(acc);
+            }
         }
         for &(bin, value) in taken {
             if let Some(a) = acc.get_mut(bin) {
                 *a += scale * value;
             }
         }
+    }
+
+    /// Whether the sky (or exterior) bin seen through every corner of a cell is `bin`, the
+    /// one all its Gauss points see: a patch boundary between the outermost points and the
+    /// cell's edge then splits the cell too. Corners lie on the cell's edges, where the
+    /// window meets its frame: only the direction counts there, not the visibility (a ray
+    /// grazing the wall's edge), nor a corner behind the viewer or outside its field.
+    fn corners_agree(
+        &self,
+        v: Viewer,
+        pane: Pane,
+        corners: &[Vec3],
+        sample: &Sample,
+        bin: usize,
+    ) -> bool {
+        corners.iter().all(|&y| {
+            let d = y - v.x;
+            let r = d.length();
+            if r == 0.0 {
+                return true;
+            }
+            let d = d / r;
+            let cw = -pane.normal.dot(d);
+            if !(cw > 0.0 && v.field.admits(v.normal.dot(d))) {
+                return true;
+            }
+            sample(y, d, cw).is_none_or(|(corner, _)| corner == bin)
+        })
     }
 
     /// One window point `y`: `(bin, sample · cos θ_x cos θ_w / r²)`, or `None`.

@@ -23,8 +23,10 @@
 //! `site.ground_reflectance`) or in a sky patch (`SkyPatches::index` in the site's frame,
 //! turned by `site.north`). The window's patches are integrated by Gauss–Legendre rules
 //! (`order` points per side) on cells split while they are large for their distance from
-//! `x` (`cell_angle`, `max_depth`), and split again where their points see different sky
-//! patches or some are hidden, until a cell subtends less than `edge_angle` from `x`
+//! `x` (`cell_angle`, `max_depth`), and split again where their points or corners see
+//! different sky patches or some points are hidden (the corners catch a patch boundary that
+//! runs between the outermost points and the cell's edge), until a cell subtends less than
+//! `edge_angle` from `x`
 //! (`edge_depth` at most): the patches' boundaries are resolved to a fraction of
 //! `edge_angle`. The ground's edge, the largest jump, is exact: each window patch is first cut
 //! along the receiving point's horizontal plane. The sum over the patches of a uniform sky is

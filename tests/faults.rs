@@ -1,0 +1,277 @@
+//! The machine failing under `eigenrad build`: killed (SIGKILL) at a sweep of moments, a full
+//! disk, a read-only cache folder, a cache path that is a file, two builds at once. After each,
+//! the previous output is byte-identical or the new one complete (the bytes of an
+//! uninterrupted run), the cache holds only sound entries, and the next run proceeds.
+//!
+//! Mounting a small tmpfs needs root and a kernel that lets the test mount; without them the
+//! tests that need one print `SKIPPED: ...` and pass.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use common::{eigenrad, listing, scene, scratch, stderr};
+
+/// The small cube at 0.25 m (about 400 patches): a build of a fraction of a second to a few
+/// seconds, long enough to be killed in its every stage.
+fn cube() -> String {
+    scene(0.25)
+}
+
+/// `eigenrad build scene -o out` with its cache in `cache`.
+fn build_command(scene: &Path, out: &Path, cache: &Path) -> Command {
+    let mut c = Command::new(eigenrad());
+    c.args(["build", path(scene), "-o", path(out), "--modes", "4"])
+        .env("EIGENRAD_CACHE_DIR", cache)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    c
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
+/// Builds and returns the run's standard error; the build must succeed.
+fn build_ok(scene: &Path, out: &Path, cache: &Path) -> String {
+    let o = build_command(scene, out, cache)
+        .output()
+        .expect("run eigenrad");
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "build failed: {err}");
+    err
+}
+
+/// The scene file and the bytes of an uninterrupted build of it (and how long that took).
+fn reference(dir: &Path) -> (PathBuf, Vec<u8>, Duration) {
+    let scene = dir.join("cube.toml");
+    std::fs::write(&scene, cube()).expect("write scene");
+    let out = dir.join("reference.basis");
+    let start = Instant::now();
+    build_ok(&scene, &out, &dir.join("reference-cache"));
+    let took = start.elapsed();
+    (scene, std::fs::read(&out).expect("reference basis"), took)
+}
+
+/// Hidden temporaries (`.<name>.<pid>.tmp`) in `dir`.
+fn temporaries(dir: &Path) -> Vec<String> {
+    listing(dir)
+        .into_iter()
+        .filter(|n| n.starts_with('.') && n.ends_with(".tmp"))
+        .collect()
+}
+
+#[test]
+fn a_build_killed_at_any_moment_loses_nothing_and_the_next_run_proceeds() {
+    let dir = scratch("faults-kill");
+    let (scene, complete, took) = reference(&dir);
+    // The previous output: another basis of the same scene, to be kept or replaced whole.
+    let out = dir.join("cube.basis");
+    let coarser = dir.join("coarser.toml");
+    std::fs::write(&coarser, common::scene(1.0)).expect("write scene");
+    build_ok(&coarser, &out, &dir.join("previous-cache"));
+    let previous = std::fs::read(&out).expect("previous basis");
+    assert_ne!(previous, complete);
+    let cache = dir.join("cache");
+    // Twelve moments spread over an uninterrupted run, from its start to past its end.
+    let steps = 12;
+    let mut outcomes = (0, 0);
+    for k in 0..steps {
+        let delay = took.mul_f64(k as f64 / (steps - 2) as f64);
+        let mut child = build_command(&scene, &out, &cache)
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("spawn eigenrad");
+        std::thread::sleep(delay);
+        // SIGKILL on Unix: no handler runs, nothing is flushed.
+        let _ = child.kill();
+        let _ = child.wait();
+        let now = std::fs::read(&out).expect("the output is never removed");
+        if now == previous {
+            outcomes.0 += 1;
+        } else {
+            assert_eq!(
+                now, complete,
+                "killed after {delay:?}: a partial or other basis"
+            );
+            outcomes.1 += 1;
+        }
+        // No temporary is ever taken for the output: only hidden `.tmp` names besides it.
+        for name in listing(&dir) {
+            assert!(
+                name.starts_with('.') || name.ends_with(".basis") || !name.contains("basis"),
+                "unexpected file {name}"
+            );
+        }
+        // The next run proceeds: every cache entry the killed run left is sound (none is
+        // reported unusable), the output is the complete basis, and the killed run's
+        // temporary of the output is gone.
+        let err = build_ok(&scene, &out, &cache);
+        assert!(
+            !err.contains("unusable") && !err.contains("cannot read"),
+            "killed after {delay:?}, the next run found: {err}"
+        );
+        assert_eq!(std::fs::read(&out).expect("basis"), complete);
+        assert!(
+            temporaries(&dir).is_empty(),
+            "stale temporaries after the next run: {:?}",
+            temporaries(&dir)
+        );
+        // Back to the previous output and an empty cache for the next moment.
+        std::fs::write(&out, &previous).expect("restore previous");
+        let _ = std::fs::remove_dir_all(&cache);
+    }
+    eprintln!(
+        "{} kills left the previous basis, {} the complete one (an uninterrupted build: {took:?})",
+        outcomes.0, outcomes.1
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn two_builds_at_once_leave_a_valid_cache_and_output() {
+    let dir = scratch("faults-concurrent");
+    let (scene, complete, _) = reference(&dir);
+    let out = dir.join("shared.basis");
+    let cache = dir.join("cache");
+    let children: Vec<_> = (0..2)
+        .map(|_| build_command(&scene, &out, &cache).spawn().expect("spawn"))
+        .collect();
+    for child in children {
+        let o = child.wait_with_output().expect("wait");
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    assert_eq!(std::fs::read(&out).expect("basis"), complete);
+    // The entries both wrote are sound: a third run reads them without complaint.
+    let err = build_ok(&scene, &out, &cache);
+    assert!(!err.contains("unusable"), "{err}");
+    assert!(temporaries(&dir).is_empty() && temporaries(&cache).is_empty());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_cache_path_that_is_a_file_is_a_warning_and_the_build_proceeds() {
+    let dir = scratch("faults-cache-file");
+    let (scene, complete, _) = reference(&dir);
+    let cache = dir.join("not-a-folder");
+    std::fs::write(&cache, b"a file").expect("write");
+    let out = dir.join("cube.basis");
+    let err = build_ok(&scene, &out, &cache);
+    assert!(
+        err.contains("warning: form factors not cached") && err.contains("not-a-folder"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&out).expect("basis"), complete);
+    assert_eq!(std::fs::read(&cache).expect("file"), b"a file");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A tmpfs mounted at `at` with `options` (its size, `ro`), or why it could not be.
+fn mount_tmpfs(at: &Path, options: &str) -> Result<(), String> {
+    std::fs::create_dir_all(at).map_err(|e| e.to_string())?;
+    let o = Command::new("mount")
+        .args(["-t", "tmpfs", "-o", options, "tmpfs", path(at)])
+        .output()
+        .map_err(|e| format!("cannot run mount: {e}"))?;
+    if o.status.success() {
+        Ok(())
+    } else {
+        Err(format!(
+            "mount -t tmpfs failed: {}",
+            String::from_utf8_lossy(&o.stderr).trim()
+        ))
+    }
+}
+
+fn unmount(at: &Path) {
+    let _ = Command::new("umount").arg(at).status();
+}
+
+#[test]
+fn a_full_disk_is_an_error_naming_the_output_and_a_warning_for_the_cache() {
+    let dir = scratch("faults-full");
+    let (scene, complete, _) = reference(&dir);
+    // 8 KiB: neither the scene's basis nor its form factors fit.
+    let small = dir.join("small");
+    if let Err(why) = mount_tmpfs(&small, "size=8k") {
+        println!("SKIPPED: {why} (needs root and a kernel that allows mounts)");
+        return;
+    }
+    let out = small.join("cube.basis");
+    std::fs::write(&out, b"previous").expect("previous output fits");
+    let o = build_command(&scene, &out, &dir.join("cache"))
+        .output()
+        .expect("run");
+    let err = stderr(&o);
+    let outcome = || {
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(err.contains(path(&out)), "path not named: {err}");
+        assert!(err.contains("No space left on device"), "{err}");
+        assert_eq!(std::fs::read(&out).expect("previous"), b"previous");
+        assert!(temporaries(&small).is_empty(), "{:?}", listing(&small));
+        // The cache on the full disk: a warning, and the basis written elsewhere in full.
+        let elsewhere = dir.join("cube.basis");
+        let err = build_ok(&scene, &elsewhere, &small.join("cache"));
+        assert!(err.contains("warning: form factors not cached"), "{err}");
+        assert_eq!(std::fs::read(&elsewhere).expect("basis"), complete);
+        // What did fit (the small sensor rows) is whole: the next run reads it without
+        // complaint, and no temporary is left.
+        let cache = small.join("cache");
+        let err = build_ok(&scene, &elsewhere, &cache);
+        assert!(!err.contains("unusable"), "{err}");
+        assert!(temporaries(&cache).is_empty(), "{:?}", listing(&cache));
+    };
+    let result = std::panic::catch_unwind(outcome);
+    unmount(&small);
+    std::fs::remove_dir_all(&dir).ok();
+    if let Err(e) = result {
+        std::panic::resume_unwind(e);
+    }
+}
+
+#[test]
+fn a_read_only_cache_folder_is_a_warning_and_the_build_proceeds() {
+    let dir = scratch("faults-read-only");
+    let (scene, complete, _) = reference(&dir);
+    // Root ignores permission bits: a read-only mount is read-only for root too.
+    let cache = dir.join("cache");
+    if let Err(why) = mount_tmpfs(&cache, "ro,size=1m") {
+        println!("SKIPPED: {why} (needs root and a kernel that allows mounts)");
+        return;
+    }
+    let out = dir.join("cube.basis");
+    let o = build_command(&scene, &out, &cache).output().expect("run");
+    unmount(&cache);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("warning: form factors not cached") && err.contains(path(&cache)),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&out).expect("basis"), complete);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn an_output_folder_removed_during_the_run_is_an_error_naming_the_output() {
+    let dir = scratch("faults-removed");
+    let (scene, _, took) = reference(&dir);
+    let folder = dir.join("gone");
+    std::fs::create_dir_all(&folder).expect("folder");
+    let out = folder.join("cube.basis");
+    let child = build_command(&scene, &out, &dir.join("cache"))
+        .spawn()
+        .expect("spawn");
+    // Removed while the build computes (long before it writes).
+    std::thread::sleep(took / 10);
+    std::fs::remove_dir_all(&folder).expect("remove the output folder");
+    let o = child.wait_with_output().expect("wait");
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains(path(&out)), "path not named: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!folder.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
