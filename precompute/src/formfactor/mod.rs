@@ -165,11 +165,9 @@ fn progress_bar(len: usize, show: bool, what: &str, unit: &str) -> ProgressBar {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::stderr());
-    if let Ok(style) =
-        ProgressStyle::with_template(&format!(
+    if let Ok(style) = ProgressStyle::with_template(&format!(
         "{{msg}} {{bar:40}} {{pos}}/{{len}} {unit}, {{elapsed}} (eta {{eta}})"
-    ))
-    {
+    )) {
         bar.set_style(style);
     }
     bar.set_message(what.to_string());

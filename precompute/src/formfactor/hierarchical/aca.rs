@@ -69,8 +69,13 @@ pub(super) fn compress(
     tolerance: f64,
     seed: u64,
 ) -> Compressed {
-    // A rank at which U and V hold as many numbers as the block itself gains nothing.
-    let max_rank = (m * n) / (m + n).max(1);
+    // Entries are read once: a block computed whole after ACA or the guard reuses what they
+    // read (each entry is two pair integrals).
+    let memo = Memo::new(m, n);
+    let entry = &|i: usize, j: usize| memo.get(i, j, entry);
+    // A rank at which U and V hold half as many numbers as the block itself is the last worth
+    // storing; past it, the crosses read are kept for the whole block.
+    let max_rank = (m * n) / (2 * (m + n)).max(1);
     let dense = |guarded| Compressed::Dense {
         entries: Mat::from_fn(m, n, entry),
         guarded,
@@ -96,6 +101,39 @@ pub(super) fn compress(
         return dense(true);
     }
     Compressed::LowRank(recompress(cross.approximation, tolerance))
+}
+
+/// Blocks up to this many entries remember every entry read (8 bytes each, 32 MB at most
+/// per block being assembled); larger ones read again what a fallback needs.
+const MEMO_ENTRIES: usize = 1 << 22;
+
+/// The entries of one block read so far (NaN: not yet).
+struct Memo {
+    n: usize,
+    values: Option<std::cell::RefCell<Vec<f64>>>,
+}
+
+impl Memo {
+    fn new(m: usize, n: usize) -> Memo {
+        let size = m.saturating_mul(n);
+        Memo {
+            n,
+            values: (size <= MEMO_ENTRIES).then(|| std::cell::RefCell::new(vec![f64::NAN; size])),
+        }
+    }
+
+    fn get(&self, i: usize, j: usize, entry: &dyn Fn(usize, usize) -> f64) -> f64 {
+        let Some(values) = &self.values else {
+            return entry(i, j);
+        };
+        let known = values.borrow()[i * self.n + j];
+        if !known.is_nan() {
+            return known;
+        }
+        let x = entry(i, j);
+        values.borrow_mut()[i * self.n + j] = x;
+        x
+    }
 }
 
 /// ACA's result: the crosses and the squared Frobenius norm of their sum.
@@ -301,7 +339,21 @@ pub(super) fn recompress(lr: LowRank, tolerance: f64) -> LowRank {
     let mut v = Mat::<f64>::zeros(qv.nrows(), r);
     let ws = Mat::<f64>::from_fn(w.nrows(), r, |a, c| w[(a, c)] * sigma[c]);
     let zs = Mat::<f64>::from_fn(z.nrows(), r, |a, c| z[(a, c)]);
-    matmul(u.as_mut(), Accum::Replace, qu.as_ref(), ws.as_ref(), 1.0, Par::Seq);
-    matmul(v.as_mut(), Accum::Replace, qv.as_ref(), zs.as_ref(), 1.0, Par::Seq);
+    matmul(
+        u.as_mut(),
+        Accum::Replace,
+        qu.as_ref(),
+        ws.as_ref(),
+        1.0,
+        Par::Seq,
+    );
+    matmul(
+        v.as_mut(),
+        Accum::Replace,
+        qv.as_ref(),
+        zs.as_ref(),
+        1.0,
+        Par::Seq,
+    );
     LowRank { u, v }
 }

@@ -94,7 +94,11 @@ enum Data {
     /// `m × n` entries.
     Dense(Vec<f32>),
     /// `U` (m × r) and `V` (n × r): the block is `U Vᵀ`.
-    LowRank { rank: usize, u: Vec<f32>, v: Vec<f32> },
+    LowRank {
+        rank: usize,
+        u: Vec<f32>,
+        v: Vec<f32>,
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -295,7 +299,9 @@ impl Hierarchical {
     /// [`Compression::row_error`]: rows `k n / ROWS_CHECKED` read whole, in parallel.
     fn row_error(&self, scaled: &(dyn Fn(usize, usize, &mut PairStats) -> f64 + Sync)) -> f64 {
         let n = self.len();
-        let rows: Vec<usize> = (0..ROWS_CHECKED.min(n)).map(|k| k * n / ROWS_CHECKED).collect();
+        let rows: Vec<usize> = (0..ROWS_CHECKED.min(n))
+            .map(|k| k * n / ROWS_CHECKED)
+            .collect();
         rows.par_iter()
             .map(|&i| {
                 let mut stats = PairStats::default();
@@ -409,7 +415,10 @@ fn fill(
                 u: column_major_f32(approximation.u.as_ref()),
                 v: column_major_f32(approximation.v.as_ref()),
             },
-            Compressed::Dense { entries, guarded: g } => {
+            Compressed::Dense {
+                entries,
+                guarded: g,
+            } => {
                 guarded = g;
                 Data::Dense(column_major_f32(entries.as_ref()))
             }

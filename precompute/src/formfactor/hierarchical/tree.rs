@@ -32,8 +32,16 @@ impl Bounds {
     };
 
     fn add(&mut self, p: Vec3) {
-        self.min = Vec3::new(self.min.x.min(p.x), self.min.y.min(p.y), self.min.z.min(p.z));
-        self.max = Vec3::new(self.max.x.max(p.x), self.max.y.max(p.y), self.max.z.max(p.z));
+        self.min = Vec3::new(
+            self.min.x.min(p.x),
+            self.min.y.min(p.y),
+            self.min.z.min(p.z),
+        );
+        self.max = Vec3::new(
+            self.max.x.max(p.x),
+            self.max.y.max(p.y),
+            self.max.z.max(p.z),
+        );
     }
 
     fn union(self, o: Bounds) -> Bounds {
@@ -58,7 +66,6 @@ impl Bounds {
         )
         .length()
     }
-
 }
 
 /// A cluster: the patches at positions `range` of the tree's order.
@@ -134,9 +141,7 @@ fn split(
     leaf: usize,
     nodes: &mut Vec<Node>,
 ) -> usize {
-    let own = order
-        .iter()
-        .fold(Bounds::EMPTY, |b, &i| b.union(bounds[i]));
+    let own = order.iter().fold(Bounds::EMPTY, |b, &i| b.union(bounds[i]));
     let index = nodes.len();
     nodes.push(Node {
         range: start..start + order.len(),
@@ -147,9 +152,11 @@ fn split(
         return index;
     }
     let spread = |k: usize| {
-        let (lo, hi) = order.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
-            (lo.min(keys[i][k]), hi.max(keys[i][k]))
-        });
+        let (lo, hi) = order
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
+                (lo.min(keys[i][k]), hi.max(keys[i][k]))
+            });
         hi - lo
     };
     // The first of equal spreads: deterministic.
