@@ -4,7 +4,9 @@
 //! rounded to f32 ("One room, one system, the operator behind it"), and a build through it.
 //!
 //! Reference: the same scene's f64 operator, the project's validated path (its exact solve
-//! is an LU factorisation; the f32 one is solved by conjugate gradients on the operator).
+//! is an LU factorisation; the f32 and hierarchical ones are solved by conjugate gradients on
+//! the operator). The hierarchical operator (`--operator hierarchical`) is held to the bounds
+//! of its block tolerance ("The hierarchical operator").
 
 use std::path::{Path, PathBuf};
 
@@ -134,4 +136,77 @@ fn a_build_through_the_single_precision_operator_reports_it() {
     let (_, auto) =
         pipeline::build(&scene(), &BuildOptions::default()).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(auto.operator.storage, "dense f64");
+}
+
+/// Each low-rank block of the hierarchical operator is within this of its own norm
+/// (`hierarchical::Settings::default().tolerance`).
+const BLOCK_TOLERANCE: f64 = 1e-6;
+
+/// `‖S_H − S‖_F ≤ ε ‖S‖_F` moves eigenvalues of `H` by at most about `ε ρmax` and exact
+/// readings by about `ε ρmax / (1 − ρmax)` relative (docs/math.md, "The hierarchical
+/// operator"), on top of the f32 storage's own; a factor 2 of margin on each.
+const HIERARCHICAL_EIGENVALUE_TOLERANCE: f64 = 2.0 * (BLOCK_TOLERANCE + 2.0 * U) * RHO_MAX;
+const HIERARCHICAL_READING_RTOL: f64 =
+    2.0 * (BLOCK_TOLERANCE + 2.0 * U) * RHO_MAX / (1.0 - RHO_MAX);
+
+/// The hierarchical operator (`--operator hierarchical`) against the f64 one on the same
+/// office: eigenvalues and every channel's exact readings within the bounds above, exactly
+/// symmetric, and a build through it reports its compression.
+#[test]
+fn the_hierarchical_operator_reads_what_the_dense_one_reads() {
+    let f64_room = prepared(OperatorChoice::Dense);
+    let h_room = prepared(OperatorChoice::Hierarchical);
+    let n = f64_room.scene.patches.len();
+    let h = h_room.system.operator();
+    assert_eq!(h.storage(), "hierarchical f32");
+    assert!(h.stored_bytes() < 4 * n * n, "{} bytes", h.stored_bytes());
+    for (i, j) in [(0, n - 1), (17, 503), (n / 2, n / 3)] {
+        assert_eq!(h.entry(i, j).to_bits(), h.entry(j, i).to_bits());
+    }
+    let compression = h_room.compression.as_ref().expect("a compressed operator");
+    assert!(
+        compression.row_error < 10.0 * BLOCK_TOLERANCE,
+        "{compression:?}"
+    );
+
+    let modes = |room: &Prepared| -> Vec<f64> {
+        let m = Model::new(&room.system, Formulation::Split, 16, Solver::Partial)
+            .unwrap_or_else(|e| panic!("{e}"));
+        m.bands[0].modes.values.clone()
+    };
+    let (ma, mb) = (modes(&f64_room), modes(&h_room));
+    let worst_mu = ma
+        .iter()
+        .zip(&mb)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst_mu <= HIERARCHICAL_EIGENVALUE_TOLERANCE,
+        "eigenvalues moved by {worst_mu:e} > {HIERARCHICAL_EIGENVALUE_TOLERANCE:e}"
+    );
+    let (ra, rb) = (
+        f64_room.system.channel_responses().expect("solves"),
+        h_room.system.channel_responses().expect("solves"),
+    );
+    let channels = f64_room.system.channel_count();
+    let mut worst = 0.0f64;
+    for c in 0..channels {
+        let mut levels = vec![0.0; channels];
+        levels[c] = 1.0;
+        let x = f64_room.system.readings(0, &ra[c][0], &levels);
+        let y = h_room.system.readings(0, &rb[c][0], &levels);
+        for (p, q) in x.iter().zip(&y) {
+            if p.abs() > 0.0 {
+                worst = worst.max((p - q).abs() / p.abs());
+            }
+        }
+    }
+    assert!(
+        worst <= HIERARCHICAL_READING_RTOL,
+        "readings moved by {worst:e} > {HIERARCHICAL_READING_RTOL:e}"
+    );
+    println!(
+        "hierarchical operator ({:.0} % of f32 dense): eigenvalues within {worst_mu:.1e} (bound {HIERARCHICAL_EIGENVALUE_TOLERANCE:.1e}), readings within {worst:.1e} (bound {HIERARCHICAL_READING_RTOL:.1e})",
+        100.0 * h.stored_bytes() as f64 / (4 * n * n) as f64
+    );
 }

@@ -99,6 +99,14 @@ pub enum Error {
         /// What is wrong.
         reason: String,
     },
+    /// A form factor came out not finite (degenerate geometry the scene checks missed).
+    #[error("{}: the form factor between patches {} and {} is not finite; check the surfaces they were cut from", scene.display(), patches[0], patches[1])]
+    FormFactor {
+        /// The scene file.
+        scene: PathBuf,
+        /// The two patches.
+        patches: [usize; 2],
+    },
     /// The thread that runs the runtime's evaluator could not start, or panicked.
     #[error("evaluator thread: {0}")]
     Thread(String),

@@ -62,6 +62,42 @@ pub fn auto_operator_entry_bytes(patches: f64) -> f64 {
     }
 }
 
+/// Bytes per patch and per level of the cluster tree that the hierarchical operator holds
+/// ([`hierarchical_bytes`]). Measured by `eigenrad-bench compress` on the office
+/// (docs/performance.md, "The hierarchical operator"): 675, 968 and 1173 at 2028, 4947 and
+/// 9905 patches, still growing; 1500 leaves a margin above the largest.
+pub const HIERARCHICAL_BYTES_PER_PATCH_LEVEL: f64 = 1500.0;
+
+/// Bytes the hierarchical operator of `patches` patches is expected to hold: every patch
+/// holds its near blocks and a share of the low-rank blocks of each level of the cluster tree
+/// (`log₂(n / 32)` levels with leaves of 32 patches), a few hundred f32 values per level.
+pub fn hierarchical_bytes(patches: f64) -> f64 {
+    let levels = (patches / 32.0).max(2.0).log2();
+    HIERARCHICAL_BYTES_PER_PATCH_LEVEL * patches * levels
+}
+
+/// Peak bytes of `eigenrad build` whose form-factor operator holds `operator_bytes`: as
+/// [`build_bytes_stored`], with the LU reference counted only where it is made
+/// (`lu_reference`: a dense f64 operator, up to [`EXACT_LU_MAX`] patches).
+pub fn build_bytes_of(
+    patches: f64,
+    reflecting: &[f64],
+    operator_bytes: f64,
+    lu_reference: bool,
+) -> f64 {
+    let eigen = reflecting
+        .iter()
+        .filter(|&&r| r <= AUTO_DENSE_MAX as f64)
+        .map(|&r| dense_eigen_bytes(r))
+        .fold(0.0, f64::max);
+    let reference = if lu_reference && patches <= EXACT_LU_MAX as f64 {
+        (reflecting.len() as f64 + 1.0) * matrix_bytes(patches)
+    } else {
+        0.0
+    };
+    operator_bytes + eigen.max(reference)
+}
+
 /// Share of physical memory a build may plan to use: the rest is left to the per-patch data
 /// the model does not count, the program and the rest of the machine.
 pub const BUDGET_SHARE: f64 = 0.8;
@@ -97,17 +133,7 @@ pub fn build_bytes(patches: f64, reflecting: &[f64]) -> f64 {
 /// [`build_bytes`] with the form-factor operator stored at `entry_bytes` bytes an entry (8 for
 /// f64, 4 for f32).
 pub fn build_bytes_stored(patches: f64, reflecting: &[f64], entry_bytes: f64) -> f64 {
-    let eigen = reflecting
-        .iter()
-        .filter(|&&r| r <= AUTO_DENSE_MAX as f64)
-        .map(|&r| dense_eigen_bytes(r))
-        .fold(0.0, f64::max);
-    let reference = if patches <= EXACT_LU_MAX as f64 {
-        (reflecting.len() as f64 + 1.0) * matrix_bytes(patches)
-    } else {
-        0.0
-    };
-    patches * patches * entry_bytes + eigen.max(reference)
+    build_bytes_of(patches, reflecting, patches * patches * entry_bytes, true)
 }
 
 /// Bytes of a receiver form-factor matrix (`receivers × patches` f64): what a work plane of

@@ -25,6 +25,25 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         r.operator.storage,
         r.operator.bytes as f64 / 1e6
     );
+    if let Some(c) = &r.operator.compression {
+        let dense = 8.0 * (r.patches as f64).powi(2);
+        let _ = writeln!(
+            s,
+            "  compression: {:.1} % of the dense f64 matrix ({:.1} MB); {} blocks whole, {} at low rank (ranks up to {}, mean {:.1}) covering {:.1} % of the entries; guard fallbacks {}, rank fallbacks {}; entries read {:.1} % of n²; measured error {:.1e} (largest relative error of {} rows read whole)",
+            100.0 * r.operator.bytes as f64 / dense,
+            dense / 1e6,
+            c.near_blocks,
+            c.low_rank_blocks,
+            c.max_rank,
+            c.mean_rank,
+            100.0 * c.low_rank_share,
+            c.guard_fallbacks,
+            c.rank_fallbacks,
+            100.0 * c.entries_read,
+            c.row_error,
+            crate::formfactor::hierarchical::ROWS_CHECKED
+        );
+    }
     let _ = writeln!(
         s,
         "basis: {} modes, formulation {}, storage {}, {} bytes -> {}",

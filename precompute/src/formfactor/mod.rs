@@ -30,6 +30,7 @@ mod closure;
 pub(crate) use closure::cavities;
 pub mod exchange;
 mod health;
+pub mod hierarchical;
 mod kernel;
 mod near;
 pub mod operator;
@@ -43,6 +44,7 @@ mod visibility;
 
 pub use bvh::Occluders;
 pub(crate) use bvh::Shaft;
+pub use hierarchical::Hierarchical;
 pub use operator::{DenseF32, FormFactorOperator, OperatorChoice, Storage};
 // The patch rules, for the direct light of sources that are not patches (`crate::sources`).
 pub use health::{
@@ -159,14 +161,14 @@ pub const WORST_PAIRS: usize = 5;
 pub const ALGORITHM_VERSION: u32 = 2;
 
 /// A progress bar on stderr, or a hidden one.
-fn progress_bar(len: usize, show: bool, what: &str) -> ProgressBar {
+fn progress_bar(len: usize, show: bool, what: &str, unit: &str) -> ProgressBar {
     if !show {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::with_draw_target(Some(len as u64), ProgressDrawTarget::stderr());
-    if let Ok(style) =
-        ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} rows, {elapsed} (eta {eta})")
-    {
+    if let Ok(style) = ProgressStyle::with_template(&format!(
+        "{{msg}} {{bar:40}} {{pos}}/{{len}} {unit}, {{elapsed}} (eta {{eta}})"
+    )) {
         bar.set_style(style);
     }
     bar.set_message(what.to_string());
@@ -242,6 +244,46 @@ pub fn patch_form_factors_f32(
     }
 }
 
+/// [`patch_form_factors_with`] stored as a hierarchical operator ([`Hierarchical`]): the same
+/// pair integrals, both directions of each pair read and symmetrised as in the dense matrix,
+/// but only for the pairs of close clusters and the rows and columns that the low-rank
+/// approximation of well-separated clusters reads (`hierarchical::Settings`). The
+/// reciprocity figures are those of the pairs read.
+pub fn patch_form_factors_hierarchical(
+    patches: &[Patch],
+    occluders: &Occluders,
+    opts: &FormFactorOptions,
+    settings: &hierarchical::Settings,
+) -> Result<FormFactors<Hierarchical>, hierarchical::NonFiniteEntry> {
+    let prepared = Prepared::new(patches, max_order(opts));
+    let ctx = Context {
+        targets: &prepared,
+        gauss: gauss_rules(max_order(opts)),
+        occluders,
+        opts,
+        refine_gaps: true,
+    };
+    let areas: Vec<f64> = patches.iter().map(|p| p.area).collect();
+    let scaled = |i: usize, j: usize, stats: &mut PairStats| -> f64 {
+        let (a, b) = (i.min(j), i.max(j));
+        let gab = areas[a] * ctx.pair(&prepared, a, b, &[a, b]);
+        let gba = areas[b] * ctx.pair(&prepared, b, a, &[a, b]);
+        let g = stats.add(a, b, gab, gba, areas[a], areas[b]);
+        g / (areas[a] * areas[b]).sqrt()
+    };
+    let bar = progress_bar(0, opts.progress, "form factors", "blocks");
+    let (operator, stats) = Hierarchical::assemble(patches, settings, &scaled, &bar)?;
+    bar.finish_and_clear();
+    let row_sums = operator.form_factor_row_sums(&areas);
+    Ok(FormFactors {
+        matrix: operator,
+        reciprocity_mismatch: stats.worst,
+        reciprocity_share: stats.worst_share,
+        row_sums,
+        worst_pairs: stats.worst_pairs,
+    })
+}
+
 /// The raw form factors, transposed: `m[(j, i)] = F_ij` (the diagonal 0), column `i` holding
 /// row `i` of F so that rows are filled in parallel contiguously.
 fn raw_transposed<T: faer::traits::ComplexField + From<f32> + Send + Sync>(
@@ -261,7 +303,7 @@ where
         opts,
         refine_gaps: true,
     };
-    let bar = progress_bar(n, opts.progress, "form factors");
+    let bar = progress_bar(n, opts.progress, "form factors", "rows");
     let mut m = Mat::<T>::zeros(n, n);
     m.par_col_iter_mut().enumerate().for_each(|(i, mut col)| {
         for (j, x) in col.as_mut().iter_mut().enumerate() {
@@ -314,7 +356,8 @@ impl PairStats {
             let share = (gij - gji).abs() / ai.min(aj);
             self.worst_share = self.worst_share.max(share);
             let last = self.worst_pairs.last().map_or(0.0, |w| w.2);
-            if share > 0.0 && (self.worst_pairs.len() < WORST_PAIRS || share > last) {
+            let listed = self.worst_pairs.iter().any(|w| (w.0, w.1) == (i, j));
+            if share > 0.0 && !listed && (self.worst_pairs.len() < WORST_PAIRS || share > last) {
                 // Kept sorted, worst first; ties keep the earlier pair (deterministic).
                 let at = self.worst_pairs.partition_point(|w| w.2 >= share);
                 self.worst_pairs.insert(at, (i, j, share));
@@ -322,6 +365,21 @@ impl PairStats {
             }
         }
         0.5 * (gij + gji)
+    }
+
+    /// Adds the figures of `other`, gathered over other pairs (or the same pairs again).
+    fn merge(&mut self, other: PairStats) {
+        self.worst = self.worst.max(other.worst);
+        self.worst_share = self.worst_share.max(other.worst_share);
+        for (i, j, share) in other.worst_pairs {
+            let last = self.worst_pairs.last().map_or(0.0, |w| w.2);
+            let listed = self.worst_pairs.iter().any(|w| (w.0, w.1) == (i, j));
+            if !listed && (self.worst_pairs.len() < WORST_PAIRS || share > last) {
+                let at = self.worst_pairs.partition_point(|w| w.2 >= share);
+                self.worst_pairs.insert(at, (i, j, share));
+                self.worst_pairs.truncate(WORST_PAIRS);
+            }
+        }
     }
 }
 
@@ -403,7 +461,7 @@ pub fn receiver_form_factors(
         opts,
         refine_gaps: false,
     };
-    let bar = progress_bar(receivers.len(), opts.progress, "receivers");
+    let bar = progress_bar(receivers.len(), opts.progress, "receivers", "rows");
     let rows: Vec<Vec<f64>> = (0..receivers.len())
         .into_par_iter()
         .map(|r| {

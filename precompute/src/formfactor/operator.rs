@@ -50,6 +50,13 @@ pub trait FormFactorOperator: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// True when the operator checked its entries finite and stores each pair once, so that
+    /// the solvers' input check need not read all `n²` entries (which for a compressed
+    /// operator costs far more than building it).
+    fn checked_when_built(&self) -> bool {
+        false
+    }
+
     /// Bytes the operator holds.
     fn stored_bytes(&self) -> usize;
 
@@ -91,18 +98,26 @@ pub enum OperatorChoice {
         help = "The dense matrix in f32: 4 n² bytes, entries within 2⁻²⁴ of the f64 ones (not cached)"
     )]
     DenseF32,
+    /// The hierarchical operator ([`super::Hierarchical`]): blocks of close clusters whole,
+    /// well-separated ones at low rank, in f32.
+    #[value(
+        help = "Compressed (H-matrix): close clusters whole, distant ones at low rank within 1e-6, in f32 (not cached)"
+    )]
+    Hierarchical,
 }
 
 // The help names the threshold: keep them together.
 const _: () = assert!(crate::memory::AUTO_F32_ABOVE == 5792);
 
-/// The precision an operator is stored in.
+/// How an operator is stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Storage {
-    /// f64.
+    /// Dense, f64.
     F64,
-    /// f32.
+    /// Dense, f32.
     F32,
+    /// Hierarchical, f32 ([`super::Hierarchical`]).
+    Hierarchical,
 }
 
 impl OperatorChoice {
@@ -111,6 +126,7 @@ impl OperatorChoice {
         match self {
             OperatorChoice::Dense => Storage::F64,
             OperatorChoice::DenseF32 => Storage::F32,
+            OperatorChoice::Hierarchical => Storage::Hierarchical,
             OperatorChoice::Auto if patches > crate::memory::AUTO_F32_ABOVE => Storage::F32,
             OperatorChoice::Auto => Storage::F64,
         }
@@ -118,11 +134,13 @@ impl OperatorChoice {
 }
 
 impl Storage {
-    /// Bytes of one entry.
-    pub fn entry_bytes(self) -> usize {
+    /// Bytes the operator of `patches` patches is expected to hold (the memory model's figure,
+    /// [`crate::memory`]).
+    pub fn operator_bytes(self, patches: f64) -> f64 {
         match self {
-            Storage::F64 => 8,
-            Storage::F32 => 4,
+            Storage::F64 => 8.0 * patches * patches,
+            Storage::F32 => 4.0 * patches * patches,
+            Storage::Hierarchical => crate::memory::hierarchical_bytes(patches),
         }
     }
 }

@@ -4,12 +4,19 @@ use super::*;
 use crate::geometry::{Face, Polygon};
 use std::f64::consts::PI;
 
-fn v(x: f64, y: f64, z: f64) -> Vec3 {
+pub(super) fn v(x: f64, y: f64, z: f64) -> Vec3 {
     Vec3::new(x, y, z)
 }
 
 /// Quads tiling the parallelogram `origin + s e1 + t e2`, `n1 × n2` of them, facing `e1 × e2`.
-fn grid(origin: Vec3, e1: Vec3, e2: Vec3, n1: usize, n2: usize, surface: usize) -> Vec<Patch> {
+pub(super) fn grid(
+    origin: Vec3,
+    e1: Vec3,
+    e2: Vec3,
+    n1: usize,
+    n2: usize,
+    surface: usize,
+) -> Vec<Patch> {
     let (d1, d2) = (e1 / n1 as f64, e2 / n2 as f64);
     let mut out = Vec::with_capacity(n1 * n2);
     for a in 0..n1 {
@@ -26,7 +33,13 @@ fn grid(origin: Vec3, e1: Vec3, e2: Vec3, n1: usize, n2: usize, surface: usize) 
 
 /// The six faces of the box `lo..hi` cut into patches about `size` metres wide, facing inwards
 /// (a room) or outwards (a blocker).
-fn meshed_box(lo: Vec3, hi: Vec3, size: f64, inward: bool, surface: usize) -> Vec<Patch> {
+pub(super) fn meshed_box(
+    lo: Vec3,
+    hi: Vec3,
+    size: f64,
+    inward: bool,
+    surface: usize,
+) -> Vec<Patch> {
     meshed_box_with_faces(lo, hi, size, inward, surface, 0).0
 }
 

@@ -13,6 +13,7 @@ use crate::accuracy::{self, Case, ExactCases};
 use crate::basis;
 use crate::cache;
 use crate::error::{Error, Result};
+use crate::formfactor::hierarchical::Compression;
 use crate::formfactor::{self, FormFactorHealth, FormFactorOperator, FormFactorOptions};
 use crate::formfactor::{exchange, outputs};
 use crate::formfactor::{Occluders, Storage};
@@ -106,6 +107,8 @@ pub struct Prepared {
     pub luminaire_flux: Vec<LuminaireFlux>,
     /// Form-factor health.
     pub form_factor_health: FormFactorHealth,
+    /// What the compression made of the form factors, for a hierarchical operator.
+    pub compression: Option<Compression>,
     /// Stage timings so far.
     pub timings: Vec<Stage>,
 }
@@ -130,7 +133,12 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         .map(|b| scene.reflectance.iter().filter(|r| r[b] > 0.0).count() as f64)
         .collect();
     let storage = opts.operator.storage(n);
-    let needed = memory::build_bytes_stored(n as f64, &reflecting, storage.entry_bytes() as f64);
+    let needed = memory::build_bytes_of(
+        n as f64,
+        &reflecting,
+        storage.operator_bytes(n as f64),
+        storage == Storage::F64,
+    );
     let available = memory::budget_bytes();
     if needed > available {
         return Err(Error::TooLarge(format!(
@@ -158,14 +166,14 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
     let names: Vec<String> = scene.surfaces.iter().map(|s| s.name.clone()).collect();
-    let (g, form_factor_health): (Arc<dyn FormFactorOperator>, _) =
+    let (g, form_factor_health, compression): (Arc<dyn FormFactorOperator>, _, _) =
         timed(&mut timings, "form factors", || match storage {
             Storage::F64 => {
                 let ff = cache::form_factors(&scene.patches, &scene.faces, &occluders, opts);
                 let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
                 let g: Arc<dyn FormFactorOperator> =
                     Arc::new(exchange::exchange_areas(ff.matrix, &area));
-                (g, health)
+                Ok::<_, Error>((g, health, None))
             }
             // Not cached: an f32 operator is chosen where the f64 one outgrows the cache's
             // entries (`memory::AUTO_F32_ABOVE`).
@@ -173,9 +181,26 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
                 let ff = formfactor::patch_form_factors_f32(&scene.patches, &occluders, opts);
                 let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
                 let g: Arc<dyn FormFactorOperator> = Arc::new(ff.matrix);
-                (g, health)
+                Ok((g, health, None))
             }
-        });
+            Storage::Hierarchical => {
+                let settings = formfactor::hierarchical::Settings::default();
+                let ff = formfactor::patch_form_factors_hierarchical(
+                    &scene.patches,
+                    &occluders,
+                    opts,
+                    &settings,
+                )
+                .map_err(|e| Error::FormFactor {
+                    scene: path.to_path_buf(),
+                    patches: e.patches,
+                })?;
+                let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
+                let compression = ff.matrix.compression().clone();
+                let g: Arc<dyn FormFactorOperator> = Arc::new(ff.matrix);
+                Ok((g, health, Some(compression)))
+            }
+        })?;
     let output_rows = timed(&mut timings, "sensors and zones", || {
         cache::output_rows(&scene, g.as_ref(), &area, &occluders, opts)
     });
@@ -204,6 +229,7 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         system,
         luminaire_flux,
         form_factor_health,
+        compression,
         timings,
     })
 }
@@ -217,6 +243,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         mut system,
         luminaire_flux,
         form_factor_health,
+        compression,
         mut timings,
     } = prepared;
     if !opts.grids {
@@ -300,6 +327,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         operator: OperatorReport {
             storage: system.operator().storage(),
             bytes: system.operator().stored_bytes(),
+            compression,
         },
         luminaires: luminaire_flux,
         accuracy,

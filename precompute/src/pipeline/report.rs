@@ -83,10 +83,12 @@ pub struct BuildReport {
 /// The form-factor operator a build solved the room with (`--operator`).
 #[derive(Clone, Debug, Serialize)]
 pub struct OperatorReport {
-    /// `dense f64` or `dense f32`.
+    /// `dense f64`, `dense f32` or `hierarchical f32`.
     pub storage: &'static str,
     /// Bytes it held.
     pub bytes: usize,
+    /// What the compression made of the form factors (a hierarchical operator).
+    pub compression: Option<crate::formfactor::hierarchical::Compression>,
 }
 
 /// What a basis' daylight holds, what it costs in flash and how close it reads.

@@ -9,11 +9,14 @@
 //!   process per scene (so that each peak is its own), and each scene's total time against
 //!   the first scene's.
 //! - `eigenrad-bench eigen SCENE...`: dense against partial eigensolve on the same matrix.
+//! - `eigenrad-bench compress SCENE...`: the hierarchical form-factor operator against a dense
+//!   one: memory, form-factor time, every channel's readings, the strongest eigenvalues.
 //! - `eigenrad-bench daylight SCENE...`: the room's response to the sky (Tregenza, Reinhart
 //!   MF:2) and to one sun direction, against the time to prepare the scene.
 //!
 //! Run in release: `cargo run --release -p eigenrad-precompute --bin eigenrad-bench -- …`.
 
+mod compress;
 mod daylight;
 mod eigen;
 mod scale;
@@ -70,6 +73,15 @@ enum Command {
         /// Scene files.
         scenes: Vec<PathBuf>,
     },
+    /// The hierarchical operator against a dense one on each scene: memory, form-factor time,
+    /// every channel's readings and the 32 strongest eigenvalues.
+    Compress {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+        /// The dense operator compared with.
+        #[arg(long, value_enum, default_value_t = OperatorChoice::DenseF32)]
+        reference: OperatorChoice,
+    },
     /// Dense against partial eigensolve (p = 32) on each scene's form factors.
     Eigen {
         /// Scene files.
@@ -94,6 +106,10 @@ fn main() -> Result<()> {
         Command::Daylight { scenes } => {
             machine();
             daylight::run(&scenes)?;
+        }
+        Command::Compress { scenes, reference } => {
+            machine();
+            compress::run(&scenes, reference)?;
         }
         Command::Eigen { scenes, dense_max } => {
             machine();

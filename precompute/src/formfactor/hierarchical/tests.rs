@@ -1,0 +1,253 @@
+//! The hierarchical operator against the dense matrix of the same pair integrals, closed-room
+//! identities, and the guard on a block built to fool the cross approximation.
+
+use std::sync::Arc;
+
+use faer::{Mat, Par};
+
+use super::aca;
+use super::*;
+use crate::formfactor::tests::{meshed_box, v};
+use crate::formfactor::{
+    exchange, patch_form_factors_hierarchical, patch_form_factors_with, FormFactorOptions,
+    Occluders,
+};
+use crate::radiosity::exact::ExactSolver;
+
+/// A long 16 × 3 × 2.7 m room (inward: an open-plan strip, where far clusters abound) with a
+/// desk (a box floating at desk height) and a column from floor to ceiling, about `size`
+/// metres a patch.
+fn furnished_room(size: f64) -> Vec<Patch> {
+    let mut patches = meshed_box(v(0.0, 0.0, 0.0), v(16.0, 3.0, 2.7), size, true, 0);
+    patches.extend(meshed_box(
+        v(5.0, 1.0, 0.7),
+        v(6.6, 1.8, 0.75),
+        size,
+        false,
+        6,
+    ));
+    patches.extend(meshed_box(
+        v(10.0, 2.0, 0.0),
+        v(10.4, 2.4, 2.7),
+        size,
+        false,
+        12,
+    ));
+    patches
+}
+
+/// Small leaves, so that a room of a few hundred patches has well-separated blocks.
+fn small_leaves() -> Settings {
+    Settings {
+        leaf: 16,
+        ..Settings::default()
+    }
+}
+
+fn relative_max(a: &[f64], b: &[f64]) -> f64 {
+    let scale = b.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / scale
+}
+
+/// Reference: the dense exchange areas `G` from the same pair integrals
+/// (`patch_form_factors_with`). The blocks are approximated to 1e-4 here, so that blocks
+/// between leaves of 16 patches compress (at the default 1e-6 only larger blocks do, which
+/// takes a larger scene: `eigenrad-bench compress`). Tolerances, from that 1e-4: products,
+/// row sums and every entry (against the largest) within 1e-4 relative; exact symmetry;
+/// products the same bytes whatever the threads.
+#[test]
+fn compressed_matches_dense_in_a_furnished_room() {
+    let patches = furnished_room(0.45);
+    let n = patches.len();
+    assert!(n > 500, "{n} patches");
+    let occluders = Occluders::new(&patches);
+    let opts = FormFactorOptions::default();
+    let area: Vec<f64> = patches.iter().map(|p| p.area).collect();
+    let dense = exchange::exchange_areas(
+        patch_form_factors_with(&patches, &occluders, &opts).matrix,
+        &area,
+    );
+    let tolerance = 1e-4;
+    let settings = Settings {
+        tolerance,
+        ..small_leaves()
+    };
+    let ff =
+        patch_form_factors_hierarchical(&patches, &occluders, &opts, &settings).expect("finite");
+    let h = &ff.matrix;
+    let c = h.compression();
+    println!(
+        "{n} patches: {c:?}, {} bytes against {}",
+        h.stored_bytes(),
+        4 * n * n
+    );
+    assert!(c.low_rank_share > 0.1 && c.max_rank > 0, "{c:?}");
+    assert!(c.row_error < tolerance, "{c:?}");
+    let gmax = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .fold(0.0f64, |s, (i, j)| s.max(dense[(i, j)].abs()));
+    let mut worst = 0.0f64;
+    for i in 0..n {
+        let mut row = vec![0.0; n];
+        h.row(i, &mut row);
+        for j in 0..n {
+            assert_eq!(
+                h.entry(i, j).to_bits(),
+                h.entry(j, i).to_bits(),
+                "({i}, {j})"
+            );
+            assert_eq!(row[j].to_bits(), h.entry(i, j).to_bits(), "row {i}, {j}");
+            worst = worst.max((row[j] - dense[(i, j)]).abs() / gmax);
+        }
+    }
+    println!("worst entry error {worst:.2e} of the largest entry");
+    assert!(worst < tolerance, "{worst:e}");
+    let x = Mat::<f64>::from_fn(n, 6, |i, k| (((i * 7 + k * 13) % 17) as f64 - 8.0) / 8.0);
+    let (mut want, mut got) = (Mat::<f64>::zeros(n, 6), Mat::<f64>::zeros(n, 6));
+    dense.apply(want.as_mut(), x.as_ref(), Par::Seq);
+    h.apply(got.as_mut(), x.as_ref(), Par::rayon(2));
+    for k in 0..6 {
+        let w: Vec<f64> = (0..n).map(|i| want[(i, k)]).collect();
+        let g: Vec<f64> = (0..n).map(|i| got[(i, k)]).collect();
+        let e = relative_max(&g, &w);
+        assert!(e < tolerance, "column {k}: {e:e}");
+    }
+    let dense_sums = dense.form_factor_row_sums(&area);
+    let e = ff
+        .row_sums
+        .iter()
+        .zip(&dense_sums)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(e < tolerance, "row sums {e:e}");
+    // Products are the same bytes however many threads run them.
+    let mut again = Mat::<f64>::zeros(n, 6);
+    h.apply(again.as_mut(), x.as_ref(), Par::Seq);
+    assert!((0..n).all(|i| (0..6).all(|k| again[(i, k)].to_bits() == got[(i, k)].to_bits())));
+}
+
+/// Reference: the white furnace. In a closed room of uniform reflectance ρ, uniform emitted
+/// exitance `e` gives `M = e / (1 − ρ)` everywhere (docs/math.md), and every row of F sums to
+/// 1. Tolerance 1e-5 relative: the dense form factors meet both to 1e-6, the compression
+/// adds 1e-6 per block.
+#[test]
+fn white_furnace_through_the_compressed_operator() {
+    let patches = meshed_box(v(0.0, 0.0, 0.0), v(5.0, 4.0, 3.0), 0.4, true, 0);
+    let n = patches.len();
+    let occluders = Occluders::new(&patches);
+    let ff = patch_form_factors_hierarchical(
+        &patches,
+        &occluders,
+        &FormFactorOptions::default(),
+        &small_leaves(),
+    )
+    .expect("finite");
+    let worst_row = ff
+        .row_sums
+        .iter()
+        .map(|s| (s - 1.0).abs())
+        .fold(0.0, f64::max);
+    assert!(worst_row < 1e-5, "{worst_row:e}");
+    assert!(ff.matrix.compression().low_rank_blocks > 0);
+    let area: Vec<f64> = patches.iter().map(|p| p.area).collect();
+    let rho = vec![0.6; n];
+    let g: Arc<dyn FormFactorOperator> = Arc::new(ff.matrix);
+    let solver = ExactSolver::iterative(g, &area, &rho).expect("valid inputs");
+    let e = 100.0;
+    let m = solver.solve(&vec![e; n]);
+    let want = e / (1.0 - 0.6);
+    let worst = m
+        .iter()
+        .map(|x| (x - want).abs() / want)
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-5, "{worst:e}");
+}
+
+/// A block that cross approximation alone gets wrong: a smooth part seen by every row and
+/// column (here exactly of rank one), plus three rows that see three quarters of the columns
+/// strongly (light through a gap between blockers). Once the smooth part is taken, every row
+/// and column ACA probes next is dark, and it stops with an error of the order of the hidden
+/// part; the guard, reading rows and columns of its own, sees it, and the block is computed
+/// whole.
+#[test]
+fn guard_catches_what_cross_approximation_misses() {
+    let (m, n) = (64, 64);
+    let smooth = |i: usize, j: usize| 10.0 / ((10.0 + i as f64 * 0.01) * (10.0 + j as f64 * 0.02));
+    let lit = |i: usize, j: usize| (61..64).contains(&i) && j >= 16;
+    let entry = |i: usize, j: usize| smooth(i, j) + if lit(i, j) { 0.05 } else { 0.0 };
+    let tolerance = 1e-6;
+    let cross = aca::aca(m, n, &entry, tolerance, 32).expect("converges");
+    let approx = &cross.approximation;
+    let mut err2 = 0.0;
+    let mut norm2 = 0.0;
+    for i in 0..m {
+        for j in 0..n {
+            let e = entry(i, j);
+            let a: f64 = (0..approx.rank())
+                .map(|k| approx.u[(i, k)] * approx.v[(j, k)])
+                .sum();
+            err2 += (e - a).powi(2);
+            norm2 += e * e;
+        }
+    }
+    let alone = (err2 / norm2).sqrt();
+    println!(
+        "ACA alone: rank {}, relative error {alone:.2e}",
+        approx.rank()
+    );
+    assert!(
+        alone > 100.0 * tolerance,
+        "ACA found the gap by itself: {alone:e}"
+    );
+    // Each of the guard's two columns lands among the lit ones with probability 3/4: over 16
+    // seeds (assembly seeds a block with its index) it must fire for most.
+    let fired = (0..16u64)
+        .filter(|&seed| aca::guard_fires(&cross, m, n, &entry, tolerance, seed))
+        .count();
+    println!("guard fired for {fired} of 16 seeds");
+    assert!(fired >= 12, "{fired}");
+    // compress() computes such a block whole when its guard fires.
+    let whole = (0..16u64)
+        .filter(|&seed| {
+            matches!(
+                aca::compress(m, n, &entry, tolerance, seed),
+                aca::Compressed::Dense { guarded: true, .. }
+            )
+        })
+        .count();
+    assert_eq!(whole, fired);
+    // On a smooth block ACA gets right, the guard stays quiet.
+    let curved = |i: usize, j: usize| 1.0 / (10.0 + i as f64 * 0.01 + j as f64 * 0.02);
+    let good = aca::aca(m, n, &curved, tolerance, 32).expect("converges");
+    assert!((0..16u64).all(|seed| !aca::guard_fires(&good, m, n, &curved, tolerance, seed)));
+}
+
+/// Recompression keeps the approximation within its tolerance and never raises the rank.
+#[test]
+fn recompression_keeps_the_block() {
+    let (m, n) = (40, 30);
+    let entry = |i: usize, j: usize| {
+        let (x, y) = (i as f64 / 40.0, 3.0 + j as f64 / 30.0);
+        1.0 / ((x - y) * (x - y) + 0.5)
+    };
+    let cross = aca::aca(m, n, &entry, 1e-10, 20).expect("converges");
+    let before = cross.approximation.rank();
+    let after = aca::recompress(cross.approximation.clone(), 1e-6);
+    assert!(after.rank() <= before);
+    let mut err2 = 0.0;
+    let mut norm2 = 0.0;
+    for i in 0..m {
+        for j in 0..n {
+            let a: f64 = (0..after.rank())
+                .map(|k| after.u[(i, k)] * after.v[(j, k)])
+                .sum();
+            err2 += (entry(i, j) - a).powi(2);
+            norm2 += entry(i, j).powi(2);
+        }
+    }
+    assert!((err2 / norm2).sqrt() < 2e-6, "{:e}", (err2 / norm2).sqrt());
+}

@@ -1,0 +1,257 @@
+//! The cluster tree over the patches and the partition of `S` into blocks that it induces.
+//!
+//! The tree halves a cluster at the median of its patches along the coordinate in which they
+//! spread most, down to [`Settings::leaf`] patches. The coordinates are the centroid's three
+//! and the unit normal's three scaled by the scene's diagonal: patches facing different ways
+//! are separated first (a cluster of the floor and a wall has a kernel with a kink where they
+//! meet, and of much higher rank), then coplanar ones by position. A pair of clusters is *admissible*
+//! (well separated, stored low rank) when the smaller of their boxes is no wider than
+//! [`Settings::admissibility`] times the gap between the boxes; other pairs are split until
+//! one side is a leaf, and stored dense there.
+//!
+//! Only the upper half of the symmetric partition is kept: diagonal blocks `(τ, τ)` and
+//! blocks whose rows all come before their columns in the tree's order. Every stored
+//! off-diagonal block stands for itself and its transpose.
+
+use std::ops::Range;
+
+use super::Settings;
+use crate::geometry::{Patch, Vec3};
+
+/// An axis-aligned box, metres.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Bounds {
+    pub(super) min: Vec3,
+    pub(super) max: Vec3,
+}
+
+impl Bounds {
+    const EMPTY: Bounds = Bounds {
+        min: Vec3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
+        max: Vec3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
+    };
+
+    fn add(&mut self, p: Vec3) {
+        self.min = Vec3::new(
+            self.min.x.min(p.x),
+            self.min.y.min(p.y),
+            self.min.z.min(p.z),
+        );
+        self.max = Vec3::new(
+            self.max.x.max(p.x),
+            self.max.y.max(p.y),
+            self.max.z.max(p.z),
+        );
+    }
+
+    fn union(self, o: Bounds) -> Bounds {
+        let mut b = self;
+        b.add(o.min);
+        b.add(o.max);
+        b
+    }
+
+    /// The box's diagonal, metres.
+    pub(super) fn diameter(&self) -> f64 {
+        (self.max - self.min).length()
+    }
+
+    /// The gap between two boxes, metres (0 where they overlap or touch).
+    pub(super) fn distance(&self, o: &Bounds) -> f64 {
+        let gap = |lo1: f64, hi1: f64, lo2: f64, hi2: f64| (lo2 - hi1).max(lo1 - hi2).max(0.0);
+        Vec3::new(
+            gap(self.min.x, self.max.x, o.min.x, o.max.x),
+            gap(self.min.y, self.max.y, o.min.y, o.max.y),
+            gap(self.min.z, self.max.z, o.min.z, o.max.z),
+        )
+        .length()
+    }
+}
+
+/// A cluster: the patches at positions `range` of the tree's order.
+#[derive(Clone, Debug)]
+pub(super) struct Node {
+    /// Positions in the tree's order.
+    pub(super) range: Range<usize>,
+    /// The box of the cluster's patches (all their corners), metres.
+    pub(super) bounds: Bounds,
+    /// The two halves, or none for a leaf.
+    pub(super) children: Option<[usize; 2]>,
+}
+
+/// The cluster tree: nodes (the root first) and the order it puts the patches in.
+#[derive(Clone, Debug)]
+pub(super) struct ClusterTree {
+    pub(super) nodes: Vec<Node>,
+    /// `order[position]` = patch index.
+    pub(super) order: Vec<usize>,
+}
+
+impl ClusterTree {
+    /// The tree over `patches`, with leaves of at most `leaf` patches.
+    pub(super) fn new(patches: &[Patch], leaf: usize) -> ClusterTree {
+        let leaf = leaf.max(1);
+        let mut order: Vec<usize> = (0..patches.len()).collect();
+        let mut nodes = Vec::new();
+        let bounds: Vec<Bounds> = patches
+            .iter()
+            .map(|p| {
+                let mut b = Bounds::EMPTY;
+                for &v in &p.polygon.vertices {
+                    b.add(v);
+                }
+                b.add(p.centroid);
+                b
+            })
+            .collect();
+        let scene = order.iter().fold(Bounds::EMPTY, |b, &i| b.union(bounds[i]));
+        let orientation_scale = if patches.is_empty() {
+            0.0
+        } else {
+            scene.diameter()
+        };
+        let keys: Vec<[f64; 6]> = patches
+            .iter()
+            .map(|p| {
+                let (c, n) = (p.centroid, p.normal * orientation_scale);
+                [c.x, c.y, c.z, n.x, n.y, n.z]
+            })
+            .collect();
+        split(&keys, &bounds, &mut order, 0, leaf, &mut nodes);
+        ClusterTree { nodes, order }
+    }
+
+    /// The position of each patch in the tree's order (the inverse of `order`).
+    pub(super) fn positions(&self) -> Vec<usize> {
+        let mut position = vec![0; self.order.len()];
+        for (p, &i) in self.order.iter().enumerate() {
+            position[i] = p;
+        }
+        position
+    }
+}
+
+/// Appends the node over `order[start..]` (the slice given) and its descendants; returns its
+/// index.
+fn split(
+    keys: &[[f64; 6]],
+    bounds: &[Bounds],
+    order: &mut [usize],
+    start: usize,
+    leaf: usize,
+    nodes: &mut Vec<Node>,
+) -> usize {
+    let own = order.iter().fold(Bounds::EMPTY, |b, &i| b.union(bounds[i]));
+    let index = nodes.len();
+    nodes.push(Node {
+        range: start..start + order.len(),
+        bounds: own,
+        children: None,
+    });
+    if order.len() <= leaf {
+        return index;
+    }
+    let spread = |k: usize| {
+        let (lo, hi) = order
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &i| {
+                (lo.min(keys[i][k]), hi.max(keys[i][k]))
+            });
+        hi - lo
+    };
+    // The first of equal spreads: deterministic.
+    let axis = (0..6).fold(0, |best, k| if spread(k) > spread(best) { k } else { best });
+    let half = order.len() / 2;
+    // Ties broken by patch index: the tree, and with it every byte, is deterministic.
+    order.select_nth_unstable_by(half, |&a, &b| {
+        keys[a][axis].total_cmp(&keys[b][axis]).then(a.cmp(&b))
+    });
+    let (low, high) = order.split_at_mut(half);
+    // Each half in patch order within itself, so that the split does not depend on how the
+    // selection left it.
+    low.sort_unstable();
+    high.sort_unstable();
+    let a = split(keys, bounds, low, start, leaf, nodes);
+    let b = split(keys, bounds, high, start + half, leaf, nodes);
+    nodes[index].children = Some([a, b]);
+    index
+}
+
+/// How a block is stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
+    /// Every entry computed.
+    Near,
+    /// Admissible: approximated at low rank.
+    Far,
+}
+
+/// A block of the partition: rows of cluster `row_node`, columns of `col_node`.
+#[derive(Clone, Debug)]
+pub(super) struct BlockSpan {
+    pub(super) row_node: usize,
+    pub(super) col_node: usize,
+    pub(super) rows: Range<usize>,
+    pub(super) cols: Range<usize>,
+    pub(super) kind: Kind,
+}
+
+impl BlockSpan {
+    /// A diagonal block `(τ, τ)`, stored whole (symmetric).
+    pub(super) fn is_diagonal(&self) -> bool {
+        self.row_node == self.col_node
+    }
+}
+
+/// The upper half of the block partition of the tree's `S` (module docs), in a fixed order.
+pub(super) fn partition(tree: &ClusterTree, settings: &Settings) -> Vec<BlockSpan> {
+    let mut blocks = Vec::new();
+    if !tree.nodes.is_empty() {
+        visit(tree, settings, 0, 0, &mut blocks);
+    }
+    blocks
+}
+
+fn visit(tree: &ClusterTree, settings: &Settings, t: usize, s: usize, out: &mut Vec<BlockSpan>) {
+    let (tn, sn) = (&tree.nodes[t], &tree.nodes[s]);
+    let span = |kind| BlockSpan {
+        row_node: t,
+        col_node: s,
+        rows: tn.range.clone(),
+        cols: sn.range.clone(),
+        kind,
+    };
+    if t == s {
+        match tn.children {
+            None => out.push(span(Kind::Near)),
+            Some([a, b]) => {
+                visit(tree, settings, a, a, out);
+                visit(tree, settings, a, b, out);
+                visit(tree, settings, b, b, out);
+            }
+        }
+        return;
+    }
+    let gap = tn.bounds.distance(&sn.bounds);
+    let small = tn.bounds.diameter().min(sn.bounds.diameter());
+    if gap > 0.0 && small <= settings.admissibility * gap {
+        out.push(span(Kind::Far));
+        return;
+    }
+    match (tn.children, sn.children) {
+        (None, None) => out.push(span(Kind::Near)),
+        (None, Some([c, d])) => {
+            visit(tree, settings, t, c, out);
+            visit(tree, settings, t, d, out);
+        }
+        (Some([a, b]), None) => {
+            visit(tree, settings, a, s, out);
+            visit(tree, settings, b, s, out);
+        }
+        (Some([a, b]), Some([c, d])) => {
+            for (x, y) in [(a, c), (a, d), (b, c), (b, d)] {
+                visit(tree, settings, x, y, out);
+            }
+        }
+    }
+}
