@@ -131,9 +131,9 @@ fn compressed_matches_dense_in_a_furnished_room() {
 }
 
 /// Reference: the white furnace. In a closed room of uniform reflectance ρ, uniform emitted
-/// exitance `e` gives `M = e / (1 − ρ)` everywhere (docs/math.md), and every row of F sums to
-/// 1. Tolerance 1e-5 relative: the dense form factors meet both to 1e-6, the compression
-/// adds 1e-6 per block.
+/// exitance `e` gives `M = e / (1 − ρ)` everywhere (docs/math.md), and every row of F sums
+/// to one. Tolerance 1e-5 relative: the dense form factors meet both to 1e-6, the
+/// compression adds 1e-6 per block.
 #[test]
 fn white_furnace_through_the_compressed_operator() {
     let patches = meshed_box(v(0.0, 0.0, 0.0), v(5.0, 4.0, 3.0), 0.4, true, 0);
