@@ -9,6 +9,7 @@
 //! | [`geometry`] | points, polygons, patches |
 //! | [`atomic`] | files written atomically: outputs and cache entries |
 //! | [`memory`] | what a build of n patches holds, the solvers' size thresholds, the machine's memory |
+//! | [`flash`] | a microcontroller's flash budget for a basis |
 //! | [`daylight`] | the sun's position from date, time and site; the site's and the room's frames (the sky models are the runtime's) |
 //! | [`scene`] | scene files, OBJ/MTL, meshing, the receivers every light path walks |
 //! | [`formfactor`] | the form-factor operator, form factors with occlusion, sensor and zone rows, their health |
@@ -29,6 +30,7 @@ pub mod cache;
 pub mod cli;
 pub mod daylight;
 mod error;
+pub mod flash;
 pub mod formfactor;
 pub mod geometry;
 pub mod memory;
