@@ -723,7 +723,11 @@ fn hemisphere_readings(radiance: &Radiance, dir: &Path, octree: &str) -> (Vec<f6
         }
     }
     // Without `-I` rtrace answers the radiance along each ray, which `lux` turns into cd/m².
-    let mut options: Vec<&str> = RTRACE_DIRECT.iter().copied().filter(|&o| o != "-I").collect();
+    let mut options: Vec<&str> = RTRACE_DIRECT
+        .iter()
+        .copied()
+        .filter(|&o| o != "-I")
+        .collect();
     options.extend(["-ab", "0"]);
     let luminance: Vec<f64> = radiance
         .trace(dir, octree, &options, &rays, 1)
@@ -820,8 +824,14 @@ fn a_photosensor_response_matches_an_rtrace_hemisphere_weighted_rsensor_style() 
             t / o - 1.0,
             tc / oc - 1.0
         );
-        assert!((t / o - 1.0).abs() <= PHOTOCELL_TOLERANCE, "photocell{k}: {o} against {t}");
-        assert!((tc / oc - 1.0).abs() <= PHOTOCELL_TOLERANCE, "cosine{k}: {oc} against {tc}");
+        assert!(
+            (t / o - 1.0).abs() <= PHOTOCELL_TOLERANCE,
+            "photocell{k}: {o} against {t}"
+        );
+        assert!(
+            (tc / oc - 1.0).abs() <= PHOTOCELL_TOLERANCE,
+            "cosine{k}: {oc} against {tc}"
+        );
         // The response matters: it reads well apart from a cosine sensor at the same place.
         assert!(
             (o / oc - 1.0).abs() > 10.0 * PHOTOCELL_TOLERANCE,

@@ -213,14 +213,23 @@ pub fn format_ratios(ratios: &[SensorRatio], channels: &[String]) -> String {
         "sensor to zone: what each sensor reads per unit of the zone's reading, per channel and per daylight (overcast: CIE overcast sky; clear sky: CIE type {CLEAR_SKY_TYPE}, the sky alone, sun at solar noon on an equinox; sun: that sun alone)"
     );
     let _ = write!(s, "{:<20} {:<20}", "sensor", "zone");
-    for c in channels.iter().map(String::as_str).chain(["overcast", "clear sky", "sun"]) {
+    for c in channels
+        .iter()
+        .map(String::as_str)
+        .chain(["overcast", "clear sky", "sun"])
+    {
         let _ = write!(s, " {c:>12}");
     }
     s.push('\n');
     let cell = |v: Option<f64>| v.map_or_else(|| "-".to_owned(), |v| format!("{v:.4}"));
     for r in ratios {
         let _ = write!(s, "{:<20} {:<20}", r.sensor, r.zone);
-        for v in r.per_channel.iter().copied().chain([r.overcast, r.clear_sky, r.sun]) {
+        for v in r
+            .per_channel
+            .iter()
+            .copied()
+            .chain([r.overcast, r.clear_sky, r.sun])
+        {
             let _ = write!(s, " {:>12}", cell(v));
         }
         s.push('\n');

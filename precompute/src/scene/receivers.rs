@@ -67,7 +67,7 @@ impl<'r> FieldOfView<'r> {
     /// How much light arriving at cosine `cos` to the normal counts, the factor that stands
     /// where illuminance has `cos θ` (dimensionless): `cos θ` in front of the receiver and
     /// inside its cone, the response `S(θ)` of a sensor that has one, zero elsewhere. NaN
-    /// counts nothing.
+    /// counts nothing: the result is never NaN.
     pub fn sensitivity(&self, cos: f64) -> f64 {
         match self.response {
             Some(r) => r.at_cos(cos),

@@ -76,14 +76,20 @@ impl Response {
         if first != 0.0 {
             return Err(refuse(
                 line(0),
-                format!("{}the first polar angle must be 0 degrees, found {first}", row(0)),
+                format!(
+                    "{}the first polar angle must be 0 degrees, found {first}",
+                    row(0)
+                ),
             ));
         }
         for (k, &(theta, s)) in rows.iter().enumerate() {
             if !theta.is_finite() || !s.is_finite() {
                 return Err(refuse(
                     line(k),
-                    format!("{}polar angle {theta} and sensitivity {s} must be finite", row(k)),
+                    format!(
+                        "{}polar angle {theta} and sensitivity {s} must be finite",
+                        row(k)
+                    ),
                 ));
             }
             if s < 0.0 {
@@ -115,7 +121,10 @@ impl Response {
         }
         // Trailing zero rows say nothing: the sensitivity past the last row is zero anyway.
         let Some(last) = rows.iter().rposition(|&(_, s)| s > 0.0) else {
-            return Err(refuse(None, "no positive sensitivity: the sensor would read nothing"));
+            return Err(refuse(
+                None,
+                "no positive sensitivity: the sensor would read nothing",
+            ));
         };
         // The zero row after it, if any, brings the interpolation down to zero.
         let end = match rows.get(last + 1) {
@@ -153,7 +162,7 @@ impl Response {
     /// the table interpolated linearly in the polar angle, zero past its last row and behind
     /// the sensor. NaN gives zero.
     pub fn at_cos(&self, cos: f64) -> f64 {
-        if !(cos > 0.0) {
+        if cos.is_nan() || cos <= 0.0 {
             return 0.0;
         }
         self.at_angle(cos.min(1.0).acos())
@@ -181,7 +190,10 @@ impl Response {
 
     /// The rows as (polar angle in radians, relative sensitivity), for keys and reports.
     pub fn rows(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
-        self.polar.iter().copied().zip(self.sensitivity.iter().copied())
+        self.polar
+            .iter()
+            .copied()
+            .zip(self.sensitivity.iter().copied())
     }
 
     /// The view cut into rings of polar angle: `(edge, weight)` pairs such that the reading
@@ -245,11 +257,17 @@ pub fn parse_rsensor(text: &str) -> Result<Response, TableError> {
         .map(|(i, l)| (i + 1, l.trim()))
         .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'))
         .peekable();
-    if lines.peek().is_some_and(|(_, l)| l.starts_with("Elevation ")) {
+    if lines
+        .peek()
+        .is_some_and(|(_, l)| l.starts_with("Elevation "))
+    {
         lines.next();
     }
     let Some((header_line, header)) = lines.next() else {
-        return Err(refuse(None, "empty file: expected a header line starting with `degrees`"));
+        return Err(refuse(
+            None,
+            "empty file: expected a header line starting with `degrees`",
+        ));
     };
     let mut fields = header.split_whitespace();
     if fields.next() != Some("degrees") {
@@ -320,8 +338,12 @@ pub fn parse_rsensor(text: &str) -> Result<Response, TableError> {
 
 /// Reads an `rsensor` table from `path`; errors carry the path (and line).
 pub fn read_rsensor(path: &Path) -> Result<Response, (PathBuf, TableError)> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| (path.to_path_buf(), refuse(None, format!("cannot read file: {e}"))))?;
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        (
+            path.to_path_buf(),
+            refuse(None, format!("cannot read file: {e}")),
+        )
+    })?;
     parse_rsensor(&text).map_err(|e| (path.to_path_buf(), e))
 }
 
@@ -358,7 +380,10 @@ mod tests {
                 2.0 * r.at_angle(t) * t.sin() * h
             })
             .sum();
-        assert!((by_rings - direct).abs() < 1e-9 * direct, "{by_rings} vs {direct}");
+        assert!(
+            (by_rings - direct).abs() < 1e-9 * direct,
+            "{by_rings} vs {direct}"
+        );
     }
 
     /// The shielded preset: `cos θ` at the normal's neighbourhood, half lit where the shield's
@@ -370,8 +395,7 @@ mod tests {
         let r = Response::shielded(cutoff);
         assert_eq!(r.at_angle(0.0), 1.0);
         let half = (0.5 * cutoff.tan()).atan();
-        let lit = 2.0 / std::f64::consts::PI
-            * (std::f64::consts::FRAC_PI_3 - 3f64.sqrt() / 4.0);
+        let lit = 2.0 / std::f64::consts::PI * (std::f64::consts::FRAC_PI_3 - 3f64.sqrt() / 4.0);
         assert!((shielded_sensitivity(half, cutoff) - half.cos() * lit).abs() < 1e-12);
         assert_eq!(r.at_angle(cutoff), 0.0);
         assert!((r.view_edge() - cutoff).abs() < 1e-12);

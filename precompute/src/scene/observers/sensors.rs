@@ -6,8 +6,8 @@ use crate::geometry::Vec3;
 use crate::scene::context::{unique, Ctx};
 use crate::scene::error::SceneError;
 use crate::scene::file::{ResponseDef, SensorDef};
-use crate::scene::response::{self, Response};
 use crate::scene::openings::CONTACT_TOLERANCE;
+use crate::scene::response::{self, Response};
 use crate::scene::Sensor;
 
 /// Reads and checks the sensors; `rooms` and `blocks` are (name, min, max) in metres.

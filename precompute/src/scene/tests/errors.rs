@@ -411,7 +411,10 @@ fn scene_sensor_responses_are_read() {
 #[test]
 fn scene_error_bad_sensor_responses_name_the_field() {
     let cases: [(&str, &[&str]); 6] = [
-        ("{ preset = \"fisheye\" }", &["sensor `s`.response.preset", "fisheye"]),
+        (
+            "{ preset = \"fisheye\" }",
+            &["sensor `s`.response.preset", "fisheye"],
+        ),
         ("{ preset = \"cone\" }", &["sensor `s`.response.half_angle"]),
         (
             "{ preset = \"shielded\", cutoff = 90 }",
@@ -461,6 +464,9 @@ fn scene_error_bad_rsensor_file_names_its_file_and_line() {
         Ok(_) => panic!("a missing table is refused"),
         Err(e) => e.to_string(),
     };
-    assert!(m.contains("file not found") && m.contains("none.dat"), "{m}");
+    assert!(
+        m.contains("file not found") && m.contains("none.dat"),
+        "{m}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

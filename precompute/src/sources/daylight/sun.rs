@@ -125,7 +125,7 @@ impl Ctx<'_> {
     fn sun_at_point(&self, x: Vec3, normal: Vec3, field: FieldOfView, s: Vec3) -> f64 {
         // The receiver's one rule: `cos θ`, or a sensor's response in its place.
         let cx = field.sensitivity(normal.dot(s));
-        if !(cx > 0.0) {
+        if cx <= 0.0 {
             return 0.0;
         }
         let mut e = 0.0;

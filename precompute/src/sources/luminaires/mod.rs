@@ -348,7 +348,7 @@ impl<'a> Source<'a> {
             // The receiver's one rule: `cos θ`, or a sensor's response in its place. NaN (a
             // piece at the point itself) counts as behind.
             let sensitivity = field.sensitivity(normal.dot(v) / r2.sqrt());
-            if !(sensitivity > 0.0) {
+            if sensitivity <= 0.0 {
                 return;
             }
             let intensity = self.lum.intensity(-v) * share;

@@ -311,8 +311,11 @@ response = { preset = "shielded", cutoff = 50 }
     )[0];
     let got = uniform_sky(&r, 0);
     let error = relative(got, PI * seen);
-    println!("shielded sensor under a uniform sky: {got} against {} ({error:.2e})", PI * seen);
-    // Measured 1e-4 or so: the window cells' quadrature of a sensitivity with a kink at the
+    println!(
+        "shielded sensor under a uniform sky: {got} against {} ({error:.2e})",
+        PI * seen
+    );
+    // Measured 1.4e-4: the window cells' quadrature of a sensitivity with a kink at the
     // cut-off, and the rings' constant weight across 1°.
     assert!(error < 2e-3, "{got} against {} ({error:.2e})", PI * seen);
 }

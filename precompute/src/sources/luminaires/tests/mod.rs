@@ -414,9 +414,8 @@ fn a_sensor_response_weighs_a_point_source_by_its_sensitivity() {
     let opts = LuminaireOptions::default();
     let gl = gauss_legendre(opts.order);
     let source = Source::new(&lum, &occluders, &opts, &gl);
-    let response =
-        crate::scene::response::Response::from_rows(&[(0.0, 1.0), (90.0, 0.0)], None)
-            .expect("valid table");
+    let response = crate::scene::response::Response::from_rows(&[(0.0, 1.0), (90.0, 0.0)], None)
+        .expect("valid table");
     for r in [0.0, 0.3, 1.0, 1.9] {
         let e = source.point(
             Vec3::new(r, 0.0, 0.0),
