@@ -233,6 +233,7 @@ fn cli_gains_equal_eval_with_one_channel_at_level_one() {
         "right",
         "lux",
         "daylight",
+        "sensor to zone",
     ] {
         assert!(table.contains(word), "`{word}` missing:\n{table}");
     }

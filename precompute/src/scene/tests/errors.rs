@@ -457,6 +457,10 @@ fn scene_error_bad_rsensor_file_names_its_file_and_line() {
     assert!(m.contains("cell.dat:3:") && m.contains("azimuth"), "{m}");
     std::fs::write(&table, "degrees\t0\t90\n0\t1\t1\n30\t0.5\t0.5\n60\t0\t0\n").expect("write");
     let read = parse(&text, &scene).expect("an axisymmetric table is read");
+    // The table is one of the scene's inputs: no output may replace it.
+    std::fs::write(&scene, &text).expect("write scene");
+    let listed = crate::scene::inputs(&scene).expect("inputs");
+    assert!(listed.files.contains(&table), "{:?}", listed.files);
     let r = read.sensors[0].response.as_ref().expect("a table");
     assert!((r.at_angle(15f64.to_radians()) - 0.75).abs() < 1e-12);
     let missing = format!("{BASE}{}", responding("{ file = \"none.dat\" }"));
