@@ -81,6 +81,11 @@ step "runtime for the microcontroller targets"
 cargo build -p eigenrad-runtime --release --target thumbv7em-none-eabihf
 cargo build -p eigenrad-runtime --release --target thumbv6m-none-eabi
 
+step "firmware template (examples/firmware-template, the runtime README's starting point): formatting, lints, built for thumbv7em-none-eabihf"
+(cd examples/firmware-template && cargo fmt -- --check &&
+    CARGO_TARGET_DIR=../../target/firmware-template cargo clippy --release -- -D warnings &&
+    CARGO_TARGET_DIR=../../target/firmware-template cargo build --release)
+
 step "firmware under QEMU (installs qemu-system-arm when missing; tests/firmware.rs runs it on real bases)"
 status=0
 scripts/firmware.sh runtime/tests/data/tiny.basis target/firmware/tiny.out >/dev/null || status=$?

@@ -183,6 +183,27 @@ fn cli_gains_equal_eval_with_one_channel_at_level_one() {
     let desk = &gains["sensors"][0]["per_channel"];
     assert!(desk[0][0].as_f64() > desk[1][0].as_f64(), "{desk}");
 
+    // The sensor's ratio to each zone per channel: its gain over the zone's, sensor by
+    // sensor and zone by zone; no daylight here.
+    let ratios = gains["ratios"].as_array().expect("ratios");
+    let zones = gains["zones"].as_array().expect("zones");
+    assert_eq!(ratios.len(), zones.len(), "one sensor times two zones");
+    for (r, zone) in ratios.iter().zip(zones) {
+        assert_eq!(r["sensor"], "desk");
+        assert_eq!(r["zone"], zone["name"]);
+        for c in 0..2 {
+            let expected = desk[c][0].as_f64().expect("number")
+                / zone["per_channel"][c][0].as_f64().expect("number");
+            let got = r["per_channel"][c].as_f64().expect("a ratio");
+            // The JSON parser may be one ulp off the correctly rounded value, in each of the
+            // three numbers.
+            assert!((got - expected).abs() <= 4e-16 * 3.0 * expected, "{r}");
+        }
+        for daylight in ["overcast", "clear_sky", "sun"] {
+            assert!(r[daylight].is_null(), "no daylight: {r}");
+        }
+    }
+
     // The CSV holds the same numbers, one row per output and band.
     let text = std::fs::read_to_string(&csv).expect("CSV written");
     let mut lines = text.lines();
@@ -212,6 +233,7 @@ fn cli_gains_equal_eval_with_one_channel_at_level_one() {
         "right",
         "lux",
         "daylight",
+        "sensor to zone",
     ] {
         assert!(table.contains(word), "`{word}` missing:\n{table}");
     }

@@ -169,6 +169,22 @@ fn eval_equals_solve_without_the_sun() {
     // `inspect --gains`: each sensor's and zone's daylight factor is its overcast daylight
     // per lux of diffuse horizontal illuminance.
     let gains = cli::gains(&basis, &bytes, cli::Units::Native).unwrap();
+    // Each sensor's ratio to each zone under the overcast sky is the ratio of their
+    // daylight factors; the clear sky and the sun (noon on an equinox) are read too.
+    for r in &gains.ratios {
+        let factor = |name: &str, list: &[cli::Gain]| {
+            list.iter()
+                .find(|g| g.name == name)
+                .and_then(|g| g.per_daylight.as_ref())
+                .map(|f| f[0])
+                .expect("a daylight factor")
+        };
+        let expected = factor(&r.sensor, &gains.sensors) / factor(&r.zone, &gains.zones);
+        assert_eq!(r.overcast, Some(expected), "{r:?}");
+        assert!(r.clear_sky.is_some_and(|x| x > 0.0), "{r:?}");
+        assert!(r.sun.is_some(), "{r:?}");
+    }
+    assert_eq!(gains.ratios.len(), gains.sensors.len() * gains.zones.len());
     for (g, x) in gains.sensors.iter().chain(&gains.zones).zip(&s) {
         let factor = g.per_daylight.as_ref().expect("a daylight factor")[0];
         assert!(

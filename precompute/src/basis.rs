@@ -137,7 +137,11 @@ fn output_tables(t: &mut BasisTables, scene: &Scene, modes: &Truncated) {
     );
     let outputs = crate::formfactor::outputs::grid_offset(scene);
     for s in &scene.sensors {
-        let half = s.half_angle.unwrap_or(std::f64::consts::PI);
+        // A response's view ends at its last row.
+        let half = s
+            .half_angle
+            .or(s.response.as_ref().map(|r| r.view_edge()))
+            .unwrap_or(std::f64::consts::PI);
         let (x, d) = (s.position, s.normal);
         t.sensor_geometry.push([x.x, x.y, x.z, d.x, d.y, d.z, half]);
     }

@@ -19,7 +19,8 @@ pub mod writer;
 pub use basis::{Basis, GridPiece, PatchInfo, SensorInfo, Site, MIN_REFLECTANCE};
 pub use error::{Error, Result};
 pub use eval::{
-    ChannelEvaluator, DaylightEvaluator, Evaluator, Figures, Reading, Sun, MAX_EXITANCE, MAX_LEVEL,
+    ChannelEvaluator, DaylightEvaluator, ElectricLight, Evaluator, Figures, Reading, Sun,
+    MAX_EXITANCE, MAX_LEVEL,
 };
 pub use format::{Formulation, Precision, Quantity};
 pub use target::{LevelProblem, Output};

@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+pub mod calibration;
 pub mod daylight;
 pub mod metric;
 pub mod rng;

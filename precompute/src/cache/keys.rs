@@ -87,6 +87,14 @@ pub fn rows_key(scene: &Scene, opts: &FormFactorOptions) -> [u8; 32] {
                 h.update(a.to_bits().to_le_bytes());
             }
         }
+        // Hashed only when present, so that the keys of sensors without one are unchanged.
+        if let Some(r) = &s.response {
+            h.update(b"response\0");
+            for (theta, sensitivity) in r.rows() {
+                h.update(theta.to_bits().to_le_bytes());
+                h.update(sensitivity.to_bits().to_le_bytes());
+            }
+        }
     }
     hash_usize(&mut h, scene.zones.len());
     for z in &scene.zones {

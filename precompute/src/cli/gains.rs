@@ -6,12 +6,14 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use eigenrad_runtime::{Basis, ChannelEvaluator};
+use eigenrad_runtime::Basis;
 use serde::Serialize;
 
 use super::readout::{band_names, basis_error, unit};
 use super::units::Units;
-use crate::accuracy::runtime_eval::MAX_CHANNELS;
+use crate::accuracy::calibration::{
+    channel_readings, daylight_units, format_ratios, sensor_ratios, PerOutput, SensorRatio,
+};
 use crate::error::Result;
 
 /// One sensor's or zone's gains.
@@ -42,6 +44,9 @@ pub struct Gains {
     pub sensors: Vec<Gain>,
     /// Zone gains (area-average irradiance or illuminance).
     pub zones: Vec<Gain>,
+    /// Every sensor's ratio to every zone, per channel and per daylight: the figures a
+    /// sensor is calibrated with.
+    pub ratios: Vec<SensorRatio>,
 }
 
 /// `eigenrad inspect --gains`: the gains of the basis at `path` (`bytes`), in `units`.
@@ -49,12 +54,9 @@ pub fn gains(path: &Path, bytes: &[u8], units: Units) -> Result<Gains> {
     let basis = Basis::from_bytes(bytes).map_err(basis_error(path))?;
     let (unit, convert) = units.of(unit(basis.quantity()))?;
     let e = basis_error(path);
-    let (sensors, zones) = match basis.bands() {
-        1 => read::<1>(basis),
-        _ => read::<3>(basis),
-    }
-    .map_err(&e)?;
-    let factors = daylight_factors(bytes)?;
+    let (sensors, zones) = channel_readings(basis)?;
+    let daylight = daylight_units(bytes)?;
+    let factors = daylight.as_ref().map(|d| d.overcast.clone());
     type Name<'b> = dyn Fn(usize) -> std::result::Result<&'b str, eigenrad_runtime::Error> + 'b;
     let named = |values: PerOutput, name: &Name<'_>, first: usize| {
         values
@@ -72,64 +74,28 @@ pub fn gains(path: &Path, bytes: &[u8], units: Units) -> Result<Gains> {
             })
             .collect::<Result<Vec<_>>>()
     };
+    let channels = (0..basis.channel_count())
+        .map(|c| basis.channel_name(c).map(str::to_owned))
+        .collect::<std::result::Result<Vec<_>, _>>()
+        .map_err(&e)?;
+    let sensor_gains = named(sensors.clone(), &|s| basis.sensor_name(s), 0)?;
+    let zone_gains = named(zones.clone(), &|z| basis.zone_name(z), basis.sensor_count())?;
+    let names = |g: &[Gain]| g.iter().map(|x| x.name.clone()).collect::<Vec<_>>();
+    let ratios = sensor_ratios(
+        &sensors,
+        &zones,
+        daylight.as_ref(),
+        &names(&sensor_gains),
+        &names(&zone_gains),
+    );
     Ok(Gains {
         unit,
         bands: band_names(basis.bands()),
-        channels: (0..basis.channel_count())
-            .map(|c| basis.channel_name(c).map(str::to_owned))
-            .collect::<std::result::Result<_, _>>()
-            .map_err(&e)?,
-        sensors: named(sensors, &|s| basis.sensor_name(s), 0)?,
-        zones: named(zones, &|z| basis.zone_name(z), basis.sensor_count())?,
+        channels,
+        sensors: sensor_gains,
+        zones: zone_gains,
+        ratios,
     })
-}
-
-/// Every sensor's and zone's daylight factor (a fraction), `None` for a basis without
-/// daylight: the reading under the CIE traditional overcast sky scaled to 1 lux of diffuse
-/// horizontal illuminance, which with no sun is also the global horizontal illuminance that
-/// lights the ground.
-fn daylight_factors(bytes: &[u8]) -> Result<Option<Vec<f64>>> {
-    use eigenrad_runtime::sky::cie::CieSky;
-    let basis = Basis::from_bytes(bytes)?;
-    let Some(patches) = basis.sky_patches() else {
-        return Ok(None);
-    };
-    // The traditional overcast sky does not depend on the sun: any direction serves.
-    let sky = CieSky::traditional_overcast([0.0, 0.0, 1.0])?;
-    let mut sky_luminance = vec![0.0f32; patches.count()];
-    patches.luminances(&sky, sky.zenith_luminance_for(1.0)?, &mut sky_luminance)?;
-    let state = crate::accuracy::runtime_eval::SkyState {
-        sky_luminance,
-        global_horizontal: 1.0,
-        sun: None,
-    };
-    let levels = vec![0.0; basis.channel_count()];
-    let got = crate::accuracy::runtime_eval::evaluate_daylight(bytes, &state, &levels, false)?;
-    Ok(Some(got.sensors.into_iter().chain(got.zones).collect()))
-}
-
-/// `[output][channel][band]` for sensors and zones, one channel at level 1 at a time.
-type PerOutput = Vec<Vec<Vec<f64>>>;
-
-fn read<const B: usize>(
-    basis: Basis<'_>,
-) -> std::result::Result<(PerOutput, PerOutput), eigenrad_runtime::Error> {
-    // Every channel starts at 0.
-    let mut lights = ChannelEvaluator::<B, MAX_CHANNELS>::new(basis)?;
-    let widen = |v: [f32; B]| v.iter().map(|&x| f64::from(x)).collect::<Vec<f64>>();
-    let mut sensors = vec![Vec::new(); basis.sensor_count()];
-    let mut zones = vec![Vec::new(); basis.zone_count()];
-    for c in 0..basis.channel_count() {
-        lights.set_channel_level(c, 1.0)?;
-        for (s, row) in sensors.iter_mut().enumerate() {
-            row.push(widen(lights.sensor_irradiance(s)?));
-        }
-        for (z, row) in zones.iter_mut().enumerate() {
-            row.push(widen(lights.zone_irradiance(z)?));
-        }
-        lights.set_channel_level(c, 0.0)?;
-    }
-    Ok((sensors, zones))
 }
 
 /// The rows of the gains: (kind, name, band, one value per channel).
@@ -174,6 +140,7 @@ pub fn format_gains(g: &Gains) -> String {
     let daylit: Vec<&Gain> = g.sensors.iter().chain(&g.zones).collect();
     if daylit.iter().all(|x| x.per_daylight.is_none()) {
         let _ = writeln!(s, "{NO_DAYLIGHT}");
+        s += &format_ratios(&g.ratios, &g.channels);
         return s;
     }
     let _ = writeln!(
@@ -187,6 +154,7 @@ pub fn format_gains(g: &Gains) -> String {
             }
         }
     }
+    s += &format_ratios(&g.ratios, &g.channels);
     s
 }
 

@@ -129,6 +129,7 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             d.check.readings, d.check.patch_error_overcast, d.check.patch_error_sun
         );
     }
+    s += &crate::accuracy::calibration::format_ratios(&r.sensor_ratios, &r.channels);
     let _ = writeln!(s, "time per stage:");
     for t in &r.timings {
         let _ = writeln!(s, "  {:<34} {:>8.3} s", t.stage, t.seconds);

@@ -395,9 +395,13 @@ fn row_sums(m: &Mat<f64>) -> Vec<f64> {
 }
 
 /// Differential element (a point sensor at `point`, metres, facing the unit `normal`; only
-/// directions within its `field` of view count)
+/// directions within its `field` of view count, each by its sensitivity)
 /// to every patch: `F_sj` (dimensionless) such that irradiance `E = Σ_j F_sj M_j` (W/m² from
 /// exitances in W/m², or lux from lm/m²). With occlusion by `occluders`.
+///
+/// A sensor with an angular response reads `Σ_k weight_k F_sj(edge_k)` over the rings of
+/// [`Response::rings`](crate::scene::response::Response::rings): the exact form factors
+/// within cones, weighted.
 pub fn point_form_factors(
     point: Vec3,
     normal: Vec3,
@@ -415,28 +419,41 @@ pub fn point_form_factors(
         refine_gaps: false,
     };
     let normal = normal.normalized();
-    let cone = field.half_angle().and_then(|a| Cone::new(normal, a));
-    let viewer = Viewer {
-        point,
-        normal,
-        cone: cone.as_ref(),
+    let in_cone = |half_angle: Option<f64>| {
+        let cone = half_angle.and_then(|a| Cone::new(normal, a));
+        let viewer = Viewer {
+            point,
+            normal,
+            cone: cone.as_ref(),
+        };
+        (0..patches.len())
+            .into_par_iter()
+            .map(|j| {
+                let k = ctx.kernel(viewer, j);
+                if k <= 0.0 {
+                    return 0.0;
+                }
+                let tgt = &patches[j];
+                let shaft =
+                    occluders.shaft(&[point], normal, &tgt.polygon.vertices, tgt.normal, &[j]);
+                if !shaft.is_clear() {
+                    ctx.visible_kernel(viewer, j, &shaft, &[j])
+                } else {
+                    k
+                }
+            })
+            .collect::<Vec<f64>>()
     };
-    (0..patches.len())
-        .into_par_iter()
-        .map(|j| {
-            let k = ctx.kernel(viewer, j);
-            if k <= 0.0 {
-                return 0.0;
-            }
-            let tgt = &patches[j];
-            let shaft = occluders.shaft(&[point], normal, &tgt.polygon.vertices, tgt.normal, &[j]);
-            if !shaft.is_clear() {
-                ctx.visible_kernel(viewer, j, &shaft, &[j])
-            } else {
-                k
-            }
-        })
-        .collect()
+    let Some(response) = field.table() else {
+        return in_cone(field.half_angle());
+    };
+    let mut sum = vec![0.0; patches.len()];
+    for (edge, weight) in response.rings() {
+        for (s, f) in sum.iter_mut().zip(in_cone(Some(edge))) {
+            *s += weight * f;
+        }
+    }
+    sum
 }
 
 /// Receiving patches that do not block light (e.g. a work plane) to every scene patch, with

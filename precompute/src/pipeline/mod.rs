@@ -313,6 +313,9 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
             DaylightReport::of(d, daylight_bytes, &scene, &occluders, &model, &bytes)
         })?),
     };
+    let sensor_ratios = timed(&mut timings, "sensor ratios through the runtime", || {
+        crate::accuracy::calibration::ratios_of(&bytes)
+    })?;
     let report = BuildReport {
         scene: scene.name.clone(),
         patches: n,
@@ -334,6 +337,8 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         grids,
         grid_figure_error,
         daylight,
+        channels: scene.channels.iter().map(|c| c.name.clone()).collect(),
+        sensor_ratios,
         timings,
     };
     Ok((bytes, report))

@@ -76,6 +76,11 @@ pub struct BuildReport {
     pub grid_figure_error: f64,
     /// The daylight the basis carries (a scene with a site and glazed windows).
     pub daylight: Option<DaylightReport>,
+    /// Channel names, in the order of each sensor ratio's `per_channel`.
+    pub channels: Vec<String>,
+    /// Every sensor's ratio to every zone, per channel and per daylight, through the
+    /// runtime: the figures a sensor is calibrated with.
+    pub sensor_ratios: Vec<crate::accuracy::calibration::SensorRatio>,
     /// Time per stage.
     pub timings: Vec<Stage>,
 }

@@ -426,6 +426,33 @@ pub(crate) struct SensorDef {
     /// Degrees.
     #[serde(default)]
     pub half_angle: Option<Spanned<f64>>,
+    /// The angular response in place of a cosine within `half_angle`.
+    #[serde(default)]
+    pub response: Option<Spanned<ResponseDef>>,
+}
+
+/// `[sensor].response`: a preset, an `rsensor` file or an inline table (one of them).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ResponseDef {
+    /// `cosine`, `cone` or `shielded`.
+    #[serde(default)]
+    pub preset: Option<Spanned<String>>,
+    /// Degrees: the cone preset's half-angle.
+    #[serde(default)]
+    pub half_angle: Option<Spanned<f64>>,
+    /// Degrees: the shielded preset's cut-off.
+    #[serde(default)]
+    pub cutoff: Option<Spanned<f64>>,
+    /// A table in Radiance's `rsensor` layout, relative to the scene file.
+    #[serde(default)]
+    pub file: Option<Spanned<String>>,
+    /// Degrees: the inline table's polar angles.
+    #[serde(default)]
+    pub polar: Option<Spanned<Vec<f64>>>,
+    /// The inline table's relative sensitivities, one per polar angle.
+    #[serde(default)]
+    pub sensitivity: Option<Spanned<Vec<f64>>>,
 }
 
 /// `[[zone]]`.

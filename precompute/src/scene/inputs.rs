@@ -37,6 +37,12 @@ pub fn inputs(path: &Path) -> Result<SceneInputs, SceneError> {
         files.push(obj);
         files.extend(mtls);
     }
+    // A sensor's response table is an input too: no output may replace it.
+    let tables = file.sensor.iter().filter_map(|s| {
+        let r = s.get_ref().response.as_ref()?;
+        r.get_ref().file.as_ref().map(|f| dir.join(f.get_ref()))
+    });
+    files.extend(tables);
     Ok(SceneInputs {
         name: file.scene.name,
         files,

@@ -23,6 +23,7 @@ mod openings;
 pub mod photometry;
 mod primitives;
 pub mod receivers;
+pub mod response;
 #[cfg(test)]
 mod tests;
 mod winding;
@@ -163,6 +164,9 @@ pub struct Sensor {
     pub normal: Vec3,
     /// Field-of-view half-angle around the normal, radians; `None` is the full hemisphere.
     pub half_angle: Option<f64>,
+    /// Angular response in place of the cosine (then `half_angle` is `None`); `None`: a
+    /// cosine response within `half_angle`.
+    pub response: Option<response::Response>,
 }
 
 /// A region whose area-averaged irradiance is reported.

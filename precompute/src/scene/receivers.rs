@@ -3,35 +3,52 @@
 //! factors, the luminaires' direct light and the daylight each say what one receiver gets;
 //! the order, and what a sensor sees, are decided here.
 
+use super::response::Response;
 use super::{Scene, ZoneKind};
 use crate::geometry::{Patch, Vec3};
 
-/// The directions a point receiver takes light from: the front hemisphere of its normal, or
-/// a cone of half-angle `α` around it (a shielded photocell).
+/// The directions a point receiver takes light from and how much each counts: the front
+/// hemisphere of its normal, a cone of half-angle `α` around it, or a photosensor's angular
+/// response ([`Response`]). [`FieldOfView::sensitivity`] is the one rule every light path
+/// asks.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FieldOfView {
+pub struct FieldOfView<'r> {
     /// `α`, radians; `None`: the whole front hemisphere.
     half_angle: Option<f64>,
     /// `cos α`, computed once: the quadratures test it at every sample.
     cos_half_angle: Option<f64>,
+    /// A sensor's relative sensitivity over polar angle, in place of the cosine.
+    response: Option<&'r Response>,
 }
 
-impl FieldOfView {
+impl<'r> FieldOfView<'r> {
     /// The whole front hemisphere (grid points, an unshielded sensor).
-    pub const HEMISPHERE: FieldOfView = FieldOfView {
+    pub const HEMISPHERE: FieldOfView<'static> = FieldOfView {
         half_angle: None,
         cos_half_angle: None,
+        response: None,
     };
 
     /// A cone of `half_angle` radians around the normal; `None` is the hemisphere.
-    pub fn cone(half_angle: Option<f64>) -> FieldOfView {
+    pub fn cone(half_angle: Option<f64>) -> FieldOfView<'static> {
         FieldOfView {
             half_angle,
             cos_half_angle: half_angle.map(f64::cos),
+            response: None,
         }
     }
 
-    /// The cone's half-angle, radians, as the scene gives it; `None` for the hemisphere.
+    /// A photosensor reading `∫ L S(θ) dω` with the relative sensitivity `response`.
+    pub fn response(response: &'r Response) -> FieldOfView<'r> {
+        FieldOfView {
+            half_angle: None,
+            cos_half_angle: None,
+            response: Some(response),
+        }
+    }
+
+    /// The cone's half-angle, radians, as the scene gives it; `None` for the hemisphere and
+    /// for a response.
     pub fn half_angle(&self) -> Option<f64> {
         self.half_angle
     }
@@ -42,10 +59,29 @@ impl FieldOfView {
         self.cos_half_angle
     }
 
-    /// Whether light arriving at cosine `cos` to the normal counts: in front of the receiver
-    /// and inside its cone. NaN never counts.
+    /// The sensor's response, when it has one.
+    pub fn table(&self) -> Option<&'r Response> {
+        self.response
+    }
+
+    /// How much light arriving at cosine `cos` to the normal counts, the factor that stands
+    /// where illuminance has `cos θ` (dimensionless): `cos θ` in front of the receiver and
+    /// inside its cone, the response `S(θ)` of a sensor that has one, zero elsewhere. NaN
+    /// counts nothing: the result is never NaN.
+    pub fn sensitivity(&self, cos: f64) -> f64 {
+        match self.response {
+            Some(r) => r.at_cos(cos),
+            None if self.admits(cos) => cos,
+            None => 0.0,
+        }
+    }
+
+    /// Whether light arriving at cosine `cos` to the normal counts at all. NaN never counts.
     pub fn admits(&self, cos: f64) -> bool {
-        cos > 0.0 && !self.cos_half_angle.is_some_and(|c| cos < c)
+        match self.response {
+            Some(r) => r.at_cos(cos) > 0.0,
+            None => cos > 0.0 && !self.cos_half_angle.is_some_and(|c| cos < c),
+        }
     }
 }
 
@@ -59,7 +95,7 @@ pub enum Receiver<'s> {
         /// Unit normal of its face.
         normal: Vec3,
         /// What it sees.
-        field: FieldOfView,
+        field: FieldOfView<'s>,
     },
     /// A surface zone: the area-weighted mean over these patches (indices into
     /// [`Scene::patches`]).
@@ -74,7 +110,10 @@ pub fn receivers(scene: &Scene) -> impl Iterator<Item = Receiver<'_>> + '_ {
     let sensors = scene.sensors.iter().map(|s| Receiver::Point {
         position: s.position,
         normal: s.normal,
-        field: FieldOfView::cone(s.half_angle),
+        field: match &s.response {
+            Some(r) => FieldOfView::response(r),
+            None => FieldOfView::cone(s.half_angle),
+        },
     });
     let zones = scene.zones.iter().map(|z| match &z.kind {
         ZoneKind::Surfaces(list) => Receiver::Surfaces(list),

@@ -4,18 +4,22 @@
 //! channel and nothing else: every reading is a sum over the channels of their exact stored
 //! responses (`channel_response`, `output_channels`). [`Evaluator`] adds exitance set patch by
 //! patch, which goes through the modes, and the per-patch state that needs.
-//! [`DaylightEvaluator`] reads the daylight of a basis that carries it, from a sky state.
+//! [`DaylightEvaluator`] reads the daylight of a basis that carries it, from a sky state, and
+//! a reading's whole, daylight plus the electric light of either of the other two
+//! ([`ElectricLight`]).
 
 mod channels;
 mod daylight;
 mod figures;
 mod patches;
+mod total;
 
 pub use channels::ChannelEvaluator;
 pub use daylight::{DaylightEvaluator, Sun};
 pub(crate) use figures::Accumulator;
 pub use figures::{Figures, Reading};
 pub use patches::Evaluator;
+pub use total::ElectricLight;
 
 use crate::basis::Basis;
 use crate::error::{Error, Result};

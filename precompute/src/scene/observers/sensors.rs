@@ -5,8 +5,9 @@ use toml::Spanned;
 use crate::geometry::Vec3;
 use crate::scene::context::{unique, Ctx};
 use crate::scene::error::SceneError;
-use crate::scene::file::SensorDef;
+use crate::scene::file::{ResponseDef, SensorDef};
 use crate::scene::openings::CONTACT_TOLERANCE;
+use crate::scene::response::{self, Response};
 use crate::scene::Sensor;
 
 /// Reads and checks the sensors; `rooms` and `blocks` are (name, min, max) in metres.
@@ -47,6 +48,19 @@ pub(crate) fn sensors(
             Some(a) => Some(a.get_ref().to_radians()),
             None => None,
         };
+        let (half_angle, response) = match &s.response {
+            None => (half_angle, None),
+            Some(r) if s.half_angle.is_some() => {
+                return Err(SceneError::Invalid {
+                    at: ctx.at(r),
+                    field: format!("{what}.response"),
+                    message: "give either `half_angle` or `response`, not both (a cone is \
+                              `response = { preset = \"cone\", half_angle = ... }`)"
+                        .into(),
+                })
+            }
+            Some(r) => response(ctx, r, &format!("{what}.response"))?,
+        };
         let normal = normal.normalized();
         placement(ctx, s, &what, position, normal, rooms, blocks, extent)?;
         enclosed(ctx, s, &what, position, enclosures)?;
@@ -55,11 +69,158 @@ pub(crate) fn sensors(
             position,
             normal,
             half_angle,
+            response,
         });
     }
 
     Ok(sensors)
 }
+
+/// A sensor's `response` (field `field`): `(half_angle, table)`, the cone's half-angle in
+/// radians for the cosine and cone presets, the table for the others.
+fn response(
+    ctx: &Ctx,
+    def: &Spanned<ResponseDef>,
+    field: &str,
+) -> Result<(Option<f64>, Option<Response>), SceneError> {
+    let r = def.get_ref();
+    let given = [
+        r.preset.is_some(),
+        r.file.is_some(),
+        r.polar.is_some() || r.sensitivity.is_some(),
+    ];
+    if given.iter().filter(|&&g| g).count() != 1 {
+        return Err(SceneError::Invalid {
+            at: ctx.at(def),
+            field: field.into(),
+            message: "give exactly one of `preset`, `file` or `polar` with `sensitivity`".into(),
+        });
+    }
+    let angle = |a: &Spanned<f64>, name: &str, high: f64, closed: bool| {
+        let v = *a.get_ref();
+        let inside = v > 0.0 && (v < high || closed && v == high);
+        if inside {
+            Ok(v.to_radians())
+        } else {
+            Err(SceneError::OutOfRange {
+                at: ctx.at(a),
+                field: format!("{field}.{name}"),
+                message: format!(
+                    "must be in (0, {high}{} degrees, found {v}",
+                    if closed { "]" } else { ")" }
+                ),
+            })
+        }
+    };
+    let unused = |what: Option<&Spanned<f64>>, name: &str, preset: &str| match what {
+        Some(a) => Err(SceneError::Invalid {
+            at: ctx.at(a),
+            field: format!("{field}.{name}"),
+            message: format!("the `{preset}` preset takes no `{name}`"),
+        }),
+        None => Ok(()),
+    };
+    if let Some(preset) = &r.preset {
+        return match preset.get_ref().as_str() {
+            "cosine" => {
+                unused(r.half_angle.as_ref(), "half_angle", "cosine")?;
+                unused(r.cutoff.as_ref(), "cutoff", "cosine")?;
+                Ok((None, None))
+            }
+            "cone" => {
+                unused(r.cutoff.as_ref(), "cutoff", "cone")?;
+                let Some(a) = &r.half_angle else {
+                    return Err(SceneError::Invalid {
+                        at: ctx.at(preset),
+                        field: format!("{field}.half_angle"),
+                        message: "the `cone` preset needs `half_angle`, degrees".into(),
+                    });
+                };
+                Ok((Some(angle(a, "half_angle", 90.0, true)?), None))
+            }
+            "shielded" => {
+                unused(r.half_angle.as_ref(), "half_angle", "shielded")?;
+                let cutoff = match &r.cutoff {
+                    Some(c) => angle(c, "cutoff", 90.0, false)?,
+                    None => DEFAULT_CUTOFF.to_radians(),
+                };
+                Ok((None, Some(Response::shielded(cutoff))))
+            }
+            other => Err(SceneError::Invalid {
+                at: ctx.at(preset),
+                field: format!("{field}.preset"),
+                message: format!(
+                    "unknown preset `{other}`: expected `cosine`, `cone` or `shielded`"
+                ),
+            }),
+        };
+    }
+    for (a, name) in [(&r.half_angle, "half_angle"), (&r.cutoff, "cutoff")] {
+        if let Some(a) = a {
+            return Err(SceneError::Invalid {
+                at: ctx.at(a),
+                field: format!("{field}.{name}"),
+                message: format!("`{name}` belongs to a preset; a table gives its own angles"),
+            });
+        }
+    }
+    if let Some(file) = &r.file {
+        let path = ctx
+            .origin
+            .parent()
+            .unwrap_or(std::path::Path::new(""))
+            .join(file.get_ref());
+        if !path.exists() {
+            return Err(SceneError::MissingFile {
+                at: ctx.at(file),
+                field: format!("{field}.file"),
+                path,
+            });
+        }
+        return response::read_rsensor(&path)
+            .map(|t| (None, Some(t)))
+            .map_err(|(path, e)| SceneError::Invalid {
+                at: super::super::error::Location {
+                    file: path,
+                    line: e.line,
+                },
+                field: format!("{field}.file"),
+                message: e.message,
+            });
+    }
+    let (Some(polar), Some(sensitivity)) = (&r.polar, &r.sensitivity) else {
+        return Err(SceneError::Invalid {
+            at: ctx.at(def),
+            field: field.into(),
+            message: "an inline table needs both `polar` (degrees) and `sensitivity`".into(),
+        });
+    };
+    if polar.get_ref().len() != sensitivity.get_ref().len() {
+        return Err(SceneError::BandCount {
+            at: ctx.at(sensitivity),
+            field: format!("{field}.sensitivity"),
+            expected: polar.get_ref().len(),
+            found: sensitivity.get_ref().len(),
+        });
+    }
+    let rows: Vec<(f64, f64)> = polar
+        .get_ref()
+        .iter()
+        .copied()
+        .zip(sensitivity.get_ref().iter().copied())
+        .collect();
+    Response::from_rows(&rows, None)
+        .map(|t| (None, Some(t)))
+        .map_err(|e| SceneError::Invalid {
+            at: ctx.at(polar),
+            field: format!("{field}.polar"),
+            message: e.to_string(),
+        })
+}
+
+/// Cut-off of the `shielded` preset when the scene gives none, degrees: the shield hides the
+/// detector from light more than this far from its normal.
+const DEFAULT_CUTOFF: f64 = 60.0;
 
 /// In a scene without rooms, how far a sensor may lie from the box around the faces, in
 /// diagonals of that box.

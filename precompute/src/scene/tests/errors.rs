@@ -379,3 +379,98 @@ fn work_plane_grid_follows_the_rule_and_the_scene() {
         .points()
         .all(|(p, _)| inside(&p, [0.5, 0.0, 3.5, 3.0]) && !inside(&p, [1.0, 0.5, 3.0, 2.5])));
 }
+
+/// A sensor over the base quad with `response` written after `response = `.
+fn responding(response: &str) -> String {
+    format!(
+        "\n[[sensor]]\nname = \"s\"\nposition = [0.5, 0.5, 1]\nnormal = [0, 0, -1]\nresponse = {response}\n"
+    )
+}
+
+#[test]
+fn scene_sensor_responses_are_read() {
+    let read = |response: &str| {
+        let text = format!("{BASE}{}", responding(response));
+        parse(&text, Path::new(FILE))
+            .expect("valid response")
+            .sensors
+            .remove(0)
+    };
+    let cosine = read("{ preset = \"cosine\" }");
+    assert_eq!((cosine.half_angle, cosine.response), (None, None));
+    let cone = read("{ preset = \"cone\", half_angle = 30 }");
+    assert!((cone.half_angle.unwrap_or(0.0) - 30f64.to_radians()).abs() < 1e-15);
+    let shielded = read("{ preset = \"shielded\" }").response.expect("a table");
+    assert!((shielded.view_edge() - 60f64.to_radians()).abs() < 1e-12);
+    let inline = read("{ polar = [0, 45, 90], sensitivity = [1, 0.5, 0] }")
+        .response
+        .expect("a table");
+    assert!((inline.at_angle(22.5f64.to_radians()) - 0.75).abs() < 1e-12);
+}
+
+#[test]
+fn scene_error_bad_sensor_responses_name_the_field() {
+    let cases: [(&str, &[&str]); 6] = [
+        (
+            "{ preset = \"fisheye\" }",
+            &["sensor `s`.response.preset", "fisheye"],
+        ),
+        ("{ preset = \"cone\" }", &["sensor `s`.response.half_angle"]),
+        (
+            "{ preset = \"shielded\", cutoff = 90 }",
+            &["sensor `s`.response.cutoff", "(0, 90)"],
+        ),
+        (
+            "{ polar = [0, 45], sensitivity = [1] }",
+            &["sensor `s`.response.sensitivity", "expected 2"],
+        ),
+        (
+            "{ polar = [0, 45, 30], sensitivity = [1, 1, 1] }",
+            &["sensor `s`.response.polar", "row 3", "increase"],
+        ),
+        (
+            "{ preset = \"cosine\", file = \"s.dat\" }",
+            &["sensor `s`.response", "exactly one"],
+        ),
+    ];
+    for (response, parts) in cases {
+        let extra = responding(response);
+        let m = error(&extra);
+        assert_names(&m, parts);
+        assert_names(&m, &[&format!(":{}:", line_of(&extra, "response"))]);
+    }
+    let both = format!("{}half_angle = 30\n", responding("{ preset = \"cosine\" }"));
+    assert_names(&error(&both), &["either `half_angle` or `response`"]);
+}
+
+#[test]
+fn scene_error_bad_rsensor_file_names_its_file_and_line() {
+    let dir = scratch("rsensor");
+    let table = dir.join("cell.dat");
+    std::fs::write(&table, "degrees\t0\t90\n0\t1\t1\n30\t0.5\t0.4\n60\t0\t0\n").expect("write");
+    let scene = dir.join("test-scene.toml");
+    let text = format!("{BASE}{}", responding("{ file = \"cell.dat\" }"));
+    let m = match parse(&text, &scene) {
+        Ok(_) => panic!("an azimuthal table is refused"),
+        Err(e) => e.to_string(),
+    };
+    assert!(m.contains("cell.dat:3:") && m.contains("azimuth"), "{m}");
+    std::fs::write(&table, "degrees\t0\t90\n0\t1\t1\n30\t0.5\t0.5\n60\t0\t0\n").expect("write");
+    let read = parse(&text, &scene).expect("an axisymmetric table is read");
+    // The table is one of the scene's inputs: no output may replace it.
+    std::fs::write(&scene, &text).expect("write scene");
+    let listed = crate::scene::inputs(&scene).expect("inputs");
+    assert!(listed.files.contains(&table), "{:?}", listed.files);
+    let r = read.sensors[0].response.as_ref().expect("a table");
+    assert!((r.at_angle(15f64.to_radians()) - 0.75).abs() < 1e-12);
+    let missing = format!("{BASE}{}", responding("{ file = \"none.dat\" }"));
+    let m = match parse(&missing, &scene) {
+        Ok(_) => panic!("a missing table is refused"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        m.contains("file not found") && m.contains("none.dat"),
+        "{m}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

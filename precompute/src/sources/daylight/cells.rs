@@ -19,8 +19,8 @@ const NOTHING: usize = usize::MAX;
 pub(super) struct Viewer<'a> {
     pub(super) x: Vec3,
     pub(super) normal: Vec3,
-    /// What it sees: only directions within it count.
-    pub(super) field: FieldOfView,
+    /// What it sees: only directions within it count, each weighted by its sensitivity.
+    pub(super) field: FieldOfView<'a>,
     /// Patches whose faces do not block (the receiving patch, the window patch).
     pub(super) ignore: &'a [usize],
 }
@@ -224,9 +224,10 @@ impl Ctx<'_> {
             return None;
         }
         let d = d / r;
-        let cx = v.normal.dot(d);
+        // The receiver's one rule: `cos θ`, or a sensor's response in its place.
+        let cx = v.field.sensitivity(v.normal.dot(d));
         let cw = -pane.normal.dot(d);
-        if !(cw > 0.0 && v.field.admits(cx)) {
+        if !(cw > 0.0 && cx > 0.0) {
             return None;
         }
         let clear = shaft.is_clear() || self.occluders.visible_in(shaft, v.x, y, v.ignore);

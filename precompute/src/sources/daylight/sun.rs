@@ -123,8 +123,9 @@ impl Ctx<'_> {
     /// (within its `field` of view) from the sun in direction `s` through the clear
     /// windows.
     fn sun_at_point(&self, x: Vec3, normal: Vec3, field: FieldOfView, s: Vec3) -> f64 {
-        let cx = normal.dot(s);
-        if !field.admits(cx) {
+        // The receiver's one rule: `cos θ`, or a sensor's response in its place.
+        let cx = field.sensitivity(normal.dot(s));
+        if cx <= 0.0 {
             return 0.0;
         }
         let mut e = 0.0;

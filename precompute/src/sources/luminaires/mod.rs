@@ -345,9 +345,10 @@ impl<'a> Source<'a> {
             piece += 1;
             let v = q - x;
             let r2 = v.dot(v);
-            let cos = normal.dot(v) / r2.sqrt();
-            // NaN (a piece at the point itself) counts as behind.
-            if !field.admits(cos) {
+            // The receiver's one rule: `cos θ`, or a sensor's response in its place. NaN (a
+            // piece at the point itself) counts as behind.
+            let sensitivity = field.sensitivity(normal.dot(v) / r2.sqrt());
+            if sensitivity <= 0.0 {
                 return;
             }
             let intensity = self.lum.intensity(-v) * share;
@@ -358,7 +359,7 @@ impl<'a> Source<'a> {
                     None => self.occluders.visible(q, x, ignore),
                 };
                 if visible {
-                    e += intensity * cos / r2;
+                    e += intensity * sensitivity / r2;
                 } else {
                     hidden = true;
                     signature = mix(signature, piece);

@@ -267,6 +267,59 @@ half_angle = 30
     assert!(error < 2e-3, "{got} against {} ({error:.2e})", PI * within);
 }
 
+/// A sensor's response weighs the sky it sees: under a uniform sky the daylight quadrature
+/// (window cells, each point weighted by `S(θ)`) equals π times the window's view through
+/// the response (`formfactor::point_form_factors`: exact cone form factors weighted ring by
+/// ring), two independent paths.
+#[test]
+fn a_sensor_response_weighs_the_sky() {
+    let sensors = r#"
+[[sensor]]
+name = "shielded"
+position = [2.0, 1.5, 0.4]
+normal = [0, -0.6, 0.8]
+response = { preset = "shielded", cutoff = 50 }
+"#;
+    let scene = daylit(room(sensors, 0.5), clear(), 0.0, 0.0);
+    let occ = occluders(&scene);
+    let r = sky::response(
+        &scene,
+        &occ,
+        SkyPatches::TREGENZA,
+        &DaylightOptions::default(),
+        &unit,
+    );
+    let s = &scene.sensors[0];
+    let window = Patch::new(
+        Polygon::new(vec![
+            Vec3::new(1.0, 0.0, 1.0),
+            Vec3::new(1.0, 0.0, 2.0),
+            Vec3::new(3.0, 0.0, 2.0),
+            Vec3::new(3.0, 0.0, 1.0),
+        ]),
+        0,
+    );
+    let Some(response) = &s.response else {
+        panic!("the sensor has a response");
+    };
+    let seen = formfactor::point_form_factors(
+        s.position,
+        s.normal,
+        scene::FieldOfView::response(response),
+        &[window],
+        &Occluders::new(&[]),
+    )[0];
+    let got = uniform_sky(&r, 0);
+    let error = relative(got, PI * seen);
+    println!(
+        "shielded sensor under a uniform sky: {got} against {} ({error:.2e})",
+        PI * seen
+    );
+    // Measured 1.4e-4: the window cells' quadrature of a sensitivity with a kink at the
+    // cut-off, and the rings' constant weight across 1°.
+    assert!(error < 2e-3, "{got} against {} ({error:.2e})", PI * seen);
+}
+
 #[test]
 fn sky_and_ground_add_up_where_the_window_straddles_the_horizon() {
     let sensors = r#"

@@ -401,3 +401,31 @@ fn a_large_opening_near_a_plane_converges_to_its_exitance_form_factor() {
 }
 
 mod rooms;
+
+#[test]
+fn a_sensor_response_weighs_a_point_source_by_its_sensitivity() {
+    // Reference: a sensor with S(θ) = 1 − 2θ/π (a two-row table, linear in θ, so the
+    // interpolation is exact) reads I S(θ) / d² from an isotropic point source at distance d
+    // and polar angle θ (closed form); tolerance 1e-12 relative.
+    let (i, h) = (100.0, 1.0);
+    let lum = luminaire(isotropic(i), Vec3::new(0.0, 0.0, h), DOWN, 0.0);
+    let patches = floor(2, 0.5, 0.0);
+    let occluders = Occluders::new(&patches);
+    let opts = LuminaireOptions::default();
+    let gl = gauss_legendre(opts.order);
+    let source = Source::new(&lum, &occluders, &opts, &gl);
+    let response = crate::scene::response::Response::from_rows(&[(0.0, 1.0), (90.0, 0.0)], None)
+        .expect("valid table");
+    for r in [0.0, 0.3, 1.0, 1.9] {
+        let e = source.point(
+            Vec3::new(r, 0.0, 0.0),
+            UP,
+            FieldOfView::response(&response),
+            &[],
+        );
+        let d2 = r * r + h * h;
+        let theta = (h / d2.sqrt()).acos();
+        let exact = i * (1.0 - 2.0 * theta / std::f64::consts::PI) / d2;
+        assert!(relative(e, exact) < 1e-12, "r = {r}: {e} against {exact}");
+    }
+}
