@@ -98,13 +98,47 @@ fi
 step "tests"
 cargo test --workspace 2>&1 | tee -a "$results"
 
-step "fuzz smoke run (runtime decoder and evaluator)"
+step "fuzz smoke run (runtime decoder and evaluator; scene, OBJ/MTL, photometry and tilt parsers)"
 if rustup toolchain list | grep -q nightly; then
   command -v cargo-fuzz >/dev/null 2>&1 || cargo install cargo-fuzz --locked
-  corpus=$(mktemp -d)
-  cp runtime/fuzz/corpus/decode_eval/* "$corpus"/
-  (cd runtime/fuzz && cargo +nightly fuzz run decode_eval "$corpus" -- -max_total_time=30 -max_len=8192)
-  rm -rf "$corpus"
+  # Runs a target for `seconds` on inputs up to `max_len` bytes from a copy of its seeds
+  # (the fuzzer adds to its corpus); what follows goes to `cargo fuzz run`.
+  fuzz() {
+    local crate=$1 target=$2 seconds=$3 max_len=$4 seeds=$5 corpus
+    shift 5
+    corpus=$(mktemp -d)
+    cp "$seeds"/* "$corpus"/
+    (cd "$crate" && cargo +nightly fuzz run "$@" "$target" "$corpus" -- \
+      -max_total_time="$seconds" -max_len="$max_len")
+    rm -rf "$corpus"
+  }
+  fuzz runtime/fuzz decode_eval 30 8192 runtime/fuzz/corpus/decode_eval
+  # The host's parsers hold no unsafe code: the targets look for panics, overflows and
+  # hangs, which need no sanitizer (and the build is much faster without one). Their seeds
+  # are the shipped files themselves.
+  seeds=$(mktemp -d)
+  mkdir -p "$seeds"/{scene_toml,obj_mtl,photometry,tilt_file}
+  i=0
+  for scene in examples/*/scene.toml examples/scaling/*.toml tests/scenes/*.toml; do
+    i=$((i + 1)) && cp "$scene" "$seeds/scene_toml/$i.toml"
+  done
+  for obj in examples/cornell-box/*.obj tests/scenes/*.obj; do
+    # The OBJ, a 0xFF byte, then the MTL it names (when it names one that is shipped).
+    mtl=$(dirname "$obj")/$(awk '$1 == "mtllib" { print $2; exit }' "$obj")
+    { cat "$obj"; printf '\xff'; if [[ -f $mtl ]]; then cat "$mtl"; fi; } >"$seeds/obj_mtl/$(basename "$obj")"
+  done
+  for ies in examples/*/*.ies precompute/src/scene/photometry/testdata/*.ies; do
+    i=$((i + 1)) && { printf '\x00'; cat "$ies"; } >"$seeds/photometry/$i.ies"
+  done
+  for ldt in examples/*/*.ldt precompute/src/scene/photometry/testdata/*.ldt; do
+    i=$((i + 1)) && { printf '\x01'; cat "$ldt"; } >"$seeds/photometry/$i.ldt"
+  done
+  cp precompute/fuzz/corpus/tilt_file/* "$seeds/tilt_file/"
+  (cd precompute/fuzz && cargo +nightly fuzz build --sanitizer none)
+  for target in scene_toml obj_mtl photometry tilt_file; do
+    fuzz precompute/fuzz "$target" 15 65536 "$seeds/$target" --sanitizer none
+  done
+  rm -rf "$seeds"
 else
   skipped "no nightly toolchain, cargo-fuzz needs one (the proptest properties still ran)"
 fi

@@ -1,7 +1,8 @@
-//! The machine failing under `eigenrad build`: killed (SIGKILL) at a sweep of moments, a full
-//! disk, a read-only cache folder, a cache path that is a file, two builds at once. After each,
-//! the previous output is byte-identical or the new one complete (the bytes of an
-//! uninterrupted run), the cache holds only sound entries, and the next run proceeds.
+//! The machine failing under eigenrad: `build`, `solve` and `render` killed (SIGKILL) at a
+//! sweep of moments; under `build`, a full disk, a read-only cache folder, a cache path that is
+//! a file, two builds at once. After each, the previous output is byte-identical or the new
+//! one complete (the bytes of an uninterrupted run), the cache holds only sound entries, and
+//! the next run proceeds.
 //!
 //! Mounting a small tmpfs needs root and a kernel that lets the test mount; without them the
 //! tests that need one print `SKIPPED: ...` and pass.
@@ -63,6 +64,130 @@ fn temporaries(dir: &Path) -> Vec<String> {
         .collect()
 }
 
+/// A command's outputs: the files it writes, and their bytes before a run and after an
+/// uninterrupted one.
+struct Outputs {
+    files: Vec<PathBuf>,
+    previous: Vec<Vec<u8>>,
+    complete: Vec<Vec<u8>>,
+}
+
+impl Outputs {
+    /// `files` as they are now (the previous outputs) and after one uninterrupted `run`
+    /// (which must succeed), then put back as they were; with the run's duration.
+    fn around(files: Vec<PathBuf>, run: &dyn Fn() -> Command) -> (Outputs, Duration) {
+        let previous = read_all(&files);
+        let start = Instant::now();
+        let o = run().stderr(Stdio::piped()).output().expect("run eigenrad");
+        let took = start.elapsed();
+        assert!(o.status.success(), "run failed: {}", stderr(&o));
+        let complete = read_all(&files);
+        for (file, bytes) in files.iter().zip(&previous) {
+            assert_ne!(&read(file), bytes, "{} was not rewritten", file.display());
+            std::fs::write(file, bytes).expect("restore previous");
+        }
+        let outputs = Outputs {
+            files,
+            previous,
+            complete,
+        };
+        (outputs, took)
+    }
+}
+
+fn read(file: &Path) -> Vec<u8> {
+    std::fs::read(file).unwrap_or_else(|e| panic!("{} is gone: {e}", file.display()))
+}
+
+fn read_all(files: &[PathBuf]) -> Vec<Vec<u8>> {
+    files.iter().map(|f| read(f)).collect()
+}
+
+/// `run` killed (SIGKILL: no handler runs, nothing is flushed) at twelve moments spread over an
+/// uninterrupted run of `took`, from its start to past its end. After each kill every output is
+/// its previous bytes or its complete ones, nothing but hidden temporaries is left beside
+/// them, and the next run completes, finds every cache entry in `cache` sound and removes the
+/// killed run's temporaries. Returns how many kills left the previous and the complete outputs.
+fn killed_at_a_sweep_of_moments(
+    run: &dyn Fn() -> Command,
+    outputs: &Outputs,
+    took: Duration,
+    cache: &Path,
+) -> (usize, usize) {
+    let steps = 12;
+    let mut outcomes = (0, 0);
+    let dir = outputs.files[0].parent().expect("the outputs' folder");
+    let names: Vec<String> = outputs
+        .files
+        .iter()
+        .map(|f| {
+            f.file_name()
+                .expect("a file")
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    let before = listing(dir);
+    for k in 0..steps {
+        let delay = took.mul_f64(k as f64 / (steps - 2) as f64);
+        let mut child = run().stderr(Stdio::null()).spawn().expect("spawn eigenrad");
+        std::thread::sleep(delay);
+        let _ = child.kill();
+        let _ = child.wait();
+        for ((file, previous), complete) in outputs
+            .files
+            .iter()
+            .zip(&outputs.previous)
+            .zip(&outputs.complete)
+        {
+            let now = std::fs::read(file).expect("an output is never removed");
+            if &now == previous {
+                outcomes.0 += 1;
+            } else {
+                assert_eq!(
+                    &now,
+                    complete,
+                    "killed after {delay:?}: {} is partial or other",
+                    file.display()
+                );
+                outcomes.1 += 1;
+            }
+        }
+        // Only hidden `.<name>.<pid>.tmp` temporaries of the outputs may be new.
+        for name in listing(dir) {
+            let temporary = names
+                .iter()
+                .any(|n| name.starts_with(&format!(".{n}.")) && name.ends_with(".tmp"));
+            assert!(
+                before.contains(&name) || temporary,
+                "killed after {delay:?}: unexpected file {name}"
+            );
+        }
+        // The next run proceeds: every cache entry the killed run left is sound (none is
+        // reported unusable), the outputs are complete, and the killed run's temporaries of
+        // them are gone.
+        let o = run().stderr(Stdio::piped()).output().expect("run eigenrad");
+        let err = stderr(&o);
+        assert!(o.status.success(), "after a kill at {delay:?}: {err}");
+        assert!(
+            !err.contains("unusable") && !err.contains("cannot read"),
+            "killed after {delay:?}, the next run found: {err}"
+        );
+        assert_eq!(read_all(&outputs.files), outputs.complete);
+        assert!(
+            temporaries(dir).is_empty(),
+            "stale temporaries after the next run: {:?}",
+            temporaries(dir)
+        );
+        // Back to the previous outputs and an empty cache for the next moment.
+        for (file, previous) in outputs.files.iter().zip(&outputs.previous) {
+            std::fs::write(file, previous).expect("restore previous");
+        }
+        let _ = std::fs::remove_dir_all(cache);
+    }
+    outcomes
+}
+
 #[test]
 fn a_build_killed_at_any_moment_loses_nothing_and_the_next_run_proceeds() {
     let dir = scratch("faults-kill");
@@ -72,61 +197,73 @@ fn a_build_killed_at_any_moment_loses_nothing_and_the_next_run_proceeds() {
     let coarser = dir.join("coarser.toml");
     std::fs::write(&coarser, common::scene(1.0)).expect("write scene");
     build_ok(&coarser, &out, &dir.join("previous-cache"));
-    let previous = std::fs::read(&out).expect("previous basis");
-    assert_ne!(previous, complete);
     let cache = dir.join("cache");
-    // Twelve moments spread over an uninterrupted run, from its start to past its end.
-    let steps = 12;
-    let mut outcomes = (0, 0);
-    for k in 0..steps {
-        let delay = took.mul_f64(k as f64 / (steps - 2) as f64);
-        let mut child = build_command(&scene, &out, &cache)
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("spawn eigenrad");
-        std::thread::sleep(delay);
-        // SIGKILL on Unix: no handler runs, nothing is flushed.
-        let _ = child.kill();
-        let _ = child.wait();
-        let now = std::fs::read(&out).expect("the output is never removed");
-        if now == previous {
-            outcomes.0 += 1;
-        } else {
-            assert_eq!(
-                now, complete,
-                "killed after {delay:?}: a partial or other basis"
-            );
-            outcomes.1 += 1;
-        }
-        // No temporary is ever taken for the output: only hidden `.tmp` names besides it.
-        for name in listing(&dir) {
-            assert!(
-                name.starts_with('.') || name.ends_with(".basis") || !name.contains("basis"),
-                "unexpected file {name}"
-            );
-        }
-        // The next run proceeds: every cache entry the killed run left is sound (none is
-        // reported unusable), the output is the complete basis, and the killed run's
-        // temporary of the output is gone.
-        let err = build_ok(&scene, &out, &cache);
-        assert!(
-            !err.contains("unusable") && !err.contains("cannot read"),
-            "killed after {delay:?}, the next run found: {err}"
-        );
-        assert_eq!(std::fs::read(&out).expect("basis"), complete);
-        assert!(
-            temporaries(&dir).is_empty(),
-            "stale temporaries after the next run: {:?}",
-            temporaries(&dir)
-        );
-        // Back to the previous output and an empty cache for the next moment.
-        std::fs::write(&out, &previous).expect("restore previous");
-        let _ = std::fs::remove_dir_all(&cache);
-    }
+    let run = || build_command(&scene, &out, &cache);
+    let outputs = Outputs {
+        files: vec![out.clone()],
+        previous: vec![read(&out)],
+        complete: vec![complete],
+    };
+    assert_ne!(outputs.previous, outputs.complete);
+    let (kept, replaced) = killed_at_a_sweep_of_moments(&run, &outputs, took, &cache);
+    eprintln!("{kept} kills left the previous basis, {replaced} the complete one (an uninterrupted build: {took:?})");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The small cube with a work-plane zone and its grid, for `solve --csv` and `render --plan`.
+fn cube_with_a_grid() -> String {
+    cube()
+        + r#"
+[[zone]]
+name = "work_plane"
+work_plane = { room = "room", height = 0.8, margin = 0.25, max_edge = 0.25 }
+grid = {}
+"#
+}
+
+#[test]
+fn solve_and_render_killed_at_any_moment_lose_nothing_and_the_next_run_proceeds() {
+    let dir = scratch("faults-kill-solve-render");
+    let scene = dir.join("cube.toml");
+    std::fs::write(&scene, cube_with_a_grid()).expect("write scene");
+    let cache = dir.join("cache");
+    let eigenrad_with_cache = |args: &[&Path]| {
+        let mut c = Command::new(eigenrad());
+        c.args(args)
+            .env("EIGENRAD_CACHE_DIR", &cache)
+            .stdout(Stdio::null());
+        c
+    };
+    // Previous outputs: files of the right kind holding something else.
+    let csv = dir.join("grid.csv");
+    let plan = dir.join("plan.png");
+    let surfaces = dir.join("surfaces.svg");
+    std::fs::write(&csv, "a previous table\n").expect("write");
+    std::fs::write(&plan, b"a previous picture").expect("write");
+    std::fs::write(&surfaces, "<svg>a previous picture</svg>").expect("write");
+
+    let solve = || eigenrad_with_cache(&[Path::new("solve"), &scene, Path::new("--csv"), &csv]);
+    let (outputs, took) = Outputs::around(vec![csv.clone()], &solve);
+    let _ = std::fs::remove_dir_all(&cache);
+    let (kept, replaced) = killed_at_a_sweep_of_moments(&solve, &outputs, took, &cache);
     eprintln!(
-        "{} kills left the previous basis, {} the complete one (an uninterrupted build: {took:?})",
-        outcomes.0, outcomes.1
+        "solve: {kept} kills left the previous table, {replaced} the complete one ({took:?})"
     );
+
+    let render = || {
+        eigenrad_with_cache(&[
+            Path::new("render"),
+            &scene,
+            Path::new("--plan"),
+            &plan,
+            Path::new("--surfaces"),
+            &surfaces,
+        ])
+    };
+    let (outputs, took) = Outputs::around(vec![plan.clone(), surfaces.clone()], &render);
+    let _ = std::fs::remove_dir_all(&cache);
+    let (kept, replaced) = killed_at_a_sweep_of_moments(&render, &outputs, took, &cache);
+    eprintln!("render: {kept} outputs left as they were, {replaced} complete ({took:?})");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -119,6 +119,8 @@ fn read(
         return Err(located(path, problem));
     }
     let mut defined = HashSet::new();
+    // What tobj is given for each MTL file: its text as checked here, colours normalised.
+    let mut for_tobj: Vec<(PathBuf, String)> = Vec::new();
     for mtl in &mtls {
         let bytes = std::fs::read(mtl).map_err(|reason| SceneError::Read {
             path: mtl.clone(),
@@ -139,6 +141,7 @@ fn read(
             return Err(located(mtl, problem));
         }
         defined.extend(material_names(&text));
+        for_tobj.push((mtl.clone(), mtl_for_tobj(&text)));
     }
     if let Some((line, name)) = undefined_material(&text, &defined) {
         let known = if defined.is_empty() {
@@ -153,7 +156,17 @@ fn read(
             (line, format!("`usemtl {name}` names no material ({known})")),
         ));
     }
-    let (models, materials) = tobj::load_obj(path, &options).map_err(|e| obj_error("OBJ", e))?;
+    // The OBJ and MTL texts checked above are the ones tobj reads: no second read of a file
+    // that may have changed, and MTL colours in the form tobj parses.
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let (models, materials) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |name| {
+        let full = dir.join(name);
+        match for_tobj.iter().find(|(mtl, _)| *mtl == full) {
+            Some((_, text)) => tobj::load_mtl_buf(&mut text.as_bytes()),
+            None => tobj::load_mtl(full),
+        }
+    })
+    .map_err(|e| obj_error("OBJ", e))?;
     let materials = materials.map_err(|e| obj_error("MTL", e))?;
     Ok(Loaded {
         models,
@@ -452,15 +465,40 @@ fn mtl_problem(text: &str) -> Option<(usize, String)> {
         if let Some(bad) = values.iter().find(|v| v.parse::<f64>().is_err()) {
             return Some((n + 1, format!("`{key}` value `{bad}` is not a number")));
         }
-        // A colour may be one grey value; tobj reads 1 or 3.
-        if values.is_empty() || values.len() > expected {
+        // A colour is three numbers or one grey value ([`mtl_for_tobj`] writes it as three).
+        let counts = if expected == 3 { "1 or 3" } else { "1" };
+        if !(values.len() == expected || values.len() == 1) {
             return Some((
                 n + 1,
-                format!("`{key}` takes {expected} number(s), found {}", values.len()),
+                format!("`{key}` takes {counts} number(s), found {}", values.len()),
             ));
         }
     }
     None
+}
+
+/// An MTL file's text as tobj parses it: a colour (`Ka`, `Kd`, `Ks`, `Ke`) given as one grey
+/// value, which the MTL format allows, written as three (tobj takes exactly three and fails
+/// on fewer), and comments after a colour or scalar removed (tobj would read them as values).
+fn mtl_for_tobj(text: &str) -> String {
+    let mut out = String::with_capacity(text.len() + 64);
+    for line in text.lines() {
+        let data = line.split('#').next().unwrap_or("");
+        let mut fields = data.split_whitespace();
+        match fields.next() {
+            Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) => {
+                let values: Vec<&str> = fields.collect();
+                match values.as_slice() {
+                    [grey] => out.push_str(&format!("{key} {grey} {grey} {grey}")),
+                    _ => out.push_str(data),
+                }
+            }
+            Some("Ns" | "Ni" | "d" | "Tr" | "Tf") => out.push_str(data),
+            _ => out.push_str(line),
+        }
+        out.push('\n');
+    }
+    out
 }
 
 /// The MTL files an OBJ file names, resolved against its folder.

@@ -163,3 +163,35 @@ fn scene_error_sensor_outside_an_obj_scene() {
         ],
     );
 }
+
+/// A colour given as one grey value is that grey in every band (the MTL format allows it; the
+/// OBJ reader takes exactly three and once panicked on one: found by the `obj_mtl` fuzz
+/// target), a comment after a colour is no value, and two values are an error at their line.
+#[test]
+fn scene_mtl_grey_colours_and_comments() {
+    let dir = scratch("mtl-grey");
+    std::fs::write(
+        dir.join("model.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 100 0 0\nv 100 100 0\nv 0 100 0\ng sheet\nusemtl grey\nf 1 2 3 4\n",
+    )
+    .expect("write obj");
+    let origin = dir.join("test-scene.toml");
+    let reflectance = |mtl: &str| {
+        std::fs::write(dir.join("m.mtl"), mtl).expect("write mtl");
+        parse(OBJ_SCENE, &origin).map(|scene| scene.reflectance[0].clone())
+    };
+    let three = reflectance("newmtl grey\nKd 0.4 0.4 0.4\nKe 0 0 0\n").expect("three values");
+    assert_eq!(three, vec![0.4; 3]);
+    let grey = reflectance("newmtl grey\nKd 0.4\nKe 0\n").expect("one grey value");
+    assert_eq!(grey, three);
+    let commented = reflectance("newmtl grey\nKd 0.4 # grey\nKe 0 0 0 # dark\n")
+        .expect("comments after the values");
+    assert_eq!(commented, three);
+    let m = match reflectance("newmtl grey\nKd 0.4 0.4\n") {
+        Ok(_) => panic!("a colour of two values accepted"),
+        Err(e) => e.to_string(),
+    };
+    for part in ["m.mtl:2", "`Kd` takes 1 or 3 number(s), found 2"] {
+        assert!(m.contains(part), "`{part}` missing from: {m}");
+    }
+}
