@@ -23,6 +23,7 @@ mod openings;
 pub mod photometry;
 mod primitives;
 pub mod receivers;
+mod room;
 #[cfg(test)]
 mod tests;
 mod winding;
