@@ -169,8 +169,10 @@ fn cut_openings(
             &mut geometry.raw,
             flip,
             &mut claimed,
-            &standing,
-            &hanging,
+            &openings::OpenBlocks {
+                standing: &standing,
+                hanging: &hanging,
+            },
         )?;
     }
     Ok(claimed)

@@ -74,14 +74,24 @@ impl Frame {
     }
 }
 
+/// The blocks open at one end, which cut the room face they end on: (name, min, max),
+/// metres.
+pub(crate) struct OpenBlocks<'a> {
+    /// Blocks without a bottom face, standing on the floor.
+    pub standing: &'a [(String, Vec3, Vec3)],
+    /// Blocks without a top face, reaching the ceiling.
+    pub hanging: &'a [(String, Vec3, Vec3)],
+}
+
 /// Cuts the openings of one room, and the footprints of the blocks standing on its floor
 /// without a bottom face, out of its faces.
 ///
 /// `faces` are the room's surfaces in `raw`, in the order of `shape.faces` (a box's: floor,
 /// ceiling, wall_xmin, wall_xmax, wall_ymin, wall_ymax); `flip` says which surfaces will have their winding reversed;
 /// `claimed` marks surfaces already used as an opening (by this or an earlier room);
-/// `standing` are the (name, min, max) of blocks without a bottom face, metres. The openings'
+/// `open` are the blocks without a bottom or a top face. The openings'
 /// corners are snapped onto the face plane and the shared grid lines.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn cut(
     ctx: &Ctx,
     def: &Spanned<RoomDef>,
@@ -90,9 +100,9 @@ pub(crate) fn cut(
     raw: &mut [RawSurface],
     flip: &[bool],
     claimed: &mut [bool],
-    standing: &[(String, Vec3, Vec3)],
-    hanging: &[(String, Vec3, Vec3)],
+    open: &OpenBlocks,
 ) -> Result<(), SceneError> {
+    let (standing, hanging) = (open.standing, open.hanging);
     let r = def.get_ref();
     let empty = Vec::new();
     let list = r.openings.as_ref().map_or(&empty, |l| l.get_ref());
