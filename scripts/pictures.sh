@@ -12,6 +12,8 @@
 #                         lux per 10 000 lux outside, i.e. the daylight factor in ‰
 #   daylight-sun.png      the same under the CIE clear sky (type 12) with the sun: 15 000 lux
 #                         diffuse, 70 000 lux direct normal
+#   l-office-plan.png     the L-shaped office's work plane (examples/l-office), both channels
+#                         at level 1, no daylight (exact solve): the plan drawn over the L
 #
 # Usage: scripts/pictures.sh [SCENE]      (default examples/office/scene.toml)
 #
@@ -57,7 +59,11 @@ log "exact solve of $daylit with daylight, luminaires off"
 "$eigenrad" render "$daylit" "${off[@]}" --time 2026-03-20T12:00+01:00 \
     --cie 12 --dhi-lux 15000 --dni-lux 70000 --plan "$out/daylight-sun.png"
 
-for f in office-plan office-surfaces office-luminance office-dimmed daylight-overcast daylight-sun; do
+l_office="examples/l-office/scene.toml"
+log "exact solve of $l_office"
+"$eigenrad" render "$l_office" --plan "$out/l-office-plan.png"
+
+for f in office-plan office-surfaces office-luminance office-dimmed daylight-overcast daylight-sun l-office-plan; do
     bytes=$(stat -c %s "$out/$f.png")
     log "$f.png: $bytes bytes"
     if ((bytes >= 200 * 1024)); then

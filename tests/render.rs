@@ -275,6 +275,7 @@ fn linear_plan() -> Plan {
         values,
         points,
         room: [[0.0, 0.0], [4.5, 2.5]],
+        floor: vec![],
         figures: [225.0, 25.0, 425.0, 25.0 / 225.0],
         luminaires: vec![],
         luminaire_points: vec![],

@@ -354,6 +354,7 @@ fn plan_picture(
             .collect(),
         values,
         room: room_outline(scene, floor, grid),
+        floor: floor_patches(scene, floor),
         figures,
         luminaires: luminaire_outlines(scene),
         luminaire_points: scene
@@ -411,6 +412,16 @@ fn room_outline(scene: &Scene, floor: Option<usize>, grid: &GridReadout) -> Exte
         }
     }
     room
+}
+
+/// The patches of the floor surface `floor` seen from above, m.
+fn floor_patches(scene: &Scene, floor: Option<usize>) -> Vec<Vec<[f64; 2]>> {
+    floor.map_or_else(Vec::new, |f| {
+        scene.patches[scene.surfaces[f].patch_range.clone()]
+            .iter()
+            .map(|p| p.polygon.vertices.iter().map(|v| [v.x, v.y]).collect())
+            .collect()
+    })
 }
 
 /// Luminaires: each emitting surface's patches that face down, seen from above.

@@ -35,6 +35,9 @@ pub struct PlanInput {
     pub values: Vec<f64>,
     /// The room's outline: lowest and highest corner `(x, y)`, m.
     pub room: [[f64; 2]; 2],
+    /// The floor seen from above: its patches' outlines `(x, y)`, m (the floor polygon of any
+    /// room, less what stands on it); empty to draw the outline's rectangle instead.
+    pub floor: Vec<Vec<[f64; 2]>>,
     /// `E_avg`, `E_min`, `E_max`, `U_o` of the grid, as `eval` or `solve` report them.
     pub figures: [f64; 4],
     /// Outlines of luminaires seen from above (lowest and highest corner), m.
@@ -206,13 +209,25 @@ impl Plan {
             .draw()
             .map_err(failed)?;
         let [[rx0, ry0], [rx1, ry1]] = i.room;
-        // The border band, not evaluated, in light grey; then the cells over it.
-        chart
-            .draw_series(std::iter::once(Rectangle::new(
-                [(rx0, ry0), (rx1, ry1)],
-                RGBColor(235, 235, 235).filled(),
-            )))
-            .map_err(failed)?;
+        // The floor, whose border band is not evaluated, in light grey; then the cells over it.
+        let grey = RGBColor(235, 235, 235);
+        if i.floor.is_empty() {
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(rx0, ry0), (rx1, ry1)],
+                    grey.filled(),
+                )))
+                .map_err(failed)?;
+        } else {
+            chart
+                .draw_series(i.floor.iter().map(|patch| {
+                    Polygon::new(
+                        patch.iter().map(|c| (c[0], c[1])).collect::<Vec<_>>(),
+                        grey.filled(),
+                    )
+                }))
+                .map_err(failed)?;
+        }
         let [dx, dy] = i.cell;
         chart
             .draw_series(i.points.iter().zip(&i.values).map(|(p, &v)| {

@@ -74,6 +74,9 @@ pub struct GridReadout {
     pub uniformity: Vec<f64>,
     /// Every point, first side fastest.
     pub points: Vec<GridPoint>,
+    /// Cell centres left out because they lie inside an obstacle (known from the scene; 0
+    /// when read from a basis alone).
+    pub obstructed: usize,
 }
 
 impl GridReadout {
@@ -126,6 +129,7 @@ impl GridReadout {
                     irradiance: v.clone(),
                 })
                 .collect(),
+            obstructed: 0,
         }
     }
 }
@@ -139,13 +143,15 @@ pub fn scene_grids(scene: &crate::scene::Scene, outputs: &[Vec<f64>]) -> Vec<Gri
         let Some(g) = &z.grid else { continue };
         let values = &outputs[next..next + g.len()];
         next += g.len();
-        grids.push(GridReadout::new(
+        let mut readout = GridReadout::new(
             z.name.clone(),
             g.pieces.iter().map(PieceLayout::from).collect(),
             g.points().map(|(p, _)| p.to_array()).collect(),
             values,
             None,
-        ));
+        );
+        readout.obstructed = g.obstructed;
+        grids.push(readout);
     }
     grids
 }

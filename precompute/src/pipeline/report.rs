@@ -190,13 +190,15 @@ pub(super) fn grid_report(
         let positions = (0..g.len())
             .map(|i| basis.grid_point(z, i).map(|p| p.map(f64::from)))
             .collect::<std::result::Result<Vec<_>, _>>()?;
-        grids.push(GridReadout::new(
+        let mut readout = GridReadout::new(
             zone.name.clone(),
             g.pieces.iter().map(PieceLayout::from).collect(),
             positions,
             &got.grid[next..next + g.len()],
             got.figures[z].as_deref(),
-        ));
+        );
+        readout.obstructed = g.obstructed;
+        grids.push(readout);
         next += g.len();
     }
     let mut worst = 0.0f64;

@@ -12,6 +12,7 @@ use super::error::SceneError;
 use super::file::{BandsDef, SceneFile};
 use super::mesh::{check_face, mesh_face, triangulate};
 use super::openings::CONTACT_TOLERANCE;
+use super::room::Room;
 use super::{
     channels, daylight, limits, luminaires, obj, observers, openings, primitives, winding,
 };
@@ -68,6 +69,13 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         planarity,
     )?;
     let luminaires = luminaires::place(&ctx, &file.luminaire, &file.channel)?;
+    luminaires::check_placement(
+        &ctx,
+        &file.luminaire,
+        &luminaires,
+        &geometry.rooms,
+        &inside_blocks(&file, &geometry),
+    )?;
     let emitters = resolve_channels(&ctx, &file, &luminaires, &meshed, raw)?;
     let (emission, channel_of_patch) = patch_emission(&meshed.patches, &emitters);
     let windows = glazed_windows(&ctx, &file, &geometry, &claimed, &materials, &emitters)?;
@@ -83,6 +91,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         &ctx,
         &file.zone,
         &geometry.rooms,
+        &inside_blocks(&file, &geometry),
         &meshed.surfaces,
         &meshed.patches,
         max_edge,
@@ -134,22 +143,36 @@ fn cut_openings(
     flip: &[bool],
 ) -> Result<Vec<bool>, SceneError> {
     let mut claimed = vec![false; geometry.raw.len()];
-    let standing: Vec<(String, Vec3, Vec3)> = geometry
-        .blocks
+    let open_at = |end: fn(&super::file::BlockDef) -> bool| -> Vec<(String, Vec3, Vec3)> {
+        geometry
+            .blocks
+            .iter()
+            .zip(&file.block)
+            .filter(|(_, def)| !end(def.get_ref()) && !def.get_ref().exterior)
+            .map(|(b, _)| b.clone())
+            .collect()
+    };
+    // Blocks without a bottom stand on the floor; without a top they reach the ceiling.
+    let standing = open_at(|b| b.bottom);
+    let hanging = open_at(|b| b.top);
+    for ((r, room), faces) in file
+        .room
         .iter()
-        .zip(&file.block)
-        .filter(|(_, def)| !def.get_ref().bottom && !def.get_ref().exterior)
-        .map(|(b, _)| b.clone())
-        .collect();
-    for (r, faces) in file.room.iter().zip(geometry.room_faces.clone()) {
+        .zip(&geometry.rooms)
+        .zip(geometry.room_faces.clone())
+    {
         openings::cut(
             ctx,
             r,
+            room,
             faces,
             &mut geometry.raw,
             flip,
             &mut claimed,
-            &standing,
+            &openings::OpenBlocks {
+                standing: &standing,
+                hanging: &hanging,
+            },
         )?;
     }
     Ok(claimed)
@@ -285,8 +308,8 @@ fn scene_materials(
 struct Geometry {
     /// Rooms, blocks, quads and OBJ groups, in that order.
     raw: Vec<RawSurface>,
-    /// Each room's name and corners (m).
-    rooms: Vec<(String, Vec3, Vec3)>,
+    /// The rooms, in file order.
+    rooms: Vec<Room>,
     /// Each room's faces in `raw`.
     room_faces: Vec<Range<usize>>,
     /// Each block's name and corners (m).
@@ -303,14 +326,14 @@ fn geometry(
     materials: &mut BTreeMap<String, MaterialInfo>,
 ) -> Result<Geometry, SceneError> {
     let mut raw: Vec<RawSurface> = Vec::new();
-    let mut rooms: Vec<(String, Vec3, Vec3)> = Vec::new();
+    let mut rooms: Vec<Room> = Vec::new();
     let mut room_faces = Vec::new();
     for r in &file.room {
+        let room = Room::read(ctx, r)?;
         let start = raw.len();
-        raw.extend(primitives::room(ctx, r)?);
+        raw.extend(room.surfaces());
         room_faces.push(start..raw.len());
-        let (lo, hi) = primitives::box_corners(ctx, "room", &r.get_ref().min, &r.get_ref().max)?;
-        rooms.push((r.get_ref().name.clone(), lo, hi));
+        rooms.push(room);
     }
     let mut blocks: Vec<(String, Vec3, Vec3)> = Vec::new();
     for b in &file.block {
@@ -402,7 +425,7 @@ fn extent(raw: &[RawSurface]) -> Option<(Vec3, Vec3)> {
 /// In a scene without rooms, the box (m) around each closed cavity its faces form
 /// ([`crate::formfactor::cavities`]); none in a scene with rooms (their sensors are checked
 /// against the rooms) or without a closed cavity.
-fn enclosures(rooms: &[(String, Vec3, Vec3)], faces: &[Face]) -> Vec<(Vec3, Vec3)> {
+fn enclosures(rooms: &[Room], faces: &[Face]) -> Vec<(Vec3, Vec3)> {
     if !rooms.is_empty() {
         return Vec::new();
     }

@@ -14,6 +14,7 @@ use super::error::{Location, SceneError};
 use super::file::{GlazingDef, MaterialDef, SceneFile, SiteDef};
 use super::mesh::{check_face, triangulate};
 use super::openings::CONTACT_TOLERANCE;
+use super::room::Room;
 use super::{Obstruction, Site, Window};
 use crate::daylight::sun;
 use crate::geometry::{Face, Polygon, Vec3};
@@ -360,7 +361,7 @@ pub(crate) fn obstructions(
     ctx: &Ctx,
     outside: &[Outside],
     materials: &BTreeMap<String, MaterialInfo>,
-    rooms: &[(String, Vec3, Vec3)],
+    rooms: &[Room],
     planarity: f64,
 ) -> Result<Vec<Obstruction>, SceneError> {
     let mut out = Vec::with_capacity(outside.len());
@@ -432,10 +433,8 @@ pub(crate) fn obstructions(
                     face: f + 1,
                     message: p.to_string(),
                 })?;
-                if let Some((room, _, _)) = rooms
-                    .iter()
-                    .find(|(_, lo, hi)| reaches_into(&piece, *lo, *hi))
-                {
+                if let Some(room) = rooms.iter().find(|r| reaches_into_room(&piece, r)) {
+                    let room = &room.name;
                     return Err(invalid(
                         &s.at,
                         format!(
@@ -458,6 +457,16 @@ pub(crate) fn obstructions(
         });
     }
     Ok(out)
+}
+
+/// Whether a convex polygon (m) reaches into `room`: into its box for a box room; for a room
+/// given by its plan, one of its corners or its centroid strictly inside the room.
+fn reaches_into_room(polygon: &[Vec3], room: &Room) -> bool {
+    if room.is_box {
+        return reaches_into(polygon, room.lo, room.hi);
+    }
+    let centroid = Polygon::new(polygon.to_vec()).centroid();
+    room.strictly_contains(centroid) || polygon.iter().any(|&p| room.strictly_contains(p))
 }
 
 /// Whether a convex polygon (m) has a point inside the box `lo`..`hi` by more than
@@ -500,7 +509,7 @@ pub(crate) fn windows(
     raw: &[RawSurface],
     materials: &BTreeMap<String, MaterialInfo>,
     channel_of_surface: &[Option<usize>],
-    rooms: &[(String, Vec3, Vec3)],
+    rooms: &[Room],
     in_place: &[bool],
 ) -> Result<Vec<Window>, SceneError> {
     let mut windows = Vec::new();
@@ -541,29 +550,12 @@ pub(crate) fn windows(
     Ok(windows)
 }
 
-/// The room face (`<room>.<face>`) whose plane and rectangle hold every corner of `faces`
-/// (within [`CONTACT_TOLERANCE`] of the room's diagonal), if any.
-fn room_face_holding(faces: &[Vec<Vec3>], rooms: &[(String, Vec3, Vec3)]) -> Option<String> {
-    const NAMES: [[&str; 2]; 3] = [
-        ["wall_xmin", "wall_xmax"],
-        ["wall_ymin", "wall_ymax"],
-        ["floor", "ceiling"],
-    ];
+/// The room face (`<room>.<face>`) holding every corner of `faces` (within
+/// [`CONTACT_TOLERANCE`] of the room's diagonal), if any.
+fn room_face_holding(faces: &[Vec<Vec3>], rooms: &[Room]) -> Option<String> {
     let corners: Vec<Vec3> = faces.iter().flatten().copied().collect();
-    for (name, lo, hi) in rooms {
-        let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
-        let within =
-            |p: Vec3, k: usize| p.axis(k) >= lo.axis(k) - tol && p.axis(k) <= hi.axis(k) + tol;
-        for axis in 0..3 {
-            for (side, plane) in [lo.axis(axis), hi.axis(axis)].into_iter().enumerate() {
-                let held = corners
-                    .iter()
-                    .all(|&p| (p.axis(axis) - plane).abs() <= tol && (0..3).all(|k| within(p, k)));
-                if held && !corners.is_empty() {
-                    return Some(format!("{name}.{}", NAMES[axis][side]));
-                }
-            }
-        }
-    }
-    None
+    rooms.iter().find_map(|r| {
+        r.face_holding(&corners)
+            .map(|f| format!("{}.{}", r.name, f.suffix))
+    })
 }

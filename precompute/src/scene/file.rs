@@ -251,13 +251,34 @@ pub(crate) struct QuadDef {
     pub exterior: bool,
 }
 
-/// `[[room]]`: axis-aligned box seen from inside.
+/// `[[room]]`: a closed room seen from inside, either an axis-aligned box (`min`, `max`) or a
+/// floor plan (`plan`, `height`, optional `level`) with one wall per edge.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RoomDef {
     pub name: String,
-    pub min: Spanned<Xyz>,
-    pub max: Spanned<Xyz>,
+    /// The box's smallest corner.
+    #[serde(default)]
+    pub min: Option<Spanned<Xyz>>,
+    /// The box's largest corner.
+    #[serde(default)]
+    pub max: Option<Spanned<Xyz>>,
+    /// The floor polygon seen from above, `[x, y]` corners in the scene's unit, either way
+    /// round; wall `k` stands on the edge from corner `k` to corner `k + 1` (1-based).
+    #[serde(default)]
+    pub plan: Option<Spanned<Vec<Vec<f64>>>>,
+    /// Floor to ceiling, in the scene's unit (with `plan`).
+    #[serde(default)]
+    pub height: Option<Spanned<f64>>,
+    /// The floor's z, in the scene's unit (with `plan`; default 0).
+    #[serde(default)]
+    pub level: Option<Spanned<f64>>,
+    /// One name per plan edge, in edge order (with `plan`; default `wall_1`, `wall_2`, ...).
+    #[serde(default)]
+    pub wall_names: Option<Spanned<Vec<String>>>,
+    /// One material per plan edge, in edge order (with `plan`; default `walls`/`material`).
+    #[serde(default)]
+    pub wall_materials: Option<Spanned<Vec<Spanned<String>>>>,
     pub material: Spanned<String>,
     #[serde(default)]
     pub floor: Option<Spanned<String>>,
@@ -283,6 +304,9 @@ pub(crate) struct BlockDef {
     /// Whether to make the bottom face (leave it out when the block stands on the floor).
     #[serde(default = "yes")]
     pub bottom: bool,
+    /// Whether to make the top face (leave it out when the block reaches the ceiling).
+    #[serde(default = "yes")]
+    pub top: bool,
     #[serde(default)]
     pub max_edge: Option<Spanned<f64>>,
     /// Outside the room: an obstruction shading the windows, not meshed into patches.

@@ -24,6 +24,9 @@ pub const MAX_POINTS: usize = 10_000;
 pub struct Grid {
     /// The lattices the grid is made of (at least one).
     pub pieces: Vec<GridPiece>,
+    /// Cell centres left out because they lie inside an obstacle (a block standing through
+    /// the plane): no one works there, and a reading inside a solid is meaningless.
+    pub obstructed: usize,
 }
 
 impl Grid {

@@ -10,9 +10,65 @@ use toml::Spanned;
 use super::context::{unique, Ctx};
 use super::error::SceneError;
 use super::file::{ChannelDef, LuminaireDef};
+use super::openings::CONTACT_TOLERANCE;
+use super::room::Room;
 use super::Luminaire;
 use crate::geometry::Vec3;
 use crate::scene::photometry::{self, Photometry, PhotometryError};
+
+/// Checks that every luminaire's photometric centre is in a room (when the scene has rooms)
+/// and not inside one of the `blocks` (name, min, max in metres): its light would otherwise
+/// leave the scene or fall inside an obstacle, and show only as flux that never arrives.
+pub(crate) fn check_placement(
+    ctx: &Ctx,
+    defs: &[Spanned<LuminaireDef>],
+    luminaires: &[Luminaire],
+    rooms: &[Room],
+    blocks: &[(String, Vec3, Vec3)],
+) -> Result<(), SceneError> {
+    for l in luminaires {
+        // An array's elements are `name[row,column]`.
+        let Some(def) = defs.iter().find(|d| {
+            let name = &d.get_ref().name;
+            l.name == *name || l.name.starts_with(&format!("{name}["))
+        }) else {
+            continue;
+        };
+        let p = l.position;
+        let written = (p / ctx.unit).to_array();
+        let error = |message: String| SceneError::OutOfRange {
+            at: ctx.at(&def.get_ref().position),
+            field: format!("luminaire `{}`.position", l.name),
+            message,
+        };
+        if !rooms.is_empty() && !rooms.iter().any(|r| r.contains(p)) {
+            return Err(error(format!(
+                "{written:?} is outside every room ({}): its light would leave the scene",
+                rooms
+                    .iter()
+                    .map(|r| r.describe(ctx.unit))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            )));
+        }
+        for (name, lo, hi) in blocks {
+            let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
+            if (0..3).all(|k| p.axis(k) > lo.axis(k) + tol && p.axis(k) < hi.axis(k) - tol) {
+                let room = rooms
+                    .iter()
+                    .find(|r| r.contains(p))
+                    .map_or(String::new(), |r| format!(" in room `{}`", r.name));
+                return Err(error(format!(
+                    "{written:?} is inside block `{name}`{room} (from {:?} to {:?}): its light \
+                     would stay inside the block",
+                    (*lo / ctx.unit).to_array(),
+                    (*hi / ctx.unit).to_array()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
 
 /// The luminaires of the file, element by element, with the channel each belongs to (an index
 /// into `channels`, the `[[channel]]` entries in file order). Only photopic scenes (one band)

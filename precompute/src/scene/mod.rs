@@ -24,6 +24,7 @@ pub mod photometry;
 mod primitives;
 pub mod receivers;
 pub mod response;
+mod room;
 #[cfg(test)]
 mod tests;
 mod winding;

@@ -8,6 +8,10 @@
 //! The face rectangle is cut into a grid at every opening's edge coordinates; the cells an
 //! opening covers are dropped and every other cell becomes a face of its own, meshed later at
 //! the face's `max_edge`. The cut depends only on the corners, so it is deterministic.
+//!
+//! The floor and the ceiling of a room given by its plan are not rectangles: openings in them
+//! (any convex quad) and the footprints of blocks standing on the floor are taken out of the
+//! plan polygon instead, which is then cut into convex pieces ([`RoomShape::floor_faces`]).
 
 use std::ops::Range;
 
@@ -16,6 +20,7 @@ use toml::Spanned;
 use super::context::{Ctx, RawSurface};
 use super::error::{Location, SceneError};
 use super::file::RoomDef;
+use super::room::{FaceKind, Point2, Room as RoomShape};
 use crate::geometry::{Polygon, Vec3};
 
 /// How far a point may lie from a room's or block's face and still count as on it (an
@@ -69,31 +74,51 @@ impl Frame {
     }
 }
 
+/// The blocks open at one end, which cut the room face they end on: (name, min, max),
+/// metres.
+pub(crate) struct OpenBlocks<'a> {
+    /// Blocks without a bottom face, standing on the floor.
+    pub standing: &'a [(String, Vec3, Vec3)],
+    /// Blocks without a top face, reaching the ceiling.
+    pub hanging: &'a [(String, Vec3, Vec3)],
+}
+
 /// Cuts the openings of one room, and the footprints of the blocks standing on its floor
 /// without a bottom face, out of its faces.
 ///
-/// `faces` are the room's six surfaces in `raw` (floor, ceiling, wall_xmin, wall_xmax,
-/// wall_ymin, wall_ymax); `flip` says which surfaces will have their winding reversed;
+/// `faces` are the room's surfaces in `raw`, in the order of `shape.faces` (a box's: floor,
+/// ceiling, wall_xmin, wall_xmax, wall_ymin, wall_ymax); `flip` says which surfaces will have their winding reversed;
 /// `claimed` marks surfaces already used as an opening (by this or an earlier room);
-/// `standing` are the (name, min, max) of blocks without a bottom face, metres. The openings'
+/// `open` are the blocks without a bottom or a top face. The openings'
 /// corners are snapped onto the face plane and the shared grid lines.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn cut(
     ctx: &Ctx,
     def: &Spanned<RoomDef>,
+    shape: &RoomShape,
     faces: Range<usize>,
     raw: &mut [RawSurface],
     flip: &[bool],
     claimed: &mut [bool],
-    standing: &[(String, Vec3, Vec3)],
+    open: &OpenBlocks,
 ) -> Result<(), SceneError> {
+    let (standing, hanging) = (open.standing, open.hanging);
     let r = def.get_ref();
     let empty = Vec::new();
     let list = r.openings.as_ref().map_or(&empty, |l| l.get_ref());
-    let frames: Vec<Frame> = faces
-        .clone()
-        .map(|f| Frame::new(&raw[f].faces[0]))
+    // The rectangles cut on a grid: every face of a box, the walls of a plan room.
+    let hosts: Vec<usize> = shape
+        .faces
+        .iter()
+        .enumerate()
+        .filter(|(_, f)| shape.is_box || matches!(f.kind, FaceKind::Wall { .. }))
+        .map(|(k, _)| faces.start + k)
         .collect();
-    let diagonal = (frames[0].ab + frames[0].ad + frames[2].ad).length();
+    let frames: Vec<Frame> = hosts
+        .iter()
+        .map(|&f| Frame::new(&raw[f].faces[0]))
+        .collect();
+    let diagonal = (shape.hi - shape.lo).length();
     let room = Room {
         at: r
             .openings
@@ -101,27 +126,83 @@ pub(crate) fn cut(
             .map_or_else(|| ctx.at(def), |l| ctx.at(l)),
         field: format!("room `{}`.openings", r.name),
         faces,
+        hosts,
         frames,
         tol: CONTACT_TOLERANCE * diagonal,
     };
     let mut placed: Vec<Placed> = Vec::new();
+    // A plan room's openings in its floor and ceiling, as plan polygons.
+    let mut floor_holes: Vec<Vec<Point2>> = Vec::new();
+    let mut ceiling_holes: Vec<Vec<Point2>> = Vec::new();
     for name in list {
+        if !shape.is_box {
+            if let Some((kind, hole)) = room.in_plan_face(shape, name, raw, flip, claimed)? {
+                match kind {
+                    FaceKind::Floor => floor_holes.push(hole),
+                    _ => ceiling_holes.push(hole),
+                }
+                continue;
+            }
+        }
         let opening = room.place(name, raw, flip, claimed, &placed)?;
         placed.push(opening);
     }
-    room.place_footprints(standing, raw, &mut placed)?;
+    if shape.is_box {
+        room.place_footprints(standing, 0, raw, &mut placed)?;
+        room.place_footprints(hanging, 1, raw, &mut placed)?;
+    } else {
+        floor_holes.extend(ends_at(shape, standing, shape.floor, |lo, _| lo.z));
+        ceiling_holes.extend(ends_at(shape, hanging, shape.ceiling, |_, hi| hi.z));
+        for (k, f) in shape.faces.iter().enumerate() {
+            let index = room.faces.start + k;
+            match f.kind {
+                FaceKind::Floor if !floor_holes.is_empty() => {
+                    raw[index].faces = shape.floor_faces(&floor_holes)
+                }
+                FaceKind::Ceiling if !ceiling_holes.is_empty() => {
+                    raw[index].faces = shape.ceiling_faces(&ceiling_holes)
+                }
+                _ => continue,
+            }
+            if raw[index].faces.is_empty() {
+                return Err(room.invalid(format!(
+                    "the openings (or blocks standing on it) cover the whole face `{}`",
+                    raw[index].name
+                )));
+            }
+        }
+    }
     for k in 0..room.frames.len() {
         room.cut_face(k, raw, &mut placed)?;
     }
     Ok(())
 }
 
+/// The footprints (plan rectangles, m) of the `blocks` whose end (`end(min, max)`, m) is at
+/// the level `z` (m) of the floor or the ceiling of `shape`.
+fn ends_at(
+    shape: &RoomShape,
+    blocks: &[(String, Vec3, Vec3)],
+    z: f64,
+    end: impl Fn(Vec3, Vec3) -> f64,
+) -> Vec<Vec<Point2>> {
+    let tol = shape.tolerance();
+    blocks
+        .iter()
+        .filter(|(_, lo, hi)| (end(*lo, *hi) - z).abs() <= tol)
+        .map(|(_, lo, hi)| vec![[lo.x, lo.y], [hi.x, lo.y], [hi.x, hi.y], [lo.x, hi.y]])
+        .collect()
+}
+
 /// One room's faces and where its `openings` list was written, for the messages.
 struct Room {
     at: Location,
     field: String,
-    /// The room's six surfaces in the raw surfaces.
+    /// The room's surfaces in the raw surfaces.
     faces: Range<usize>,
+    /// The surfaces cut on a grid (indices into the raw surfaces): every face of a box, the
+    /// walls of a plan room.
+    hosts: Vec<usize>,
     /// Their rectangles.
     frames: Vec<Frame>,
     /// [`CONTACT_TOLERANCE`] of the room's diagonal, metres.
@@ -154,6 +235,57 @@ impl Room {
                 (0, f64::INFINITY),
                 |best, x| if x.1 < best.1 { x } else { best },
             )
+    }
+
+    /// In a plan room, the opening `name` lying in the floor or the ceiling: which, and its
+    /// corners in plan (m); `None` when it lies in neither (it must then be in a wall). The
+    /// opening must be one convex quadrilateral facing into the room.
+    fn in_plan_face(
+        &self,
+        shape: &RoomShape,
+        name: &str,
+        raw: &[RawSurface],
+        flip: &[bool],
+        claimed: &mut [bool],
+    ) -> Result<Option<(FaceKind, Vec<Point2>)>, SceneError> {
+        let Some(index) = raw.iter().position(|s| s.name == name) else {
+            return Ok(None); // `place` names the unknown surface
+        };
+        let [quad] = raw[index].faces.as_slice() else {
+            return Ok(None);
+        };
+        let Some(face) = shape.face_holding(quad) else {
+            return Ok(None);
+        };
+        if !matches!(face.kind, FaceKind::Floor | FaceKind::Ceiling) {
+            return Ok(None);
+        }
+        if self.faces.contains(&index) || claimed[index] {
+            return Err(self.invalid(format!(
+                "`{name}` cannot be an opening here: it is a face of a room or already an opening"
+            )));
+        }
+        claimed[index] = true;
+        let face_name = format!("{}.{}", shape.name, face.suffix);
+        let mut winding = quad.clone();
+        if flip[index] {
+            winding.reverse();
+        }
+        if Polygon::new(winding).normal().dot(shape.inward(face)) <= 0.0 {
+            return Err(self.invalid(format!(
+                "opening `{name}` faces out of the room (its normal is opposite to the inward \
+                 normal of face `{face_name}`): list its corners in the opposite order"
+            )));
+        }
+        let tol = shape.tolerance();
+        if let Some(p) = quad.iter().find(|p| !shape.plan.holds([p.x, p.y], tol)) {
+            return Err(self.invalid(format!(
+                "opening `{name}` reaches outside face `{face_name}` (its corner {:?} is \
+                 outside the plan)",
+                p.to_array()
+            )));
+        }
+        Ok(Some((face.kind, quad.iter().map(|p| [p.x, p.y]).collect())))
     }
 
     /// Places the opening `name` (a surface of `raw`, marked in `claimed`) in the face it lies
@@ -190,7 +322,7 @@ impl Room {
             }
         };
         let (face, nearest) = self.nearest_face(&quad);
-        let face_name = &raw[self.faces.start + face].name;
+        let face_name = &raw[self.hosts[face]].name;
         let tol = self.tol;
         if nearest > tol {
             return Err(self.invalid(format!(
@@ -289,18 +421,21 @@ impl Room {
         })
     }
 
-    /// Blocks standing on the floor without a bottom face hide the floor under them: their
-    /// footprints are cut out too (they may overlap each other, not an opening).
+    /// Blocks standing on the floor without a bottom face (`face` 0), or reaching the ceiling
+    /// without a top face (`face` 1), hide the face under them: their footprints are cut out
+    /// too (they may overlap each other, not an opening).
     fn place_footprints(
         &self,
         standing: &[(String, Vec3, Vec3)],
+        face: usize,
         raw: &[RawSurface],
         placed: &mut Vec<Placed>,
     ) -> Result<(), SceneError> {
         let tol = self.tol;
-        let floor = &self.frames[0];
+        let floor = &self.frames[face];
         for (name, lo, hi) in standing {
-            if (lo.z - floor.a.z).abs() > tol {
+            let end = if face == 0 { lo.z } else { hi.z };
+            if (end - floor.a.z).abs() > tol {
                 continue;
             }
             let (s0, t0) = floor.params(*lo);
@@ -311,19 +446,19 @@ impl Room {
                 continue;
             }
             let (tol_s, tol_t) = (tol / floor.ab.length(), tol / floor.ad.length());
-            for other in placed.iter().filter(|o| o.face == 0) {
+            for other in placed.iter().filter(|o| o.face == face) {
                 let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
                 let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
                 if let (Some(o), true) = (other.surface, overlap_s > tol_s && overlap_t > tol_t) {
                     return Err(self.invalid(format!(
-                        "opening `{}` lies under block `{name}`, which stands on the floor",
+                        "opening `{}` lies under block `{name}`, which stands on it",
                         raw[o].name
                     )));
                 }
             }
             placed.push(Placed {
                 surface: None,
-                face: 0,
+                face,
                 s,
                 t,
                 upper: Vec::new(),
@@ -345,7 +480,7 @@ impl Room {
         if mine.is_empty() {
             return Ok(());
         }
-        let face = self.faces.start + k;
+        let face = self.hosts[k];
         let tol_s = self.tol / frame.ab.length();
         let tol_t = self.tol / frame.ad.length();
         let grid_s = grid(mine.iter().flat_map(|p| p.s), tol_s);

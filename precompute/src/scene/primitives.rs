@@ -1,17 +1,17 @@
-//! Built-in geometry: `quad`, `room` (a box seen from inside) and `block` (a box seen from
-//! outside). z is up.
+//! Built-in geometry: `quad`, `block` (a box seen from outside) and the faces of a box, which
+//! rooms (`super::room`) are laid out from. z is up.
 
 use toml::Spanned;
 
 use super::context::{Ctx, RawSurface};
 use super::error::SceneError;
-use super::file::{BlockDef, QuadDef, RoomDef, Xyz};
-use super::openings::CONTACT_TOLERANCE;
+use super::file::{BlockDef, QuadDef, Xyz};
+use super::room::Room;
 use crate::geometry::Vec3;
 
 /// The six faces of an axis-aligned box, each wound so that its normal points *into* the box:
 /// (room suffix, block suffix, corners).
-fn box_faces(lo: Vec3, hi: Vec3) -> [(&'static str, &'static str, [Vec3; 4]); 6] {
+pub(crate) fn box_faces(lo: Vec3, hi: Vec3) -> [(&'static str, &'static str, [Vec3; 4]); 6] {
     let (x0, y0, z0, x1, y1, z1) = (lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     let p = Vec3::new;
     [
@@ -73,37 +73,8 @@ pub(crate) fn box_corners(
     Ok((lo, hi))
 }
 
-/// A room: six faces named `<room>.floor`, `.ceiling`, `.wall_xmin` ... `.wall_ymax`, facing
-/// inwards.
-pub(crate) fn room(ctx: &Ctx, def: &Spanned<RoomDef>) -> Result<Vec<RawSurface>, SceneError> {
-    let r = def.get_ref();
-    let what = format!("room `{}`", r.name);
-    let (lo, hi) = box_corners(ctx, &what, &r.min, &r.max)?;
-    let max_edge = ctx.optional_length(r.max_edge.as_ref(), &format!("{what}.max_edge"))?;
-    Ok(box_faces(lo, hi)
-        .into_iter()
-        .map(|(suffix, _, corners)| {
-            let material = match suffix {
-                "floor" => r.floor.as_ref(),
-                "ceiling" => r.ceiling.as_ref(),
-                _ => r.walls.as_ref(),
-            }
-            .unwrap_or(&r.material);
-            RawSurface {
-                name: format!("{}.{suffix}", r.name),
-                material: material.get_ref().clone(),
-                material_at: ctx.at(material),
-                faces: vec![corners.to_vec()],
-                max_edge,
-                at: ctx.at(def),
-                exterior: false,
-            }
-        })
-        .collect())
-}
-
 /// A block: faces named `<block>.top`, `.bottom`, `.side_xmin` ... `.side_ymax`, facing
-/// outwards; `bottom = false` leaves out the bottom.
+/// outwards; `bottom = false` leaves out the bottom, `top = false` the top.
 pub(crate) fn block(ctx: &Ctx, def: &Spanned<BlockDef>) -> Result<Vec<RawSurface>, SceneError> {
     let b = def.get_ref();
     let what = format!("block `{}`", b.name);
@@ -111,7 +82,7 @@ pub(crate) fn block(ctx: &Ctx, def: &Spanned<BlockDef>) -> Result<Vec<RawSurface
     let max_edge = ctx.optional_length(b.max_edge.as_ref(), &format!("{what}.max_edge"))?;
     Ok(box_faces(lo, hi)
         .into_iter()
-        .filter(|(_, suffix, _)| b.bottom || *suffix != "bottom")
+        .filter(|(_, suffix, _)| (b.bottom || *suffix != "bottom") && (b.top || *suffix != "top"))
         .map(|(_, suffix, mut corners)| {
             corners.reverse();
             RawSurface {
@@ -163,19 +134,28 @@ pub(crate) fn check_inside_rooms(
     def: &Spanned<BlockDef>,
     lo: Vec3,
     hi: Vec3,
-    rooms: &[(String, Vec3, Vec3)],
+    rooms: &[Room],
 ) -> Result<(), SceneError> {
+    let b = def.get_ref();
+    if let Some(room) = rooms.iter().find(|r| r.holds_box(lo, hi)) {
+        if !b.top && (hi.z - room.ceiling).abs() > room.tolerance() {
+            return Err(SceneError::Invalid {
+                at: ctx.at(&b.max),
+                field: format!("block `{}`.top", b.name),
+                message: format!(
+                    "`top = false` leaves the block open above, but it stops at z = {} below \
+                     the ceiling of room `{}` (z = {}): make it reach the ceiling or keep its top",
+                    hi.z / ctx.unit,
+                    room.name,
+                    room.ceiling / ctx.unit
+                ),
+            });
+        }
+        return Ok(());
+    }
     if rooms.is_empty() {
         return Ok(());
     }
-    let inside = rooms.iter().any(|(_, rlo, rhi)| {
-        let tol = CONTACT_TOLERANCE * (*rhi - *rlo).length();
-        (0..3).all(|k| lo.axis(k) >= rlo.axis(k) - tol && hi.axis(k) <= rhi.axis(k) + tol)
-    });
-    if inside {
-        return Ok(());
-    }
-    let b = def.get_ref();
     Err(SceneError::OutOfRange {
         at: ctx.at(&b.max),
         field: format!("block `{}`.min/max", b.name),
@@ -184,11 +164,7 @@ pub(crate) fn check_inside_rooms(
              outside the room facing away from it",
             rooms
                 .iter()
-                .map(|(n, l, h)| format!(
-                    "`{n}` spans {:?} to {:?}",
-                    (*l / ctx.unit).to_array(),
-                    (*h / ctx.unit).to_array()
-                ))
+                .map(|r| r.describe(ctx.unit))
                 .collect::<Vec<_>>()
                 .join("; ")
         ),

@@ -77,6 +77,13 @@ pub(in crate::cli) fn write_grids(s: &mut String, grids: &[GridReadout], unit: &
                 }
             }
         }
+        if g.obstructed > 0 {
+            let _ = writeln!(
+                s,
+                "       {} points inside obstacles left out",
+                g.obstructed
+            );
+        }
         let _ = writeln!(
             s,
             "       E_avg {} {unit}, E_min {} {unit}, E_max {} {unit}, U_o {}",

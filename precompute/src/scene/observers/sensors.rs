@@ -8,13 +8,14 @@ use crate::scene::error::SceneError;
 use crate::scene::file::{ResponseDef, SensorDef};
 use crate::scene::openings::CONTACT_TOLERANCE;
 use crate::scene::response::{self, Response};
+use crate::scene::room::Room;
 use crate::scene::Sensor;
 
-/// Reads and checks the sensors; `rooms` and `blocks` are (name, min, max) in metres.
+/// Reads and checks the sensors; `blocks` are (name, min, max) in metres.
 pub(crate) fn sensors(
     ctx: &Ctx,
     defs: &[Spanned<SensorDef>],
-    rooms: &[(String, Vec3, Vec3)],
+    rooms: &[Room],
     blocks: &[(String, Vec3, Vec3)],
     extent: Option<(Vec3, Vec3)>,
     enclosures: &[(Vec3, Vec3)],
@@ -226,12 +227,7 @@ const DEFAULT_CUTOFF: f64 = 60.0;
 /// diagonals of that box.
 const FAR_OUTSIDE: f64 = 10.0;
 
-/// Face names of a box by axis and side (min, max): a room's, then a block's.
-const ROOM_FACES: [[&str; 2]; 3] = [
-    ["wall_xmin", "wall_xmax"],
-    ["wall_ymin", "wall_ymax"],
-    ["floor", "ceiling"],
-];
+/// Face names of a block by axis and side (min, max).
 const BLOCK_FACES: [[&str; 2]; 3] = [
     ["side_xmin", "side_xmax"],
     ["side_ymin", "side_ymax"],
@@ -283,7 +279,7 @@ fn placement(
     what: &str,
     p: Vec3,
     n: Vec3,
-    rooms: &[(String, Vec3, Vec3)],
+    rooms: &[Room],
     blocks: &[(String, Vec3, Vec3)],
     extent: Option<(Vec3, Vec3)>,
 ) -> Result<(), SceneError> {
@@ -325,35 +321,26 @@ fn placement(
         }
     }
     if !rooms.is_empty() {
-        let within = |lo: &Vec3, hi: &Vec3, tol: f64| {
-            (0..3).all(|k| p.axis(k) >= lo.axis(k) - tol && p.axis(k) <= hi.axis(k) + tol)
-        };
-        let Some((name, lo, hi)) = rooms
-            .iter()
-            .find(|(_, lo, hi)| within(lo, hi, CONTACT_TOLERANCE * (*hi - *lo).length()))
-        else {
+        // Inside the room's own shape (its plan), not only its bounding box.
+        let Some(room) = rooms.iter().find(|r| r.contains(p)) else {
             return Err(position_error(format!(
                 "{:?} is outside every room ({}); a sensor there would see nothing of the scene",
                 written(p),
                 rooms
                     .iter()
-                    .map(|(r, lo, hi)| format!(
-                        "`{r}` spans {:?} to {:?}",
-                        written(*lo),
-                        written(*hi)
-                    ))
+                    .map(|r| r.describe(ctx.unit))
                     .collect::<Vec<_>>()
                     .join("; ")
             )));
         };
-        let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
-        for k in 0..3 {
-            // Room faces look into the room: +axis at the min side, −axis at the max side.
-            for (side, plane, inward) in [(0, lo.axis(k), 1.0), (1, hi.axis(k), -1.0)] {
-                if (p.axis(k) - plane).abs() <= tol && n.axis(k) * inward < 0.0 {
-                    return Err(facing_error(format!("{name}.{}", ROOM_FACES[k][side])));
-                }
-            }
+        // Room faces look into the room: a sensor on one facing against its normal sees
+        // nothing.
+        if let Some(face) = room
+            .faces
+            .iter()
+            .find(|f| room.on_face(f, p) && n.dot(room.inward(f)) < 0.0)
+        {
+            return Err(facing_error(format!("{}.{}", room.name, face.suffix)));
         }
     }
     for (name, lo, hi) in blocks {

@@ -11,32 +11,36 @@ use crate::scene::error::SceneError;
 use crate::scene::file::{AreaDef, BandDef, WorkPlaneDef};
 use crate::scene::grid::{self, Grid, PlanRect};
 use crate::scene::mesh::{estimate, mesh_face};
+use crate::scene::openings::CONTACT_TOLERANCE;
+use crate::scene::room::Room;
 use crate::scene::{Surface, ZoneKind};
 
 /// Default band left out at the walls, m (EN 12464-1:2021, 4.4: 0.5 m).
 pub(crate) const DEFAULT_MARGIN: f64 = 0.5;
 
 /// Receivers of a work plane: upward quads over the room's footprint less the margin (or
-/// over its task area), and its calculation grid.
+/// over its task area), and its calculation grid. Grid points inside one of `obstacles`
+/// (name, min, max in metres) are left out and counted.
 pub(super) fn work_plane(
     ctx: &Ctx,
     what: &str,
     def: &Spanned<WorkPlaneDef>,
-    rooms: &[(String, Vec3, Vec3)],
+    rooms: &[Room],
+    obstacles: &[(String, Vec3, Vec3)],
     surfaces: &[Surface],
     default_edge: f64,
 ) -> Result<(ZoneKind, Grid), SceneError> {
     let wp = def.get_ref();
     let room = plane_room(ctx, what, def, rooms)?;
-    let (name, lo, hi) = room;
+    let (lo, hi) = (room.lo, room.hi);
     let height = plane_height(ctx, what, wp, room)?;
     let margin = plane_margin(ctx, what, def, room)?;
     let edge = ctx.optional_length(wp.max_edge.as_ref(), &format!("{what}.work_plane.max_edge"))?;
     let floor = surfaces
         .iter()
-        .position(|s| s.name == format!("{name}.floor"))
+        .position(|s| s.name == format!("{}.floor", room.name))
         .unwrap_or(0);
-    let z = lo.z + height;
+    let z = room.floor + height;
     // A task area is the area itself: no band is left out of it.
     let (inner, border) = match &wp.area {
         Some(area) => (task_area(ctx, what, area, room)?, 0.0),
@@ -48,38 +52,92 @@ pub(super) fn work_plane(
     let spacing = explicit_spacing(ctx, what, "work_plane.grid", wp.grid.as_ref())?;
     let rects = plane_rects(ctx, what, wp, room, inner)?;
     check_grid_size(ctx, what, def, &rects, spacing)?;
+    // In a plan room the rectangles are the plan's bounding box: only the points inside the
+    // plan, `border` or more from its walls, are the plane's.
+    let tol = room.tolerance();
+    let on_plane = |x: Vec3| {
+        room.is_box
+            || (room.plan.holds([x.x, x.y], tol)
+                && room.plan.distance_to_boundary([x.x, x.y]) >= border - tol)
+    };
+    let obstructed = |x: Vec3| {
+        obstacles.iter().any(|(_, lo, hi)| {
+            let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
+            (0..3).all(|k| x.axis(k) > lo.axis(k) + tol && x.axis(k) < hi.axis(k) - tol)
+        })
+    };
+    let mut left_out = 0;
+    let mut pieces = Vec::new();
+    for &[x0, y0, x1, y1] in &rects {
+        let rect = grid::horizontal_rect((x0, y0), (x1, y1), z);
+        let mut piece = grid::full_lattice(&rect, spacing, border);
+        piece.points.retain(|&x| on_plane(x));
+        let before = piece.points.len();
+        piece.points.retain(|&x| !obstructed(x));
+        left_out += before - piece.points.len();
+        if !piece.points.is_empty() {
+            pieces.push(piece);
+        }
+    }
+    if pieces.is_empty() {
+        return Err(SceneError::OutOfRange {
+            at: ctx.at(def),
+            field: format!("{what}.work_plane"),
+            message: format!(
+                "no grid point of the plane lies in room `{}` outside its obstacles",
+                room.name
+            ),
+        });
+    }
     let grid = Grid {
-        pieces: rects
-            .iter()
-            .map(|&[x0, y0, x1, y1]| grid::horizontal((x0, y0), (x1, y1), z, spacing, border))
-            .collect(),
+        pieces,
+        obstructed: left_out,
     };
     let edge_used = edge.unwrap_or(default_edge);
-    let receivers = rects
-        .iter()
-        .map(|&r| estimate(&corners(r, z), edge_used))
-        .sum();
+    let outlines: Vec<Vec<Vec3>> = if room.is_box || wp.area.is_some() {
+        rects.iter().map(|&r| corners(r, z).to_vec()).collect()
+    } else {
+        inset_pieces(room, margin, z)
+    };
+    if outlines.is_empty() {
+        return Err(SceneError::OutOfRange {
+            at: ctx.at(def),
+            field: format!("{what}.work_plane.margin"),
+            message: format!("leaves nothing of room `{}`", room.name),
+        });
+    }
+    let receivers = outlines.iter().map(|o| estimate(o, edge_used)).sum();
     check_receivers(ctx, what, def, receivers, surfaces)?;
     let kind = ZoneKind::WorkPlane {
         height,
-        receivers: mesh_receivers(&rects, z, edge_used, floor),
+        receivers: mesh_receivers(&outlines, edge_used, floor),
     };
     Ok((kind, grid))
 }
 
-/// The room a work plane lies in (name and corners, m): the one it names, or the scene's
-/// only room.
+/// The plan of `room` less a band of `margin` (m) along its walls, in convex pieces at height
+/// `z` (m), facing up: geo's inward buffer (its corners round at the plan's reflex corners,
+/// where the band is a quarter circle) cut as the floor is.
+fn inset_pieces(room: &Room, margin: f64, z: f64) -> Vec<Vec<Vec3>> {
+    room.plan
+        .inset(margin, room.tolerance())
+        .into_iter()
+        .map(|p| p.iter().map(|c| Vec3::new(c[0], c[1], z)).collect())
+        .collect()
+}
+
+/// The room a work plane lies in: the one it names, or the scene's only room.
 fn plane_room<'r>(
     ctx: &Ctx,
     what: &str,
     def: &Spanned<WorkPlaneDef>,
-    rooms: &'r [(String, Vec3, Vec3)],
-) -> Result<&'r (String, Vec3, Vec3), SceneError> {
+    rooms: &'r [Room],
+) -> Result<&'r Room, SceneError> {
     let field = format!("{what}.work_plane.room");
     match &def.get_ref().room {
         Some(name) => rooms
             .iter()
-            .find(|r| &r.0 == name.get_ref())
+            .find(|r| &r.name == name.get_ref())
             .ok_or_else(|| SceneError::Unknown {
                 at: ctx.at(name),
                 field: field.clone(),
@@ -96,18 +154,13 @@ fn plane_room<'r>(
 }
 
 /// The plane's height above the floor of `room`, m: below its ceiling.
-fn plane_height(
-    ctx: &Ctx,
-    what: &str,
-    wp: &WorkPlaneDef,
-    (name, lo, hi): &(String, Vec3, Vec3),
-) -> Result<f64, SceneError> {
+fn plane_height(ctx: &Ctx, what: &str, wp: &WorkPlaneDef, room: &Room) -> Result<f64, SceneError> {
     let height = ctx.length(&wp.height, &format!("{what}.work_plane.height"))?;
-    if height >= hi.z - lo.z {
+    if height >= room.ceiling - room.floor {
         return Err(SceneError::OutOfRange {
             at: ctx.at(&wp.height),
             field: format!("{what}.work_plane.height"),
-            message: format!("must be below the ceiling of room `{name}`"),
+            message: format!("must be below the ceiling of room `{}`", room.name),
         });
     }
     Ok(height)
@@ -119,8 +172,9 @@ fn plane_margin(
     ctx: &Ctx,
     what: &str,
     def: &Spanned<WorkPlaneDef>,
-    (name, lo, hi): &(String, Vec3, Vec3),
+    room: &Room,
 ) -> Result<f64, SceneError> {
+    let (lo, hi) = (room.lo, room.hi);
     let wp = def.get_ref();
     let margin = match &wp.margin {
         Some(m) if !(m.get_ref().is_finite() && *m.get_ref() >= 0.0) => {
@@ -140,7 +194,7 @@ fn plane_margin(
                 .as_ref()
                 .map_or_else(|| ctx.at(def), |m| ctx.at(m)),
             field: format!("{what}.work_plane.margin"),
-            message: format!("leaves nothing of room `{name}`"),
+            message: format!("leaves nothing of room `{}`", room.name),
         });
     }
     Ok(margin)
@@ -151,8 +205,9 @@ fn task_area(
     ctx: &Ctx,
     what: &str,
     area: &Spanned<AreaDef>,
-    (name, lo, hi): &(String, Vec3, Vec3),
+    room: &Room,
 ) -> Result<PlanRect, SceneError> {
+    let (name, lo, hi) = (&room.name, room.lo, room.hi);
     let field = format!("{what}.work_plane.area");
     let a = area.get_ref();
     let corner = |c: &Spanned<Vec<f64>>, end: &str| match c.get_ref()[..] {
@@ -165,7 +220,13 @@ fn task_area(
         }),
     };
     let (min, max) = (corner(&a.min, "min")?, corner(&a.max, "max")?);
-    let inside = lo.x <= min.x && lo.y <= min.y && max.x <= hi.x && max.y <= hi.y;
+    let inside = lo.x <= min.x
+        && lo.y <= min.y
+        && max.x <= hi.x
+        && max.y <= hi.y
+        && room
+            .plan
+            .holds_rectangle([min.x, min.y], [max.x, max.y], room.tolerance());
     if !(min.x < max.x && min.y < max.y && inside) {
         return Err(SceneError::OutOfRange {
             at: ctx.at(area),
@@ -189,9 +250,10 @@ fn plane_rects(
     ctx: &Ctx,
     what: &str,
     wp: &WorkPlaneDef,
-    (name, lo, hi): &(String, Vec3, Vec3),
+    room: &Room,
     inner: PlanRect,
 ) -> Result<Vec<PlanRect>, SceneError> {
+    let (name, lo, hi) = (&room.name, room.lo, room.hi);
     let Some(band) = &wp.band else {
         return Ok(vec![inner]);
     };
@@ -201,6 +263,16 @@ fn plane_rects(
             at: ctx.at(band),
             field,
             message: "a band surrounds a task area: give `area` too".into(),
+        });
+    }
+    if !room.is_box {
+        return Err(SceneError::Invalid {
+            at: ctx.at(band),
+            field,
+            message: format!(
+                "a band around a task area is available in box rooms only; room `{name}` is \
+                 given by its plan"
+            ),
         });
     }
     let [from, to] = band_widths(ctx, band, &field)?;
@@ -296,12 +368,12 @@ fn corners([x0, y0, x1, y1]: PlanRect, z: f64) -> [Vec3; 4] {
     ]
 }
 
-/// The receivers: `rects` at height `z` meshed no longer than `max_edge` (m), each patch
-/// counted as lying above the floor surface `floor`.
-fn mesh_receivers(rects: &[PlanRect], z: f64, max_edge: f64, floor: usize) -> Vec<Patch> {
+/// The receivers: the convex `outlines` (m, facing up) meshed no longer than `max_edge` (m),
+/// each patch counted as lying above the floor surface `floor`.
+fn mesh_receivers(outlines: &[Vec<Vec3>], max_edge: f64, floor: usize) -> Vec<Patch> {
     let mut polygons: Vec<Polygon> = Vec::new();
-    for &r in rects {
-        mesh_face(&corners(r, z), max_edge, &mut polygons);
+    for o in outlines {
+        mesh_face(o, max_edge, &mut polygons);
     }
     polygons.into_iter().map(|p| Patch::new(p, floor)).collect()
 }

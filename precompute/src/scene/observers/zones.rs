@@ -9,14 +9,17 @@ use crate::scene::context::{resolve_surfaces, unique, Ctx};
 use crate::scene::error::SceneError;
 use crate::scene::file::{GridDef, ZoneDef};
 use crate::scene::grid::{self, Grid};
+use crate::scene::room::Room;
 use crate::scene::{Surface, Zone, ZoneKind};
 
-/// Reads and checks the zones; `rooms` are (name, min, max) in metres, `patch_list` the
-/// scene's patches (the surfaces' `patch_range`s index it), `max_edge` (m) the scene's default.
+/// Reads and checks the zones; `obstacles` are the blocks inside the rooms (name, min, max in
+/// metres), `patch_list` the scene's patches (the surfaces' `patch_range`s index it),
+/// `max_edge` (m) the scene's default.
 pub(crate) fn zones(
     ctx: &Ctx,
     defs: &[Spanned<ZoneDef>],
-    rooms: &[(String, Vec3, Vec3)],
+    rooms: &[Room],
+    obstacles: &[(String, Vec3, Vec3)],
     surfaces: &[Surface],
     patch_list: &[Patch],
     max_edge: f64,
@@ -57,7 +60,8 @@ pub(crate) fn zones(
                         message: "a work plane's grid is set as `work_plane.grid`".into(),
                     });
                 }
-                let (kind, grid) = work_plane(ctx, &what, wp, rooms, surfaces, max_edge)?;
+                let (kind, grid) =
+                    work_plane(ctx, &what, wp, rooms, obstacles, surfaces, max_edge)?;
                 (kind, Some(grid))
             }
             _ => {
@@ -151,5 +155,8 @@ fn surface_grid(
             message: "no cell centre of the grid lies on the zone's surfaces".into(),
         });
     }
-    Ok(Grid { pieces })
+    Ok(Grid {
+        pieces,
+        obstructed: 0,
+    })
 }

@@ -1,0 +1,533 @@
+//! Rooms: the typed description of a closed room seen from inside, between the file formats
+//! and the meshing.
+//!
+//! A `[[room]]` is read into a [`Room`] whether it is written as a box (`min`, `max`) or as a
+//! floor plan (`plan`, `height`): a plan polygon, a floor and a ceiling level, and its faces,
+//! each facing into the room and knowing what it is (floor, ceiling, the wall on a plan
+//! edge). Meshing, openings, obstacles, sensors, luminaires and work planes read the room
+//! from here, never from the file. A plan that is an axis-aligned rectangle is the box: its
+//! faces come in the box's order with the box's corners, so both spellings give the same
+//! patches and the same basis bytes (walls keep the names the plan gives them).
+//!
+//! Sources of other shapes (sloped ceilings, imported shells) fit the same type as more
+//! [`FaceKind`]s; today every room is a prism on its plan.
+
+mod plan;
+
+use geo::coordinate_position::CoordPos;
+use toml::Spanned;
+
+use super::context::{Ctx, RawSurface};
+use super::error::{Location, SceneError};
+use super::file::RoomDef;
+use super::openings::CONTACT_TOLERANCE;
+use super::primitives::{box_corners, box_faces};
+use crate::geometry::Vec3;
+
+pub(crate) use plan::{Plan, Point2};
+
+/// What a room face is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum FaceKind {
+    /// The floor, facing up.
+    Floor,
+    /// The ceiling, facing down.
+    Ceiling,
+    /// The wall standing on edge `edge` of the plan (counter-clockwise numbering).
+    Wall {
+        /// Index of the edge in [`Plan::corners`] order.
+        edge: usize,
+    },
+}
+
+/// One face of a room.
+#[derive(Clone, Debug)]
+pub(crate) struct RoomFace {
+    /// Its name after the room's: `floor`, `ceiling`, `wall_xmin` (box), `wall_3` or the
+    /// user's name (plan).
+    pub suffix: String,
+    /// What it is.
+    pub kind: FaceKind,
+    /// Its material's name, and where that was written.
+    pub material: String,
+    pub material_at: Location,
+    /// Its outline, metres, wound so that its normal points into the room (the floor and the
+    /// ceiling of a plan room: the plan itself, which may be concave).
+    pub outline: Vec<Vec3>,
+}
+
+/// A closed room: a prism on a floor plan, seen from inside.
+#[derive(Clone, Debug)]
+pub(crate) struct Room {
+    /// Its name; its faces are `<name>.<suffix>`.
+    pub name: String,
+    /// Where it was written.
+    pub at: Location,
+    /// Its floor plan, counter-clockwise seen from above, metres.
+    pub plan: Plan,
+    /// The floor's and the ceiling's z, metres.
+    pub floor: f64,
+    pub ceiling: f64,
+    /// Its bounding box, metres.
+    pub lo: Vec3,
+    pub hi: Vec3,
+    /// Whether the plan is an axis-aligned rectangle: the room is then meshed, cut by its
+    /// openings and by the blocks standing on it as a box.
+    pub is_box: bool,
+    /// Floor, ceiling, then the walls (in the box's order for a box, in plan order else).
+    pub faces: Vec<RoomFace>,
+    /// Longest patch edge of its faces, metres (`None`: the scene's).
+    pub max_edge: Option<f64>,
+}
+
+impl Room {
+    /// Reads and checks a `[[room]]`.
+    pub fn read(ctx: &Ctx, def: &Spanned<RoomDef>) -> Result<Room, SceneError> {
+        let r = def.get_ref();
+        let what = format!("room `{}`", r.name);
+        let max_edge = ctx.optional_length(r.max_edge.as_ref(), &format!("{what}.max_edge"))?;
+        let invalid = |at: Location, field: &str, message: String| SceneError::Invalid {
+            at,
+            field: format!("{what}.{field}"),
+            message,
+        };
+        let base = RoomBase {
+            name: r.name.clone(),
+            at: ctx.at(def),
+            max_edge,
+        };
+        match (&r.min, &r.max, &r.plan) {
+            (Some(min), Some(max), None) => {
+                for (field, given) in [
+                    ("height", r.height.as_ref().map(|h| ctx.at(h))),
+                    ("level", r.level.as_ref().map(|h| ctx.at(h))),
+                    ("wall_names", r.wall_names.as_ref().map(|h| ctx.at(h))),
+                    (
+                        "wall_materials",
+                        r.wall_materials.as_ref().map(|h| ctx.at(h)),
+                    ),
+                ] {
+                    if let Some(at) = given {
+                        return Err(invalid(
+                            at,
+                            field,
+                            "belongs to a room given by its `plan`; a box room has `min` and `max`"
+                                .into(),
+                        ));
+                    }
+                }
+                let (lo, hi) = box_corners(ctx, &what, min, max)?;
+                let walls = r.walls.as_ref().unwrap_or(&r.material);
+                let plan = Plan::rectangle([lo.x, lo.y], [hi.x, hi.y]);
+                let label = |suffix: &str, _edge: usize| {
+                    (suffix.to_owned(), walls.get_ref().clone(), ctx.at(walls))
+                };
+                Ok(base.boxed(ctx, r, plan, lo.z, hi.z, label))
+            }
+            (None, None, Some(plan)) => {
+                let (plan, floor, ceiling) = read_plan(ctx, &what, def, plan)?;
+                let n = plan.len();
+                let names = per_edge(ctx, &what, "wall_names", r.wall_names.as_ref(), n)?;
+                let materials =
+                    per_edge(ctx, &what, "wall_materials", r.wall_materials.as_ref(), n)?;
+                let walls = r.walls.as_ref().unwrap_or(&r.material);
+                let written = plan.written_edge.clone();
+                let label = |_: &str, edge: usize| {
+                    let w = written[edge];
+                    let name = names.map_or_else(|| format!("wall_{}", w + 1), |l| l[w].clone());
+                    let material = materials.map_or(walls, |l| &l[w]);
+                    (name, material.get_ref().clone(), ctx.at(material))
+                };
+                Ok(if plan.is_rectangle() {
+                    base.boxed(ctx, r, plan, floor, ceiling, label)
+                } else {
+                    base.prism(ctx, r, plan, floor, ceiling, label)
+                })
+            }
+            _ => Err(invalid(
+                ctx.at(def),
+                "min/max/plan",
+                "give either `min` and `max` (a box) or `plan` and `height` (a floor plan)".into(),
+            )),
+        }
+    }
+
+    /// [`CONTACT_TOLERANCE`] of its diagonal, metres.
+    pub fn tolerance(&self) -> f64 {
+        CONTACT_TOLERANCE * (self.hi - self.lo).length()
+    }
+
+    /// Its faces as surfaces to mesh: a box's faces and every wall whole, a plan room's floor
+    /// and ceiling in convex pieces.
+    pub fn surfaces(&self) -> Vec<RawSurface> {
+        self.faces
+            .iter()
+            .map(|f| RawSurface {
+                name: format!("{}.{}", self.name, f.suffix),
+                material: f.material.clone(),
+                material_at: f.material_at.clone(),
+                faces: match (self.is_box, f.kind) {
+                    (false, FaceKind::Floor) => self.floor_faces(&[]),
+                    (false, FaceKind::Ceiling) => self.ceiling_faces(&[]),
+                    _ => vec![f.outline.clone()],
+                },
+                max_edge: self.max_edge,
+                at: self.at.clone(),
+                exterior: false,
+            })
+            .collect()
+    }
+
+    /// The floor less `holes` (convex, plan coordinates in metres) in convex pieces, facing up.
+    pub fn floor_faces(&self, holes: &[Vec<Point2>]) -> Vec<Vec<Vec3>> {
+        self.plan
+            .convex_pieces(holes, self.tolerance())
+            .into_iter()
+            .map(|p| {
+                p.iter()
+                    .map(|c| Vec3::new(c[0], c[1], self.floor))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The ceiling less `holes` in convex pieces, facing down.
+    pub fn ceiling_faces(&self, holes: &[Vec<Point2>]) -> Vec<Vec<Vec3>> {
+        self.plan
+            .convex_pieces(holes, self.tolerance())
+            .into_iter()
+            .map(|p| {
+                p.iter()
+                    .rev()
+                    .map(|c| Vec3::new(c[0], c[1], self.ceiling))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Whether `p` (m) is inside the room or on its faces, within [`Room::tolerance`].
+    pub fn contains(&self, p: Vec3) -> bool {
+        let tol = self.tolerance();
+        p.z >= self.floor - tol && p.z <= self.ceiling + tol && self.plan.holds([p.x, p.y], tol)
+    }
+
+    /// Whether `p` (m) is strictly inside: inside and farther than the tolerance from every
+    /// face.
+    pub fn strictly_contains(&self, p: Vec3) -> bool {
+        let tol = self.tolerance();
+        p.z > self.floor + tol
+            && p.z < self.ceiling - tol
+            && self.plan.position([p.x, p.y], tol) == CoordPos::Inside
+    }
+
+    /// Whether the box `lo`..`hi` (m) is inside the room (it may touch its faces).
+    pub fn holds_box(&self, lo: Vec3, hi: Vec3) -> bool {
+        let tol = self.tolerance();
+        lo.z >= self.floor - tol
+            && hi.z <= self.ceiling + tol
+            && self.plan.holds_rectangle([lo.x, lo.y], [hi.x, hi.y], tol)
+    }
+
+    /// Whether `p` (m) lies on face `f`, within the tolerance.
+    pub fn on_face(&self, f: &RoomFace, p: Vec3) -> bool {
+        let tol = self.tolerance();
+        match f.kind {
+            FaceKind::Floor | FaceKind::Ceiling => {
+                let z = if f.kind == FaceKind::Floor {
+                    self.floor
+                } else {
+                    self.ceiling
+                };
+                (p.z - z).abs() <= tol && self.plan.holds([p.x, p.y], tol)
+            }
+            FaceKind::Wall { edge } => {
+                let (a, b) = self.plan.edge(edge);
+                let along = Vec3::new(b[0] - a[0], b[1] - a[1], 0.0);
+                let length = along.length();
+                let d = Vec3::new(p.x - a[0], p.y - a[1], 0.0);
+                let s = d.dot(along) / length;
+                let off = along.cross(d).z / length;
+                off.abs() <= tol
+                    && s >= -tol
+                    && s <= length + tol
+                    && p.z >= self.floor - tol
+                    && p.z <= self.ceiling + tol
+            }
+        }
+    }
+
+    /// The face holding every one of `corners` (m), if any.
+    pub fn face_holding(&self, corners: &[Vec3]) -> Option<&RoomFace> {
+        if corners.is_empty() {
+            return None;
+        }
+        self.faces
+            .iter()
+            .find(|f| corners.iter().all(|&p| self.on_face(f, p)))
+    }
+
+    /// The inward unit normal of face `f`.
+    pub fn inward(&self, f: &RoomFace) -> Vec3 {
+        crate::geometry::Polygon::new(f.outline.clone()).normal()
+    }
+
+    /// Where its corners run, for messages: the box's corners, or the plan's, in the scene's
+    /// unit.
+    pub fn describe(&self, unit: f64) -> String {
+        if self.is_box {
+            format!(
+                "`{}` spans {:?} to {:?}",
+                self.name,
+                (self.lo / unit).to_array(),
+                (self.hi / unit).to_array()
+            )
+        } else {
+            let corners: Vec<[f64; 2]> = self
+                .plan
+                .corners
+                .iter()
+                .map(|c| [c[0] / unit, c[1] / unit])
+                .collect();
+            format!(
+                "`{}` has the plan {corners:?} from z = {} to {}",
+                self.name,
+                self.floor / unit,
+                self.ceiling / unit
+            )
+        }
+    }
+}
+
+/// What every room has before its faces are laid out.
+struct RoomBase {
+    name: String,
+    at: Location,
+    max_edge: Option<f64>,
+}
+
+impl RoomBase {
+    /// The room on a rectangular `plan` from `floor` to `ceiling` (m), laid out as the box:
+    /// `label(box suffix, plan edge)` names a wall and gives its material.
+    fn boxed(
+        self,
+        ctx: &Ctx,
+        r: &RoomDef,
+        plan: Plan,
+        floor: f64,
+        ceiling: f64,
+        label: impl Fn(&str, usize) -> (String, String, Location),
+    ) -> Room {
+        let (lo2, hi2) = plan.bounds();
+        let (lo, hi) = (
+            Vec3::new(lo2[0], lo2[1], floor),
+            Vec3::new(hi2[0], hi2[1], ceiling),
+        );
+        // The plan edge each box wall stands on: its two ends share that wall's coordinate.
+        let edge_at = |axis: usize, value: f64| {
+            (0..plan.len())
+                .find(|&i| {
+                    let (a, b) = plan.edge(i);
+                    a[axis] == value && b[axis] == value
+                })
+                .unwrap_or(0)
+        };
+        let faces = box_faces(lo, hi)
+            .into_iter()
+            .map(|(suffix, _, corners)| {
+                let (kind, suffix, material, material_at) = match suffix {
+                    "floor" | "ceiling" => {
+                        let (kind, own) = if suffix == "floor" {
+                            (FaceKind::Floor, r.floor.as_ref())
+                        } else {
+                            (FaceKind::Ceiling, r.ceiling.as_ref())
+                        };
+                        let m = own.unwrap_or(&r.material);
+                        (kind, suffix.to_owned(), m.get_ref().clone(), ctx.at(m))
+                    }
+                    _ => {
+                        let edge = match suffix {
+                            "wall_xmin" => edge_at(0, lo.x),
+                            "wall_xmax" => edge_at(0, hi.x),
+                            "wall_ymin" => edge_at(1, lo.y),
+                            _ => edge_at(1, hi.y),
+                        };
+                        let (name, material, at) = label(suffix, edge);
+                        (FaceKind::Wall { edge }, name, material, at)
+                    }
+                };
+                RoomFace {
+                    suffix,
+                    kind,
+                    material,
+                    material_at,
+                    outline: corners.to_vec(),
+                }
+            })
+            .collect();
+        Room {
+            name: self.name,
+            at: self.at,
+            plan,
+            floor,
+            ceiling,
+            lo,
+            hi,
+            is_box: true,
+            faces,
+            max_edge: self.max_edge,
+        }
+    }
+
+    /// The prism on `plan` from `floor` to `ceiling` (m): floor, ceiling, then one wall per
+    /// plan edge in counter-clockwise order, `label("", edge)` naming each.
+    fn prism(
+        self,
+        ctx: &Ctx,
+        r: &RoomDef,
+        plan: Plan,
+        floor: f64,
+        ceiling: f64,
+        label: impl Fn(&str, usize) -> (String, String, Location),
+    ) -> Room {
+        let at = |z: f64| -> Vec<Vec3> {
+            plan.corners
+                .iter()
+                .map(|c| Vec3::new(c[0], c[1], z))
+                .collect()
+        };
+        let own = |m: Option<&Spanned<String>>| {
+            let m = m.unwrap_or(&r.material);
+            (m.get_ref().clone(), ctx.at(m))
+        };
+        let mut faces = Vec::with_capacity(plan.len() + 2);
+        let (material, material_at) = own(r.floor.as_ref());
+        faces.push(RoomFace {
+            suffix: "floor".into(),
+            kind: FaceKind::Floor,
+            material,
+            material_at,
+            outline: at(floor),
+        });
+        let (material, material_at) = own(r.ceiling.as_ref());
+        let mut down = at(ceiling);
+        down.reverse();
+        faces.push(RoomFace {
+            suffix: "ceiling".into(),
+            kind: FaceKind::Ceiling,
+            material,
+            material_at,
+            outline: down,
+        });
+        for edge in 0..plan.len() {
+            let (a, b) = plan.edge(edge);
+            let (suffix, material, material_at) = label("", edge);
+            // Seen from the room (to the left of a → b): a low, a high, b high, b low.
+            faces.push(RoomFace {
+                suffix,
+                kind: FaceKind::Wall { edge },
+                material,
+                material_at,
+                outline: vec![
+                    Vec3::new(a[0], a[1], floor),
+                    Vec3::new(a[0], a[1], ceiling),
+                    Vec3::new(b[0], b[1], ceiling),
+                    Vec3::new(b[0], b[1], floor),
+                ],
+            });
+        }
+        let (lo2, hi2) = plan.bounds();
+        Room {
+            name: self.name,
+            at: self.at,
+            plan,
+            floor,
+            ceiling,
+            lo: Vec3::new(lo2[0], lo2[1], floor),
+            hi: Vec3::new(hi2[0], hi2[1], ceiling),
+            is_box: false,
+            faces,
+            max_edge: self.max_edge,
+        }
+    }
+}
+
+/// Reads and checks `room.plan` with `room.height` and `room.level`: the plan (metres, wound
+/// counter-clockwise) and the floor's and ceiling's z (m).
+fn read_plan(
+    ctx: &Ctx,
+    what: &str,
+    def: &Spanned<RoomDef>,
+    plan: &Spanned<Vec<Vec<f64>>>,
+) -> Result<(Plan, f64, f64), SceneError> {
+    let r = def.get_ref();
+    let field = format!("{what}.plan");
+    let mut corners = Vec::with_capacity(plan.get_ref().len());
+    for (k, c) in plan.get_ref().iter().enumerate() {
+        let [x, y] = c[..] else {
+            return Err(SceneError::Invalid {
+                at: ctx.at(plan),
+                field: field.clone(),
+                message: format!(
+                    "corner {} has {} numbers; each corner is [x, y]",
+                    k + 1,
+                    c.len()
+                ),
+            });
+        };
+        let p = ctx.coordinates([x, y, 0.0], plan, &field)?;
+        corners.push([p.x, p.y]);
+    }
+    let Some(height) = &r.height else {
+        return Err(SceneError::Invalid {
+            at: ctx.at(def),
+            field: format!("{what}.height"),
+            message: "a room given by its `plan` needs its `height` (floor to ceiling)".into(),
+        });
+    };
+    let height = ctx.length(height, &format!("{what}.height"))?;
+    let floor = match &r.level {
+        Some(l) => {
+            ctx.coordinates([0.0, 0.0, *l.get_ref()], l, &format!("{what}.level"))?
+                .z
+        }
+        None => 0.0,
+    };
+    let (lo, hi) = Plan {
+        corners: corners.clone(),
+        written_edge: Vec::new(),
+    }
+    .bounds();
+    let diagonal = Vec3::new(hi[0] - lo[0], hi[1] - lo[1], height).length();
+    let plan = Plan::new(&corners, CONTACT_TOLERANCE * diagonal).map_err(|problem| {
+        SceneError::Invalid {
+            at: ctx.at(plan),
+            field,
+            message: problem.to_string(),
+        }
+    })?;
+    Ok((plan, floor, floor + height))
+}
+
+/// A per-edge list (`wall_names` or `wall_materials`) checked to have one entry per plan edge.
+fn per_edge<'a, T>(
+    ctx: &Ctx,
+    what: &str,
+    field: &str,
+    list: Option<&'a Spanned<Vec<T>>>,
+    edges: usize,
+) -> Result<Option<&'a [T]>, SceneError> {
+    let Some(list) = list else {
+        return Ok(None);
+    };
+    if list.get_ref().len() != edges {
+        return Err(SceneError::Invalid {
+            at: ctx.at(list),
+            field: format!("{what}.{field}"),
+            message: format!(
+                "gives {} entries for the plan's {edges} edges: one per edge, in the plan's order",
+                list.get_ref().len()
+            ),
+        });
+    }
+    Ok(Some(list.get_ref().as_slice()))
+}

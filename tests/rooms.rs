@@ -1,0 +1,567 @@
+//! Rooms given by a floor plan (`[[room]]` with `plan` and `height`, docs/scene.md "Rooms"):
+//!
+//! - an L-shaped closed room of uniform reflectance ρ with one emitter: the area-weighted mean
+//!   irradiance over all its surfaces is `Φ / (S (1 − ρ))`, exact for any closed room
+//!   (docs/math.md, "Exact results": the closed-room identity), through the exact solve;
+//! - a box written as a 4-corner plan gives the same basis bytes as the box;
+//! - every mistake in a plan room is an error naming the item, the room and the line;
+//! - the L-shaped office of `examples/l-office/` is closed, and its work-plane grid has no
+//!   point in the notch, in a column, or within the margin of a wall.
+//!
+//! Run with `cargo test --test rooms -- --nocapture` to see the figures.
+
+use std::path::{Path, PathBuf};
+
+use eigenrad::precompute::cli;
+use eigenrad::precompute::formfactor::FormFactorOptions;
+use eigenrad::precompute::pipeline::{self, prepare, BuildOptions, ModeSelection};
+use eigenrad::precompute::radiosity::eigen::Solver;
+use eigenrad::precompute::scene::{load, Scene, ZoneKind};
+
+/// The closed-room identity holds up to the form factors' closure; this quadrature keeps the
+/// rows of a closed room within a few 10⁻⁵ (`formfactor::health`), so 1e-4 relative (the L
+/// meets it within 4e-6).
+const CLOSED_ROOM_TOLERANCE: f64 = 1e-4;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("eigenrad-rooms-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// An L-shaped room, 6 m × 4 m less a 2.5 m × 2 m notch, 2.5 m high, every face of
+/// reflectance `rho`, the ceiling emitting `flux` lm, a zone over every surface.
+fn l_room(rho: f64, flux: f64) -> String {
+    format!(
+        r#"
+[scene]
+name = "l-room"
+bands = "photopic"
+unit = "m"
+max_edge = 0.8
+
+[materials]
+surface = {{ reflectance = {rho} }}
+
+[[room]]
+name = "room"
+plan = [[0, 0], [6, 0], [6, 2], [3.5, 2], [3.5, 4], [0, 4]]
+height = 2.5
+material = "surface"
+
+[[channel]]
+name = "ceiling"
+surfaces = ["room.ceiling"]
+flux = {flux}
+
+[[zone]]
+name = "all"
+surfaces = ["room*"]
+"#
+    )
+}
+
+#[test]
+fn an_l_shaped_closed_room_meets_the_closed_room_identity() {
+    let dir = scratch("identity");
+    let flux = 10_000.0;
+    // S: floor and ceiling 2 × (24 − 5) m², walls 20 m of perimeter × 2.5 m.
+    let surface = 2.0 * 19.0 + 20.0 * 2.5;
+    println!("L-shaped room, S = {surface} m², Φ = {flux} lm from the ceiling:");
+    println!("    ρ   Φ/(S(1−ρ)) lux   solve lux   rel. err");
+    for rho in [0.2, 0.5, 0.8] {
+        let path = write(&dir, &format!("l-{rho}.toml"), &l_room(rho, flux));
+        let scene = load(&path).unwrap();
+        let area: f64 = scene.patches.iter().map(|p| p.area).sum();
+        assert!((area - surface).abs() < 1e-9 * surface, "area {area}");
+        let want = flux / (surface * (1.0 - rho));
+        let got = cli::solve(
+            &path,
+            &cli::LevelArgs::default(),
+            false,
+            &FormFactorOptions::default(),
+        )
+        .unwrap()
+        .zones[0]
+            .irradiance[0];
+        let err = (got - want).abs() / want;
+        println!("  {rho:.1} {want:16.4} {got:11.4} {err:10.2e}");
+        assert!(err <= CLOSED_ROOM_TOLERANCE, "ρ = {rho}: {got} vs {want}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A 4 m × 3 m × 2.5 m room with a window in its south wall, a desk standing on its floor, a
+/// lit ceiling panel, a sensor and a work plane; `room` is its `[[room]]` table's body.
+fn furnished(room: &str) -> String {
+    format!(
+        r#"
+[scene]
+name = "furnished"
+bands = "photopic"
+unit = "m"
+max_edge = 0.5
+
+[materials]
+wall = {{ reflectance = 0.5 }}
+floor = {{ reflectance = 0.2 }}
+panel = {{ reflectance = 0.0 }}
+glass = {{ reflectance = 0.1 }}
+desk = {{ reflectance = 0.4 }}
+
+[[room]]
+name = "room"
+material = "wall"
+floor = "floor"
+openings = ["window", "panel"]
+{room}
+
+[[quad]]
+name = "window"
+material = "glass"
+corners = [[1, 0, 0.9], [1, 0, 2.1], [3, 0, 2.1], [3, 0, 0.9]]
+
+[[quad]]
+name = "panel"
+material = "panel"
+corners = [[1.5, 1, 2.5], [1.5, 2, 2.5], [2.5, 2, 2.5], [2.5, 1, 2.5]]
+
+[[block]]
+name = "desk"
+min = [1.2, 1.8, 0]
+max = [2.8, 2.6, 0.75]
+material = "desk"
+bottom = false
+
+[[channel]]
+name = "panel"
+surfaces = ["panel"]
+flux = 3000
+
+[[channel]]
+name = "window"
+surfaces = ["window"]
+exitance = 2000
+
+[[sensor]]
+name = "desk"
+position = [2, 2.2, 0.75]
+normal = [0, 0, 1]
+
+[[zone]]
+name = "work_plane"
+work_plane = {{ height = 0.8, margin = 0.5 }}
+"#
+    )
+}
+
+fn basis(path: &Path) -> Vec<u8> {
+    let opts = BuildOptions {
+        modes: ModeSelection::Count(16),
+        solver: Solver::Dense,
+        ..BuildOptions::default()
+    };
+    pipeline::build(path, &opts)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .0
+}
+
+#[test]
+fn a_box_written_as_a_plan_gives_the_same_basis_bytes() {
+    let dir = scratch("box-as-plan");
+    let boxed = write(
+        &dir,
+        "box.toml",
+        &furnished("min = [0, 0, 0]\nmax = [4, 3, 2.5]"),
+    );
+    // Counter-clockwise from the origin: edges y = 0, x = 4, y = 3, x = 0.
+    let ccw = write(
+        &dir,
+        "ccw.toml",
+        &furnished(
+            "plan = [[0, 0], [4, 0], [4, 3], [0, 3]]\nheight = 2.5\n\
+             wall_names = [\"wall_ymin\", \"wall_xmax\", \"wall_ymax\", \"wall_xmin\"]",
+        ),
+    );
+    // Clockwise from another corner: edges x = 4, y = 0, x = 0, y = 3.
+    let cw = write(
+        &dir,
+        "cw.toml",
+        &furnished(
+            "plan = [[4, 3], [4, 0], [0, 0], [0, 3]]\nheight = 2.5\n\
+             wall_names = [\"wall_xmax\", \"wall_ymin\", \"wall_xmin\", \"wall_ymax\"]",
+        ),
+    );
+    let want = basis(&boxed);
+    println!("box basis: {} bytes", want.len());
+    for plan in [&ccw, &cw] {
+        let got = basis(plan);
+        assert!(got == want, "{} differs from the box", plan.display());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn plan_walls_are_named_by_their_written_edges() {
+    let dir = scratch("names");
+    // Written clockwise: wall_1 runs from corner 1 (0, 4) to corner 2 (3.5, 4), the north
+    // wall, and faces south (−y) into the room.
+    let text = l_room(0.5, 1000.0).replace(
+        "plan = [[0, 0], [6, 0], [6, 2], [3.5, 2], [3.5, 4], [0, 4]]",
+        "plan = [[0, 4], [3.5, 4], [3.5, 2], [6, 2], [6, 0], [0, 0]]",
+    );
+    let scene = load(&write(&dir, "cw.toml", &text)).unwrap();
+    let wall = |name: &str| {
+        let s = scene
+            .surfaces
+            .iter()
+            .find(|s| s.name == name)
+            .unwrap_or_else(|| panic!("no surface {name}"));
+        &scene.patches[s.patch_range.start]
+    };
+    let north = wall("room.wall_1");
+    assert!((north.centroid.y - 4.0).abs() < 1e-12);
+    assert!((north.normal.y + 1.0).abs() < 1e-12);
+    // wall_6 runs from (0, 0) back to (0, 4): the west wall, facing east.
+    let west = wall("room.wall_6");
+    assert!(west.centroid.x.abs() < 1e-12 && (west.normal.x - 1.0).abs() < 1e-12);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The message of loading `text` (a scene whose file is `name`), which must fail; and the
+/// `:N:` of the first line holding `needle`.
+fn refused(name: &str, text: &str, needle: &str) -> (String, String) {
+    let dir = scratch(name);
+    let path = write(&dir, &format!("{name}.toml"), text);
+    let message = match load(&path) {
+        Ok(_) => panic!("{name} was accepted"),
+        Err(e) => e.to_string(),
+    };
+    std::fs::remove_dir_all(&dir).ok();
+    let line = text
+        .lines()
+        .position(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("`{needle}` not in the scene"));
+    println!("{name}: {message}");
+    (message, format!("{name}.toml:{}:", line + 1))
+}
+
+fn expect(name: &str, text: &str, needle: &str, parts: &[&str]) {
+    let (message, at) = refused(name, text, needle);
+    assert!(message.contains(&at), "`{at}` not in: {message}");
+    for p in parts {
+        assert!(message.contains(p), "`{p}` missing from: {message}");
+    }
+}
+
+const L_PLAN: &str = "plan = [[0, 0], [6, 0], [6, 2], [3.5, 2], [3.5, 4], [0, 4]]";
+
+fn with_plan(plan: &str) -> String {
+    l_room(0.5, 1000.0).replace(L_PLAN, plan)
+}
+
+#[test]
+fn a_self_intersecting_plan_is_refused_naming_its_edges() {
+    expect(
+        "bowtie",
+        &with_plan("plan = [[0, 0], [4, 4], [4, 0], [0, 4]]"),
+        "plan =",
+        &["room `room`.plan", "edges 1 and 3 cross"],
+    );
+}
+
+#[test]
+fn a_plan_with_a_repeated_corner_is_refused_naming_the_corners() {
+    expect(
+        "repeated",
+        &with_plan("plan = [[0, 0], [6, 0], [6, 2], [3.5, 2], [6, 2], [0, 4]]"),
+        "plan =",
+        &["room `room`.plan", "corners 3 and 5 are the same point"],
+    );
+}
+
+#[test]
+fn a_plan_with_a_zero_length_edge_is_refused_naming_the_edge() {
+    expect(
+        "zero-edge",
+        &with_plan("plan = [[0, 0], [6, 0], [6, 0], [6, 2], [0, 4]]"),
+        "plan =",
+        &["room `room`.plan", "edge 2", "zero length"],
+    );
+}
+
+#[test]
+fn a_plan_corner_of_three_numbers_is_refused() {
+    expect(
+        "corner-xyz",
+        &with_plan("plan = [[0, 0, 0], [6, 0], [6, 4], [0, 4]]"),
+        "plan =",
+        &["room `room`.plan", "corner 1 has 3 numbers"],
+    );
+}
+
+#[test]
+fn a_plan_without_height_is_refused() {
+    expect(
+        "no-height",
+        &l_room(0.5, 1000.0).replace("height = 2.5\n", ""),
+        "[[room]]",
+        &["room `room`.height", "needs its `height`"],
+    );
+}
+
+#[test]
+fn wall_names_must_give_one_per_edge() {
+    expect(
+        "wall-names",
+        &l_room(0.5, 1000.0).replace(
+            "height = 2.5\n",
+            "height = 2.5\nwall_names = [\"a\", \"b\"]\n",
+        ),
+        "wall_names",
+        &["room `room`.wall_names", "2 entries for the plan's 6 edges"],
+    );
+}
+
+/// The L room with one more table appended.
+fn l_with(extra: &str) -> String {
+    format!(
+        "{}\n[materials.lum]\nreflectance = 0.5\n{extra}",
+        l_room(0.5, 1000.0)
+    )
+}
+
+#[test]
+fn a_sensor_in_the_notch_is_outside_the_room() {
+    // (5, 3) lies inside the L's bounding box but in its notch.
+    expect(
+        "sensor-notch",
+        &l_with("[[sensor]]\nname = \"s\"\nposition = [5, 3, 1]\nnormal = [0, 0, 1]\n"),
+        "position = [5, 3, 1]",
+        &[
+            "sensor `s`.position",
+            "outside every room",
+            "`room` has the plan",
+        ],
+    );
+}
+
+const LUMINAIRE: &str = r#"[[channel]]
+name = "lights"
+
+[[luminaire]]
+name = "lum"
+file = "PHOTOMETRY"
+position = POSITION
+channel = "lights"
+"#;
+
+fn luminaire_at(position: &str) -> String {
+    let photometry =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/photometry/downlight.ies");
+    l_with(
+        &LUMINAIRE
+            .replace("PHOTOMETRY", &photometry.display().to_string())
+            .replace("POSITION", position),
+    )
+}
+
+#[test]
+fn a_luminaire_in_the_notch_is_outside_the_room() {
+    expect(
+        "luminaire-notch",
+        &luminaire_at("[5, 3, 2.5]"),
+        "position = [5, 3, 2.5]",
+        &["luminaire `lum`.position", "outside every room", "`room`"],
+    );
+}
+
+#[test]
+fn a_luminaire_inside_a_column_is_refused_naming_both() {
+    let column = "[[block]]\nname = \"column\"\nmin = [1, 1, 0]\nmax = [1.4, 1.4, 2.5]\n\
+                  material = \"surface\"\nbottom = false\ntop = false\n";
+    expect(
+        "luminaire-column",
+        &format!("{}\n{column}", luminaire_at("[1.2, 1.2, 2]")),
+        "position = [1.2, 1.2, 2]",
+        &[
+            "luminaire `lum`.position",
+            "inside block `column` in room `room`",
+        ],
+    );
+}
+
+#[test]
+fn a_block_reaching_into_the_notch_is_refused() {
+    expect(
+        "block-notch",
+        &l_with(
+            "[[block]]\nname = \"cabinet\"\nmin = [3, 2.5, 0]\nmax = [4, 3, 1]\n\
+             material = \"surface\"\nbottom = false\n",
+        ),
+        "max = [4, 3, 1]",
+        &["block `cabinet`.min/max", "not inside any room"],
+    );
+}
+
+#[test]
+fn a_block_open_at_the_top_must_reach_the_ceiling() {
+    expect(
+        "open-top",
+        &l_with(
+            "[[block]]\nname = \"column\"\nmin = [1, 1, 0]\nmax = [1.4, 1.4, 2]\n\
+             material = \"surface\"\ntop = false\n",
+        ),
+        "max = [1.4, 1.4, 2]",
+        &["block `column`.top", "below the ceiling of room `room`"],
+    );
+}
+
+#[test]
+fn a_window_facing_out_of_a_plan_wall_is_refused() {
+    // In the wall x = 3.5 (edge 4, facing −x into the room) but wound to face +x.
+    let text = l_with(
+        "[[quad]]\nname = \"window\"\nmaterial = \"lum\"\n\
+         corners = [[3.5, 2.5, 1], [3.5, 3.5, 1], [3.5, 3.5, 2], [3.5, 2.5, 2]]\n",
+    )
+    .replace(
+        "material = \"surface\"\n\n[[channel]]",
+        "material = \"surface\"\nopenings = [\"window\"]\n\n[[channel]]",
+    );
+    expect(
+        "window-out",
+        &text,
+        "openings =",
+        &[
+            "room `room`.openings",
+            "faces out of the room",
+            "room.wall_4",
+        ],
+    );
+}
+
+/// The example's scene.
+fn l_office() -> Scene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/l-office/scene.toml");
+    load(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn the_l_office_grid_covers_the_l_only() {
+    let scene = l_office();
+    let zone = scene
+        .zones
+        .iter()
+        .find(|z| z.name == "work_plane")
+        .expect("work plane");
+    let grid = zone.grid.as_ref().expect("grid");
+    let margin = 0.5;
+    // The room's walls as the example writes them, and the columns, by hand.
+    let l = [
+        [0.0, 0.0],
+        [12.0, 0.0],
+        [12.0, 4.0],
+        [7.0, 4.0],
+        [7.0, 8.0],
+        [0.0, 8.0],
+    ];
+    let inside_l = |x: f64, y: f64| {
+        (0.0..=12.0).contains(&x) && (0.0..=8.0).contains(&y) && (x <= 7.0 || y <= 4.0)
+    };
+    let to_walls = |x: f64, y: f64| {
+        (0..6)
+            .map(|k| {
+                let (a, b): ([f64; 2], [f64; 2]) = (l[k], l[(k + 1) % 6]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let t = (((x - a[0]) * dx + (y - a[1]) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+                (x - a[0] - t * dx).hypot(y - a[1] - t * dy)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let on_plane = |x: f64, y: f64| inside_l(x, y) && to_walls(x, y) >= margin;
+    let columns = [([3.3, 3.8], [3.7, 4.2]), ([8.8, 1.8], [9.2, 2.2])];
+    let in_column = |x: f64, y: f64| {
+        columns
+            .iter()
+            .any(|(lo, hi)| x > lo[0] && x < hi[0] && y > lo[1] && y < hi[1])
+    };
+    let mut points = 0;
+    for (p, normal) in grid.points() {
+        points += 1;
+        assert!(normal.z == 1.0, "the plane faces up");
+        assert!((p.z - 0.8).abs() < 1e-12);
+        assert!(!(p.x > 7.0 && p.y > 4.0), "{p:?} in the notch");
+        assert!(
+            on_plane(p.x, p.y),
+            "{p:?} outside the L or within its margin"
+        );
+        assert!(!in_column(p.x, p.y), "{p:?} in a column");
+    }
+    // Independently: the lattice the grid was cut from (cells over the bounding box less the
+    // margin), its centres sorted by hand against the L, its margin and the columns.
+    let [piece] = &grid.pieces[..] else {
+        panic!("one piece expected, {}", grid.pieces.len())
+    };
+    let (mut kept, mut obstructed) = (0, 0);
+    for j in 0..piece.counts[1] {
+        for i in 0..piece.counts[0] {
+            let x = margin + (i as f64 + 0.5) * piece.cell[0];
+            let y = margin + (j as f64 + 0.5) * piece.cell[1];
+            match (on_plane(x, y), in_column(x, y)) {
+                (true, false) => kept += 1,
+                (true, true) => obstructed += 1,
+                _ => {}
+            }
+        }
+    }
+    println!(
+        "l-office work plane: {points} points of a {} × {} lattice, {} left out in columns",
+        piece.counts[0], piece.counts[1], grid.obstructed
+    );
+    assert_eq!(points, kept);
+    assert_eq!(grid.obstructed, obstructed);
+    assert!(grid.obstructed > 0, "the columns stand in the grid");
+    // The receivers cover the L less its margin band. Offset inwards by m, the L's edges give
+    // the mitred L of area A − P m + m² (convex corners − reflex corners) = 76 − 40 m + 4 m²,
+    // which leaves out the square of side m by the reflex corner (7, 4); of that square, the
+    // points farther than m from the corner are in the band's complement: m² − π m²/4 more.
+    let ZoneKind::WorkPlane { receivers, .. } = &zone.kind else {
+        panic!("a work plane")
+    };
+    let area: f64 = receivers.iter().map(|r| r.area).sum();
+    let m2 = margin * margin;
+    let want = 76.0 - 40.0 * margin + 4.0 * m2 + (m2 - std::f64::consts::PI * m2 / 4.0);
+    println!(
+        "receivers: {} patches, {area:.4} m² (band rule {want:.4} m²)",
+        receivers.len()
+    );
+    // The buffer draws the quarter circle as a polygon: within 1e-3 relative.
+    assert!((area - want).abs() < 1e-3 * want, "{area} vs {want}");
+}
+
+#[test]
+fn the_l_office_is_closed() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/l-office/scene.toml");
+    let prepared = prepare(&path, &FormFactorOptions::default()).unwrap();
+    let h = &prepared.form_factor_health;
+    println!(
+        "l-office: {} patches, row sums {:.6} .. {:.6}, escaping {:.2e}",
+        prepared.scene.patches.len(),
+        h.row_sum_min,
+        h.row_sum_max,
+        h.escaping
+    );
+    // Closed as the build report counts it (`formfactor::health::CLOSED_TOLERANCE`, 1e-2):
+    // no light escapes through the walls, the windows or round the columns.
+    assert!(h.closed, "row sums {} .. {}", h.row_sum_min, h.row_sum_max);
+    assert!(h.escaping.abs() < 1e-4, "escaping {}", h.escaping);
+    for w in &h.warnings {
+        println!("warning: {w}");
+    }
+}
