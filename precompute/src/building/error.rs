@@ -66,8 +66,8 @@ pub enum BuildingError {
         at: Location,
         /// The room.
         room: String,
-        /// Why its build failed.
-        reason: crate::Error,
+        /// Why its build failed (boxed: the stages' error is large).
+        reason: Box<crate::Error>,
     },
     /// A room's part is missing: the room was not built into this folder.
     #[error("{}: room {room} ({at}) has no part here: build it first (`eigenrad building --room {room}`, or the shard that holds it)", path.display())]
@@ -104,11 +104,11 @@ pub enum BuildingError {
     },
     /// A file could not be written, or a command would write over one of its inputs.
     #[error(transparent)]
-    Output(crate::Error),
+    Output(Box<crate::Error>),
 }
 
 impl From<crate::atomic::WriteError> for BuildingError {
     fn from(e: crate::atomic::WriteError) -> Self {
-        BuildingError::Output(e.into())
+        BuildingError::Output(Box::new(e.into()))
     }
 }

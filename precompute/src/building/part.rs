@@ -140,7 +140,7 @@ impl Part {
         let now = scene_hash(&room.scene).map_err(|reason| BuildingError::Room {
             at: room.at.clone(),
             room: room.name.clone(),
-            reason,
+            reason: Box::new(reason),
         })?;
         if part.scene_hash != now {
             return Err(fail(format!(

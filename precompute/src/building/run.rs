@@ -47,7 +47,7 @@ pub fn build_rooms(
     let room_error = |r: usize, reason: crate::Error| BuildingError::Room {
         at: manifest.rooms[r].at.clone(),
         room: manifest.rooms[r].name.clone(),
-        reason,
+        reason: Box::new(reason),
     };
     // Each room's peak, from its scene meshed (cheap against the build).
     let mut need = Vec::with_capacity(rooms.len());
@@ -129,7 +129,7 @@ fn build_room(
     let fail = |reason: crate::Error| BuildingError::Room {
         at: room.at.clone(),
         room: room.name.clone(),
-        reason,
+        reason: Box::new(reason),
     };
     // Hashed before the build: a scene edited while it is built is refused at the merge.
     let scene_hash = part::scene_hash(&room.scene).map_err(fail)?;
@@ -250,7 +250,7 @@ pub fn merge(
     for (basis, bytes) in merged.controllers.iter().zip(&bases) {
         crate::atomic::write(&basis.file, bytes)?;
     }
-    let index = crate::cli::json(&merged).map_err(BuildingError::Output)?;
+    let index = crate::cli::json(&merged).map_err(|e| BuildingError::Output(Box::new(e)))?;
     crate::atomic::write(&out.join("building.json"), index.as_bytes())?;
     Ok(merged)
 }
