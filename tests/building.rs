@@ -141,6 +141,13 @@ fn every_controller_reads_what_its_whole_room_reads_to_the_bit() {
             .unwrap_or_else(|e| panic!("{e}"));
         let whole = part.tables.to_bytes().expect("the room's basis");
         let own = std::fs::read(building::basis_path(out, &controller.name)).expect("basis");
+        assert_eq!(written.controller, controller.name);
+        assert_eq!(
+            written.bytes,
+            own.len(),
+            "{}: the size building.json states",
+            controller.name
+        );
         assert!(own.len() <= manifest.flash.bytes as usize);
         assert!(
             own.len() < whole.len() || controller.modes,
