@@ -54,6 +54,13 @@ if ! command -v chromium >/dev/null || ! command -v chromedriver >/dev/null; the
     echo "SKIPPED: chromium could not be installed; tests/web.rs will skip"
 fi
 
+step "a single-node Slurm for the building's test (Debian's slurm-wlm and munge; tests/slurm.rs starts and stops its own daemons)"
+if ! command -v slurmctld >/dev/null || ! command -v munged >/dev/null; then
+  as_root() { if [[ $(id -u) -eq 0 ]]; then "$@"; elif command -v sudo >/dev/null; then sudo -n "$@"; else return 1; fi; }
+  { as_root apt-get update -qq && as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq slurm-wlm munge; } >/dev/null ||
+    skipped "slurm-wlm and munge could not be installed; tests/slurm.rs will skip"
+fi
+
 step "formatting"
 cargo fmt --all -- --check
 

@@ -278,6 +278,40 @@ fn cornell_box_basis() -> (PathBuf, String) {
     (path.clone(), name)
 }
 
+/// The meeting room's controller of the example building (`examples/building/`, controller
+/// `meeting`, with the room's modes), built by `eigenrad building` from a manifest holding that
+/// room and controller alone, once per test run.
+fn building_controller_basis() -> (PathBuf, String) {
+    static BUILT: OnceLock<PathBuf> = OnceLock::new();
+    let name = "building-meeting".to_string();
+    let path = BUILT.get_or_init(|| {
+        let dir = work_dir().join("building");
+        std::fs::create_dir_all(&dir).unwrap();
+        let scene = root().join("examples/building/meeting.toml");
+        let manifest = dir.join("building.toml");
+        std::fs::write(
+            &manifest,
+            format!(
+                "[building]\nname = \"meeting\"\n\n[[room]]\nname = \"meeting\"\nscene = {:?}\n\n\
+                 [[controller]]\nname = \"meeting\"\nroom = \"meeting\"\ndrives = [\"table\", \"walls\"]\n\
+                 sensors = [\"table\"]\ngrids = [\"work_plane\"]\nmodes = true\n",
+                scene.display().to_string()
+            ),
+        )
+        .unwrap();
+        let out = dir.join("out");
+        let report = run_eigenrad(&[
+            "building".as_ref(),
+            manifest.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ]);
+        eprintln!("built {name}:\n{}", String::from_utf8_lossy(&report.stdout));
+        out.join("meeting.basis")
+    });
+    (path.clone(), name)
+}
+
 // ---------------------------------------------------------------------------------------
 // A random basis (three bands)
 

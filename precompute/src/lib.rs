@@ -20,12 +20,14 @@
 //! | [`basis`] | a model and its modes as the runtime's tables |
 //! | [`accuracy`] | test cases, the error figures, the truncation sweep, evaluation through the runtime |
 //! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
+//! | [`building`] | rooms built apart (in parallel, or as shards on a cluster) and every controller's basis cut from them (`eigenrad building`, `eigenrad merge`) |
 //! | [`picture`] | false-colour pictures: a work plane's plan with isolux lines, the surfaces unfolded (`eigenrad render`) |
 //! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
 //! | [`cli`] | what the commands compute and print |
 pub mod accuracy;
 pub mod atomic;
 pub mod basis;
+pub mod building;
 pub mod cache;
 pub mod cli;
 pub mod daylight;

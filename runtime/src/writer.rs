@@ -24,8 +24,11 @@ use crate::format::{
 /// The writer does not check the tables against each other: [`Basis::from_bytes`] does, and
 /// tests rely on writing malformed bases.
 ///
+/// The tables (de)serialize with serde, so host tools can keep them between stages (the
+/// precompute's building parts) with every `f64` exact.
+///
 /// [`Basis::from_bytes`]: crate::Basis::from_bytes
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BasisTables {
     /// What the numbers measure: W/m² or lux.
     pub quantity: Quantity,

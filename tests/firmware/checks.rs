@@ -256,6 +256,18 @@ fn firmware_matches_eval_office_i16() {
     check_against_eval(&name, &path);
 }
 
+/// A controller's basis of the example building (docs/building.md): the meeting room's, cut
+/// from its room's tables with its modes, reads on the device what `eigenrad eval` reads.
+#[test]
+fn firmware_matches_eval_building_controller() {
+    let (path, name) = building_controller_basis();
+    let Some(run) = check_against_eval(&name, &path) else {
+        return;
+    };
+    assert_eq!(run.basis["channels"], 2);
+    assert_eq!(run.basis["sensors"], 1);
+}
+
 /// The RGB example as built by default: three bands, one channel.
 #[test]
 fn firmware_matches_eval_cornell_box() {

@@ -6,6 +6,7 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
+use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::Precision;
 
 use crate::accuracy::runtime_eval;
@@ -123,22 +124,33 @@ fn timed<T>(timings: &mut Vec<Stage>, stage: &'static str, f: impl FnOnce() -> T
     out
 }
 
-/// Loads a scene and computes its form factors and output rows.
-pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
-    let mut timings = Vec::new();
-    let scene = timed(&mut timings, "scene and meshing", || scene::load(path))?;
+/// Bytes a build of `scene` holds at its peak: the form factors with the solvers' workspace
+/// (`memory::build_bytes_of`), and the rows of its sensors, zones and grid points on top
+/// (`memory::output_bytes`).
+pub fn peak_bytes(scene: &Scene, opts: &FormFactorOptions) -> [f64; 2] {
     let n = scene.patches.len();
-    // Refused before the n×n form factors are allocated (`memory::build_bytes`).
     let reflecting: Vec<f64> = (0..scene.bands.count())
         .map(|b| scene.reflectance.iter().filter(|r| r[b] > 0.0).count() as f64)
         .collect();
     let storage = opts.operator.storage(n);
-    let needed = memory::build_bytes_of(
+    let solve = memory::build_bytes_of(
         n as f64,
         &reflecting,
         storage.operator_bytes(n as f64),
         storage == Storage::F64,
     );
+    let rows = outputs::grid_offset(scene) + outputs::grid_points(scene).count();
+    [solve, memory::output_bytes(rows as f64, n as f64)]
+}
+
+/// Loads a scene and computes its form factors and output rows.
+pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
+    let mut timings = Vec::new();
+    let scene = timed(&mut timings, "scene and meshing", || scene::load(path))?;
+    let n = scene.patches.len();
+    let storage = opts.operator.storage(n);
+    // Refused before the n×n form factors are allocated (`memory::build_bytes`).
+    let [needed, rows_needed] = peak_bytes(&scene, opts);
     let available = memory::budget_bytes();
     if needed > available {
         return Err(Error::TooLarge(format!(
@@ -150,8 +162,6 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     }
     // And before the output rows are: one per sensor, zone and grid point.
     let points = outputs::grid_points(&scene).count();
-    let rows = outputs::grid_offset(&scene) + points;
-    let rows_needed = memory::output_bytes(rows as f64, n as f64);
     if needed + rows_needed > available {
         return Err(Error::TooLarge(format!(
             "{}: {} sensors, {} zones and {points} calculation-grid points over {n} patches need about {:.1} GB for their rows on top of {:.1} GB for the form factors, more than the {:.1} GB this machine can spare; use fewer sensors or zones, a coarser `grid.spacing`, or `max_edge`",
@@ -236,6 +246,23 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
 
 /// Runs the whole build; returns the basis bytes and the report. Writes nothing.
 pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)> {
+    build_tables(path, opts).map(|built| (built.bytes, built.report))
+}
+
+/// What a build makes: the basis' tables in `f64`, its bytes (the tables written in the
+/// build's precision) and the report.
+pub struct Built {
+    /// Every table of the basis, before the storage precision rounds them.
+    pub tables: BasisTables,
+    /// The basis as written.
+    pub bytes: Vec<u8>,
+    /// The build's report.
+    pub report: BuildReport,
+}
+
+/// Runs the whole build as [`build`] does and keeps the tables too (a building cuts its
+/// controllers' bases from them). Writes nothing.
+pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
     let prepared = prepare(path, &opts.form_factors)?;
     let Prepared {
         mut scene,
@@ -298,7 +325,7 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
     } else {
         None
     };
-    let (bytes, daylight_bytes) = timed(&mut timings, "serialization", || {
+    let (tables, bytes, daylight_bytes) = timed(&mut timings, "serialization", || {
         serialize(&scene, &model, p, opts.precision, daylight.as_ref())
     })?;
     let accuracy = timed(&mut timings, "verification through the runtime", || {
@@ -341,7 +368,11 @@ pub fn build(path: &Path, opts: &BuildOptions) -> Result<(Vec<u8>, BuildReport)>
         sensor_ratios,
         timings,
     };
-    Ok((bytes, report))
+    Ok(Built {
+        tables,
+        bytes,
+        report,
+    })
 }
 
 /// The smallest mode count up to `available` at which every case is within `tolerance` of
@@ -372,21 +403,23 @@ fn smallest_count(
     })
 }
 
-/// The basis bytes of the first `p` modes of `model`, and the bytes its daylight adds.
+/// The tables and basis bytes of the first `p` modes of `model`, and the bytes its daylight
+/// adds.
 fn serialize(
     scene: &Scene,
     model: &Model,
     p: usize,
     precision: Precision,
     daylight: Option<&basis::BasisDaylight>,
-) -> std::result::Result<(Vec<u8>, usize), eigenrad_runtime::Error> {
+) -> std::result::Result<(BasisTables, Vec<u8>, usize), eigenrad_runtime::Error> {
     let mut tables = basis::basis_tables(scene, model, p, precision);
     let Some(d) = daylight else {
-        return tables.to_bytes().map(|b| (b, 0));
+        let bytes = tables.to_bytes()?;
+        return Ok((tables, bytes, 0));
     };
     let without = tables.to_bytes()?.len();
     basis::daylight_tables(&mut tables, scene, model, d);
     let bytes = tables.to_bytes()?;
     let added = bytes.len() - without;
-    Ok((bytes, added))
+    Ok((tables, bytes, added))
 }

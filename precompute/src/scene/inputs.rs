@@ -13,9 +13,10 @@ use super::obj::mtl_paths;
 pub struct SceneInputs {
     /// `scene.name`.
     pub name: String,
-    /// The scene file, then every OBJ file and the MTL files each names, as the scene's loader
-    /// would open them (relative to the scene's folder). Files that do not exist are listed
-    /// too: loading will report them.
+    /// The scene file, then every OBJ file and the MTL files each names, then the
+    /// luminaires' photometric files (each once), as the scene's loader would open them
+    /// (relative to the scene's folder). Files that do not exist are listed too: loading will
+    /// report them.
     pub files: Vec<PathBuf>,
 }
 
@@ -36,6 +37,12 @@ pub fn inputs(path: &Path) -> Result<SceneInputs, SceneError> {
             .unwrap_or_default();
         files.push(obj);
         files.extend(mtls);
+    }
+    for luminaire in &file.luminaire {
+        let photometry = dir.join(luminaire.get_ref().file.get_ref());
+        if !files.contains(&photometry) {
+            files.push(photometry);
+        }
     }
     // A sensor's response table is an input too: no output may replace it.
     let tables = file.sensor.iter().filter_map(|s| {

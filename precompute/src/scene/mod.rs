@@ -11,7 +11,7 @@ mod contacts;
 mod context;
 mod daylight;
 mod error;
-mod file;
+pub(crate) mod file;
 pub mod grid;
 mod inputs;
 mod limits;

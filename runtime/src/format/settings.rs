@@ -6,6 +6,7 @@
 /// docs/math.md). Channels are stored exactly in either; the expansion serves exitance set
 /// patch by patch at run time.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "alloc", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum Formulation {
     /// Default. `M = M0 + Σ c_k v_k (v_k · b∘M0)` with `c_k = μ_k/(1−μ_k)`: a patch's own
@@ -20,6 +21,7 @@ pub enum Formulation {
 
 /// How the large tables (mode vectors, channel responses, view rows) are stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "alloc", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum Precision {
     /// IEEE binary32, 4 bytes a value.
@@ -61,6 +63,7 @@ impl Precision {
 
 /// What the numbers measure.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "alloc", derive(serde::Serialize, serde::Deserialize))]
 #[repr(u8)]
 pub enum Quantity {
     /// Radiometric: exitance and irradiance in W/m², luminance in W/(m²·sr).

@@ -13,9 +13,12 @@
 //!   one: memory, form-factor time, every channel's readings, the strongest eigenvalues.
 //! - `eigenrad-bench daylight SCENE...`: the room's response to the sky (Tregenza, Reinhart
 //!   MF:2) and to one sun direction, against the time to prepare the scene.
+//! - `eigenrad-bench building MANIFEST`: a building's rooms one after the other against all
+//!   at once (the parallel speed-up), and each controller's basis size.
 //!
 //! Run in release: `cargo run --release -p eigenrad-precompute --bin eigenrad-bench -- …`.
 
+mod building;
 mod compress;
 mod daylight;
 mod eigen;
@@ -82,6 +85,12 @@ enum Command {
         #[arg(long, value_enum, default_value_t = OperatorChoice::DenseF32)]
         reference: OperatorChoice,
     },
+    /// A building's rooms built one after the other, then all at once: wall times, the
+    /// speed-up, and each controller's basis size.
+    Building {
+        /// Building manifest.
+        manifest: PathBuf,
+    },
     /// Dense against partial eigensolve (p = 32) on each scene's form factors.
     Eigen {
         /// Scene files.
@@ -110,6 +119,10 @@ fn main() -> Result<()> {
         Command::Compress { scenes, reference } => {
             machine();
             compress::run(&scenes, reference)?;
+        }
+        Command::Building { manifest } => {
+            machine();
+            building::run(&manifest)?;
         }
         Command::Eigen { scenes, dense_max } => {
             machine();

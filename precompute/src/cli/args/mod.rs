@@ -5,6 +5,7 @@
 //! cache in `groups.rs`, a time and a sky in `daylight.rs`.
 
 mod build;
+mod building;
 mod daylight;
 mod eval;
 mod form_factors;
@@ -39,6 +40,8 @@ impl Cli {
     pub fn run(self) -> anyhow::Result<()> {
         match self.command {
             Command::Build(args) => args.run(),
+            Command::Building(args) => args.run(),
+            Command::Merge(args) => args.run(),
             Command::Solve(args) => args.run(),
             Command::Eval(args) => args.run(),
             Command::Render(args) => args.run(),
@@ -56,6 +59,13 @@ enum Command {
     /// Build a basis from a scene and report patches, modes, size, form-factor health,
     /// accuracy per channel and time per stage.
     Build(build::BuildArgs),
+    /// Build a building's rooms (docs/building.md): all of them, in parallel as far as
+    /// memory allows, then every controller's basis; or with --room or --shard one part, for
+    /// `eigenrad merge`.
+    Building(building::BuildingArgs),
+    /// Write every controller's basis of a building from its rooms' parts, each checked
+    /// against its flash budget.
+    Merge(building::MergeArgs),
     /// Exact dense solve of a scene (LU), for reference.
     Solve(solve::SolveArgs),
     /// Evaluate a basis through the runtime crate: exactly what firmware computes.
