@@ -54,9 +54,11 @@ pub const AUTO_DENSE_MAX: usize = 2000;
 /// and 4947 patches (docs/performance.md, "The hierarchical operator"; one run on the 2-core
 /// machine under a load of 5 to 9 from other builds, so times as ratios within a row): the
 /// hierarchical operator holds 50 %, 50 % and 36 % of the dense f32 matrix, and its assembly
-/// takes 1.16×, 0.65× and 0.98× the dense one's time (0.61× at 9905 patches in the first
-/// measurement, where it holds 25 %). Memory favours it at every size; time from about 2000
-/// patches on, the 1.16× at 1101 patches being the only ratio above 1; so above this count
+/// takes 1.16×, 0.65× and 0.98× the dense one's time; at 9905 patches it holds 24.5 % in
+/// both runs and took 0.61× the time in one and 1.39× in the other, whose load doubled while
+/// it ran. Memory favours it at every size, by a ratio that repeats between runs; the time
+/// crossover is not resolved on the loaded machine (the times are of the same order: both
+/// assemblies integrate about half of the entries at these sizes). Above this count, then,
 /// dense f32 is never the better choice. Below this count the f64 matrix is kept all the same: it is exact where the
 /// hierarchical operator is within about 1e-7, it fits an entry of the form-factor cache
 /// (268 MB at this size), which makes a second run of the same scene fast, and the exact

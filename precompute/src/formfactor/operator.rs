@@ -89,7 +89,7 @@ pub enum OperatorChoice {
     /// f64 up to [`crate::memory::AUTO_HIERARCHICAL_ABOVE`] patches, hierarchical above.
     #[default]
     #[value(
-        help = "f64 up to 5792 patches (where the form-factor cache keeps it), hierarchical above (smaller and faster there)"
+        help = "f64 up to 5792 patches (where the form-factor cache keeps it), hierarchical above (a quarter to a half of dense f32 there)"
     )]
     Auto,
     /// The dense f64 matrix, `8 n²` bytes.
@@ -144,7 +144,7 @@ impl OperatorChoice {
             OperatorChoice::DenseF32 => "--operator dense-f32".to_string(),
             OperatorChoice::Hierarchical => "--operator hierarchical".to_string(),
             OperatorChoice::Auto if patches > above => {
-                format!("auto: {patches} patches, above {above}, where it is smaller and faster than a dense matrix")
+                format!("auto: {patches} patches, above {above}, where it holds a quarter to a half of a dense f32 matrix")
             }
             OperatorChoice::Auto => {
                 format!("auto: {patches} patches, at most {above}, in f64 where the form-factor cache keeps it")
