@@ -9,7 +9,8 @@
 //! stage.
 //!
 //! At its peak a build of `n` patches, `n_r` of them reflecting in a band, holds `G`
-//! (`n²` entries of f64, or of f32 above [`AUTO_F32_ABOVE`] patches) and, one after the other:
+//! (`n²` entries of f64, or above [`AUTO_HIERARCHICAL_ABOVE`] patches the hierarchical
+//! operator, [`hierarchical_bytes`]) and, one after the other:
 //!
 //! - while the modes are computed, for a band with `n_r ≤` [`AUTO_DENSE_MAX`] (the dense
 //!   eigensolver): `5 n_r²`, namely the scaled matrix `H`, the eigenvectors `U` and faer's
@@ -23,7 +24,7 @@
 //! Checked against `eigenrad-bench scale` and `eigen` (docs/performance.md): the model gives
 //! 55, 184, 196 and 785 MB for the office at 1101, 2028, 4947 and 9905 patches in f64, whose
 //! builds peaked at 77, 212, 278 and 875 MB (the rest is per-patch data and the program
-//! itself); 392 MB at 9905 patches in f32 (the `auto` storage there), which peaked at 547 MB;
+//! itself); 392 MB at 9905 patches in f32 (`--operator dense-f32`), which peaked at 547 MB;
 //! and 4.4 GB for the dense eigensolve at 9905 patches, which peaked at 4.1 GB.
 //!
 //! It is the model of `eigenrad build` with the default solver and the split formulation.
@@ -45,20 +46,32 @@ pub const EXACT_LU_MAX: usize = 3000;
 /// 0.7 s and 0.6 s at 1944, 14.7 s and 2.4 s at 4766. The crossover is near n = 2000.
 pub const AUTO_DENSE_MAX: usize = 2000;
 
-/// Above this many patches the form-factor operator's `auto` storage is single precision
-/// ([`crate::formfactor::OperatorChoice::Auto`]): half the memory, entries within `2⁻²⁴`
-/// relative (docs/math.md, "One room, one system"). At and below it the f64 matrix
-/// (268 MB at this size) still fits an entry of the form-factor cache, which keeps a second run
-/// of the same scene fast, and the exact reference up to [`EXACT_LU_MAX`] is an LU of it.
-pub const AUTO_F32_ABOVE: usize = 5792;
+/// Above this many patches the form-factor operator's `auto` storage is the hierarchical
+/// operator ([`crate::formfactor::OperatorChoice::Auto`]); at and below it the dense f64
+/// matrix.
+///
+/// Measured by `eigenrad-bench compress --reference dense-f32` on the office at 1101, 2028
+/// and 4947 patches (docs/performance.md, "The hierarchical operator"; one run on the 2-core
+/// machine under a load of 5 to 9 from other builds, so times as ratios within a row): the
+/// hierarchical operator holds 50 %, 50 % and 36 % of the dense f32 matrix, and its assembly
+/// takes 1.16×, 0.65× and 0.98× the dense one's time; at 9905 patches it holds 24.5 % in
+/// both runs and took 0.61× the time in one and 1.39× in the other, whose load doubled while
+/// it ran. Memory favours it at every size, by a ratio that repeats between runs; the time
+/// crossover is not resolved on the loaded machine (the times are of the same order: both
+/// assemblies integrate about half of the entries at these sizes). Above this count, then,
+/// dense f32 is never the better choice. Below this count the f64 matrix is kept all the same: it is exact where the
+/// hierarchical operator is within about 1e-7, it fits an entry of the form-factor cache
+/// (268 MB at this size), which makes a second run of the same scene fast, and the exact
+/// reference up to [`EXACT_LU_MAX`] is an LU of it.
+pub const AUTO_HIERARCHICAL_ABOVE: usize = 5792;
 
-/// Bytes of one entry of the form-factor operator of `patches` patches under the `auto`
-/// storage: 8 (f64) up to [`AUTO_F32_ABOVE`], 4 (f32) above.
-pub fn auto_operator_entry_bytes(patches: f64) -> f64 {
-    if patches > AUTO_F32_ABOVE as f64 {
-        4.0
+/// Bytes the form-factor operator of `patches` patches holds under the `auto` storage:
+/// the f64 matrix up to [`AUTO_HIERARCHICAL_ABOVE`], the hierarchical operator above.
+pub fn auto_operator_bytes(patches: f64) -> f64 {
+    if patches > AUTO_HIERARCHICAL_ABOVE as f64 {
+        hierarchical_bytes(patches)
     } else {
-        ENTRY_BYTES
+        matrix_bytes(patches)
     }
 }
 
@@ -123,11 +136,12 @@ pub fn dense_eigen_bytes(reflecting: f64) -> f64 {
     DENSE_EIGEN_MATRICES * matrix_bytes(reflecting)
 }
 
-/// Peak bytes of the dense matrices of `eigenrad build` (default solver, split formulation)
-/// for `patches` patches with `reflecting[b]` reflecting patches in band `b` (one entry per
+/// Peak bytes of `eigenrad build` (default solver, split formulation, `auto` operator) for
+/// `patches` patches with `reflecting[b]` reflecting patches in band `b` (one entry per
 /// band). Counts may be estimates.
 pub fn build_bytes(patches: f64, reflecting: &[f64]) -> f64 {
-    build_bytes_stored(patches, reflecting, auto_operator_entry_bytes(patches))
+    let dense = patches <= AUTO_HIERARCHICAL_ABOVE as f64;
+    build_bytes_of(patches, reflecting, auto_operator_bytes(patches), dense)
 }
 
 /// [`build_bytes`] with the form-factor operator stored at `entry_bytes` bytes an entry (8 for
@@ -201,30 +215,32 @@ mod tests {
                 "{n} patches, {entry} bytes an entry: model {model:.0} MB against a peak of {peak} MB"
             );
         }
-        // The 9905-patch office is stored in f32 by default.
+        // The 9905-patch office is stored hierarchically by default.
         assert_eq!(
             build_bytes(9905.0, &[9514.0]),
-            build_bytes_stored(9905.0, &[9514.0], 4.0)
+            build_bytes_of(9905.0, &[9514.0], hierarchical_bytes(9905.0), false)
         );
     }
 
-    /// The scene of `tests/scenes/too_many_patches.toml` (8.8e7 patches) needs one matrix of
-    /// 3.1e16 bytes in f32 (the `auto` storage at that size), 6.2e16 in f64: far beyond any
-    /// machine.
+    /// The scene of `tests/scenes/too_many_patches.toml` (8.8e7 patches) needs 2.8e12 bytes
+    /// for the hierarchical operator (the `auto` storage at that size), 6.2e16 for the f64
+    /// matrix: beyond any ordinary machine either way.
     #[test]
     fn huge_scenes_need_the_form_factors_alone() {
         let n = 8.8e7;
-        assert_eq!(build_bytes(n, &[n]), matrix_bytes(n) / 2.0);
+        assert_eq!(build_bytes(n, &[n]), hierarchical_bytes(n));
         assert_eq!(build_bytes_stored(n, &[n], 8.0), matrix_bytes(n));
-        assert!(build_bytes(n, &[n]) > 1e16);
+        assert!(build_bytes(n, &[n]) > 1e12);
     }
 
-    /// `auto` keeps f64 up to its threshold and halves the operator's bytes above it.
+    /// `auto` keeps f64 up to its threshold and the compressed operator above it, which the
+    /// office measured at 12 % of the f64 matrix at 9905 patches and the model counts at 22 %.
     #[test]
-    fn auto_storage_halves_the_operator_above_its_threshold() {
-        let at = AUTO_F32_ABOVE as f64;
-        assert_eq!(auto_operator_entry_bytes(at), 8.0);
-        assert_eq!(auto_operator_entry_bytes(at + 1.0), 4.0);
+    fn auto_storage_compresses_the_operator_above_its_threshold() {
+        let at = AUTO_HIERARCHICAL_ABOVE as f64;
+        assert_eq!(auto_operator_bytes(at), matrix_bytes(at));
+        assert_eq!(auto_operator_bytes(at + 1.0), hierarchical_bytes(at + 1.0));
+        assert!(auto_operator_bytes(9905.0) < 0.25 * matrix_bytes(9905.0));
         // At and below the threshold the f64 matrix fits an entry of the form-factor cache.
         assert!(matrix_bytes(at) <= (256u64 << 20) as f64);
         assert!(matrix_bytes(at + 1.0) > (256u64 << 20) as f64);

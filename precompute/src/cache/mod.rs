@@ -53,10 +53,10 @@ pub use lookup::{form_factors, output_rows};
 /// patches). Larger ones are recomputed every time rather than fill the disk unasked.
 pub const MAX_ENTRY_BYTES: u64 = 256 << 20;
 
-// The form factors `auto` keeps in f64 fit an entry (`memory::AUTO_F32_ABOVE`): a second run
+// The form factors `auto` keeps in f64 fit an entry (`memory::AUTO_HIERARCHICAL_ABOVE`): a second run
 // of the same scene reads them back.
 const _: () = {
-    let n = crate::memory::AUTO_F32_ABOVE as u64;
+    let n = crate::memory::AUTO_HIERARCHICAL_ABOVE as u64;
     assert!(8 * n * n <= MAX_ENTRY_BYTES);
 };
 

@@ -21,9 +21,10 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
     s += &super::form_factors::format_health(&r.form_factors);
     let _ = writeln!(
         s,
-        "form-factor operator: {}, {:.1} MB",
+        "form-factor operator: {}, {:.1} MB ({})",
         r.operator.storage,
-        r.operator.bytes as f64 / 1e6
+        r.operator.bytes as f64 / 1e6,
+        r.operator.reason
     );
     if let Some(c) = &r.operator.compression {
         let dense = 8.0 * (r.patches as f64).powi(2);
@@ -53,6 +54,17 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         r.bytes,
         output.display()
     );
+    let flash = crate::flash::FlashBudget {
+        bytes: r.plan.flash_bytes,
+    };
+    if !flash.fits(r.bytes as u64) {
+        let _ = writeln!(
+            s,
+            "  warning: {} bytes are more than the flash budget of {flash} (--flash); expected before the form factors: {:.0}",
+            r.bytes,
+            r.plan.basis.total()
+        );
+    }
     write_luminaires(&mut s, r);
     let _ = writeln!(
         s,

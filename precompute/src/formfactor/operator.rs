@@ -86,9 +86,11 @@ pub trait FormFactorOperator: Send + Sync + std::fmt::Debug {
 /// line's).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum OperatorChoice {
-    /// f64 up to [`crate::memory::AUTO_F32_ABOVE`] patches, f32 above.
+    /// f64 up to [`crate::memory::AUTO_HIERARCHICAL_ABOVE`] patches, hierarchical above.
     #[default]
-    #[value(help = "f64 up to 5792 patches (where the form-factor cache keeps it), f32 above")]
+    #[value(
+        help = "f64 up to 5792 patches (where the form-factor cache keeps it), hierarchical above (a quarter to a half of dense f32 there)"
+    )]
     Auto,
     /// The dense f64 matrix, `8 n²` bytes.
     #[value(help = "The dense matrix in f64: 8 n² bytes")]
@@ -107,7 +109,7 @@ pub enum OperatorChoice {
 }
 
 // The help names the threshold: keep them together.
-const _: () = assert!(crate::memory::AUTO_F32_ABOVE == 5792);
+const _: () = assert!(crate::memory::AUTO_HIERARCHICAL_ABOVE == 5792);
 
 /// How an operator is stored.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,13 +129,40 @@ impl OperatorChoice {
             OperatorChoice::Dense => Storage::F64,
             OperatorChoice::DenseF32 => Storage::F32,
             OperatorChoice::Hierarchical => Storage::Hierarchical,
-            OperatorChoice::Auto if patches > crate::memory::AUTO_F32_ABOVE => Storage::F32,
+            OperatorChoice::Auto if patches > crate::memory::AUTO_HIERARCHICAL_ABOVE => {
+                Storage::Hierarchical
+            }
             OperatorChoice::Auto => Storage::F64,
+        }
+    }
+
+    /// Why this choice takes [`Self::storage`] for `patches` patches, as the build says it.
+    pub fn reason(self, patches: usize) -> String {
+        let above = crate::memory::AUTO_HIERARCHICAL_ABOVE;
+        match self {
+            OperatorChoice::Dense => "--operator dense".to_string(),
+            OperatorChoice::DenseF32 => "--operator dense-f32".to_string(),
+            OperatorChoice::Hierarchical => "--operator hierarchical".to_string(),
+            OperatorChoice::Auto if patches > above => {
+                format!("auto: {patches} patches, above {above}, where it holds a quarter to a half of a dense f32 matrix")
+            }
+            OperatorChoice::Auto => {
+                format!("auto: {patches} patches, at most {above}, in f64 where the form-factor cache keeps it")
+            }
         }
     }
 }
 
 impl Storage {
+    /// The name the report gives it, as [`FormFactorOperator::storage`] does.
+    pub fn name(self) -> &'static str {
+        match self {
+            Storage::F64 => "dense f64",
+            Storage::F32 => "dense f32",
+            Storage::Hierarchical => "hierarchical f32",
+        }
+    }
+
     /// Bytes the operator of `patches` patches is expected to hold (the memory model's figure,
     /// [`crate::memory`]).
     pub fn operator_bytes(self, patches: f64) -> f64 {

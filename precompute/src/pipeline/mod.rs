@@ -4,7 +4,6 @@
 
 use std::path::Path;
 use std::sync::Arc;
-use std::time::Instant;
 
 use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::Precision;
@@ -14,6 +13,7 @@ use crate::accuracy::{self, Case, ExactCases};
 use crate::basis;
 use crate::cache;
 use crate::error::{Error, Result};
+use crate::flash::FlashBudget;
 use crate::formfactor::hierarchical::Compression;
 use crate::formfactor::{self, FormFactorHealth, FormFactorOperator, FormFactorOptions};
 use crate::formfactor::{exchange, outputs};
@@ -26,11 +26,16 @@ use crate::sources;
 use crate::sources::luminaires::LuminaireFlux;
 
 mod grids;
+mod plan;
 mod report;
+mod stages;
 
 pub use grids::{scene_grids, GridPoint, GridReadout, PieceLayout};
+pub use plan::{time_model, BasisSize, Plan, StageSeconds};
 use report::{grid_report, verify};
 pub use report::{output_names, BuildReport, CaseAccuracy, DaylightReport, OperatorReport, Stage};
+use stages::Stages;
+pub use stages::{Narration, LINE_PREFIX};
 
 /// Modes kept when neither a count nor a tolerance is given. Channels are exact whatever the
 /// count; the modes carry exitance set patch by patch: on the example office (1070 patches)
@@ -77,6 +82,11 @@ pub struct BuildOptions {
     /// Degrees between the sun grid's declinations and between its hour angles, for a scene
     /// with daylight (`--sun-step`).
     pub sun_step: [f64; 2],
+    /// The flash the basis should fit (`--flash`): a build that would not fit says so before
+    /// its form factors, naming the sections and what would bring it under.
+    pub flash: FlashBudget,
+    /// What the build tells on standard error while it runs.
+    pub narration: Narration,
 }
 
 impl Default for BuildOptions {
@@ -90,6 +100,8 @@ impl Default for BuildOptions {
             random_patterns: 4,
             grids: true,
             sun_step: sources::daylight::nodes::DEFAULT_SUN_STEP,
+            flash: FlashBudget::DEFAULT,
+            narration: Narration::Silent,
         }
     }
 }
@@ -112,16 +124,9 @@ pub struct Prepared {
     pub compression: Option<Compression>,
     /// Stage timings so far.
     pub timings: Vec<Stage>,
-}
-
-fn timed<T>(timings: &mut Vec<Stage>, stage: &'static str, f: impl FnOnce() -> T) -> T {
-    let start = Instant::now();
-    let out = f();
-    timings.push(Stage {
-        stage,
-        seconds: start.elapsed().as_secs_f64(),
-    });
-    out
+    /// What the build expected of itself once the scene was meshed: time, memory, the basis'
+    /// size.
+    pub plan: Plan,
 }
 
 /// Bytes a build of `scene` holds at its peak: the form factors with the solvers' workspace
@@ -145,8 +150,23 @@ pub fn peak_bytes(scene: &Scene, opts: &FormFactorOptions) -> [f64; 2] {
 
 /// Loads a scene and computes its form factors and output rows.
 pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
-    let mut timings = Vec::new();
-    let scene = timed(&mut timings, "scene and meshing", || scene::load(path))?;
+    let build = BuildOptions {
+        form_factors: opts.clone(),
+        ..BuildOptions::default()
+    };
+    let mut stages = Stages::new(Narration::Silent);
+    let prepared = prepare_stages(path, &build, &mut stages)?;
+    Ok(Prepared {
+        timings: stages.into_timings(),
+        ..prepared
+    })
+}
+
+/// [`prepare`] for the build `build`, its stages run and told through `stages`; tells the
+/// plan before the form factors when the build narrates.
+fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Result<Prepared> {
+    let opts = &build.form_factors;
+    let scene = stages.run("scene and meshing", None, || scene::load(path))?;
     let n = scene.patches.len();
     let storage = opts.operator.storage(n);
     // Refused before the n×n form factors are allocated (`memory::build_bytes`).
@@ -154,9 +174,10 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
     let available = memory::budget_bytes();
     if needed > available {
         return Err(Error::TooLarge(format!(
-            "{}: {n} patches need about {:.1} GB for the form-factor matrix and the solvers' workspace, more than the {:.1} GB this machine can spare; raise `max_edge` to mesh coarser",
+            "{}: {n} patches need about {:.1} GB for the form-factor operator ({}) and the solvers' workspace, more than the {:.1} GB this machine can spare; raise `max_edge` to mesh coarser",
             path.display(),
             needed / 1e9,
+            storage.name(),
             available / 1e9
         )));
     }
@@ -173,11 +194,27 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
             available / 1e9
         )));
     }
+    let plan = Plan::of(
+        &scene,
+        build,
+        storage,
+        opts.operator.reason(n),
+        storage.operator_bytes(n as f64),
+        needed + rows_needed,
+    );
+    if stages.narration().tells_plan() {
+        for line in plan.lines() {
+            stages::tell(&line);
+        }
+    }
+    let expected = plan.seconds.clone();
     let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
     let names: Vec<String> = scene.surfaces.iter().map(|s| s.name.clone()).collect();
-    let (g, form_factor_health, compression): (Arc<dyn FormFactorOperator>, _, _) =
-        timed(&mut timings, "form factors", || match storage {
+    let (g, form_factor_health, compression): (Arc<dyn FormFactorOperator>, _, _) = stages.run(
+        "form factors",
+        Some(expected.form_factors),
+        || match storage {
             Storage::F64 => {
                 let ff = cache::form_factors(&scene.patches, &scene.faces, &occluders, opts);
                 let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
@@ -185,8 +222,8 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
                     Arc::new(exchange::exchange_areas(ff.matrix, &area));
                 Ok::<_, Error>((g, health, None))
             }
-            // Not cached: an f32 operator is chosen where the f64 one outgrows the cache's
-            // entries (`memory::AUTO_F32_ABOVE`).
+            // Not cached: chosen only on request, for scenes whose f64 matrix would outgrow
+            // the cache's entries (`memory::AUTO_HIERARCHICAL_ABOVE`).
             Storage::F32 => {
                 let ff = formfactor::patch_form_factors_f32(&scene.patches, &occluders, opts);
                 let health = FormFactorHealth::of(&ff, &scene.patches, &scene.faces, &names);
@@ -210,11 +247,12 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
                 let g: Arc<dyn FormFactorOperator> = Arc::new(ff.matrix);
                 Ok((g, health, Some(compression)))
             }
-        })?;
-    let output_rows = timed(&mut timings, "sensors and zones", || {
+        },
+    )?;
+    let output_rows = stages.run("sensors and zones", Some(expected.outputs), || {
         cache::output_rows(&scene, g.as_ref(), &area, &occluders, opts)
     });
-    let (lights, luminaire_flux) = timed(&mut timings, "light sources", || {
+    let (lights, luminaire_flux) = stages.run("light sources", None, || {
         let surfaces = sources::surfaces::channel_lights(&scene, g.as_ref(), &area, &output_rows);
         if scene.luminaires.is_empty() {
             // Left exactly as it is: scenes without luminaires build the bases they always did.
@@ -240,7 +278,8 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
         luminaire_flux,
         form_factor_health,
         compression,
-        timings,
+        timings: Vec::new(),
+        plan,
     })
 }
 
@@ -263,7 +302,8 @@ pub struct Built {
 /// Runs the whole build as [`build`] does and keeps the tables too (a building cuts its
 /// controllers' bases from them). Writes nothing.
 pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
-    let prepared = prepare(path, &opts.form_factors)?;
+    let mut stages = Stages::new(opts.narration);
+    let prepared = prepare_stages(path, opts, &mut stages)?;
     let Prepared {
         mut scene,
         occluders,
@@ -271,8 +311,10 @@ pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
         luminaire_flux,
         form_factor_health,
         compression,
-        mut timings,
+        timings: _,
+        plan,
     } = prepared;
+    let expected = plan.seconds.clone();
     if !opts.grids {
         // The grid points are the outputs after the sensors and zones: drop them all.
         let keep = outputs::grid_offset(&scene);
@@ -286,32 +328,34 @@ pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
         ModeSelection::Count(p) => p.min(n),
         ModeSelection::Tolerance(_) => n.min(TOLERANCE_MAX_MODES),
     };
-    let modes = timed(&mut timings, "eigenbasis", || {
+    let modes = stages.run("eigenbasis", Some(expected.eigenbasis), || {
         Model::modes(&system, opts.formulation, p_max, opts.solver)
     })?;
     // The exact reference every figure is measured against, and the channels' exact
     // responses the basis stores: LU for small scenes, conjugate gradients on G above
     // `EXACT_LU_MAX` patches (no n×n copy, no n³ factorisation). Made once, kept by the system,
     // after the modes, whose dense workspace is gone by then.
-    let model = timed(&mut timings, "exact channel responses (LU or CG)", || {
-        Model::from_modes(&system, opts.formulation, modes)
-    })?;
+    let model = stages.run(
+        "exact channel responses (LU or CG)",
+        Some(expected.exact_solves),
+        || Model::from_modes(&system, opts.formulation, modes),
+    )?;
     let bands = model.bands.len();
     let cases = accuracy::standard_cases(&scene, opts.random_patterns);
-    let exact = timed(
-        &mut timings,
+    let exact = stages.run(
         "exact reference of the report's cases",
+        Some(expected.exact_cases),
         || ExactCases::solve(&system, &cases),
     )?;
     let available = accuracy::modes_held(&model);
     let p = match opts.modes {
         ModeSelection::Count(p) => p.min(available),
-        ModeSelection::Tolerance(t) => timed(&mut timings, "mode count search", || {
+        ModeSelection::Tolerance(t) => stages.run("mode count search", None, || {
             smallest_count(&model, &cases, &exact, available, t)
         })?,
     };
     let daylight = if scene.site.is_some() && !scene.windows.is_empty() {
-        Some(timed(&mut timings, "daylight through the windows", || {
+        Some(stages.run("daylight through the windows", None, || {
             let nodes = sources::daylight::nodes::nodes(
                 &scene,
                 &occluders,
@@ -325,22 +369,25 @@ pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
     } else {
         None
     };
-    let (tables, bytes, daylight_bytes) = timed(&mut timings, "serialization", || {
-        serialize(&scene, &model, p, opts.precision, daylight.as_ref())
-    })?;
-    let accuracy = timed(&mut timings, "verification through the runtime", || {
-        verify(&model, &cases, &exact, &bytes, &scene)
-    })?;
-    let (grids, grid_figure_error) = timed(&mut timings, "grids through the runtime", || {
+    let (tables, bytes, daylight_bytes) =
+        stages.run("serialization", Some(expected.serialization), || {
+            serialize(&scene, &model, p, opts.precision, daylight.as_ref())
+        })?;
+    let accuracy = stages.run(
+        "verification through the runtime",
+        Some(expected.verification),
+        || verify(&model, &cases, &exact, &bytes, &scene),
+    )?;
+    let (grids, grid_figure_error) = stages.run("grids through the runtime", None, || {
         grid_report(&model, &bytes, &scene)
     })?;
     let daylight = match &daylight {
         None => None,
-        Some(d) => Some(timed(&mut timings, "daylight through the runtime", || {
+        Some(d) => Some(stages.run("daylight through the runtime", None, || {
             DaylightReport::of(d, daylight_bytes, &scene, &occluders, &model, &bytes)
         })?),
     };
-    let sensor_ratios = timed(&mut timings, "sensor ratios through the runtime", || {
+    let sensor_ratios = stages.run("sensor ratios through the runtime", None, || {
         crate::accuracy::calibration::ratios_of(&bytes)
     })?;
     let report = BuildReport {
@@ -357,6 +404,7 @@ pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
         operator: OperatorReport {
             storage: system.operator().storage(),
             bytes: system.operator().stored_bytes(),
+            reason: plan.operator_reason.clone(),
             compression,
         },
         luminaires: luminaire_flux,
@@ -366,7 +414,8 @@ pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
         daylight,
         channels: scene.channels.iter().map(|c| c.name.clone()).collect(),
         sensor_ratios,
-        timings,
+        timings: stages.into_timings(),
+        plan,
     };
     Ok(Built {
         tables,

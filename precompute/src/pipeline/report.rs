@@ -83,6 +83,8 @@ pub struct BuildReport {
     pub sensor_ratios: Vec<crate::accuracy::calibration::SensorRatio>,
     /// Time per stage.
     pub timings: Vec<Stage>,
+    /// What the build expected of itself before its form factors.
+    pub plan: super::Plan,
 }
 
 /// The form-factor operator a build solved the room with (`--operator`).
@@ -92,6 +94,8 @@ pub struct OperatorReport {
     pub storage: &'static str,
     /// Bytes it held.
     pub bytes: usize,
+    /// Why it was chosen: the `--operator` given, or the size rule `auto` applied.
+    pub reason: String,
     /// What the compression made of the form factors (a hierarchical operator).
     pub compression: Option<crate::formfactor::hierarchical::Compression>,
 }

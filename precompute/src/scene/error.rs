@@ -211,9 +211,9 @@ pub enum SceneError {
     /// ([`crate::memory::build_bytes`]); refused before meshing.
     #[error(
         "{at}: {field}: meshing would make about {patches:.3e} patches; the form factors and \
-         the solve need about {needed:.3e} bytes (dense {patches:.3e} × {patches:.3e} matrices \
-         of 8-byte numbers), more than the {available:.3e} bytes a build may use on this \
-         machine; raise `max_edge`"
+         the solve need about {needed:.3e} bytes (the form-factor operator \
+         `--operator auto` stores at that size, and the solvers' workspace), more than the {available:.3e} bytes a build may use \
+         on this machine; raise `max_edge`"
     )]
     TooManyPatches {
         /// Where the scene's `max_edge` was written.

@@ -1,12 +1,14 @@
 //! `eigenrad build`: a scene's basis, written atomically, and the build's report.
 
+use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
 use super::groups::{help, CacheArgs, JsonFlag};
 use crate::cli::{self, atomic, guard};
-use crate::pipeline::{self, BuildOptions, ModeSelection};
+use crate::flash::FlashBudget;
+use crate::pipeline::{self, BuildOptions, ModeSelection, Narration};
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::scene;
 use crate::sources::daylight::nodes::DEFAULT_SUN_STEP;
@@ -48,6 +50,10 @@ pub(super) struct BuildArgs {
     /// flash (the build reports both). Default 5.86,7.5.
     #[arg(long, value_name = "DECLINATION,HOUR", value_parser = sun_step)]
     sun_step: Option<[f64; 2]>,
+    /// Flash the basis should fit, in bytes or with KiB, MiB, kB or MB (the build says
+    /// before its form factors whether the basis will fit, and what would make it fit).
+    #[arg(long, value_name = "SIZE", default_value_t = FlashBudget::DEFAULT)]
+    flash: FlashBudget,
     #[command(flatten)]
     json: JsonFlag,
     #[command(flatten)]
@@ -108,6 +114,13 @@ impl BuildArgs {
                 SolverArg::Partial => Solver::Partial,
             },
             form_factors: self.cache.form_factors(),
+            flash: self.flash,
+            // Progress bars where someone watches, a line per stage in logs and pipes.
+            narration: if std::io::stderr().is_terminal() {
+                Narration::Terminal
+            } else {
+                Narration::Log
+            },
             ..BuildOptions::default()
         }
     }

@@ -102,7 +102,7 @@ pub(super) struct CacheArgs {
     #[arg(long)]
     no_cache: bool,
     /// How the form factors are stored while the room is solved: f64 up to 5792 patches and
-    /// f32 above (auto), or always one of them
+    /// hierarchical above (auto), or always one of them
     #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
     operator: OperatorChoice,
 }

@@ -1,0 +1,402 @@
+//! What a build will do, said before the form factors: its expected time per stage (a time
+//! model measured on the office builds), its expected peak memory ([`crate::memory`]) and the
+//! size of the basis it will write, section by section, against the flash budget
+//! (`--flash`). A build that would not fit says so here, with what would make it fit, before
+//! the long stages rather than after them.
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use super::{BuildOptions, ModeSelection, TOLERANCE_MAX_MODES};
+use crate::flash::FlashBudget;
+use crate::formfactor::{outputs, Storage};
+use crate::scene::Scene;
+use crate::sources::daylight::nodes::{room_sun, sun_grid};
+
+/// The time model: wall-clock seconds of each stage of `eigenrad build` on the 2-core machine
+/// of docs/performance.md, from `eigenrad-bench scale` on the office at 1101 to 9905 patches
+/// (idle machine, "Precompute scaling") and `eigenrad-bench compress` ("The hierarchical
+/// operator"). A loaded machine takes longer: the lines give the order of magnitude.
+pub mod time_model {
+    /// Seconds of the dense form factors at [`REFERENCE_PATCHES`]: 87.3 s for the office.
+    pub const DENSE_FORM_FACTOR_SECONDS: f64 = 87.3;
+    /// Growth exponent of the dense form factors' time with the patch count: 5.7 s at 2028
+    /// patches and 87.3 s at 9905 give `ln(87.3 / 5.7) / ln(9905 / 2028) = 1.72`.
+    pub const DENSE_FORM_FACTOR_EXPONENT: f64 = 1.72;
+    /// The hierarchical operator's assembly against the dense one at [`REFERENCE_PATCHES`]:
+    /// 0.61 at 9905 patches in the first measurement, where it reads about half of the `n²`
+    /// entries (its time ratio was 1.24 at 2028 patches, 0.76 at 4947); a second run under a
+    /// load that doubled while it ran gave 1.39, so the figure is good to a factor of two.
+    pub const HIERARCHICAL_FORM_FACTOR_RATIO: f64 = 0.61;
+    /// Growth exponent of the hierarchical assembly's time, taken from its time ratios:
+    /// the ratio falls as `n^-0.42` from 2028 to 9905 patches, so `1.72 − 0.42 = 1.3`.
+    pub const HIERARCHICAL_FORM_FACTOR_EXPONENT: f64 = 1.3;
+    /// The patch count the figures above are measured at.
+    pub const REFERENCE_PATCHES: f64 = 9905.0;
+    /// Operator bytes the block Lanczos eigensolve streams per second: the 785 MB of `G` in
+    /// 10.0 s at 9905 patches (about a hundred products of sixteen vectors).
+    pub const EIGEN_OPERATOR_BYTES_PER_SECOND: f64 = 7.85e7;
+    /// Operator bytes per second of the exact channel responses and of the report's exact
+    /// cases (conjugate gradients, every right-hand side in one block): 785 MB in 0.6 s.
+    pub const SOLVE_OPERATOR_BYTES_PER_SECOND: f64 = 1.3e9;
+    /// Seconds per patch of the sensors' and zones' rows (0.3 s at 9905 patches).
+    pub const OUTPUT_SECONDS_PER_PATCH: f64 = 3.0e-5;
+    /// Seconds per patch of writing the basis (0.32 s at 9905 patches).
+    pub const SERIALIZATION_SECONDS_PER_PATCH: f64 = 3.2e-5;
+    /// Seconds per patch of the accuracy check through the runtime (0.95 s at 9905 patches).
+    pub const VERIFICATION_SECONDS_PER_PATCH: f64 = 1.0e-4;
+}
+
+/// Expected wall-clock seconds of the stages after meshing.
+#[derive(Clone, Debug, Serialize)]
+pub struct StageSeconds {
+    /// The form factors (assembly of the operator).
+    pub form_factors: f64,
+    /// The sensors', zones' and grid points' rows.
+    pub outputs: f64,
+    /// The modes (block Lanczos or the dense eigensolver).
+    pub eigenbasis: f64,
+    /// The channels' exact responses.
+    pub exact_solves: f64,
+    /// The report's exact cases.
+    pub exact_cases: f64,
+    /// Writing the basis.
+    pub serialization: f64,
+    /// The accuracy check through the runtime.
+    pub verification: f64,
+}
+
+impl StageSeconds {
+    /// Expected seconds of a build of `patches` patches whose operator is `storage` and holds
+    /// `operator_bytes` bytes ([`time_model`]).
+    pub fn of(patches: f64, storage: Storage, operator_bytes: f64) -> StageSeconds {
+        use time_model::*;
+        let scale = patches / REFERENCE_PATCHES;
+        let form_factors = match storage {
+            Storage::F64 | Storage::F32 => {
+                DENSE_FORM_FACTOR_SECONDS * scale.powf(DENSE_FORM_FACTOR_EXPONENT)
+            }
+            Storage::Hierarchical => {
+                DENSE_FORM_FACTOR_SECONDS
+                    * HIERARCHICAL_FORM_FACTOR_RATIO
+                    * scale.powf(HIERARCHICAL_FORM_FACTOR_EXPONENT)
+            }
+        };
+        let solve = operator_bytes / SOLVE_OPERATOR_BYTES_PER_SECOND;
+        StageSeconds {
+            form_factors,
+            outputs: OUTPUT_SECONDS_PER_PATCH * patches,
+            eigenbasis: operator_bytes / EIGEN_OPERATOR_BYTES_PER_SECOND,
+            exact_solves: solve,
+            exact_cases: solve,
+            serialization: SERIALIZATION_SECONDS_PER_PATCH * patches,
+            verification: VERIFICATION_SECONDS_PER_PATCH * patches,
+        }
+    }
+
+    /// The whole build's expected seconds after meshing.
+    pub fn total(&self) -> f64 {
+        self.form_factors
+            + self.outputs
+            + self.eigenbasis
+            + self.exact_solves
+            + self.exact_cases
+            + self.serialization
+            + self.verification
+    }
+}
+
+/// Expected bytes of the basis, by section (docs/format.md). Matrices are counted at the
+/// build's precision with their column scales, every other table as f32; the postcard
+/// framing (a few bytes per table) and the names are left out.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct BasisSize {
+    /// The patch tables: area, centroid, surface, channel, reflectance, emission.
+    pub patches: f64,
+    /// The modes: vectors, eigenvalues, black patches' projections, the outputs' and grid
+    /// points' mode readings.
+    pub modes: f64,
+    /// The channels' exact responses on every patch, output and grid point.
+    pub channels: f64,
+    /// The sensors' and zones' view rows and geometry.
+    pub outputs: f64,
+    /// The calculation grids' view rows and layout.
+    pub grids: f64,
+    /// The daylight nodes' responses (an upper bound: sun nodes that light nothing are left
+    /// out of the basis).
+    pub daylight: f64,
+}
+
+/// The sizes a basis is made of (the counts of docs/format.md).
+#[derive(Clone, Copy, Debug)]
+struct Counts {
+    patches: f64,
+    bands: f64,
+    modes: f64,
+    channels: f64,
+    outputs: f64,
+    grid_points: f64,
+    black: f64,
+    daylight_nodes: f64,
+    value_bytes: f64,
+}
+
+/// Bytes of an f32.
+const F32: f64 = 4.0;
+
+impl BasisSize {
+    fn of(c: Counts) -> BasisSize {
+        let Counts {
+            patches: n,
+            bands: b,
+            modes: p,
+            channels: m,
+            outputs: o,
+            grid_points: g,
+            black: k,
+            daylight_nodes: d,
+            value_bytes: v,
+        } = c;
+        // A matrix of `rows × cols` values with one f32 scale per column.
+        let matrix = |rows: f64, cols: f64| rows * cols * v + cols * F32;
+        BasisSize {
+            patches: n * (F32 + 3.0 * F32 + 2.0 + 2.0 + 2.0 * b * F32),
+            modes: matrix(n, b * p) + b * p * F32 + k * (4.0 + b * p * F32) + (o + g) * b * p * F32,
+            channels: matrix(n, m * b) + (o + g) * b * m * F32,
+            outputs: matrix(n, o) + o * 7.0 * F32,
+            grids: matrix(g, n) + g * 3.0 * F32,
+            daylight: if d > 0.0 {
+                o * d * F32 + p * d * F32 + matrix(g, d)
+            } else {
+                0.0
+            },
+        }
+    }
+
+    /// The whole basis.
+    pub fn total(&self) -> f64 {
+        self.patches + self.modes + self.channels + self.outputs + self.grids + self.daylight
+    }
+
+    /// The sections as `(name, bytes)`, in the order the warning names them.
+    fn sections(&self) -> [(&'static str, f64); 6] {
+        [
+            ("modes", self.modes),
+            ("channels", self.channels),
+            ("daylight", self.daylight),
+            ("grids", self.grids),
+            ("sensors and zones", self.outputs),
+            ("patch tables", self.patches),
+        ]
+    }
+}
+
+/// What a build will do, known once the scene is meshed.
+#[derive(Clone, Debug, Serialize)]
+pub struct Plan {
+    /// Patches.
+    pub patches: usize,
+    /// The operator's storage, by name.
+    pub operator: &'static str,
+    /// Why that operator (the `--operator` choice and the size rule that applied).
+    pub operator_reason: String,
+    /// Expected peak memory of the build, bytes ([`crate::memory`]).
+    pub memory_bytes: f64,
+    /// Expected seconds per stage.
+    pub seconds: StageSeconds,
+    /// Modes the basis will keep per band (the most the search may keep under `--tolerance`).
+    pub modes: usize,
+    /// Expected basis size by section, bytes.
+    pub basis: BasisSize,
+    /// The flash budget the basis is measured against.
+    pub flash_bytes: u64,
+    /// Bytes one more mode per band adds to the basis.
+    pub bytes_per_mode: f64,
+}
+
+impl Plan {
+    /// The plan of building `scene` (meshed) with `opts`, its operator `storage` holding about
+    /// `operator_bytes`, the build expected to peak at `memory_bytes`.
+    pub(crate) fn of(
+        scene: &Scene,
+        opts: &BuildOptions,
+        storage: Storage,
+        operator_reason: String,
+        operator_bytes: f64,
+        memory_bytes: f64,
+    ) -> Plan {
+        let n = scene.patches.len();
+        let modes = match opts.modes {
+            ModeSelection::Count(p) => p.min(n),
+            ModeSelection::Tolerance(_) => n.min(TOLERANCE_MAX_MODES),
+        };
+        let counts = |modes: usize| Counts {
+            patches: n as f64,
+            bands: scene.bands.count() as f64,
+            modes: modes as f64,
+            channels: scene.channels.len() as f64,
+            outputs: outputs::grid_offset(scene) as f64,
+            grid_points: if opts.grids {
+                outputs::grid_points(scene).count() as f64
+            } else {
+                0.0
+            },
+            black: scene
+                .reflectance
+                .iter()
+                .filter(|r| r.contains(&0.0))
+                .count() as f64,
+            daylight_nodes: daylight_nodes(scene, opts.sun_step) as f64,
+            value_bytes: opts.precision.bytes() as f64,
+        };
+        let basis = BasisSize::of(counts(modes));
+        let bytes_per_mode = BasisSize::of(counts(modes + 1)).total() - basis.total();
+        Plan {
+            patches: n,
+            operator: storage.name(),
+            operator_reason,
+            memory_bytes,
+            seconds: StageSeconds::of(n as f64, storage, operator_bytes),
+            modes,
+            basis,
+            flash_bytes: opts.flash.bytes,
+            bytes_per_mode,
+        }
+    }
+
+    /// Whether the expected basis fits the flash budget.
+    pub fn fits(&self) -> bool {
+        self.basis.total() <= self.flash_bytes as f64
+    }
+
+    /// The lines a build prints before its form factors: time, memory, operator, basis size
+    /// and, when over budget, the warning and what would bring the basis under it.
+    pub fn lines(&self) -> Vec<String> {
+        let mut lines = vec![
+            format!(
+                "{} patches, operator {} ({}); expected about {} and {:.2} GB at the peak (time model of the office builds on 2 cores, docs/performance.md)",
+                self.patches,
+                self.operator,
+                self.operator_reason,
+                super::stages::seconds(self.seconds.total()),
+                self.memory_bytes / 1e9
+            ),
+            format!(
+                "basis about {} ({}), flash budget {}",
+                binary_bytes(self.basis.total()),
+                self.section_list(),
+                FlashBudget {
+                    bytes: self.flash_bytes
+                }
+            ),
+        ];
+        if !self.fits() {
+            lines.push(format!(
+                "warning: the basis would take about {}, more than the flash budget of {} (--flash); {}",
+                binary_bytes(self.basis.total()),
+                FlashBudget {
+                    bytes: self.flash_bytes
+                },
+                self.remedies()
+            ));
+        }
+        lines
+    }
+
+    /// The non-empty sections with their sizes, largest first.
+    fn section_list(&self) -> String {
+        let mut sections: Vec<_> = self
+            .basis
+            .sections()
+            .into_iter()
+            .filter(|(_, b)| *b > 0.0)
+            .collect();
+        sections.sort_by(|a, b| b.1.total_cmp(&a.1));
+        let mut s = String::new();
+        for (k, (name, bytes)) in sections.iter().enumerate() {
+            let _ = write!(
+                s,
+                "{}{name} {}",
+                if k == 0 { "" } else { ", " },
+                binary_bytes(*bytes)
+            );
+        }
+        s
+    }
+
+    /// What would bring an over-budget basis under its budget, each measured on the plan.
+    fn remedies(&self) -> String {
+        let budget = self.flash_bytes as f64;
+        let total = self.basis.total();
+        let mut fixes = Vec::new();
+        // Fewer modes: each mode takes `bytes_per_mode`.
+        let without_modes = total - self.modes as f64 * self.bytes_per_mode;
+        if self.bytes_per_mode > 0.0 && self.modes > 0 && without_modes <= budget {
+            let fit = ((budget - without_modes) / self.bytes_per_mode).floor() as usize;
+            if fit >= 1 {
+                fixes.push(format!(
+                    "--modes {fit} (each mode takes {})",
+                    binary_bytes(self.bytes_per_mode)
+                ));
+            }
+        }
+        if self.basis.grids > 0.0 && total - self.basis.grids <= budget {
+            fixes.push(format!(
+                "--no-grids (the grids take {})",
+                binary_bytes(self.basis.grids)
+            ));
+        }
+        // The matrices (modes, channels, view rows) in two bytes instead of four.
+        let halved = total - 0.5 * (self.basis.modes + self.basis.channels + self.basis.grids);
+        if halved <= budget {
+            fixes.push("--precision f16 or i16 (two bytes a value)".to_string());
+        }
+        if self.basis.daylight > 0.0 && total - self.basis.daylight <= budget {
+            fixes.push(format!(
+                "a coarser --sun-step (daylight takes at most {})",
+                binary_bytes(self.basis.daylight)
+            ));
+        }
+        let coarser = "a coarser `max_edge` (every section grows with the patches)";
+        if fixes.is_empty() {
+            format!(
+                "no single flag brings it under: {coarser}, or a larger --flash if the part has it"
+            )
+        } else {
+            format!("it would fit with {}; or {coarser}", fixes.join(", or "))
+        }
+    }
+}
+
+/// Nodes of the daylight the basis will carry: the Tregenza sky's 145 patches, the exterior,
+/// and the sun grid's nodes above the horizon (those that light nothing are dropped later,
+/// so this is an upper bound); 0 without a site and windows.
+fn daylight_nodes(scene: &Scene, sun_step: [f64; 2]) -> usize {
+    let Some(site) = scene.site.as_ref() else {
+        return 0;
+    };
+    if scene.windows.is_empty() {
+        return 0;
+    }
+    let grid = sun_grid(site, sun_step);
+    let suns = (0..grid.len())
+        .filter(|&node| {
+            grid.direction(node)
+                .and_then(|d| room_sun(site, d))
+                .is_some()
+        })
+        .count();
+    eigenrad_runtime::sky::patches::SkyPatches::TREGENZA.count() + 1 + suns
+}
+
+/// Bytes in the binary unit a part's flash is sold in, as the budget prints: `96 KiB`,
+/// `7.3 MiB`.
+fn binary_bytes(bytes: f64) -> String {
+    const KIB: f64 = 1024.0;
+    if bytes >= KIB * KIB {
+        format!("{:.1} MiB", bytes / (KIB * KIB))
+    } else {
+        format!("{:.0} KiB", bytes / KIB)
+    }
+}
