@@ -161,11 +161,14 @@ pub fn lights_and_flux(
                     field,
                 } => source.point(position, normal, field, &[]),
                 Receiver::Plane(receivers) => {
-                    // Receivers do not block light: nothing to ignore.
-                    let lumens: f64 = receivers
+                    // Receivers do not block light: nothing to ignore. Summed in order once
+                    // computed: a parallel sum's order, and its last bits, would follow the
+                    // threads' work stealing, and the same scene must give the same bytes.
+                    let lit: Vec<f64> = receivers
                         .par_iter()
                         .map(|r| r.area * source.patch(r, &[]))
-                        .sum();
+                        .collect();
+                    let lumens: f64 = lit.iter().sum();
                     lumens / receivers.iter().map(|r| r.area).sum::<f64>()
                 }
                 Receiver::Surfaces(_) => 0.0,
