@@ -52,12 +52,20 @@ pub(crate) fn visible_sum<'b>(
         .fold(0.0, f64::max);
     // Pieces thinner than this (m²) are dropped: they hold no measurable light.
     let negligible = 1e-14 * scale * scale;
+    let pyramid = Pyramid::new(x, target, 1e-9 * (scale + height));
     SCRATCH.with(|scratch| {
         let mut scratch = scratch.try_borrow_mut().ok()?;
         let (current, next) = &mut *scratch;
         current.clear();
         current.push(Piece::from_slice(target));
         for blocker in blockers {
+            // Most blockers of a shaft miss the pyramid of any one point: the shaft holds what
+            // may cut a segment from anywhere on the source, the pyramid only what may cut one
+            // from `x`. Rejecting them here spares casting a shadow that falls beside the
+            // target and the needless cuts of pieces along its edges.
+            if pyramid.misses(blocker) {
+                continue;
+            }
             let shadow = match Shadow::cast(x, height, origin, normal, blocker, negligible) {
                 Cast::Nothing => continue,
                 Cast::Shadow(shadow) => shadow,
@@ -72,6 +80,66 @@ pub(crate) fn visible_sum<'b>(
         }
         Some(current.iter().map(|p| kernel(p.corners())).sum())
     })
+}
+
+/// The pyramid of segments from a point to a convex target: the planes through the point and
+/// each edge of the target, as inward unit normals. A segment from the point to the target lies
+/// inside every plane, so a blocker entirely outside one of them cannot cut it.
+struct Pyramid {
+    apex: Vec3,
+    inward: [Vec3; PIECE_CORNERS],
+    len: usize,
+    /// Distance outside a plane that counts as outside, metres: corners within it of a plane
+    /// are kept, so that rounding never rejects a blocker that touches the pyramid.
+    margin: f64,
+}
+
+impl Pyramid {
+    /// The pyramid from `apex` over `target` (at most [`PIECE_CORNERS`] corners; more, and
+    /// the rest are not used: the pyramid is then only larger, never wrong).
+    fn new(apex: Vec3, target: &[Vec3], margin: f64) -> Pyramid {
+        let mut pyramid = Pyramid {
+            apex,
+            inward: [Vec3::ZERO; PIECE_CORNERS],
+            len: 0,
+            margin,
+        };
+        let count = target.len().min(PIECE_CORNERS);
+        if count < 3 {
+            return pyramid;
+        }
+        let centre = target[..count].iter().fold(Vec3::ZERO, |a, &c| a + c) / count as f64;
+        for k in 0..count {
+            let (a, b) = (target[k], target[(k + 1) % count]);
+            let m = (a - apex).cross(b - apex);
+            let length = m.length();
+            if length.is_nan() || length <= 0.0 {
+                // An edge seen end-on: its plane is undefined, and leaving it out only widens
+                // the pyramid.
+                continue;
+            }
+            let mut m = m / length;
+            let side = m.dot(centre - apex);
+            if side == 0.0 {
+                // A target of no area: no side to call inward, and leaving the plane out only
+                // widens the pyramid.
+                continue;
+            }
+            if side < 0.0 {
+                m = -m;
+            }
+            pyramid.inward[pyramid.len] = m;
+            pyramid.len += 1;
+        }
+        pyramid
+    }
+
+    /// Is every corner of `blocker` outside one of the pyramid's planes?
+    fn misses(&self, blocker: &[Vec3]) -> bool {
+        self.inward[..self.len]
+            .iter()
+            .any(|&m| blocker.iter().all(|&c| m.dot(c - self.apex) < -self.margin))
+    }
 }
 
 /// A convex shadow in the target's plane, as the half-planes of its edges: a point on each
@@ -302,6 +370,31 @@ mod tests {
         ];
         let seen = visible_area(x, &[&wall]).expect("within capacity");
         assert!((seen - 0.75).abs() < 1e-9, "{seen}");
+    }
+
+    #[test]
+    fn blockers_beside_the_pyramid_hide_nothing_and_the_rest_still_count() {
+        // Reference: similar triangles, as above. From (0.5, 0.5, 2) the target's pyramid at
+        // height 1 is the square [0.25, 0.75]², and a blocker there casts a shadow twice its
+        // size about (0.5, 0.5). Squares just outside the pyramid (x from 0.76, x up to 0.24)
+        // hide nothing; x from 0.7 to 0.9 and y from 0.3 to 0.6 casts x from 0.9 to 1.3 and
+        // y from 0.1 to 0.7, hiding 0.1 × 0.6 m² of the target.
+        let x = v(0.5, 0.5, 2.0);
+        let square = |x0: f64, x1: f64, y0: f64, y1: f64| {
+            [
+                v(x0, y0, 1.0),
+                v(x1, y0, 1.0),
+                v(x1, y1, 1.0),
+                v(x0, y1, 1.0),
+            ]
+        };
+        let beside = square(0.76, 0.9, 0.3, 0.6);
+        let behind = square(-0.3, 0.24, 0.3, 0.6);
+        let seen = visible_area(x, &[&beside, &behind]).expect("within capacity");
+        assert!((seen - 1.0).abs() < 1e-12, "{seen}");
+        let across = square(0.7, 0.9, 0.3, 0.6);
+        let seen = visible_area(x, &[&beside, &across, &behind]).expect("within capacity");
+        assert!((seen - (1.0 - 0.1 * 0.6)).abs() < 1e-12, "{seen}");
     }
 
     #[test]

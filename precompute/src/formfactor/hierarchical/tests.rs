@@ -62,13 +62,49 @@ fn relative_max(a: &[f64], b: &[f64]) -> f64 {
 #[test]
 fn compressed_matches_dense_in_a_furnished_room() {
     let patches = furnished_room(0.45);
+    assert!(patches.len() > 500, "{} patches", patches.len());
+    compressed_matches_dense(&patches, 0.1);
+}
+
+/// An open-plan floor in small: a 12 × 6 × 2.7 m room with six desks in two rows and two
+/// columns from floor to ceiling, about 0.9 m a patch, so that most pairs have several
+/// blockers between them (as on `examples/scaling/open-plan-*.toml`).
+fn open_plan_in_small() -> Vec<Patch> {
+    let mut patches = meshed_box(v(0.0, 0.0, 0.0), v(12.0, 6.0, 2.7), 0.9, true, 0);
+    let mut surface = 6;
+    let mut add = |min, max, patches: &mut Vec<Patch>| {
+        patches.extend(meshed_box(min, max, 0.9, false, surface));
+        surface += 6;
+    };
+    for row in 0..2 {
+        for desk in 0..3 {
+            let (x, y) = (1.5 + 3.5 * desk as f64, 1.2 + 2.8 * row as f64);
+            add(v(x, y, 0.7), v(x + 1.6, y + 0.8, 0.75), &mut patches);
+        }
+    }
+    add(v(4.0, 2.8, 0.0), v(4.4, 3.2, 2.7), &mut patches);
+    add(v(8.0, 2.8, 0.0), v(8.4, 3.2, 2.7), &mut patches);
+    patches
+}
+
+/// The same comparison with many blockers (`open_plan_in_small`). Occlusion leaves few far
+/// blocks of low rank there (under 1 % of the entries: most run out of rank and are computed
+/// whole, docs/performance.md, "Why the floor's form factors are slow"), so this checks the
+/// fallbacks and the near blocks against the dense matrix rather than the compression.
+#[test]
+fn compressed_matches_dense_among_many_blockers() {
+    compressed_matches_dense(&open_plan_in_small(), 0.0);
+}
+
+/// The comparison of the hierarchical operator with the dense matrix on `patches`, with at
+/// least `low_rank_share` of the entries in low-rank blocks.
+fn compressed_matches_dense(patches: &[Patch], low_rank_share: f64) {
     let n = patches.len();
-    assert!(n > 500, "{n} patches");
-    let occluders = Occluders::new(&patches);
+    let occluders = Occluders::new(patches);
     let opts = FormFactorOptions::default();
     let area: Vec<f64> = patches.iter().map(|p| p.area).collect();
     let dense = exchange::exchange_areas(
-        patch_form_factors_with(&patches, &occluders, &opts).matrix,
+        patch_form_factors_with(patches, &occluders, &opts).matrix,
         &area,
     );
     let tolerance = 1e-4;
@@ -77,7 +113,7 @@ fn compressed_matches_dense_in_a_furnished_room() {
         ..small_leaves()
     };
     let ff =
-        patch_form_factors_hierarchical(&patches, &occluders, &opts, &settings).expect("finite");
+        patch_form_factors_hierarchical(patches, &occluders, &opts, &settings).expect("finite");
     let h = &ff.matrix;
     let c = h.compression();
     println!(
@@ -85,7 +121,11 @@ fn compressed_matches_dense_in_a_furnished_room() {
         h.stored_bytes(),
         4 * n * n
     );
-    assert!(c.low_rank_share > 0.1 && c.max_rank > 0, "{c:?}");
+    assert!(c.low_rank_share >= low_rank_share, "{c:?}");
+    assert!(c.low_rank_blocks > 0, "{c:?}");
+    if low_rank_share > 0.0 {
+        assert!(c.max_rank > 0, "{c:?}");
+    }
     assert!(c.row_error < tolerance, "{c:?}");
     let gmax = (0..n)
         .flat_map(|i| (0..n).map(move |j| (i, j)))
