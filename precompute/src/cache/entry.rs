@@ -4,7 +4,7 @@
 use faer::Mat;
 use sha2::{Digest, Sha256};
 
-use crate::formfactor::{FormFactors, WORST_PAIRS};
+use crate::formfactor::{FormFactors, Hierarchical, WORST_PAIRS};
 
 const MAGIC: &[u8; 8] = b"EIGENRFF";
 /// Version of the entry layout (the `cache` module's docs); another layout is another key, so old entries are
@@ -22,6 +22,8 @@ pub(super) enum Kind {
     Patches,
     /// Sensor and zone rows over n patches: r × n.
     Rows,
+    /// [`FormFactors`] of n patches as a hierarchical operator: n × (the count of its values).
+    Hierarchical,
 }
 
 impl Kind {
@@ -29,6 +31,7 @@ impl Kind {
         match self {
             Kind::Patches => 1,
             Kind::Rows => 2,
+            Kind::Hierarchical => 3,
         }
     }
 
@@ -40,6 +43,7 @@ impl Kind {
                 .checked_add(rows)?
                 .checked_add(2 + 3 * WORST_PAIRS as u64),
             Kind::Rows => Some(product),
+            Kind::Hierarchical => Some(cols),
         }
     }
 }
@@ -72,16 +76,54 @@ pub(super) fn patch_values(ff: &FormFactors) -> Vec<f64> {
     out
 }
 
-/// The patch form factors of `n` patches from the values of their entry ([`patch_values`]
-/// read back), or what is wrong with them.
-pub(super) fn from_patch_values(values: Vec<f64>, n: usize) -> Result<FormFactors, String> {
-    if values.len() != n * n + n + 2 + 3 * WORST_PAIRS {
-        return Err("wrong number of values".into());
+/// The reciprocity figures, row sums and worst pairs of `ff`, as a hierarchical entry begins.
+fn health_values<M>(ff: &FormFactors<M>, out: &mut Vec<f64>) {
+    out.push(ff.reciprocity_mismatch);
+    out.push(ff.reciprocity_share);
+    out.extend_from_slice(&ff.row_sums);
+    for k in 0..WORST_PAIRS {
+        let (i, j, share) = ff
+            .worst_pairs
+            .get(k)
+            .map_or((-1.0, -1.0, 0.0), |&(i, j, s)| (i as f64, j as f64, s));
+        out.extend([i, j, share]);
     }
-    let matrix = Mat::from_fn(n, n, |i, j| values[2 + j * n + i]);
-    let pairs_at = 2 + n * n + n;
+}
+
+/// The values of a hierarchical form-factor entry: the figures of [`health_values`], then
+/// the operator's numbers (`Hierarchical::write_values`).
+pub(super) fn hierarchical_values(ff: &FormFactors<Hierarchical>) -> Vec<f64> {
+    let mut out = Vec::new();
+    health_values(ff, &mut out);
+    ff.matrix.write_values(&mut out);
+    out
+}
+
+/// The hierarchical form factors of `n` patches from the values of their entry
+/// ([`hierarchical_values`] read back), or what is wrong with them.
+pub(super) fn from_hierarchical_values(
+    values: Vec<f64>,
+    n: usize,
+) -> Result<FormFactors<Hierarchical>, String> {
+    let operator_at = 2 + n + 3 * WORST_PAIRS;
+    if values.len() < operator_at {
+        return Err("too few values".into());
+    }
+    let worst_pairs = worst_pairs(&values[2 + n..operator_at], n)?;
+    Ok(FormFactors {
+        reciprocity_mismatch: values[0],
+        reciprocity_share: values[1],
+        matrix: Hierarchical::read_values(&values[operator_at..], n)?,
+        row_sums: values[2..2 + n].to_vec(),
+        worst_pairs,
+    })
+}
+
+/// The worst pairs from their [`WORST_PAIRS`] slots of three values, an unused slot's first
+/// value negative.
+fn worst_pairs(slots: &[f64], n: usize) -> Result<Vec<(usize, usize, f64)>, String> {
     let mut worst_pairs = Vec::new();
-    for slot in values[pairs_at..].chunks_exact(3) {
+    for slot in slots.chunks_exact(3) {
         let index = |x: f64| {
             (x >= 0.0 && x < n as f64 && x.fract() == 0.0)
                 .then_some(x as usize)
@@ -91,6 +133,18 @@ pub(super) fn from_patch_values(values: Vec<f64>, n: usize) -> Result<FormFactor
             worst_pairs.push((index(slot[0])?, index(slot[1])?, slot[2]));
         }
     }
+    Ok(worst_pairs)
+}
+
+/// The patch form factors of `n` patches from the values of their entry ([`patch_values`]
+/// read back), or what is wrong with them.
+pub(super) fn from_patch_values(values: Vec<f64>, n: usize) -> Result<FormFactors, String> {
+    if values.len() != n * n + n + 2 + 3 * WORST_PAIRS {
+        return Err("wrong number of values".into());
+    }
+    let matrix = Mat::from_fn(n, n, |i, j| values[2 + j * n + i]);
+    let pairs_at = 2 + n * n + n;
+    let worst_pairs = worst_pairs(&values[pairs_at..], n)?;
     Ok(FormFactors {
         reciprocity_mismatch: values[0],
         reciprocity_share: values[1],
@@ -127,6 +181,15 @@ pub(super) fn encode(
     let sum: [u8; 32] = Sha256::digest(&out).into();
     out.extend_from_slice(&sum);
     out
+}
+
+/// The dimensions an entry's header declares (its second one is what a hierarchical entry's
+/// reader cannot know beforehand); `None` for bytes too short to hold a header.
+pub(super) fn declared_dims(bytes: &[u8]) -> Option<(u64, u64)> {
+    let field = |at: usize| -> Option<u64> {
+        Some(u64::from_le_bytes(bytes.get(at..at + 8)?.try_into().ok()?))
+    };
+    Some((field(HEADER_BYTES - 16)?, field(HEADER_BYTES - 8)?))
 }
 
 /// The values of an entry, or what is wrong with it; `dims` are the ones expected.

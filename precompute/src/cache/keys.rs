@@ -3,7 +3,7 @@
 use sha2::{Digest, Sha256};
 
 use super::entry::ENTRY_VERSION;
-use crate::formfactor::{self, outputs, FormFactorOptions};
+use crate::formfactor::{self, hierarchical, outputs, FormFactorOptions};
 use crate::geometry::{Face, Patch, Vec3};
 use crate::scene::{Scene, ZoneKind};
 
@@ -67,6 +67,29 @@ pub fn key(patches: &[Patch], faces: &[Face], opts: &FormFactorOptions) -> [u8; 
             hash_point(&mut h, v);
         }
     }
+    h.finalize().into()
+}
+
+/// The key of the hierarchical operator of `patches` (with occluders from `faces`) under
+/// `opts` and `settings`: the patch form factors' key and every setting of the compression.
+pub fn hierarchical_key(
+    patches: &[Patch],
+    faces: &[Face],
+    opts: &FormFactorOptions,
+    settings: &hierarchical::Settings,
+) -> [u8; 32] {
+    // Every field named, so that a new setting cannot be forgotten here.
+    let hierarchical::Settings {
+        leaf,
+        admissibility,
+        tolerance,
+    } = settings;
+    let mut h = Sha256::new();
+    h.update(b"eigenrad hierarchical form factors\0");
+    h.update(key(patches, faces, opts));
+    hash_usize(&mut h, *leaf);
+    h.update(admissibility.to_bits().to_le_bytes());
+    h.update(tolerance.to_bits().to_le_bytes());
     h.finalize().into()
 }
 

@@ -23,15 +23,20 @@
 //! off. Library calls use no cache unless [`FormFactorOptions::cache`] names a folder.
 //!
 //! Entry layout (little-endian): magic `EIGENRFF`, entry version (u32), kind (u32: 1 patch
-//! form factors, 2 sensor and zone rows), key (32 bytes), rows and columns (u64 each), the
-//! values (f64 each), the length of everything before this field (u64), and the SHA-256 of
-//! everything before the checksum (32 bytes). Patch form factors (n × n) hold the reciprocity
-//! mismatch and share, the matrix column by column and the row sums (n² + n + 2 values);
-//! sensor and zone rows (r × n) hold the rows one after the other.
+//! form factors, 2 sensor and zone rows, 3 hierarchical form factors), key (32 bytes), rows
+//! and columns (u64 each), the values (f64 each), the length of everything before this field
+//! (u64), and the SHA-256 of everything before the checksum (32 bytes). Patch form factors
+//! (n × n) hold the reciprocity mismatch and share, the matrix column by column and the row
+//! sums (n² + n + 2 values); sensor and zone rows (r × n) hold the rows one after the other;
+//! hierarchical form factors (n × the count of values) hold the reciprocity mismatch and
+//! share, the row sums, the worst pairs and the operator's numbers (its tree, its blocks'
+//! f32 numbers widened to f64 and its compression figures:
+//! `formfactor::hierarchical` module `stored`), and are keyed on the compression's settings
+//! too ([`hierarchical_key`]).
 //!
 //! The parts: the keys ([`key`], [`rows_key`]; `keys.rs`), the entry format and its checks
 //! (`entry.rs`), and the lookups that read a sound entry or compute the value and store it
-//! ([`form_factors`], [`output_rows`]; `lookup.rs`).
+//! ([`form_factors`], [`hierarchical_form_factors`], [`output_rows`]; `lookup.rs`).
 //!
 //! [`FormFactorOptions`]: crate::formfactor::FormFactorOptions
 //! [`FormFactorOptions::cache`]: crate::formfactor::FormFactorOptions::cache
@@ -46,8 +51,8 @@ mod lookup;
 use std::path::{Path, PathBuf};
 
 pub use entry::encode_form_factors;
-pub use keys::{key, rows_key};
-pub use lookup::{form_factors, output_rows};
+pub use keys::{hierarchical_key, key, rows_key};
+pub use lookup::{form_factors, hierarchical_form_factors, output_rows};
 
 /// Largest entry written, bytes (256 MiB: the patch form factors of up to about 5 800
 /// patches). Larger ones are recomputed every time rather than fill the disk unasked.

@@ -103,7 +103,7 @@ pub enum OperatorChoice {
     /// The hierarchical operator ([`super::Hierarchical`]): blocks of close clusters whole,
     /// well-separated ones at low rank, in f32.
     #[value(
-        help = "Compressed (H-matrix): close clusters whole, distant ones at low rank within 1e-6, in f32 (not cached)"
+        help = "Compressed (H-matrix): close clusters whole, distant ones at low rank within 1e-6, in f32 (cached while its entry stays within 256 MiB, 8 bytes a stored number)"
     )]
     Hierarchical,
 }

@@ -232,8 +232,9 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
             }
             Storage::Hierarchical => {
                 let settings = formfactor::hierarchical::Settings::default();
-                let ff = formfactor::patch_form_factors_hierarchical(
+                let ff = cache::hierarchical_form_factors(
                     &scene.patches,
+                    &scene.faces,
                     &occluders,
                     opts,
                     &settings,

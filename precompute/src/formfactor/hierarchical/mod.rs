@@ -8,13 +8,15 @@
 //! exactly symmetric: block Lanczos and conjugate gradients see a symmetric matrix.
 //!
 //! - `tree`: the cluster tree and the block partition;
-//! - `aca`: the low-rank approximation of one block, its guard and its recompression.
+//! - `aca`: the low-rank approximation of one block, its guard and its recompression;
+//! - `stored`: the operator as numbers, for the form-factor cache.
 //!
 //! Assembly reads entries through a function of two patch indices, so that the form factors'
 //! pair integrals (`super::patch_form_factors_hierarchical`) and the tests' matrices fill it
 //! the same way.
 
 mod aca;
+mod stored;
 #[cfg(test)]
 mod tests;
 mod tree;
