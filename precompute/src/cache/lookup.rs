@@ -171,7 +171,7 @@ fn store_entry(
     dims: (u64, u64),
     values: &[f64],
 ) {
-    if !entry_bytes(kind, dims).is_some_and(|b| b <= MAX_ENTRY_BYTES) {
+    if entry_bytes(kind, dims).is_none_or(|b| b > MAX_ENTRY_BYTES) {
         return;
     }
     let bytes = encode(kind, key, dims, values);

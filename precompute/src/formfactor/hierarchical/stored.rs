@@ -108,8 +108,8 @@ impl Hierarchical {
             let last_node = node_count.checked_sub(1).ok_or("blocks without a tree")?;
             let (row_node, col_node) = (r.index(last_node)?, r.index(last_node)?);
             let kind = match r.number()? {
-                k if k == 0.0 => Kind::Near,
-                k if k == 1.0 => Kind::Far,
+                0.0 => Kind::Near,
+                1.0 => Kind::Far,
                 _ => return Err("a block of no known kind".into()),
             };
             let span = BlockSpan {
