@@ -5,6 +5,7 @@
 use super::{fits, grid_figures, luminance, ChannelEvaluator, Figures, MAX_EXITANCE};
 use crate::basis::{check_index, Basis};
 use crate::error::{Error, Result};
+use crate::sky::direct::DirectSun;
 use crate::sky::sun_grid::NodeWeight;
 use crate::storage::{dot_f32, f32_at, f32_row};
 
@@ -53,6 +54,11 @@ pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const M
     /// The four sun nodes around the sun (their columns among the daylight nodes, or none
     /// where the node lights nothing) with their weight times `E_n`, lux.
     sun: [(u32, f32); 4],
+    /// The direct sun's geometry, when the basis stores it: sensors and grid points then
+    /// add the sun they see through the windows themselves.
+    direct: Option<DirectSun<'a>>,
+    /// The sun in the room's frame and its direct normal illuminance (lux; 0 without sun).
+    direct_sun: ([f32; 3], f32),
     /// Every output's daylight illuminance, lux.
     outputs: heapless::Vec<f32, OUTPUTS>,
     /// The daylight's mode amplitudes (empty when `MODES` is 0).
@@ -63,8 +69,11 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     DaylightEvaluator<'a, SKY, OUTPUTS, MODES>
 {
     /// Bytes of state besides the basis view and the vectors' lengths.
-    pub const RAM_BYTES: usize =
-        4 * (SKY + OUTPUTS + MODES) + 4 * 3 + core::mem::size_of::<[(u32, f32); 4]>();
+    pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + MODES)
+        + 4 * 3
+        + core::mem::size_of::<[(u32, f32); 4]>()
+        + core::mem::size_of::<Option<DirectSun<'static>>>()
+        + 4 * 4;
 
     /// An evaluator of `basis`' daylight, dark (no sky, no sun).
     ///
@@ -91,6 +100,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
                 .sun_grid()
                 .map_or([0.0, 1.0], |g| g.latitude_sin_cos()),
             sun: [(NO_COLUMN, 0.0); 4],
+            direct: DirectSun::new(basis),
+            direct_sun: ([0.0, 0.0, 1.0], 0.0),
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),
         };
@@ -175,6 +186,17 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
         };
         weights.table(tables.daylight_outputs, columns, &mut self.outputs);
         weights.table(tables.daylight_modes, columns, &mut self.amplitude);
+        self.direct_sun = ([0.0, 0.0, 1.0], 0.0);
+        if let (Some(direct), Some(s)) = (self.direct, sun) {
+            let room = direct.room_direction(s.direction);
+            self.direct_sun = (room, s.direct_normal);
+            for (sensor, reading) in self.outputs.iter_mut().enumerate() {
+                if sensor >= self.basis.counts.sensor_count {
+                    break;
+                }
+                *reading += s.direct_normal * direct.at_sensor(sensor, room);
+            }
+        }
         Ok(())
     }
 
@@ -232,7 +254,13 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
                 add(column as usize, weight);
             }
         }
-        sum
+        let (sun, direct_normal) = self.direct_sun;
+        match self.direct {
+            Some(direct) if direct_normal > 0.0 => {
+                sum + direct_normal * direct.at_grid_point(g, sun)
+            }
+            _ => sum,
+        }
     }
 
     /// Daylight illuminance at point `point` of zone `zone`'s calculation grid, lux: exact
