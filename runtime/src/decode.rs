@@ -500,15 +500,16 @@ fn daylight(raw: &Payload<'_>, c: &Counts, quantity: Quantity, precision: Precis
         precision,
         c.grid_point_count,
         cols(c.daylight_grid_cols())?,
-    )?;
-    direct_sun(raw, c)
+    )
 }
 
 /// The direct sun's geometry (docs/format.md, "Direct sun"): all six tables empty, or the
 /// polygons' counts, sizes, normals (unit, within 10⁻³) and vertices, the glazing tables
 /// (within `[0, 1]`) and each sensor's response (polar angles ascending within `[0, π]`,
-/// sensitivities `≥ 0`).
-fn direct_sun(raw: &Payload<'_>, c: &Counts) -> Result<()> {
+/// sensitivities `≥ 0`). Checked where the tables are used, when a daylight evaluator is
+/// made ([`crate::sky::direct::DirectSun::new`]), rather than by [`Basis::from_bytes`]: a
+/// firmware that reads no daylight then links none of it.
+pub(crate) fn direct_sun(raw: &Payload<'_>, c: &Counts) -> Result<()> {
     if raw.sun_polygon_counts.is_empty() {
         for (field, table) in [
             ("sun_polygon_sizes", raw.sun_polygon_sizes),

@@ -35,7 +35,12 @@ pub struct Sun {
 /// luminances, the exterior by `E_gh/π`, the four sun nodes around the sun by their bilinear
 /// weights in declination and hour angle ([`crate::sky::sun_grid`]) times `E_n`; it then
 /// sums every output's row (`O × D` products) and, when `MODES > 0`, every mode's (`p × D`).
-/// Sensor and zone reads cost nothing more; a grid point sums its row when read.
+/// When the basis stores the direct sun's geometry ([`crate::sky::direct`]), the sun nodes
+/// hold only the light the room reflects at sensors and grid points, and the update adds
+/// each sensor's direct sun at the sun's own direction (a ray test per window face and
+/// occluder), so that a sun patch's edge crossing a sensor is not smeared between nodes.
+/// Sensor and zone reads cost nothing more; a grid point sums its row and computes its
+/// direct sun when read.
 ///
 /// Capacities: `SKY` at least the basis' sky patches (145 for Tregenza), `OUTPUTS` at least
 /// its sensors plus zones, and `MODES` either 0 (no patch exitance: updates skip the modes)
@@ -78,7 +83,9 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     /// An evaluator of `basis`' daylight, dark (no sky, no sun).
     ///
     /// [`Error::NoDaylight`] when the basis carries none; [`Error::Capacity`] when its sky,
-    /// its outputs or (with `MODES > 0`) its modes do not fit.
+    /// its outputs or (with `MODES > 0`) its modes do not fit; a decoding error naming the
+    /// table when the direct sun's tables are malformed (checked here, not by
+    /// [`Basis::from_bytes`]).
     pub fn new(basis: Basis<'a>) -> Result<Self> {
         let sky_patches = basis.sky_patches().ok_or(Error::NoDaylight)?;
         fits("sky patches", sky_patches.count(), SKY)?;
@@ -100,7 +107,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
                 .sun_grid()
                 .map_or([0.0, 1.0], |g| g.latitude_sin_cos()),
             sun: [(NO_COLUMN, 0.0); 4],
-            direct: DirectSun::new(basis),
+            direct: DirectSun::new(basis)?,
             direct_sun: ([0.0, 0.0, 1.0], 0.0),
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),

@@ -59,21 +59,46 @@ enum Weighting {
 }
 
 impl<'a> DirectSun<'a> {
-    /// The direct sun of `basis`, `None` when it stores no such geometry (a basis without
-    /// daylight, or whose every sun reading is interpolated).
-    pub fn new(basis: Basis<'a>) -> Option<Self> {
+    /// The direct sun of `basis`, `Ok(None)` when it stores no such geometry (a basis
+    /// without daylight, or whose every sun reading is interpolated). Its tables are checked
+    /// here (docs/format.md, "Direct sun"): a table of the wrong length or with a value out
+    /// of range is the decoder's error naming it.
+    pub fn new(basis: Basis<'a>) -> crate::Result<Option<Self>> {
         let t = &basis.tables;
-        if t.sun_polygon_counts.len() != 12 {
-            return None;
+        crate::decode::direct_sun(t, &basis.counts)?;
+        if t.sun_polygon_counts.is_empty() {
+            return Ok(None);
         }
         let count = |k: usize| u32_at(t.sun_polygon_counts, k) as usize;
         let north = basis.site().map_or(0.0, |s| s.north);
         let (sin, cos) = approx::sin_cos(north.to_radians());
-        Some(DirectSun {
+        Ok(Some(DirectSun {
             basis,
             counts: [count(0), count(1), count(2)],
             north_sin_cos: [sin, cos],
-        })
+        }))
+    }
+
+    /// Window faces, room occluders and exterior occluders stored.
+    pub fn polygon_counts(&self) -> [usize; 3] {
+        self.counts
+    }
+
+    /// Bytes of the six direct-sun tables, their lengths included (one byte each while under
+    /// 128 bytes, as postcard writes them): what the direct sun adds to the basis.
+    pub fn stored_bytes(&self) -> usize {
+        let t = &self.basis.tables;
+        [
+            t.sun_polygon_counts,
+            t.sun_polygon_sizes,
+            t.sun_polygons,
+            t.sun_glazing,
+            t.sensor_response_rows,
+            t.sensor_response,
+        ]
+        .iter()
+        .map(|table| table.len() + varint_len(table.len()))
+        .sum()
     }
 
     /// The sun's unit direction `site` (x east, y north, z up) in the room's frame: turned
@@ -123,27 +148,30 @@ impl<'a> DirectSun<'a> {
     /// The rule of the module documentation at `x` facing `normal`.
     fn at(&self, x: [f32; 3], normal: [f32; 3], weighting: Weighting, s: [f32; 3]) -> f32 {
         let weight = self.weight(weighting, dot(normal, s));
-        if !(weight > 0.0) || !(s[2] >= 0.0) {
+        // NaN compares false: a NaN weight or direction lights nothing.
+        if weight.is_nan() || weight <= 0.0 || s[2].is_nan() || s[2] < 0.0 {
             return 0.0;
         }
         let [windows, room, exterior] = self.counts;
-        let t = &self.basis.tables;
+        let sizes = self.basis.tables.sun_polygon_sizes;
+        let size = |k: usize| usize::from(sizes.get(k).copied().unwrap_or(0));
+        // The polygons are walked in the stored order: each takes its normal and vertices.
+        let after_windows = (0..windows).fold(0usize, |o, w| o.saturating_add(3 + 3 * size(w)));
         let mut total = 0.0;
-        // Offsets (in f32 values) of each polygon, walked in the stored order.
         let mut offset = 0usize;
         for w in 0..windows {
-            let size = usize::from(t.sun_polygon_sizes.get(w).copied().unwrap_or(0));
             let here = offset;
-            offset = offset.saturating_add(3 + 3 * size);
-            let n = self.vector(here);
-            let cos_window = -dot(n, s);
-            if !(cos_window > 0.0) {
+            offset = offset.saturating_add(3 + 3 * size(w));
+            let cos_window = -dot(self.vector(here), s);
+            if cos_window.is_nan() || cos_window <= 0.0 {
                 continue;
             }
-            let Some(distance) = self.crossing(here, size, x, s) else {
+            let Some(distance) = self.crossing(here, size(w), x, s) else {
                 continue;
             };
-            if !(distance > 0.0) || self.shaded(offset, windows, room, exterior, x, s, distance) {
+            if distance <= 0.0
+                || self.shaded(after_windows, windows, room, exterior, x, s, distance)
+            {
                 continue;
             }
             total += self.transmittance(w, cos_window) * weight;
@@ -242,7 +270,7 @@ impl<'a> DirectSun<'a> {
 
     /// How a receiver of `weighting` counts light arriving at cosine `c` to its normal.
     fn weight(&self, weighting: Weighting, c: f32) -> f32 {
-        if !(c > 0.0) {
+        if c.is_nan() || c <= 0.0 {
             return 0.0;
         }
         match weighting {
@@ -275,6 +303,16 @@ impl<'a> DirectSun<'a> {
             }
         }
     }
+}
+
+/// Bytes of postcard's varint of `n`: 7 bits a byte.
+fn varint_len(mut n: usize) -> usize {
+    let mut bytes = 1;
+    while n >= 0x80 {
+        n >>= 7;
+        bytes += 1;
+    }
+    bytes
 }
 
 fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
