@@ -40,6 +40,9 @@ pub struct DirectSunTables {
     pub sensor_response: Vec<f64>,
 }
 
+/// Per receiver, which room faces and which exterior faces cut one of its rays.
+type Hits = (Vec<bool>, Vec<bool>);
+
 /// A convex polygon with its unit normal.
 struct Polygon {
     corners: Vec<Vec3>,
@@ -163,7 +166,7 @@ fn culled(
     room: &[Polygon],
     exterior: &[Polygon],
 ) -> (Vec<usize>, Vec<usize>) {
-    let hits: Vec<(Vec<bool>, Vec<bool>)> = points
+    let hits: Vec<Hits> = points
         .par_iter()
         .map(|&x| {
             let mut room_hit = vec![false; room.len()];
@@ -192,7 +195,7 @@ fn culled(
             (room_hit, exterior_hit)
         })
         .collect();
-    let used = |pick: &dyn Fn(&(Vec<bool>, Vec<bool>)) -> &Vec<bool>, len: usize| {
+    let used = |pick: &dyn Fn(&Hits) -> &Vec<bool>, len: usize| {
         (0..len)
             .filter(|&k| hits.iter().any(|h| pick(h)[k]))
             .collect::<Vec<usize>>()
