@@ -1,11 +1,13 @@
 //! From a [`Model`] to the runtime's [`BasisTables`]: what the basis stores, table by table.
 
+use eigenrad_runtime::sky::direct::DirectSun;
 use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Precision, Quantity};
 
 use crate::radiosity::eigen::Formulation;
 use crate::radiosity::{LightResponse, Model};
 use crate::scene::{Bands, Scene};
+use crate::sources::daylight::direct::direct_sun_tables;
 use crate::sources::daylight::nodes::DaylightNodes;
 
 /// Fills every table of the basis for the first `p` modes of `model`, section by section of
@@ -215,8 +217,10 @@ pub fn daylight_tables(
     scene: &Scene,
     model: &Model,
     daylight: &BasisDaylight,
-) {
-    let Some(site) = &scene.site else { return };
+) -> std::result::Result<(), eigenrad_runtime::Error> {
+    let Some(site) = &scene.site else {
+        return Ok(());
+    };
     let nodes = &daylight.nodes;
     let d = nodes.len();
     let outputs = crate::formfactor::outputs::grid_offset(scene);
@@ -253,4 +257,47 @@ pub fn daylight_tables(
         .flat_map(|k| amplitudes.iter().map(move |a| a[k]))
         .collect();
     debug_assert_eq!(t.daylight_outputs.len(), outputs * d);
+    let direct = direct_sun_tables(scene, site);
+    t.sun_polygon_counts = direct.counts.to_vec();
+    t.sun_polygon_sizes = direct.sizes;
+    t.sun_polygons = direct.polygons;
+    t.sun_glazing = direct.glazing;
+    t.sensor_response_rows = direct.sensor_rows;
+    t.sensor_response = direct.sensor_response;
+    split_direct_sun(t, nodes)
+}
+
+/// Takes out of every sun node's readings at the sensors and grid points the direct sun the
+/// controller computes itself (`eigenrad_runtime::sky::direct`, from the geometry `t`
+/// holds), leaving the light the room reflects, which is smooth between nodes: at a node
+/// the controller's reading is the exact one to `f32`, and between nodes only the reflected
+/// part is interpolated. The direct part is the runtime's own `f32` rule on the stored
+/// geometry, so that the host subtracts exactly what the device adds. Zones (area means)
+/// keep their whole sun.
+fn split_direct_sun(
+    t: &mut BasisTables,
+    nodes: &DaylightNodes,
+) -> std::result::Result<(), eigenrad_runtime::Error> {
+    let bytes = t.to_bytes()?;
+    let basis = eigenrad_runtime::Basis::from_bytes(&bytes)?;
+    let Some(direct) = DirectSun::new(basis)? else {
+        return Ok(());
+    };
+    let d = nodes.len();
+    let first_sun = nodes.patches.count() + 1;
+    let (sensors, points) = (basis.sensor_count(), t.grid_position.len());
+    for (i, &node) in nodes.sun_nodes.iter().enumerate() {
+        let Some(site) = nodes.sun_grid.direction(node as usize) else {
+            continue;
+        };
+        let sun = direct.room_direction(site);
+        let column = first_sun + i;
+        for s in 0..sensors {
+            t.daylight_outputs[s * d + column] -= f64::from(direct.at_sensor(s, sun));
+        }
+        for g in 0..points {
+            t.daylight_grid[g * d + column] -= f64::from(direct.at_grid_point(g, sun));
+        }
+    }
+    Ok(())
 }

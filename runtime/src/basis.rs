@@ -310,6 +310,23 @@ impl<'a> Basis<'a> {
         Ok([p(0), p(1), p(2)])
     }
 
+    /// Position (m) and unit normal of grid point `g` among all grid points (zone by zone),
+    /// `None` out of range: the normal is its piece's.
+    pub(crate) fn grid_point_placement(&self, g: usize) -> Option<([f32; 3], [f32; 3])> {
+        let t = &self.tables;
+        let mut start = 0usize;
+        for q in 0..self.counts.grid_piece_count {
+            start = start.saturating_add(u32_at(t.grid_lattice, 3 * q + 2) as usize);
+            if g < start {
+                let at = |table: &[u8], k: usize| f32_at(table, k);
+                let position = [0, 1, 2].map(|k| at(t.grid_position, 3 * g + k));
+                let normal = [4, 5, 6].map(|k| at(t.grid_layout, 7 * q + k));
+                return Some((position, normal));
+            }
+        }
+        None
+    }
+
     /// Where zone `zone`'s pieces start among all grid pieces, and how many it has.
     fn piece_range(&self, zone: usize) -> Result<(usize, usize)> {
         check_index("zone", zone, self.counts.zone_count)?;

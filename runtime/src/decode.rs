@@ -416,6 +416,12 @@ fn daylight(raw: &Payload<'_>, c: &Counts, quantity: Quantity, precision: Precis
             ("daylight_modes", raw.daylight_modes),
             ("daylight_grid.scales", raw.daylight_grid.scales),
             ("daylight_grid.data", raw.daylight_grid.data),
+            ("sun_polygon_counts", raw.sun_polygon_counts),
+            ("sun_polygon_sizes", raw.sun_polygon_sizes),
+            ("sun_polygons", raw.sun_polygons),
+            ("sun_glazing", raw.sun_glazing),
+            ("sensor_response_rows", raw.sensor_response_rows),
+            ("sensor_response", raw.sensor_response),
         ] {
             check_len(field, table, 0, 1)?;
         }
@@ -495,6 +501,111 @@ fn daylight(raw: &Payload<'_>, c: &Counts, quantity: Quantity, precision: Precis
         c.grid_point_count,
         cols(c.daylight_grid_cols())?,
     )
+}
+
+/// The direct sun's geometry (docs/format.md, "Direct sun"): all six tables empty, or the
+/// polygons' counts, sizes, normals (unit, within 10⁻³) and vertices, the glazing tables
+/// (within `[0, 1]`) and each sensor's response (polar angles ascending within `[0, π]`,
+/// sensitivities `≥ 0`). Checked where the tables are used, when a daylight evaluator is
+/// made ([`crate::sky::direct::DirectSun::new`]), rather than by [`Basis::from_bytes`]: a
+/// firmware that reads no daylight then links none of it.
+pub(crate) fn direct_sun(raw: &Payload<'_>, c: &Counts) -> Result<()> {
+    if raw.sun_polygon_counts.is_empty() {
+        for (field, table) in [
+            ("sun_polygon_sizes", raw.sun_polygon_sizes),
+            ("sun_polygons", raw.sun_polygons),
+            ("sun_glazing", raw.sun_glazing),
+            ("sensor_response_rows", raw.sensor_response_rows),
+            ("sensor_response", raw.sensor_response),
+        ] {
+            check_len(field, table, 0, 1)?;
+        }
+        return Ok(());
+    }
+    check_len("sun_polygon_counts", raw.sun_polygon_counts, 3, 4)?;
+    let count = |k: usize| u32_at(raw.sun_polygon_counts, k) as usize;
+    let windows = count(0);
+    let polygons = cols(
+        windows
+            .checked_add(count(1))
+            .and_then(|n| n.checked_add(count(2))),
+    )?;
+    check_len("sun_polygon_sizes", raw.sun_polygon_sizes, polygons, 1)?;
+    let mut values = 0usize;
+    for (index, &size) in raw.sun_polygon_sizes.iter().enumerate() {
+        if !(3..=crate::sky::direct::MAX_POLYGON_VERTICES).contains(&size) {
+            return Err(Error::DecodeValue {
+                field: "sun_polygon_sizes",
+                index,
+            });
+        }
+        values = cols(values.checked_add(3 + 3 * usize::from(size)))?;
+    }
+    f32_table("sun_polygons", raw.sun_polygons, values, Allowed::Bounded)?;
+    let mut offset = 0usize;
+    for (index, &size) in raw.sun_polygon_sizes.iter().enumerate() {
+        let n = |k: usize| f32_at(raw.sun_polygons, offset + k);
+        let length = n(0) * n(0) + n(1) * n(1) + n(2) * n(2);
+        if (length - 1.0).abs() > 2.0e-3 {
+            return Err(Error::DecodeValue {
+                field: "sun_polygons",
+                index,
+            });
+        }
+        offset += 3 + 3 * usize::from(size);
+    }
+    let steps = crate::sky::direct::GLAZING_STEPS + 1;
+    f32_table(
+        "sun_glazing",
+        raw.sun_glazing,
+        mul(windows, steps)?,
+        Allowed::Bounded,
+    )?;
+    if let Some(index) =
+        (0..windows * steps).find(|&k| !(0.0..=1.0).contains(&f32_at(raw.sun_glazing, k)))
+    {
+        return Err(Error::DecodeValue {
+            field: "sun_glazing",
+            index,
+        });
+    }
+    check_len(
+        "sensor_response_rows",
+        raw.sensor_response_rows,
+        c.sensor_count,
+        4,
+    )?;
+    let mut pairs = 0usize;
+    for s in 0..c.sensor_count {
+        pairs = cols(pairs.checked_add(u32_at(raw.sensor_response_rows, s) as usize))?;
+    }
+    f32_table(
+        "sensor_response",
+        raw.sensor_response,
+        mul(pairs, 2)?,
+        Allowed::Bounded,
+    )?;
+    let mut first = 0usize;
+    for s in 0..c.sensor_count {
+        let rows = u32_at(raw.sensor_response_rows, s) as usize;
+        let mut previous = -1.0f32;
+        for k in first..first + rows {
+            let (angle, value) = (
+                f32_at(raw.sensor_response, 2 * k),
+                f32_at(raw.sensor_response, 2 * k + 1),
+            );
+            if !(angle > previous && (0.0..=core::f32::consts::PI).contains(&angle) && value >= 0.0)
+            {
+                return Err(Error::DecodeValue {
+                    field: "sensor_response",
+                    index: 2 * k,
+                });
+            }
+            previous = angle;
+        }
+        first += rows;
+    }
+    Ok(())
 }
 
 fn field_value(field: &'static str, value: u8) -> Error {

@@ -111,6 +111,18 @@ pub struct BasisTables {
     pub daylight_modes: Vec<f64>,
     /// `G × D`: each grid point's illuminance per unit of each daylight node.
     pub daylight_grid: Vec<f64>,
+    /// Empty, or the direct sun's window faces, room occluders and exterior occluders.
+    pub sun_polygon_counts: Vec<u32>,
+    /// Each polygon's vertex count, windows first.
+    pub sun_polygon_sizes: Vec<u8>,
+    /// Per polygon: unit normal, then vertices (m).
+    pub sun_polygons: Vec<f64>,
+    /// `W × 65`: each window face's transmittance at incidence cosines `k / 64`.
+    pub sun_glazing: Vec<f64>,
+    /// Rows of each sensor's angular response (0: read by its half-angle).
+    pub sensor_response_rows: Vec<u32>,
+    /// Polar angle (rad) and relative sensitivity pairs, sensor by sensor.
+    pub sensor_response: Vec<f64>,
 }
 
 /// `values` rounded to `f32`, little-endian.
@@ -258,6 +270,12 @@ impl BasisTables {
             daylight_outputs: Vec::new(),
             daylight_modes: Vec::new(),
             daylight_grid: Vec::new(),
+            sun_polygon_counts: Vec::new(),
+            sun_polygon_sizes: Vec::new(),
+            sun_polygons: Vec::new(),
+            sun_glazing: Vec::new(),
+            sensor_response_rows: Vec::new(),
+            sensor_response: Vec::new(),
         }
     }
 
@@ -374,6 +392,12 @@ impl BasisTables {
             daylight_outputs: &f32_bytes(&self.daylight_outputs),
             daylight_modes: &f32_bytes(&self.daylight_modes),
             daylight_grid: matrix(&self.daylight_grid, c.daylight_grid_cols())?.bytes(),
+            sun_polygon_counts: &u32_bytes(&self.sun_polygon_counts),
+            sun_polygon_sizes: &self.sun_polygon_sizes,
+            sun_polygons: &f32_bytes(&self.sun_polygons),
+            sun_glazing: &f32_bytes(&self.sun_glazing),
+            sensor_response_rows: &u32_bytes(&self.sensor_response_rows),
+            sensor_response: &f32_bytes(&self.sensor_response),
         })
     }
 }

@@ -282,3 +282,137 @@ fn tiny_daylight_file_is_the_tiny_daylight_basis() {
         "EIGENRAD_WRITE_GOLDEN=1 rewrites it"
     );
 }
+
+/// `tiny_daylight` with the direct sun's geometry: a 2 m × 1.5 m window face in the wall
+/// y = 0 (x from 0 to 2, z from 1 to 2.5, facing +y into the room) glazed at a constant
+/// τ = 0.5, no room occluder, and outside a wall at y = −2 up to z = 2.5 (x from −5 to 5).
+/// The sensor (1, 1, 0.8) faces up with the hemisphere, or with `response` rows.
+fn with_direct_sun(response: &[(f64, f64)]) -> eigenrad_runtime::writer::BasisTables {
+    let mut t = tiny_daylight();
+    t.sun_polygon_counts = vec![1, 0, 1];
+    t.sun_polygon_sizes = vec![4, 4];
+    t.sun_polygons = vec![
+        0.0, 1.0, 0.0, // the window's normal, into the room
+        0.0, 0.0, 1.0, 2.0, 0.0, 1.0, 2.0, 0.0, 2.5, 0.0, 0.0, 2.5, 0.0, 1.0,
+        0.0, // the exterior wall
+        -5.0, -2.0, 0.0, 5.0, -2.0, 0.0, 5.0, -2.0, 2.5, -5.0, -2.0, 2.5,
+    ];
+    t.sun_glazing = vec![0.5; 65];
+    t.sensor_response_rows = vec![response.len() as u32];
+    t.sensor_response = response.iter().flat_map(|&(a, s)| [a, s]).collect();
+    t
+}
+
+/// The direct sun by hand, for the sun due south (north = 0: the room's −y) at altitude
+/// `h`: from the sensor (1, 1, 0.8) the ray reaches the window at z = 0.8 + tan h and the
+/// wall outside (3 m away horizontally) at z = 0.8 + 3 tan h. At 45° it passes both (1.8 in
+/// 1 to 2.5, 3.8 over 2.5) and reads τ cos θ = 0.5 sin 45°; at 25° the wall hides it (2.2
+/// below 2.5). The evaluator adds `E_n` times it to the interpolated node readings at the
+/// sensor and at the grid points (which face up too), and nothing at the zone; with a
+/// response table, the table at θ = 45° in place of cos θ.
+#[test]
+fn the_direct_sun_is_added_at_sensors_and_grid_points() {
+    let south = |degrees: f32| {
+        let h = degrees.to_radians();
+        Sun {
+            direction: [0.0, -h.cos(), h.sin()],
+            direct_normal: 50_000.0,
+        }
+    };
+    let plain_bytes = tiny_daylight().to_bytes().unwrap();
+    let plain = Basis::from_bytes(&plain_bytes).unwrap();
+    let cases: [(&[(f64, f64)], f64); 2] = [
+        (&[], std::f64::consts::FRAC_1_SQRT_2),
+        // Linear in the polar angle: 1 + (0.5 − 1)(π/4)/(π/3) = 0.625.
+        (
+            &[(0.0, 1.0), (std::f64::consts::FRAC_PI_3, 0.5), (1.4, 0.0)],
+            0.625,
+        ),
+    ];
+    for (response, weight) in cases {
+        let bytes = with_direct_sun(response).to_bytes().unwrap();
+        let basis = Basis::from_bytes(&bytes).unwrap();
+        let direct = eigenrad_runtime::sky::direct::DirectSun::new(basis)
+            .unwrap()
+            .unwrap();
+        assert!(eigenrad_runtime::sky::direct::DirectSun::new(plain)
+            .unwrap()
+            .is_none());
+        let dark = vec![0.0; TREGENZA];
+        for (altitude, want) in [(45.0, 0.5 * weight), (25.0, 0.0)] {
+            let sun = south(altitude);
+            let room = direct.room_direction(sun.direction);
+            let at = direct.at_sensor(0, room);
+            assert!(
+                (f64::from(at) - want).abs() <= 1e-6,
+                "{altitude}°: {at} vs {want}"
+            );
+            let mut with = Day::new(basis).unwrap();
+            let mut without = Day::new(plain).unwrap();
+            with.set_sky(&dark, 0.0, Some(sun)).unwrap();
+            without.set_sky(&dark, 0.0, Some(sun)).unwrap();
+            let added =
+                with.sensor_illuminance(0).unwrap() - without.sensor_illuminance(0).unwrap();
+            let expected = 50_000.0 * want;
+            assert!(
+                (f64::from(added) - expected).abs() <= 1e-5 * 50_000.0,
+                "{altitude}°: sensor {added} vs {expected}"
+            );
+            assert_eq!(with.zone_illuminance(0), without.zone_illuminance(0));
+            for point in 0..2 {
+                let grid = with.grid_point_illuminance(0, point).unwrap()
+                    - without.grid_point_illuminance(0, point).unwrap();
+                let want = 50_000.0
+                    * if altitude > 30.0 {
+                        0.5 * std::f64::consts::FRAC_1_SQRT_2
+                    } else {
+                        0.0
+                    };
+                assert!(
+                    (f64::from(grid) - want).abs() <= 1e-5 * 50_000.0,
+                    "{altitude}°: point {point} {grid} vs {want}"
+                );
+            }
+        }
+    }
+}
+
+/// The daylight evaluator refuses malformed direct-sun tables, naming each.
+#[test]
+fn evaluator_refuses_bad_direct_sun_tables() {
+    let check = |edit: &dyn Fn(&mut eigenrad_runtime::writer::BasisTables), field: &str| {
+        let mut t = with_direct_sun(&[(0.0, 1.0), (1.0, 0.5)]);
+        Day::new(Basis::from_bytes(&t.to_bytes().unwrap()).unwrap()).unwrap();
+        edit(&mut t);
+        // The decoder leaves these tables to the daylight evaluator, which checks them.
+        let bytes = t.to_bytes().unwrap();
+        let basis = Basis::from_bytes(&bytes).unwrap();
+        let err = Day::new(basis).unwrap_err();
+        let named = match err {
+            Error::DecodeField { field, .. }
+            | Error::DecodeLength { field, .. }
+            | Error::DecodeValue { field, .. } => field,
+            other => panic!("{field}: {other:?}"),
+        };
+        assert_eq!(named, field, "{err:?}");
+    };
+    check(
+        &|t| t.sun_polygon_counts.pop().map(drop).unwrap(),
+        "sun_polygon_counts",
+    );
+    check(&|t| t.sun_polygon_counts[2] = 2, "sun_polygon_sizes");
+    check(&|t| t.sun_polygon_sizes[1] = 2, "sun_polygon_sizes");
+    check(&|t| t.sun_polygon_sizes[1] = 65, "sun_polygon_sizes");
+    check(&|t| t.sun_polygons.truncate(20), "sun_polygons");
+    check(&|t| t.sun_polygons[1] = 0.5, "sun_polygons");
+    check(&|t| t.sun_polygons[4] = f64::NAN, "sun_polygons");
+    check(&|t| t.sun_glazing[3] = 1.5, "sun_glazing");
+    check(&|t| t.sun_glazing.truncate(64), "sun_glazing");
+    check(&|t| t.sensor_response_rows.push(0), "sensor_response_rows");
+    check(&|t| t.sensor_response[2] = -0.1, "sensor_response");
+    check(&|t| t.sensor_response[3] = -0.5, "sensor_response");
+    check(&|t| t.sensor_response[0] = 4.0, "sensor_response");
+    check(&|t| t.sensor_response.push(1.0), "sensor_response");
+    // Geometry without its counts.
+    check(&|t| t.sun_polygon_counts.clear(), "sun_polygon_sizes");
+}

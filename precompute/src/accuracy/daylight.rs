@@ -2,6 +2,7 @@
 //! grid, and a sky state read through the runtime (docs/math.md, "Daylight in the basis").
 
 use eigenrad_runtime::sky::cie::CieSky;
+use eigenrad_runtime::sky::direct::DirectSun;
 use eigenrad_runtime::sky::sun_grid::direction_of;
 use eigenrad_runtime::sky::RelativeSky;
 use eigenrad_runtime::Sun;
@@ -40,6 +41,12 @@ pub struct SunInterpolation {
     pub sensors: ErrorSpread,
     /// The calculation grids' points.
     pub grid_points: ErrorSpread,
+    /// The controller's direct sun at the sensors and grid points
+    /// (`eigenrad_runtime::sky::direct`) against the host's exact direct sun at the same
+    /// cell centres, relative to the same largest responses: the geometry, its culling and
+    /// `f32` alone, without the interpolation of the reflected part. Empty without the
+    /// direct sun's geometry.
+    pub direct: ErrorSpread,
 }
 
 /// How a set of relative differences spreads: its mean, its 95th percentile and its
@@ -72,13 +79,21 @@ impl ErrorSpread {
     }
 }
 
-/// Measures [`SunInterpolation`] for `daylight`'s grid: one exact sun per cell centre.
+/// Measures [`SunInterpolation`] for `daylight`'s grid: one exact sun per cell centre, read
+/// as the controller reads the basis `bytes`: at the sensors and grid points, when the basis
+/// stores the direct sun's geometry, the four nodes' reflected parts (each node's reading
+/// less the controller's direct sun there) interpolated plus the controller's direct sun at
+/// the cell's centre (`eigenrad_runtime::sky::direct`); at the zones, and without that
+/// geometry, the four nodes' whole readings.
 pub fn sun_interpolation(
     scene: &Scene,
     occluders: &Occluders,
     model: &Model,
     daylight: &BasisDaylight,
+    bytes: &[u8],
 ) -> Result<SunInterpolation> {
+    let basis = eigenrad_runtime::Basis::from_bytes(bytes)?;
+    let direct = DirectSun::new(basis)?;
     let Some(site) = &scene.site else {
         return Ok(SunInterpolation::default());
     };
@@ -101,6 +116,7 @@ pub fn sun_interpolation(
     }
     // The cells whose centre sees the sun above the horizon, with their four corners.
     let mut cells = Vec::new();
+    let mut centres = Vec::new();
     let mut lights = Vec::new();
     for row in 0..grid.rows.saturating_sub(1) {
         for column in 0..grid.columns.saturating_sub(1) {
@@ -130,6 +146,7 @@ pub fn sun_interpolation(
                 .any(|&x| x != 0.0);
             if lit || corners.iter().any(|&c| response(c).is_some()) {
                 cells.push(corners);
+                centres.push(centre);
                 lights.push(light);
             }
         }
@@ -138,12 +155,39 @@ pub fn sun_interpolation(
     let zones_start = scene.sensors.len();
     let grid_start = crate::formfactor::outputs::grid_offset(scene);
     let (mut sensors, mut zones, mut points) = (Vec::new(), Vec::new(), Vec::new());
-    for (corners, exact) in cells.iter().zip(&exact) {
+    // The controller's direct sun at output `o` (sensors and grid points) for the sun in
+    // the site-frame direction `site`, lux per lux.
+    let direct_at = |o: usize, site: [f32; 3]| -> f64 {
+        let Some(direct) = &direct else { return 0.0 };
+        let sun = direct.room_direction(site);
+        f64::from(match o {
+            o if o >= grid_start => direct.at_grid_point(o - grid_start, sun),
+            o if o >= zones_start => 0.0,
+            o => direct.at_sensor(o, sun),
+        })
+    };
+    let mut direct_errors = Vec::new();
+    for ((corners, exact), (&centre, light)) in
+        cells.iter().zip(&exact).zip(centres.iter().zip(&lights))
+    {
+        if direct.is_some() {
+            let host = light.output_irradiance.first().map_or(&[][..], |v| &v[..]);
+            for (o, h) in host.iter().enumerate() {
+                if o < zones_start || o >= grid_start {
+                    let error = (direct_at(o, centre) - h).abs() / peak[o].max(f64::MIN_POSITIVE);
+                    direct_errors.push(error);
+                }
+            }
+        }
         for (o, e) in exact.readings.iter().enumerate() {
-            let mean: f64 = corners
+            let reflected: f64 = corners
                 .iter()
-                .filter_map(|&c| response(c).map(|r| 0.25 * r[o]))
+                .filter_map(|&c| {
+                    let node = grid.direction(c)?;
+                    response(c).map(|r| 0.25 * (r[o] - direct_at(o, node)))
+                })
                 .sum();
+            let mean = reflected + direct_at(o, centre);
             let error = (mean - e).abs() / peak[o].max(f64::MIN_POSITIVE);
             match o {
                 o if o >= grid_start => points.push(error),
@@ -157,6 +201,7 @@ pub fn sun_interpolation(
         zones: ErrorSpread::of(zones),
         sensors: ErrorSpread::of(sensors),
         grid_points: ErrorSpread::of(points),
+        direct: ErrorSpread::of(direct_errors),
     })
 }
 

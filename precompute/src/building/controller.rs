@@ -278,12 +278,39 @@ pub fn cut(room: &BasisTables, selection: &Selection) -> BasisTables {
         daylight_outputs: rows_of(&room.daylight_outputs, d, &outputs),
         daylight_modes: when_modes(&room.daylight_modes),
         daylight_grid: rows_of(&room.daylight_grid, d, &points),
+        sun_polygon_counts: room.sun_polygon_counts.clone(),
+        sun_polygon_sizes: room.sun_polygon_sizes.clone(),
+        sun_polygons: room.sun_polygons.clone(),
+        sun_glazing: room.sun_glazing.clone(),
+        sensor_response_rows: if room.sensor_response_rows.is_empty() {
+            Vec::new()
+        } else {
+            sensors
+                .iter()
+                .map(|&s| room.sensor_response_rows[s])
+                .collect()
+        },
+        sensor_response: sensor_response_of(room, sensors),
     };
     if room.grid_pieces.is_empty() {
         // The room has no grid at all: written as it writes it.
         t.grid_pieces.clear();
     }
     t
+}
+
+/// The response pairs of `sensors` (indices into the room's), in their order.
+fn sensor_response_of(room: &BasisTables, sensors: &[usize]) -> Vec<f64> {
+    let rows = &room.sensor_response_rows;
+    let first = |s: usize| rows[..s].iter().map(|&r| r as usize).sum::<usize>();
+    sensors
+        .iter()
+        .filter(|&&s| s < rows.len())
+        .flat_map(|&s| {
+            let start = 2 * first(s);
+            room.sensor_response[start..start + 2 * rows[s] as usize].to_vec()
+        })
+        .collect()
 }
 
 /// Bytes each part of a basis takes, by section (docs/format.md): what leaving the section's
@@ -353,6 +380,12 @@ pub fn section_bytes(
                 t.sun_nodes.clear();
                 t.daylight_outputs.clear();
                 t.daylight_grid.clear();
+                t.sun_polygon_counts.clear();
+                t.sun_polygon_sizes.clear();
+                t.sun_polygons.clear();
+                t.sun_glazing.clear();
+                t.sensor_response_rows.clear();
+                t.sensor_response.clear();
             })?,
         ),
     ];

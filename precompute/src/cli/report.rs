@@ -114,6 +114,13 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             d.sun_step_deg[1],
             d.bytes
         );
+        if let Some(direct) = &d.direct_sun {
+            let _ = writeln!(
+                s,
+                "  direct sun on the controller: {} window faces, {} room and {} exterior occluders, {} bytes",
+                direct.window_faces, direct.room_occluders, direct.exterior_occluders, direct.bytes
+            );
+        }
         let i = &d.sun_interpolation;
         let _ = writeln!(
             s,
@@ -125,6 +132,7 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             ("zones", &i.zones),
             ("sensors", &i.sensors),
             ("grid points", &i.grid_points),
+            ("direct sun", &i.direct),
         ]
         .into_iter()
         .filter(|(_, e)| e.count > 0)

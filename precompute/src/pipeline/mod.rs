@@ -468,7 +468,7 @@ fn serialize(
         return Ok((tables, bytes, 0));
     };
     let without = tables.to_bytes()?.len();
-    basis::daylight_tables(&mut tables, scene, model, d);
+    basis::daylight_tables(&mut tables, scene, model, d)?;
     let bytes = tables.to_bytes()?;
     let added = bytes.len() - without;
     Ok((tables, bytes, added))

@@ -100,6 +100,19 @@ pub struct OperatorReport {
     pub compression: Option<crate::formfactor::hierarchical::Compression>,
 }
 
+/// What the direct sun's tables of a basis hold.
+#[derive(Clone, Debug, Serialize)]
+pub struct DirectSunReport {
+    /// Clear windows' faces.
+    pub window_faces: usize,
+    /// Room faces that shade some sensor or grid point from the sun through a window.
+    pub room_occluders: usize,
+    /// Obstruction faces that do.
+    pub exterior_occluders: usize,
+    /// Bytes of the six tables.
+    pub bytes: usize,
+}
+
 /// What a basis' daylight holds, what it costs in flash and how close it reads.
 #[derive(Clone, Debug, Serialize)]
 pub struct DaylightReport {
@@ -117,6 +130,9 @@ pub struct DaylightReport {
     pub nodes: usize,
     /// Bytes the daylight section adds to the basis.
     pub bytes: usize,
+    /// The direct sun's tables (docs/format.md, "Direct sun"): window faces, room and
+    /// exterior occluders stored, and the bytes they take (within [`Self::bytes`]).
+    pub direct_sun: Option<DirectSunReport>,
     /// The sun read between the grid's nodes against the exact sun.
     pub sun_interpolation: crate::accuracy::daylight::SunInterpolation,
     /// A sky state read through the runtime against the exact solve.
@@ -147,7 +163,21 @@ impl DaylightReport {
             sun_nodes: d.nodes.sun_nodes.len(),
             nodes: d.nodes.len(),
             bytes: bytes_added,
-            sun_interpolation: accuracy::daylight::sun_interpolation(scene, occluders, model, d)?,
+            direct_sun: {
+                let basis = eigenrad_runtime::Basis::from_bytes(bytes)?;
+                eigenrad_runtime::sky::direct::DirectSun::new(basis)?.map(|d| {
+                    let [w, r, e] = d.polygon_counts();
+                    DirectSunReport {
+                        window_faces: w,
+                        room_occluders: r,
+                        exterior_occluders: e,
+                        bytes: d.stored_bytes(),
+                    }
+                })
+            },
+            sun_interpolation: accuracy::daylight::sun_interpolation(
+                scene, occluders, model, d, bytes,
+            )?,
             check: accuracy::daylight::through_runtime(bytes, model, d)?,
         })
     }

@@ -5,6 +5,7 @@
 use super::{fits, grid_figures, luminance, ChannelEvaluator, Figures, MAX_EXITANCE};
 use crate::basis::{check_index, Basis};
 use crate::error::{Error, Result};
+use crate::sky::direct::DirectSun;
 use crate::sky::sun_grid::NodeWeight;
 use crate::storage::{dot_f32, f32_at, f32_row};
 
@@ -34,7 +35,12 @@ pub struct Sun {
 /// luminances, the exterior by `E_gh/π`, the four sun nodes around the sun by their bilinear
 /// weights in declination and hour angle ([`crate::sky::sun_grid`]) times `E_n`; it then
 /// sums every output's row (`O × D` products) and, when `MODES > 0`, every mode's (`p × D`).
-/// Sensor and zone reads cost nothing more; a grid point sums its row when read.
+/// When the basis stores the direct sun's geometry ([`crate::sky::direct`]), the sun nodes
+/// hold only the light the room reflects at sensors and grid points, and the update adds
+/// each sensor's direct sun at the sun's own direction (a ray test per window face and
+/// occluder), so that a sun patch's edge crossing a sensor is not smeared between nodes.
+/// Sensor and zone reads cost nothing more; a grid point sums its row and computes its
+/// direct sun when read.
 ///
 /// Capacities: `SKY` at least the basis' sky patches (145 for Tregenza), `OUTPUTS` at least
 /// its sensors plus zones, and `MODES` either 0 (no patch exitance: updates skip the modes)
@@ -53,6 +59,11 @@ pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const M
     /// The four sun nodes around the sun (their columns among the daylight nodes, or none
     /// where the node lights nothing) with their weight times `E_n`, lux.
     sun: [(u32, f32); 4],
+    /// The direct sun's geometry, when the basis stores it: sensors and grid points then
+    /// add the sun they see through the windows themselves.
+    direct: Option<DirectSun<'a>>,
+    /// The sun in the room's frame and its direct normal illuminance (lux; 0 without sun).
+    direct_sun: ([f32; 3], f32),
     /// Every output's daylight illuminance, lux.
     outputs: heapless::Vec<f32, OUTPUTS>,
     /// The daylight's mode amplitudes (empty when `MODES` is 0).
@@ -63,13 +74,18 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     DaylightEvaluator<'a, SKY, OUTPUTS, MODES>
 {
     /// Bytes of state besides the basis view and the vectors' lengths.
-    pub const RAM_BYTES: usize =
-        4 * (SKY + OUTPUTS + MODES) + 4 * 3 + core::mem::size_of::<[(u32, f32); 4]>();
+    pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + MODES)
+        + 4 * 3
+        + core::mem::size_of::<[(u32, f32); 4]>()
+        + core::mem::size_of::<Option<DirectSun<'static>>>()
+        + 4 * 4;
 
     /// An evaluator of `basis`' daylight, dark (no sky, no sun).
     ///
     /// [`Error::NoDaylight`] when the basis carries none; [`Error::Capacity`] when its sky,
-    /// its outputs or (with `MODES > 0`) its modes do not fit.
+    /// its outputs or (with `MODES > 0`) its modes do not fit; a decoding error naming the
+    /// table when the direct sun's tables are malformed (checked here, not by
+    /// [`Basis::from_bytes`]).
     pub fn new(basis: Basis<'a>) -> Result<Self> {
         let sky_patches = basis.sky_patches().ok_or(Error::NoDaylight)?;
         fits("sky patches", sky_patches.count(), SKY)?;
@@ -91,6 +107,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
                 .sun_grid()
                 .map_or([0.0, 1.0], |g| g.latitude_sin_cos()),
             sun: [(NO_COLUMN, 0.0); 4],
+            direct: DirectSun::new(basis)?,
+            direct_sun: ([0.0, 0.0, 1.0], 0.0),
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),
         };
@@ -175,6 +193,17 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
         };
         weights.table(tables.daylight_outputs, columns, &mut self.outputs);
         weights.table(tables.daylight_modes, columns, &mut self.amplitude);
+        self.direct_sun = ([0.0, 0.0, 1.0], 0.0);
+        if let (Some(direct), Some(s)) = (self.direct, sun) {
+            let room = direct.room_direction(s.direction);
+            self.direct_sun = (room, s.direct_normal);
+            for (sensor, reading) in self.outputs.iter_mut().enumerate() {
+                if sensor >= self.basis.counts.sensor_count {
+                    break;
+                }
+                *reading += s.direct_normal * direct.at_sensor(sensor, room);
+            }
+        }
         Ok(())
     }
 
@@ -232,7 +261,13 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
                 add(column as usize, weight);
             }
         }
-        sum
+        let (sun, direct_normal) = self.direct_sun;
+        match self.direct {
+            Some(direct) if direct_normal > 0.0 => {
+                sum + direct_normal * direct.at_grid_point(g, sun)
+            }
+            _ => sum,
+        }
     }
 
     /// Daylight illuminance at point `point` of zone `zone`'s calculation grid, lux: exact

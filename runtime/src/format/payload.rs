@@ -163,9 +163,35 @@ pub struct Payload<'a> {
     /// `p × D` `f32`: the mode amplitudes of each daylight node's exact exitance.
     #[serde(borrow)]
     pub daylight_modes: &'a [u8],
-    /// `G × D` matrix: each grid point's exact illuminance per unit of each daylight node.
+    /// `G × D` matrix: each grid point's exact illuminance per unit of each daylight node;
+    /// with the direct sun's geometry, a sun node's column holds only what the device does
+    /// not compute itself (docs/format.md, "Direct sun").
     #[serde(borrow)]
     pub daylight_grid: MatrixBytes<'a>,
+    /// Empty (the device computes no direct sun), or 3 `u32`: the polygons of the direct
+    /// sun's geometry, `W` window faces, `K_r` room occluders, `K_e` exterior occluders.
+    #[serde(borrow)]
+    pub sun_polygon_counts: &'a [u8],
+    /// `W + K_r + K_e` bytes: each polygon's vertex count (3 to
+    /// [`crate::sky::direct::MAX_POLYGON_VERTICES`]), windows first.
+    #[serde(borrow)]
+    pub sun_polygon_sizes: &'a [u8],
+    /// `f32`, per polygon in order: its unit normal (a window's into the room), then its
+    /// vertices (m), 3 each.
+    #[serde(borrow)]
+    pub sun_polygons: &'a [u8],
+    /// `W × 65` `f32`: each window face's glazing transmittance at incidence cosines
+    /// `k / 64`, `k = 0 … 64`, in `[0, 1]`.
+    #[serde(borrow)]
+    pub sun_glazing: &'a [u8],
+    /// `S` `u32` (with the direct sun's geometry): rows of each sensor's angular response,
+    /// 0 for a cone or hemisphere read by its half-angle.
+    #[serde(borrow)]
+    pub sensor_response_rows: &'a [u8],
+    /// `f32` pairs, sensor by sensor: polar angle (rad, ascending within `[0, π]`) and
+    /// relative sensitivity (`≥ 0`).
+    #[serde(borrow)]
+    pub sensor_response: &'a [u8],
 }
 
 /// Decodes the postcard payload that fills `body` exactly, borrowing its tables.
@@ -196,7 +222,7 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         *slot = take(&mut rest)?;
     }
     let sky_subdivision: u8 = take(&mut rest)?;
-    let mut daylight: [&[u8]; 8] = [&[]; 8];
+    let mut daylight: [&[u8]; 14] = [&[]; 14];
     for slot in &mut daylight {
         *slot = take(&mut rest)?;
     }
@@ -212,7 +238,7 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     let matrix = |scales, data| MatrixBytes { scales, data };
     let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_pieces, grid_lattice, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
         tables;
-    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data] =
+    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data, sun_polygon_counts, sun_polygon_sizes, sun_polygons, sun_glazing, sensor_response_rows, sensor_response] =
         daylight;
     Ok(Payload {
         bands,
@@ -257,6 +283,12 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         daylight_outputs,
         daylight_modes,
         daylight_grid: matrix(daylight_grid_scales, daylight_grid_data),
+        sun_polygon_counts,
+        sun_polygon_sizes,
+        sun_polygons,
+        sun_glazing,
+        sensor_response_rows,
+        sensor_response,
     })
 }
 
@@ -271,7 +303,7 @@ mod tests {
     /// the three loops take the fields in the struct's order.
     #[test]
     fn decode_payload_reads_what_postcard_derives() {
-        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..36u8)
+        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..42u8)
             .map(|k| {
                 (0..=k)
                     .map(|i| k.wrapping_mul(31).wrapping_add(i))
@@ -326,6 +358,12 @@ mod tests {
             daylight_outputs: t(32),
             daylight_modes: t(33),
             daylight_grid: m(34),
+            sun_polygon_counts: t(36),
+            sun_polygon_sizes: t(37),
+            sun_polygons: t(38),
+            sun_glazing: t(39),
+            sensor_response_rows: t(40),
+            sensor_response: t(41),
         };
         let mut buffer = [0u8; 1024];
         let body = postcard::to_slice(&payload, &mut buffer).unwrap();

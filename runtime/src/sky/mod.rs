@@ -43,6 +43,7 @@
 pub(crate) mod approx;
 pub mod cie;
 mod conditions;
+pub mod direct;
 pub mod efficacy;
 pub mod glazing;
 pub mod patches;

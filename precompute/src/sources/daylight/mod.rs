@@ -67,6 +67,7 @@ use crate::scene::receivers::{receivers, Receiver};
 use crate::scene::{FieldOfView, Scene};
 
 mod cells;
+pub mod direct;
 pub mod nodes;
 mod outside;
 mod sky;
