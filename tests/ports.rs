@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use eigenrad_precompute::building::{self, controller, port, Manifest, Part};
-use eigenrad_precompute::formfactor::{FormFactorOperator, FormFactorOptions};
+use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline::{self, BuildOptions, Prepared};
 use eigenrad_runtime::{Basis, ChannelEvaluator};
 
@@ -537,4 +537,193 @@ fn the_diffuse_port_against_the_open_doorway() {
         "light through the door: {neighbour:.3e}"
     );
     assert!(total <= BOTH_TOLERANCE, "both channels: {total:.3e}");
+}
+
+/// Every file of `dir` (not its folders), sorted.
+fn files(dir: &Path) -> Vec<PathBuf> {
+    let mut names: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("folder")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_file())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn one_machine_and_two_shards_give_the_same_bytes_and_a_closed_door_leaves_the_rooms_apart() {
+    let (manifest, local) = door_open();
+    let sharded = local.with_file_name("shards");
+    build(manifest, &[vec![0], vec![1]], &sharded);
+    let mut compared = 0;
+    for sub in ["", "parts"] {
+        let (a, b) = (files(&local.join(sub)), files(&sharded.join(sub)));
+        assert_eq!(a.len(), b.len());
+        for (a, b) in a.iter().zip(&b) {
+            assert_eq!(a.file_name(), b.file_name());
+            if a.file_name().is_some_and(|n| n == "building.json") {
+                continue; // names the folder it was written to
+            }
+            assert!(
+                std::fs::read(a).expect("file") == std::fs::read(b).expect("file"),
+                "{}: differs between one machine and two shards",
+                a.display()
+            );
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 2 + 2, "two bases and two parts");
+
+    // The door closed: no port in the manifest. Each controller's basis is cut from its own
+    // room's tables alone, as for rooms that share no light, and holds its room's channel only.
+    let dir = common::scratch("ports-closed");
+    let closed = Manifest::load(&two_rooms(&dir, "")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(closed.ports.is_empty());
+    let out = dir.join("out");
+    let merged = build(&closed, &[vec![0, 1]], &out);
+    for (c, written) in closed.controllers.iter().zip(&merged.controllers) {
+        let part = Part::read(&building::part::path(
+            &building::parts_dir(&out),
+            &closed.rooms[c.room].name,
+        ))
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert!(part.ports.openings.is_empty());
+        let (selection, _) = controller::select(&part.tables, c);
+        let alone = controller::cut(&part.tables, &selection)
+            .to_bytes()
+            .expect("basis");
+        let basis = std::fs::read(building::basis_path(&out, &c.name)).expect("basis");
+        assert!(basis == alone, "{}: not its room's own basis", c.name);
+        assert_eq!(written.channels, [c.drives[0].clone()]);
+        // With the door open the same controller also reads the other room's channel.
+        let open = std::fs::read(building::basis_path(local, &c.name)).expect("basis");
+        let open = Basis::from_bytes(&open).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(open.channel_count(), 2, "{}", c.name);
+    }
+    assert!(merged.notes.is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Runs `eigenrad` with `args`; it must fail, say `expected`, and write no basis nor index.
+fn refused(args: &[&str], out: &Path, expected: &[&str]) {
+    let o = common::run(args);
+    let err = common::stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+    for e in expected {
+        assert!(err.contains(e), "{args:?}: {e:?} not in:\n{err}");
+    }
+    let written: Vec<String> = std::fs::read_dir(out)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".basis") || n == "building.json" || n.ends_with(".tmp"))
+        .collect();
+    assert!(written.is_empty(), "{args:?} wrote {written:?}");
+}
+
+#[test]
+fn bad_ports_name_the_manifest_line_and_item() {
+    let dir = common::scratch("ports-bad");
+    let out = dir.join("out");
+    let o = out.to_str().expect("utf-8").to_string();
+    let with = |ports: &str| two_rooms(&dir, ports).to_str().expect("utf-8").to_string();
+
+    let m = with("[[port]]\nname = \"door\"\nrooms = [\"left\", \"hall\"]\n");
+    refused(
+        &["building", &m, "--out", &o],
+        &out,
+        &[
+            "building.toml:28:",
+            "port door: room hall",
+            "not a room of this building",
+            "left, right",
+        ],
+    );
+
+    let m = with("[[port]]\nname = \"door\"\nrooms = [\"left\", \"right\"]\nopenings = [\"door\", \"doorway\"]\n");
+    refused(
+        &["building", &m, "--out", &o],
+        &out,
+        &[
+            "building.toml:29:",
+            "port door: opening doorway in room right",
+            "no [[quad]] of this name",
+            "right.toml",
+        ],
+    );
+
+    let m = with("[[port]]\nname = \"door\"\nrooms = [\"left\", \"left\"]\n");
+    refused(
+        &["building", &m, "--out", &o],
+        &out,
+        &["building.toml:28:", "port door", "joins a room to itself"],
+    );
+
+    // The door moved 10 cm in the left room only.
+    let m = with(PORT);
+    let moved = DOOR.map(|[x, y, z]| [x, y + 0.1, z]);
+    std::fs::write(dir.join("left.toml"), left_scene(&moved)).expect("scene");
+    refused(
+        &["building", &m, "--out", &o],
+        &out,
+        &[
+            "building.toml:27:",
+            "port door",
+            "its openings differ",
+            "door in room left",
+            "door in room right",
+        ],
+    );
+
+    // The door's material reflects in the left room.
+    let m = with(PORT);
+    let grey = left_scene(&DOOR).replace("material = \"door\"", "material = \"wall\"");
+    std::fs::write(dir.join("left.toml"), grey).expect("scene");
+    refused(
+        &["building", &m, "--out", &o],
+        &out,
+        &[
+            "building.toml:27:",
+            "port door: opening door in room left",
+            "a port's opening is black",
+        ],
+    );
+
+    // The door meshed finer in the right room: refused at the merge, nothing written.
+    let m = with(PORT);
+    std::fs::write(dir.join("right.toml"), right_scene(0.25)).expect("scene");
+    refused(
+        &["building", &m, "--out", &o],
+        &out,
+        &[
+            "building.toml:27:",
+            "port door",
+            "meshed differently",
+            "room left (8 patches)",
+            "room right (32 patches)",
+            "same `max_edge`",
+        ],
+    );
+
+    // Parts built without the port, merged with it.
+    let m = with("");
+    let built = common::run(&["building", &m, "--out", &o]);
+    assert!(built.status.success(), "{}", common::stderr(&built));
+    for f in ["left.basis", "right.basis", "building.json"] {
+        std::fs::remove_file(out.join(f)).expect("remove output");
+    }
+    let m = with(PORT);
+    refused(
+        &["merge", &m, "--out", &o],
+        &out,
+        &[
+            "left.part",
+            "built with the ports none",
+            "door (door)",
+            "build room left again",
+        ],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }
