@@ -232,19 +232,28 @@ pub fn couple(
             });
         }
     }
+    // Each part holds its room's openings in the manifest's order of ports (checked above):
+    // port `p`'s opening on `side` is the room's opening `slot[p][side]`.
+    let slot: Vec<[usize; 2]> = manifest
+        .ports
+        .iter()
+        .enumerate()
+        .map(|(p, port)| {
+            port.rooms.map(|r| {
+                manifest.ports[..p]
+                    .iter()
+                    .filter(|q| q.rooms.contains(&r))
+                    .count()
+            })
+        })
+        .collect();
+    let opening = |p: usize, side: usize| -> &PortOpening {
+        &parts[manifest.ports[p].rooms[side]].ports.openings[slot[p][side]]
+    };
     // Each port's patches in its second room, matched to its first room's.
     let mut matched: Vec<Vec<usize>> = Vec::new();
-    for port in &manifest.ports {
-        let opening = |side: usize| {
-            let r = port.rooms[side];
-            let k = parts[r]
-                .ports
-                .openings
-                .iter()
-                .position(|o| o.port == port.name)
-                .unwrap_or(0);
-            &parts[r].ports.openings[k]
-        };
+    for (p, port) in manifest.ports.iter().enumerate() {
+        let opening = |side: usize| opening(p, side);
         let (a, b) = (opening(0), opening(1));
         let fail = || {
             BuildingError::Manifest {
@@ -279,14 +288,8 @@ pub fn couple(
     // Where patch `j` of port `p` (numbered as in its first room) lies among the port patches
     // of its room on `side`.
     let local = |p: usize, side: usize, j: usize| -> usize {
-        let port = &manifest.ports[p];
-        let ports = &parts[port.rooms[side]].ports;
-        let k = ports
-            .openings
-            .iter()
-            .position(|o| o.port == port.name)
-            .unwrap_or(0);
-        ports.first_patch(k) + if side == 0 { j } else { matched[p][j] }
+        let ports = &parts[manifest.ports[p].rooms[side]].ports;
+        ports.first_patch(slot[p][side]) + if side == 0 { j } else { matched[p][j] }
     };
     let unknowns: Vec<Entering> = manifest
         .ports
@@ -326,14 +329,7 @@ pub fn couple(
             let from = port.rooms[from_side];
             let ports = &parts[from].ports;
             let j = local(u.port, from_side, u.patch);
-            let area = parts[port.rooms[0]].ports.openings[parts[port.rooms[0]]
-                .ports
-                .openings
-                .iter()
-                .position(|o| o.port == port.name)
-                .unwrap_or(0)]
-            .area[u.patch];
-            let factor = port.transmittance / area;
+            let factor = port.transmittance / opening(u.port, 0).area[u.patch];
             for c in 0..parts[from].tables.channel_names.len() {
                 rhs[(row, first_channel[from] + c)] = factor * ports.leaving[b][c][j];
             }
@@ -388,7 +384,7 @@ pub fn couple(
                             at: manifest.rooms[r].at.clone(),
                             item: format!("room {}: channel {foreign}", part.room),
                             message: format!(
-                                "the name channel {name} of room {} takes in this room through its ports: rename one of them",
+                                "is also the name channel {name} of room {}, joined to this room through ports, takes here: rename one of them",
                                 other.room
                             ),
                         });
@@ -403,8 +399,10 @@ pub fn couple(
         let points = t.grid_position.len();
         let n = t.patch_area.len();
         let ports = &part.ports;
-        // Channel `g` (a column of `kept`) at output or patch `x` in band `b`: its own response
-        // there (0 for another room's channel), plus what enters through the room's ports.
+        // Column `kc` of `kept` at one output or patch in band `b`: the room's own response
+        // there (`own_value`, 0 for another room's channel), plus, for every port patch `i`
+        // light enters through, the room's response to it (`through(i)`) times the exitance
+        // the channel sends in through it.
         let value = |own_value: f64, b: usize, kc: usize, through: &dyn Fn(usize) -> f64| -> f64 {
             let g = kept[kc].0;
             let mut v = own_value;
