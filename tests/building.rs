@@ -1,5 +1,6 @@
 //! A building (docs/building.md): every controller's basis reads, to the bit, what its whole
-//! room's basis reads at the same outputs (channels, daylight, grid points); the example
+//! room's basis, coupled through its ports, reads at the same outputs (channels, daylight,
+//! grid points); the example
 //! building gives the same bytes built on one machine and as three shards; bad manifests and
 //! bad parts are errors naming the file, line and item, with nothing written.
 //!
@@ -135,11 +136,20 @@ fn every_controller_reads_what_its_whole_room_reads_to_the_bit() {
     let (manifest, out, merged) = local_example();
     assert_eq!(merged.controllers.len(), 7);
     let mut numbers = Numbers(29);
+    // The rooms' tables as the merge couples them through their ports (the office and the
+    // corridor: each also holds the other's channels through their door).
+    let parts_dir = building::parts_dir(out);
+    let parts: Vec<Part> = manifest
+        .rooms
+        .iter()
+        .map(|room| Part::read_checked(&parts_dir, room).unwrap_or_else(|e| panic!("{e}")))
+        .collect();
+    let coupled =
+        building::port::couple(manifest, &parts, &parts_dir).unwrap_or_else(|e| panic!("{e}"));
     for (controller, written) in manifest.controllers.iter().zip(&merged.controllers) {
         let room = &manifest.rooms[controller.room];
-        let part = Part::read(&building::part::path(&building::parts_dir(out), &room.name))
-            .unwrap_or_else(|e| panic!("{e}"));
-        let whole = part.tables.to_bytes().expect("the room's basis");
+        let tables = &coupled.tables[controller.room];
+        let whole = tables.to_bytes().expect("the room's basis");
         let own = std::fs::read(building::basis_path(out, &controller.name)).expect("basis");
         assert_eq!(written.controller, controller.name);
         assert_eq!(
@@ -155,8 +165,7 @@ fn every_controller_reads_what_its_whole_room_reads_to_the_bit() {
             controller.name
         );
         for trial in 0..3 {
-            let levels: Vec<(String, f32)> = part
-                .tables
+            let levels: Vec<(String, f32)> = tables
                 .channel_names
                 .iter()
                 .map(|n| (n.clone(), numbers.next()))
@@ -212,6 +221,27 @@ fn every_controller_reads_what_its_whole_room_reads_to_the_bit() {
     assert_eq!(sw.channels, ["sw", "se", "nw", "ne"]);
     assert_eq!(sw.neighbours.inputs, ["se", "nw"]);
     assert_eq!(sw.neighbours.bounds, [("ne".to_string(), 1.0)]);
+    // Through the open door the office and the corridor are told each other's levels.
+    let of = |name: &str| {
+        merged
+            .controllers
+            .iter()
+            .find(|c| c.controller == name)
+            .expect("controller")
+    };
+    assert_eq!(
+        of("office").neighbours.inputs,
+        ["corridor/west", "corridor/east"]
+    );
+    assert_eq!(
+        of("corridor").neighbours.inputs,
+        ["office/lum1", "office/lum2", "office/lum3", "office/lum4"]
+    );
+    assert_eq!(of("meeting").channels, ["table", "walls"]);
+    assert_eq!(
+        merged.notes,
+        ["port office-door: the daylight of room office is not carried through it into room corridor (only channels are coupled through ports)"]
+    );
 }
 
 #[test]

@@ -110,6 +110,14 @@ pub enum Error {
     /// The thread that runs the runtime's evaluator could not start, or panicked.
     #[error("evaluator thread: {0}")]
     Thread(String),
+    /// A building's port names an opening the room's scene meshed into no patch.
+    #[error("port {port}: the scene has no patches of its opening {surface}")]
+    PortOpening {
+        /// The port.
+        port: String,
+        /// The opening's surface.
+        surface: String,
+    },
 }
 
 impl From<crate::atomic::WriteError> for Error {

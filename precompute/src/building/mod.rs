@@ -5,6 +5,7 @@
 //! |---|---|
 //! | [`manifest`] | `building.toml`: its rooms and controllers, checked against the rooms' scenes |
 //! | [`part`] | a room built: its tables, the hash of its scene's files, the program's version |
+//! | [`port`] | rooms sharing light through openings: each room's responses at its ports, and the merge's port system |
 //! | [`controller`] | a controller's basis cut from its room's tables, its size by section |
 //! | `run` | rooms built into parts (in parallel within the memory budget, or a shard of them) and the merge |
 //! | `error` | [`BuildingError`]: every failure naming the manifest's file, line and item |
@@ -13,10 +14,11 @@ pub mod controller;
 mod error;
 pub mod manifest;
 pub mod part;
+pub mod port;
 mod run;
 
 pub use error::BuildingError;
-pub use manifest::{Controller, Manifest, Room};
+pub use manifest::{Controller, Manifest, Port, Room};
 pub use part::Part;
 pub use run::{basis_path, build_rooms, merge, ControllerBasis, Merged, RoomBuilt};
 

@@ -1,6 +1,6 @@
 //! A room's part: what building one room leaves for the merge. One file per room
 //! (`<room>.part`), written atomically, holding the room's basis tables in `f64` (every
-//! controller's basis is cut from them), the room's name, the content hash of its scene's
+//! controller's basis is cut from them), its responses at its ports' openings, the room's name, the content hash of its scene's
 //! files and the version of the program that built it, so that parts of different scenes or
 //! versions are never mixed.
 //!
@@ -15,6 +15,7 @@ use sha2::{Digest, Sha256};
 
 use super::error::BuildingError;
 use super::manifest::Room;
+use super::port::RoomPorts;
 use crate::atomic;
 
 /// The first bytes of every part file.
@@ -41,6 +42,8 @@ pub struct Part {
     pub scene_hash: [u8; 32],
     /// Every table of the room's basis, in `f64`.
     pub tables: BasisTables,
+    /// The room's exact responses at its ports' openings (empty without ports).
+    pub ports: RoomPorts,
 }
 
 /// SHA-256 of the contents of the scene's files (`scene::inputs`: the scene file, its OBJ and

@@ -11,6 +11,7 @@ use super::controller::{self, Neighbours};
 use super::error::BuildingError;
 use super::manifest::Manifest;
 use super::part::{self, Part};
+use super::port;
 use crate::flash::FlashBudget;
 use crate::memory;
 use crate::pipeline::{self, BuildOptions};
@@ -133,12 +134,24 @@ fn build_room(
     };
     // Hashed before the build: a scene edited while it is built is refused at the merge.
     let scene_hash = part::scene_hash(&room.scene).map_err(fail)?;
-    let built = pipeline::build_tables(&room.scene, options).map_err(fail)?;
+    let openings: Vec<(String, String)> = manifest
+        .ports
+        .iter()
+        .filter_map(|p| Some((p.name.clone(), p.opening_in(r)?.to_string())))
+        .collect();
+    let (built, ports) = pipeline::build_tables_and(
+        &room.scene,
+        options,
+        Some("responses at the ports"),
+        |scene, system| port::respond(scene, system, &openings),
+    )
+    .map_err(fail)?;
     let part = Part {
         program: part::program_version(),
         room: room.name.clone(),
         scene_hash,
         tables: built.tables,
+        ports,
     };
     part.write(&part::path(parts, &room.name))?;
     Ok(RoomBuilt {
@@ -182,6 +195,9 @@ pub struct Merged {
     pub flash: String,
     /// The bases, in the manifest's order of controllers.
     pub controllers: Vec<ControllerBasis>,
+    /// What the bases leave out of the light through ports (a room's daylight), one sentence
+    /// each.
+    pub notes: Vec<String>,
 }
 
 /// The basis file of `controller` in `dir`.
@@ -204,14 +220,16 @@ pub fn merge(
         .iter()
         .map(|room| Part::read_checked(parts, room))
         .collect::<Result<_, _>>()?;
+    let coupled = port::couple(manifest, &rooms, parts)?;
     let mut bases = Vec::new();
     let mut merged = Merged {
         building: manifest.name.clone(),
         flash: flash.to_string(),
         controllers: Vec::new(),
+        notes: coupled.notes,
     };
     for c in &manifest.controllers {
-        let room = &rooms[c.room].tables;
+        let room = &coupled.tables[c.room];
         let (selection, neighbours) = controller::select(room, c);
         let tables = controller::cut(room, &selection);
         let write_error = |e: eigenrad_runtime::Error| BuildingError::Manifest {

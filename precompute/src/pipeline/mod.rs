@@ -303,6 +303,18 @@ pub struct Built {
 /// Runs the whole build as [`build`] does and keeps the tables too (a building cuts its
 /// controllers' bases from them). Writes nothing.
 pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
+    build_tables_and(path, opts, None, |_, _| Ok(())).map(|(built, ())| built)
+}
+
+/// [`build_tables`], and `also` asked of the meshed scene and its radiosity system once the
+/// channels' exact responses are solved (a building's room answers for its ports there),
+/// told as the stage `stage` when it is one.
+pub fn build_tables_and<T>(
+    path: &Path,
+    opts: &BuildOptions,
+    stage: Option<&'static str>,
+    also: impl FnOnce(&Scene, &System) -> Result<T>,
+) -> Result<(Built, T)> {
     let mut stages = Stages::new(opts.narration);
     let prepared = prepare_stages(path, opts, &mut stages)?;
     let Prepared {
@@ -370,6 +382,10 @@ pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
     } else {
         None
     };
+    let extra = match stage {
+        Some(stage) => stages.run(stage, None, || also(&scene, &system))?,
+        None => also(&scene, &system)?,
+    };
     let (tables, bytes, daylight_bytes) =
         stages.run("serialization", Some(expected.serialization), || {
             serialize(&scene, &model, p, opts.precision, daylight.as_ref())
@@ -418,11 +434,14 @@ pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
         timings: stages.into_timings(),
         plan,
     };
-    Ok(Built {
-        tables,
-        bytes,
-        report,
-    })
+    Ok((
+        Built {
+            tables,
+            bytes,
+            report,
+        },
+        extra,
+    ))
 }
 
 /// The smallest mode count up to `available` at which every case is within `tolerance` of

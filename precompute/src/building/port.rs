@@ -1,0 +1,466 @@
+//! Rooms that share light through ports (docs/building.md, "Ports"; docs/math.md, "Rooms
+//! coupled through ports").
+//!
+//! A port's opening is a black quad in each of its two rooms: light reaching it from inside
+//! leaves the room. Each room's build answers for its ports' patches ([`respond`]): the flux
+//! each of its channels sends onto every port patch, and, for unit diffuse exitance entering
+//! through each port patch, what the room reads at every output, its exitance on every patch
+//! and the flux it sends back onto every port patch. The merge ([`couple`]) solves the small
+//! system of the exitances entering through every port patch, per channel of the building,
+//! and adds what they give to each room's channel responses: the controllers' bases are cut
+//! from these coupled tables, and the runtime reads them as any other.
+
+use eigenrad_runtime::writer::BasisTables;
+use faer::linalg::solvers::Solve;
+use faer::Mat;
+use serde::{Deserialize, Serialize};
+
+use super::error::BuildingError;
+use super::manifest::Manifest;
+use super::part::Part;
+use crate::formfactor::exchange;
+use crate::radiosity::system::alone;
+use crate::radiosity::System;
+use crate::scene::Scene;
+use crate::sources::ChannelLight;
+
+/// The two sides of one port patch may lie this far apart and still be one patch, in metres
+/// (the openings' corners agree within `PORT_CORNER_TOLERANCE`; meshing them at one edge
+/// length puts their patches' centroids together to rounding).
+const PATCH_MATCH_TOLERANCE: f64 = 1e-6;
+
+/// One of a room's port openings, as the room's build meshed it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PortOpening {
+    /// The port's name in the manifest.
+    pub port: String,
+    /// The opening's surface in the room's scene.
+    pub surface: String,
+    /// Area of each of its patches, m².
+    pub area: Vec<f64>,
+    /// Centroid of each of its patches, m.
+    pub centroid: Vec<[f64; 3]>,
+}
+
+/// A room's exact responses at its ports' patches (all its openings' patches in order, the
+/// room's *port patches*), per band. Flux in W (lm for a photopic scene), exitance and
+/// readings in W/m² (lux). Empty for a room without ports.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RoomPorts {
+    /// The room's openings, in the manifest's order of ports.
+    pub openings: Vec<PortOpening>,
+    /// `leaving[b][c][j]`: flux reaching port patch `j` from inside with channel `c` alone at
+    /// level 1.
+    pub leaving: Vec<Vec<Vec<f64>>>,
+    /// `returned[b][i][j]`: flux reaching port patch `j` from inside for exitance 1 entering
+    /// through port patch `i` (Lambertian), nothing else lit.
+    pub returned: Vec<Vec<Vec<f64>>>,
+    /// `readings[b][i][o]`: reading of output `o` (sensors, zones, then grid points) for
+    /// exitance 1 entering through port patch `i`.
+    pub readings: Vec<Vec<Vec<f64>>>,
+    /// `exitance[b][i][k]`: exitance of patch `k` for exitance 1 entering through port patch
+    /// `i` (1 on patch `i` itself, which is black).
+    pub exitance: Vec<Vec<Vec<f64>>>,
+}
+
+impl RoomPorts {
+    /// Where opening `k`'s patches start among the room's port patches.
+    fn first_patch(&self, k: usize) -> usize {
+        self.openings[..k].iter().map(|o| o.area.len()).sum()
+    }
+}
+
+/// The responses of a built room at the openings `openings` (`(port, surface)`, in the
+/// manifest's order of ports), from its meshed scene and its radiosity system.
+pub fn respond(
+    scene: &Scene,
+    system: &System,
+    openings: &[(String, String)],
+) -> Result<RoomPorts, crate::Error> {
+    if openings.is_empty() {
+        return Ok(RoomPorts::default());
+    }
+    let mut ports = RoomPorts::default();
+    let mut patches = Vec::new();
+    for (port, surface) in openings {
+        // The manifest checked the quad against the scene file; a scene that meshed it into no
+        // surface of this name is refused here rather than coupled wrongly.
+        let range = scene
+            .surfaces
+            .iter()
+            .find(|s| &s.name == surface)
+            .map(|s| s.patch_range.clone())
+            .filter(|r| !r.is_empty())
+            .ok_or_else(|| crate::Error::PortOpening {
+                port: port.clone(),
+                surface: surface.clone(),
+            })?;
+        let own = &scene.patches[range.clone()];
+        ports.openings.push(PortOpening {
+            port: port.clone(),
+            surface: surface.clone(),
+            area: own.iter().map(|p| p.area).collect(),
+            centroid: own
+                .iter()
+                .map(|p| [p.centroid.x, p.centroid.y, p.centroid.z])
+                .collect(),
+        });
+        patches.extend(range);
+    }
+    let n = system.patch_count();
+    let m = system.channel_count();
+    let flux_on_ports = |irradiance: &[f64]| -> Vec<f64> {
+        patches
+            .iter()
+            .map(|&j| system.area[j] * irradiance[j])
+            .collect()
+    };
+    let responses = system.channel_responses()?;
+    let entering: Vec<ChannelLight> = patches
+        .iter()
+        .map(|&i| {
+            let unit: Vec<f64> = (0..n).map(|k| if k == i { 1.0 } else { 0.0 }).collect();
+            let emission = vec![unit; system.band_count()];
+            ChannelLight {
+                patch_irradiance: emission
+                    .iter()
+                    .map(|e| exchange::patch_irradiance(system.operator(), &system.area, e))
+                    .collect(),
+                output_irradiance: emission
+                    .iter()
+                    .map(|e| exchange::output_irradiance(&system.output_rows, e))
+                    .collect(),
+                emission,
+            }
+        })
+        .collect();
+    for b in 0..system.band_count() {
+        ports.leaving.push(
+            (0..m)
+                .map(|c| flux_on_ports(&system.patch_irradiance(b, &responses[c][b], &alone(m, c))))
+                .collect(),
+        );
+        let mut returned = Vec::new();
+        let mut readings = Vec::new();
+        let mut exitance = Vec::new();
+        for (response, irradiance) in system.light_responses_with_irradiance(b, &entering)? {
+            returned.push(flux_on_ports(&irradiance));
+            readings.push(response.readings);
+            exitance.push(response.exitance);
+        }
+        ports.returned.push(returned);
+        ports.readings.push(readings);
+        ports.exitance.push(exitance);
+    }
+    Ok(ports)
+}
+
+/// One unknown of the port system: the exitance entering room `rooms[side]` of port `port`
+/// through its patch `patch` (numbered as in the port's first room).
+#[derive(Clone, Copy, Debug)]
+struct Entering {
+    port: usize,
+    side: usize,
+    patch: usize,
+}
+
+/// What the merge made of the ports: every room's tables with the light its ports bring,
+/// and what the coupling leaves out.
+#[derive(Clone, Debug)]
+pub struct Coupled {
+    /// Per room of the manifest, its tables with every channel of the building whose light
+    /// reaches it through ports (named `room/channel`, after the room's own), the responses
+    /// of its own channels including the light that comes back through its ports.
+    pub tables: Vec<BasisTables>,
+    /// What is not coupled (a room's daylight through its ports), one sentence each.
+    pub notes: Vec<String>,
+}
+
+/// The name a channel of room `room` takes in the tables of another room.
+pub fn foreign_channel(room: &str, channel: &str) -> String {
+    format!("{room}/{channel}")
+}
+
+/// Couples the rooms' `parts` (in the manifest's order of rooms) through the manifest's
+/// ports (docs/math.md, "Rooms coupled through ports").
+/// `dir` is the folder of the parts, for the errors to name them.
+pub fn couple(
+    manifest: &Manifest,
+    parts: &[Part],
+    dir: &std::path::Path,
+) -> Result<Coupled, BuildingError> {
+    let mut coupled = Coupled {
+        tables: parts.iter().map(|p| p.tables.clone()).collect(),
+        notes: Vec::new(),
+    };
+    if manifest.ports.is_empty() {
+        return Ok(coupled);
+    }
+    // Each part must answer for exactly the manifest's ports of its room.
+    for (r, part) in parts.iter().enumerate() {
+        let wanted: Vec<(String, String)> = manifest
+            .ports
+            .iter()
+            .filter_map(|p| Some((p.name.clone(), p.opening_in(r)?.to_string())))
+            .collect();
+        let held: Vec<(String, String)> = part
+            .ports
+            .openings
+            .iter()
+            .map(|o| (o.port.clone(), o.surface.clone()))
+            .collect();
+        if wanted != held {
+            let list = |l: &[(String, String)]| {
+                if l.is_empty() {
+                    "none".to_string()
+                } else {
+                    l.iter()
+                        .map(|(p, s)| format!("{p} ({s})"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                }
+            };
+            return Err(BuildingError::Part {
+                path: super::part::path(dir, &part.room),
+                message: format!(
+                    "built with the ports {}, but the manifest gives room {} the ports {}: build room {} again",
+                    list(&held),
+                    part.room,
+                    list(&wanted),
+                    part.room
+                ),
+            });
+        }
+    }
+    // Each part holds its room's openings in the manifest's order of ports (checked above):
+    // port `p`'s opening on `side` is the room's opening `slot[p][side]`.
+    let slot: Vec<[usize; 2]> = manifest
+        .ports
+        .iter()
+        .enumerate()
+        .map(|(p, port)| {
+            port.rooms.map(|r| {
+                manifest.ports[..p]
+                    .iter()
+                    .filter(|q| q.rooms.contains(&r))
+                    .count()
+            })
+        })
+        .collect();
+    let opening = |p: usize, side: usize| -> &PortOpening {
+        &parts[manifest.ports[p].rooms[side]].ports.openings[slot[p][side]]
+    };
+    // Each port's patches in its second room, matched to its first room's.
+    let mut matched: Vec<Vec<usize>> = Vec::new();
+    for (p, port) in manifest.ports.iter().enumerate() {
+        let opening = |side: usize| opening(p, side);
+        let (a, b) = (opening(0), opening(1));
+        let fail = || {
+            BuildingError::Manifest {
+            at: port.at.clone(),
+            item: format!("port {}", port.name),
+            message: format!(
+                "its opening is meshed differently in room {} ({} patches) and room {} ({} patches): give the quads {} and {} the same `max_edge` in both scenes, so that each patch of the opening is one patch of both rooms",
+                manifest.rooms[port.rooms[0]].name,
+                a.area.len(),
+                manifest.rooms[port.rooms[1]].name,
+                b.area.len(),
+                a.surface,
+                b.surface
+            ),
+        }
+        };
+        if a.area.len() != b.area.len() {
+            return Err(fail());
+        }
+        let mut order = Vec::with_capacity(a.area.len());
+        for (j, ca) in a.centroid.iter().enumerate() {
+            let near =
+                |cb: &[f64; 3]| (0..3).all(|x| (ca[x] - cb[x]).abs() <= PATCH_MATCH_TOLERANCE);
+            let k = b.centroid.iter().position(near).ok_or_else(fail)?;
+            if (a.area[j] - b.area[k]).abs() > 1e-9 * a.area[j] {
+                return Err(fail());
+            }
+            order.push(k);
+        }
+        matched.push(order);
+    }
+    // Where patch `j` of port `p` (numbered as in its first room) lies among the port patches
+    // of its room on `side`.
+    let local = |p: usize, side: usize, j: usize| -> usize {
+        let ports = &parts[manifest.ports[p].rooms[side]].ports;
+        ports.first_patch(slot[p][side]) + if side == 0 { j } else { matched[p][j] }
+    };
+    let unknowns: Vec<Entering> = manifest
+        .ports
+        .iter()
+        .enumerate()
+        .flat_map(|(p, _)| {
+            let patches = matched[p].len();
+            (0..2).flat_map(move |side| {
+                (0..patches).map(move |patch| Entering {
+                    port: p,
+                    side,
+                    patch,
+                })
+            })
+        })
+        .collect();
+    let first_channel: Vec<usize> = parts
+        .iter()
+        .scan(0, |next, part| {
+            let first = *next;
+            *next += part.tables.channel_names.len();
+            Some(first)
+        })
+        .collect();
+    let channels: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
+    let bands = parts.first().map_or(1, |p| p.tables.bands);
+    let u_count = unknowns.len();
+    // `entering[b]`: u × channels, the exitance entering through each port patch per channel
+    // of the building at level 1.
+    let mut entering = Vec::with_capacity(bands);
+    for b in 0..bands {
+        let mut system = Mat::<f64>::identity(u_count, u_count);
+        let mut rhs = Mat::<f64>::zeros(u_count, channels);
+        for (row, u) in unknowns.iter().enumerate() {
+            let port = &manifest.ports[u.port];
+            let from_side = 1 - u.side;
+            let from = port.rooms[from_side];
+            let ports = &parts[from].ports;
+            let j = local(u.port, from_side, u.patch);
+            let factor = port.transmittance / opening(u.port, 0).area[u.patch];
+            for c in 0..parts[from].tables.channel_names.len() {
+                rhs[(row, first_channel[from] + c)] = factor * ports.leaving[b][c][j];
+            }
+            for (col, v) in unknowns.iter().enumerate() {
+                if manifest.ports[v.port].rooms[v.side] == from {
+                    let i = local(v.port, v.side, v.patch);
+                    system[(row, col)] -= factor * ports.returned[b][i][j];
+                }
+            }
+        }
+        entering.push(system.partial_piv_lu().solve(rhs.as_ref()));
+    }
+    // Rooms joined through ports, directly or through others.
+    let rooms = parts.len();
+    let mut group: Vec<usize> = (0..rooms).collect();
+    loop {
+        let mut changed = false;
+        for port in &manifest.ports {
+            let [a, b] = port.rooms;
+            let low = group[a].min(group[b]);
+            for r in [a, b] {
+                if group[r] != low {
+                    group[r] = low;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    for (r, part) in parts.iter().enumerate() {
+        let into: Vec<(usize, usize)> = unknowns
+            .iter()
+            .enumerate()
+            .filter(|(_, u)| manifest.ports[u.port].rooms[u.side] == r)
+            .map(|(row, u)| (row, local(u.port, u.side, u.patch)))
+            .collect();
+        if into.is_empty() {
+            continue;
+        }
+        // The room's channels, then every other joined room's, in the manifest's order.
+        let mut kept: Vec<(usize, String)> = (0..part.tables.channel_names.len())
+            .map(|c| (first_channel[r] + c, part.tables.channel_names[c].clone()))
+            .collect();
+        for (q, other) in parts.iter().enumerate() {
+            if q != r && group[q] == group[r] {
+                for (c, name) in other.tables.channel_names.iter().enumerate() {
+                    let foreign = foreign_channel(&other.room, name);
+                    if part.tables.channel_names.contains(&foreign) {
+                        return Err(BuildingError::Manifest {
+                            at: manifest.rooms[r].at.clone(),
+                            item: format!("room {}: channel {foreign}", part.room),
+                            message: format!(
+                                "is also the name channel {name} of room {}, joined to this room through ports, takes here: rename one of them",
+                                other.room
+                            ),
+                        });
+                    }
+                    kept.push((first_channel[q] + c, foreign));
+                }
+            }
+        }
+        let t = &part.tables;
+        let own = t.channel_names.len();
+        let outputs = t.sensor_names.len() + t.zone_names.len();
+        let points = t.grid_position.len();
+        let n = t.patch_area.len();
+        let ports = &part.ports;
+        // Column `kc` of `kept` at one output or patch in band `b`: the room's own response
+        // there (`own_value`, 0 for another room's channel), plus, for every port patch `i`
+        // light enters through, the room's response to it (`through(i)`) times the exitance
+        // the channel sends in through it.
+        let value = |own_value: f64, b: usize, kc: usize, through: &dyn Fn(usize) -> f64| -> f64 {
+            let g = kept[kc].0;
+            let mut v = own_value;
+            for &(row, i) in &into {
+                v += through(i) * entering[b][(row, g)];
+            }
+            v
+        };
+        let table = |rows: usize, offset: usize, old: &[f64]| -> Vec<f64> {
+            let mut out = Vec::with_capacity(rows * bands * kept.len());
+            for o in 0..rows {
+                for b in 0..bands {
+                    for kc in 0..kept.len() {
+                        let own_value = if kc < own {
+                            old[(o * bands + b) * own + kc]
+                        } else {
+                            0.0
+                        };
+                        out.push(value(own_value, b, kc, &|i| {
+                            ports.readings[b][i][offset + o]
+                        }));
+                    }
+                }
+            }
+            out
+        };
+        let mut tables = t.clone();
+        tables.output_channels = table(outputs, 0, &t.output_channels);
+        tables.grid_channels = table(points, outputs, &t.grid_channels);
+        if !t.channel_response.is_empty() {
+            let mut response = Vec::with_capacity(n * kept.len() * bands);
+            for k in 0..n {
+                for kc in 0..kept.len() {
+                    for b in 0..bands {
+                        let own_value = if kc < own {
+                            t.channel_response[k * own * bands + kc * bands + b]
+                        } else {
+                            0.0
+                        };
+                        response.push(value(own_value, b, kc, &|i| ports.exitance[b][i][k]));
+                    }
+                }
+            }
+            tables.channel_response = response;
+        }
+        tables.channel_names = kept.into_iter().map(|(_, name)| name).collect();
+        coupled.tables[r] = tables;
+    }
+    for port in &manifest.ports {
+        for side in 0..2 {
+            let (from, to) = (port.rooms[side], port.rooms[1 - side]);
+            if !parts[from].tables.daylight_outputs.is_empty() {
+                coupled.notes.push(format!(
+                    "port {}: the daylight of room {} is not carried through it into room {} (only channels are coupled through ports)",
+                    port.name, manifest.rooms[from].name, manifest.rooms[to].name
+                ));
+            }
+        }
+    }
+    Ok(coupled)
+}
