@@ -112,7 +112,7 @@ pub struct Plan {
 /// A grid's points on their full lattice: its first corner (m), its counts, its spacing (m)
 /// and a value per lattice point, NaN where the grid has no point (outside the floor of an L,
 /// inside a column), so that isolux lines stop there. `None` without points.
-fn full_lattice(g: &PlanGrid) -> Option<([f64; 2], [usize; 2], [f64; 2], Vec<f64>)> {
+fn full_lattice(g: &PlanGrid) -> Option<FullLattice> {
     let [dx, dy] = g.cell;
     if g.points.is_empty() || !(dx > 0.0 && dy > 0.0) {
         return None;
@@ -132,7 +132,20 @@ fn full_lattice(g: &PlanGrid) -> Option<([f64; 2], [usize; 2], [f64; 2], Vec<f64
         let (i, j) = index(p);
         values[j * nx + i] = v;
     }
-    Some(([x0, y0], [nx, ny], [dx, dy], values))
+    Some(FullLattice {
+        origin: [x0, y0],
+        counts: [nx, ny],
+        spacing: [dx, dy],
+        values,
+    })
+}
+
+/// A [`Lattice`] that owns its values.
+struct FullLattice {
+    origin: [f64; 2],
+    counts: [usize; 2],
+    spacing: [f64; 2],
+    values: Vec<f64>,
 }
 
 /// Pixels per metre at most, and the plan's largest drawing, pixels.
@@ -158,12 +171,12 @@ impl Plan {
             .map(|t| {
                 let lines = lattices
                     .iter()
-                    .flat_map(|(origin, counts, spacing, values)| {
+                    .flat_map(|l| {
                         let lattice = Lattice {
-                            counts: *counts,
-                            origin: *origin,
-                            spacing: *spacing,
-                            values,
+                            counts: l.counts,
+                            origin: l.origin,
+                            spacing: l.spacing,
+                            values: &l.values,
                         };
                         isolines(&lattice, t)
                     })
