@@ -13,7 +13,8 @@
 #   daylight-sun.png      the same under the CIE clear sky (type 12) with the sun: 15 000 lux
 #                         diffuse, 70 000 lux direct normal
 #   l-office-plan.png     the L-shaped office's work plane (examples/l-office), both channels
-#                         at level 1, no daylight (exact solve): the plan drawn over the L
+#                         at level 1, no daylight (exact solve): the plan of the L, its walls,
+#                         windows, columns, desk and sensors
 #
 # Usage: scripts/pictures.sh [SCENE]      (default examples/office/scene.toml)
 #

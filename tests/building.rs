@@ -292,24 +292,6 @@ fn the_example_gives_the_same_bytes_on_one_machine_and_as_three_shards() {
     let _ = std::fs::remove_dir_all(&sharded);
 }
 
-/// A small building of two cubes (common::scene) in `dir`: `cube-a` with controller `a`,
-/// `cube-b` with controller `b`; `controllers` replaces the controllers when given.
-fn small_building(dir: &Path, controllers: Option<&str>) -> PathBuf {
-    for room in ["cube-a", "cube-b"] {
-        std::fs::write(dir.join(format!("{room}.toml")), common::scene(1.0)).expect("scene");
-    }
-    let default = "[[controller]]\nname = \"a\"\nroom = \"cube-a\"\ndrives = [\"lamp\"]\nsensors = [\"floor\"]\n\n\
-                   [[controller]]\nname = \"b\"\nroom = \"cube-b\"\ndrives = [\"lamp\"]\nsensors = [\"floor\"]\n";
-    let text = format!(
-        "[building]\nname = \"cubes\"\n\n[[room]]\nname = \"cube-a\"\nscene = \"cube-a.toml\"\n\n\
-         [[room]]\nname = \"cube-b\"\nscene = \"cube-b.toml\"\n\n{}",
-        controllers.unwrap_or(default)
-    );
-    let path = dir.join("building.toml");
-    std::fs::write(&path, text).expect("manifest");
-    path
-}
-
 /// Runs `eigenrad` with `args`; it must fail, say `expected`, and write no basis nor index.
 fn refused(args: &[&str], out: &Path, expected: &[&str]) {
     let o = common::run(args);
@@ -334,7 +316,7 @@ fn bad_manifests_name_the_file_line_and_item() {
     let dir = common::scratch("building-manifests");
     let out = dir.join("out");
     let o = out.to_str().expect("utf-8");
-    let case = |controllers: &str| small_building(&dir, Some(controllers));
+    let case = |controllers: &str| common::small_building(&dir, 1.0, Some(controllers));
     let path = |p: &Path| p.to_str().expect("utf-8").to_string();
 
     let m = path(&case(
@@ -392,7 +374,7 @@ fn bad_manifests_name_the_file_line_and_item() {
         &["building.toml:16:", "unknown field `colour`"],
     );
 
-    let m = path(&small_building(&dir, None));
+    let m = path(&common::small_building(&dir, 1.0, None));
     refused(
         &["building", &m, "--out", o, "--shard", "2/2"],
         &out,
@@ -421,7 +403,7 @@ fn merge_refuses_missing_parts_and_parts_of_other_scenes_or_versions() {
     let dir = common::scratch("building-parts");
     let out = dir.join("out");
     let o = out.to_str().expect("utf-8").to_string();
-    let manifest = small_building(&dir, None);
+    let manifest = common::small_building(&dir, 1.0, None);
     let m = manifest.to_str().expect("utf-8").to_string();
     let built = common::run(&["building", &m, "--out", &o, "--room", "cube-a"]);
     assert!(built.status.success(), "{}", common::stderr(&built));
@@ -517,8 +499,9 @@ fn a_basis_over_its_flash_names_the_controller_and_its_sections() {
     let dir = common::scratch("building-flash");
     let out = dir.join("out");
     let o = out.to_str().expect("utf-8").to_string();
-    let manifest = small_building(
+    let manifest = common::small_building(
         &dir,
+        1.0,
         Some("[[controller]]\nname = \"a\"\nroom = \"cube-a\"\ndrives = [\"lamp\"]\nsensors = [\"floor\"]\nmodes = true\n"),
     );
     let m = manifest.to_str().expect("utf-8").to_string();

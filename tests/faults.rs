@@ -1,8 +1,8 @@
-//! The machine failing under eigenrad: `build`, `solve` and `render` killed (SIGKILL) at a
-//! sweep of moments; under `build`, a full disk, a read-only cache folder, a cache path that is
-//! a file, two builds at once. After each, the previous output is byte-identical or the new
-//! one complete (the bytes of an uninterrupted run), the cache holds only sound entries, and
-//! the next run proceeds.
+//! The machine failing under eigenrad: `build`, `solve`, `render`, `building` and `merge`
+//! killed (SIGKILL) at a sweep of moments; under `build`, a full disk, a read-only cache
+//! folder, a cache path that is a file, two builds at once. After each, the previous output is
+//! byte-identical or the new one complete (the bytes of an uninterrupted run), the cache holds
+//! only sound entries, and the next run proceeds.
 //!
 //! Mounting a small tmpfs needs root and a kernel that lets the test mount; without them the
 //! tests that need one print `SKIPPED: ...` and pass.
@@ -116,7 +116,14 @@ fn killed_at_a_sweep_of_moments(
 ) -> (usize, usize) {
     let steps = 12;
     let mut outcomes = (0, 0);
-    let dir = outputs.files[0].parent().expect("the outputs' folder");
+    // Every folder the outputs are written in, with what it held before.
+    let mut dirs: Vec<&Path> = outputs
+        .files
+        .iter()
+        .map(|f| f.parent().expect("an output's folder"))
+        .collect();
+    dirs.sort();
+    dirs.dedup();
     let names: Vec<String> = outputs
         .files
         .iter()
@@ -127,7 +134,7 @@ fn killed_at_a_sweep_of_moments(
                 .into_owned()
         })
         .collect();
-    let before = listing(dir);
+    let before: Vec<Vec<String>> = dirs.iter().map(|d| listing(d)).collect();
     for k in 0..steps {
         let delay = took.mul_f64(k as f64 / (steps - 2) as f64);
         let mut child = run().stderr(Stdio::null()).spawn().expect("spawn eigenrad");
@@ -154,15 +161,19 @@ fn killed_at_a_sweep_of_moments(
             }
         }
         // Only hidden `.<name>.<pid>.tmp` temporaries of the outputs may be new.
-        for name in listing(dir) {
-            let temporary = names
-                .iter()
-                .any(|n| name.starts_with(&format!(".{n}.")) && name.ends_with(".tmp"));
-            let the_cache = cache.parent() == Some(dir) && cache.file_name() == Some(name.as_ref());
-            assert!(
-                before.contains(&name) || temporary || the_cache,
-                "killed after {delay:?}: unexpected file {name}"
-            );
+        for (dir, before) in dirs.iter().zip(&before) {
+            for name in listing(dir) {
+                let temporary = names
+                    .iter()
+                    .any(|n| name.starts_with(&format!(".{n}.")) && name.ends_with(".tmp"));
+                let the_cache =
+                    cache.parent() == Some(*dir) && cache.file_name() == Some(name.as_ref());
+                assert!(
+                    before.contains(&name) || temporary || the_cache,
+                    "killed after {delay:?}: unexpected file {name} in {}",
+                    dir.display()
+                );
+            }
         }
         // The next run proceeds: every cache entry the killed run left is sound (none is
         // reported unusable), the outputs are complete, and the killed run's temporaries of
@@ -175,11 +186,13 @@ fn killed_at_a_sweep_of_moments(
             "killed after {delay:?}, the next run found: {err}"
         );
         assert_eq!(read_all(&outputs.files), outputs.complete);
-        assert!(
-            temporaries(dir).is_empty(),
-            "stale temporaries after the next run: {:?}",
-            temporaries(dir)
-        );
+        for dir in &dirs {
+            assert!(
+                temporaries(dir).is_empty(),
+                "stale temporaries after the next run: {:?}",
+                temporaries(dir)
+            );
+        }
         // Back to the previous outputs and an empty cache for the next moment.
         for (file, previous) in outputs.files.iter().zip(&outputs.previous) {
             std::fs::write(file, previous).expect("restore previous");
@@ -264,6 +277,62 @@ fn solve_and_render_killed_at_any_moment_lose_nothing_and_the_next_run_proceeds(
     let _ = std::fs::remove_dir_all(&cache);
     let (kept, replaced) = killed_at_a_sweep_of_moments(&render, &outputs, took, &cache);
     eprintln!("render: {kept} outputs left as they were, {replaced} complete ({took:?})");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `eigenrad building` (every room's part, then every controller's basis and the index) and
+/// `eigenrad merge` (the bases and the index from the parts) killed at a sweep of moments.
+/// The previous outputs are those of the same building meshed coarser.
+#[test]
+fn building_and_merge_killed_at_any_moment_lose_nothing_and_the_next_run_proceeds() {
+    let dir = scratch("faults-kill-building");
+    let out = dir.join("out");
+    let parts = out.join("parts");
+    let cache = dir.join("cache");
+    let eigenrad_with_cache = |command: &str, manifest: &Path| {
+        let mut c = Command::new(eigenrad());
+        c.args([command, path(manifest), "--out", path(&out)])
+            .env("EIGENRAD_CACHE_DIR", &cache)
+            .stdout(Stdio::null());
+        c
+    };
+    let manifest = common::small_building(&dir, 1.0, None);
+    let o = eigenrad_with_cache("building", &manifest)
+        .stderr(Stdio::piped())
+        .output()
+        .expect("run eigenrad");
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The same rooms meshed finer: every part and basis changes; the index (the bases' sizes
+    // and sections, which the mesh does not change) is given other previous bytes.
+    common::small_building(&dir, 0.5, None);
+    std::fs::write(out.join("building.json"), "{\"previous\": true}\n").expect("write");
+    let bases = [
+        out.join("a.basis"),
+        out.join("b.basis"),
+        out.join("building.json"),
+    ];
+    let mut files = vec![parts.join("cube-a.part"), parts.join("cube-b.part")];
+    files.extend(bases.iter().cloned());
+
+    let building = || eigenrad_with_cache("building", &manifest);
+    let (outputs, took) = Outputs::around(files, &building);
+    let _ = std::fs::remove_dir_all(&cache);
+    let (kept, replaced) = killed_at_a_sweep_of_moments(&building, &outputs, took, &cache);
+    eprintln!("building: {kept} outputs left as they were, {replaced} complete ({took:?})");
+
+    // The merge of the finer parts over the coarser bases.
+    let o = eigenrad_with_cache("building", &manifest)
+        .stderr(Stdio::piped())
+        .output()
+        .expect("run eigenrad");
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (file, previous) in bases.iter().zip(&outputs.previous[2..]) {
+        std::fs::write(file, previous).expect("restore previous");
+    }
+    let merge = || eigenrad_with_cache("merge", &manifest);
+    let (outputs, took) = Outputs::around(bases.to_vec(), &merge);
+    let (kept, replaced) = killed_at_a_sweep_of_moments(&merge, &outputs, took, &cache);
+    eprintln!("merge: {kept} outputs left as they were, {replaced} complete ({took:?})");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -20,7 +20,8 @@ use eigenrad::precompute::cli::{
     self, DaylightArgs, LevelArgs, RenderRequest, SkyInput, SurfaceQuantity, Units,
 };
 use eigenrad::precompute::formfactor::FormFactorOptions;
-use eigenrad::precompute::picture::{colour, Frame, Panel, Plan, PlanInput, Scale};
+use eigenrad::precompute::picture::plan::colours;
+use eigenrad::precompute::picture::{colour, Frame, Panel, Plan, PlanGrid, PlanInput, Scale};
 use eigenrad::precompute::pipeline::{self, BuildOptions, ModeSelection};
 use eigenrad::precompute::scene;
 
@@ -58,7 +59,7 @@ fn request<'a>(
         basis: None,
         levels,
         units: Units::Native,
-        zone: None,
+        zones: &[],
         plan: true,
         surfaces: Some(SurfaceQuantity::Illuminance),
         form_factors: ff,
@@ -166,8 +167,8 @@ fn the_plan_shows_the_exact_grid_values() {
         );
     }
     // The caption carries the exact figures; the scale spans the values.
-    assert_eq!(plan.input.figures[0], grid.average[0]);
-    assert_eq!(plan.input.figures[3], grid.uniformity[0]);
+    assert_eq!(plan.input.grids[0].figures[0], grid.average[0]);
+    assert_eq!(plan.input.grids[0].figures[3], grid.uniformity[0]);
     assert!(plan.scale.min <= grid.minimum[0] && grid.maximum[0] <= plan.scale.max);
     // Isolux lines at the scale's round values inside the grid's range, each where the
     // values cross it: between a point below and one above.
@@ -269,16 +270,24 @@ fn linear_plan() -> Plan {
         title: "linear".into(),
         notes: vec![],
         unit: "lux",
-        counts,
-        cell: [0.5, 0.5],
-        border: 0.0,
-        values,
-        points,
+        grids: vec![PlanGrid {
+            zone: "linear".into(),
+            counts,
+            cell: [0.5, 0.5],
+            border: 0.0,
+            values,
+            points,
+            figures: [225.0, 25.0, 425.0, 25.0 / 225.0],
+        }],
         room: [[0.0, 0.0], [4.5, 2.5]],
         floor: vec![],
-        figures: [225.0, 25.0, 425.0, 25.0 / 225.0],
+        walls: vec![],
+        windows: vec![],
+        doors: vec![],
+        blocks: vec![],
         luminaires: vec![],
         luminaire_points: vec![],
+        sensors: vec![],
     })
 }
 
@@ -362,7 +371,11 @@ fn the_svg_has_isolux_lines_at_their_levels_and_cells_in_their_colours() {
             ))
         })
         .collect();
-    for (p, v) in plan.input.points.iter().zip(&plan.input.values) {
+    for (p, v) in plan.input.grids[0]
+        .points
+        .iter()
+        .zip(&plan.input.grids[0].values)
+    {
         let (c, r) = frame.pixel(p[0], p[1]);
         let top = rects
             .iter()
@@ -398,7 +411,7 @@ fn a_white_furnace_is_one_colour_without_isolux_lines() {
     let tolerance = plan.scale.bin_width() / 2.0 + FURNACE_RTOL * m;
     let (bytes, frame) = plan.png().unwrap();
     let img = decode(&bytes);
-    for [x, y] in &plan.input.points {
+    for [x, y] in &plan.input.grids[0].points {
         // The very pixel of the point: nothing is drawn over a uniform plan's cells.
         let shown = plan.scale.value_of(img.at(frame.pixel(*x, *y))).unwrap();
         assert!(
@@ -655,4 +668,143 @@ fn errors_name_what_is_wrong() {
         "{e}"
     );
     assert!(!plan.exists());
+}
+
+/// The L-shaped office of `examples/l-office` meshed coarser (1 m: the plan is what is tested,
+/// not the light), its photometry found where the example keeps it, with `zones` in place of
+/// its work plane.
+fn l_office(dir: &Path, zones: &str) -> PathBuf {
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/l-office/scene.toml");
+    let photometry = example.parent().unwrap().join("../photometry/");
+    let text = std::fs::read_to_string(&example).unwrap();
+    let at = text.find("[[zone]]").expect("the example's zone");
+    let text = text[..at]
+        .replace("max_edge = 0.6", "max_edge = 1.0")
+        .replace("../photometry/", photometry.to_str().unwrap())
+        + zones;
+    let path = dir.join("l-office.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The colour of a plan's pixel at `(x, y)` (m) is `expected`, or (`near`) some pixel within
+/// two of it is (a line two pixels wide).
+fn shows(img: &Image, frame: &Frame, (x, y): (f64, f64), expected: [u8; 3], near: bool) -> bool {
+    let (c, r) = frame.pixel(x, y);
+    let reach = if near { 2 } else { 0 };
+    (-reach..=reach).any(|dc| (-reach..=reach).any(|dr| img.at((c + dc, r + dr)) == expected))
+}
+
+/// The plan of an L-shaped room: the notch is background, the columns their colour, the
+/// walls follow the L (not its bounding rectangle), the windows lie on the façades, the
+/// sensor and the desk are marked, isolux lines run over the L's grid, and the title names
+/// the plane's height.
+#[test]
+fn the_plan_of_an_l_shaped_room_draws_its_walls_openings_and_blocks() {
+    let dir = scratch("l-office");
+    let path = l_office(
+        &dir,
+        "[[zone]]\nname = \"work_plane\"\nwork_plane = { room = \"office\", height = 0.8, margin = 0.5 }\n",
+    );
+    let (levels, ff) = (LevelArgs::default(), FormFactorOptions::default());
+    let mut r = request(&path, &levels, &ff);
+    r.surfaces = None;
+    let pictures = cli::render(&r).unwrap();
+    let plan = pictures.plan.as_ref().unwrap();
+    let title = &plan.input.title;
+    assert!(
+        !title.contains("NaN") && title.contains("work_plane at 0.80 m"),
+        "{title}"
+    );
+    assert!(!plan.isolux.is_empty(), "isolux lines over the L's grid");
+    let (bytes, frame) = plan.png().unwrap();
+    let img = decode(&bytes);
+    let is = |p: (f64, f64), c: colour::Rgb| shows(&img, &frame, p, c, false);
+    let near = |p: (f64, f64), c: colour::Rgb| shows(&img, &frame, p, c, true);
+    // The notch (x > 7, y > 4) is no floor: background, away from its walls and the axes.
+    for p in [(9.5, 6.0), (8.0, 7.5), (11.5, 4.5)] {
+        assert!(is(p, colours::BACKGROUND), "{p:?} in the notch");
+    }
+    // The columns, 0.4 m square, filled: the work plane stands in them.
+    for p in [(3.5, 4.0), (3.4, 3.9), (9.0, 2.0), (9.1, 2.1)] {
+        assert!(is(p, colours::BLOCK), "{p:?} in a column");
+    }
+    // Walls along the L, the notch's two walls among them; windows on the south and east
+    // façades; the desk's outline; the desk sensor.
+    for p in [
+        (0.0, 4.0),
+        (7.0, 6.0),
+        (9.5, 4.0),
+        (12.0, 3.5),
+        (5.0, 0.0),
+        (3.0, 8.0),
+    ] {
+        assert!(near(p, colours::INK), "{p:?} on a wall");
+    }
+    for p in [(3.0, 0.0), (9.0, 0.0), (12.0, 2.0)] {
+        assert!(near(p, colours::WINDOW), "{p:?} on a window");
+    }
+    assert!(near((6.0, 0.0), colours::INK) && !near((6.0, 0.0), colours::WINDOW));
+    assert!(near((1.2, 6.0), colours::FURNITURE), "the desk's west edge");
+    assert!(is((2.0, 6.0), colours::SENSOR), "the desk sensor");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Two work-plane zones of one floor (the L's two wings as task areas) on one plan: both
+/// grids drawn in their colours on one scale, each zone's figures in the caption; zones at
+/// different heights are refused.
+#[test]
+fn a_plan_draws_several_zones_of_one_floor() {
+    let dir = scratch("l-office-zones");
+    let zones = "[[zone]]\nname = \"west\"\nwork_plane = { room = \"office\", height = 0.8, area = { min = [0.5, 0.5], max = [6.5, 7.5] } }\n\n\
+                 [[zone]]\nname = \"east\"\nwork_plane = { room = \"office\", height = 0.8, area = { min = [7.5, 0.5], max = [11.5, 3.5] } }\n\n\
+                 [[zone]]\nname = \"high\"\nwork_plane = { room = \"office\", height = 1.2, area = { min = [0.5, 0.5], max = [2.5, 2.5] } }\n";
+    let path = l_office(&dir, zones);
+    let (levels, ff) = (LevelArgs::default(), FormFactorOptions::default());
+    let names = ["west".to_string(), "east".to_string()];
+    let mut r = request(&path, &levels, &ff);
+    r.surfaces = None;
+    r.zones = &names;
+    let pictures = cli::render(&r).unwrap();
+    let plan = pictures.plan.as_ref().unwrap();
+    assert_eq!(plan.input.grids.len(), 2);
+    assert!(
+        plan.input.title.contains("west at 0.80 m") && plan.input.title.contains("east at 0.80 m")
+    );
+    let (bytes, frame) = plan.png().unwrap();
+    let img = decode(&bytes);
+    let half = plan.scale.bin_width() / 2.0;
+    for (name, g) in names.iter().zip(&plan.input.grids) {
+        assert_eq!(&g.zone, name);
+        let grid = pictures
+            .readout
+            .grids
+            .iter()
+            .find(|r| &r.zone == name)
+            .unwrap();
+        assert_eq!(g.figures[0], grid.average[0]);
+        for (p, v) in g.points.iter().zip(&g.values) {
+            // Away from the columns, whose footprint covers part of their cells.
+            if (p[0] - 3.5).abs() < 1.0 && (p[1] - 4.0).abs() < 1.0 {
+                continue;
+            }
+            if (p[0] - 9.0).abs() < 1.0 && (p[1] - 2.0).abs() < 1.0 {
+                continue;
+            }
+            let cell = [g.cell[0] / 2.0, g.cell[1] / 2.0];
+            let shown =
+                cell_value(&img, &frame, &plan.scale, (p[0], p[1]), cell).unwrap_or_else(|| {
+                    panic!("{name} ({}, {}): not a colour of the scale", p[0], p[1])
+                });
+            assert!(
+                (shown - v).abs() <= half + 1e-9,
+                "{name} {p:?}: {shown} for {v}"
+            );
+        }
+    }
+    let both = ["west".to_string(), "high".to_string()];
+    r.zones = &both;
+    let e = cli::render(&r).unwrap_err().to_string();
+    assert!(e.contains("--zone high") && e.contains("one height"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
 }

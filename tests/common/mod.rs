@@ -301,3 +301,22 @@ longitude = 16.37
 north = 0
 ground_reflectance = 0.2
 utc_offset = "+01:00""#;
+
+/// A small building of two cubes ([`scene`] at `max_edge`, m) in `dir`: `cube-a` with
+/// controller `a`, `cube-b` with controller `b`; `controllers` replaces the controllers when
+/// given. Returns the manifest's path.
+pub fn small_building(dir: &Path, max_edge: f64, controllers: Option<&str>) -> PathBuf {
+    for room in ["cube-a", "cube-b"] {
+        std::fs::write(dir.join(format!("{room}.toml")), scene(max_edge)).expect("scene");
+    }
+    let default = "[[controller]]\nname = \"a\"\nroom = \"cube-a\"\ndrives = [\"lamp\"]\nsensors = [\"floor\"]\n\n\
+                   [[controller]]\nname = \"b\"\nroom = \"cube-b\"\ndrives = [\"lamp\"]\nsensors = [\"floor\"]\n";
+    let text = format!(
+        "[building]\nname = \"cubes\"\n\n[[room]]\nname = \"cube-a\"\nscene = \"cube-a.toml\"\n\n\
+         [[room]]\nname = \"cube-b\"\nscene = \"cube-b.toml\"\n\n{}",
+        controllers.unwrap_or(default)
+    );
+    let path = dir.join("building.toml");
+    std::fs::write(&path, text).expect("manifest");
+    path
+}

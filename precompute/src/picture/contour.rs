@@ -18,7 +18,7 @@ pub struct Lattice<'a> {
     pub origin: [f64; 2],
     /// Distance between neighbouring points along x and y, m.
     pub spacing: [f64; 2],
-    /// One value per point.
+    /// One value per point; NaN where the lattice has no point.
     pub values: &'a [f64],
 }
 
@@ -66,6 +66,14 @@ pub fn isolines(lattice: &Lattice<'_>, level: f64) -> Vec<Vec<[f64; 2]>> {
     let mut segments: Vec<[Edge; 2]> = Vec::new();
     for j in 0..ny - 1 {
         for i in 0..nx - 1 {
+            // A cell with a corner missing (NaN: outside the floor, inside an obstacle) has
+            // no line: the lines end at the edge of the cells that have all four points.
+            if [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)]
+                .iter()
+                .any(|&(a, b)| lattice.value(a, b).is_nan())
+            {
+                continue;
+            }
             // Corners counter-clockwise from (i, j); edge k joins corner k to corner k + 1.
             let corner = [
                 above(i, j),

@@ -14,4 +14,4 @@ pub mod plan;
 pub use colour::Scale;
 pub use draw::{format_value, register_font, Format, Frame};
 pub use net::{Net, NetInput, NetPatch, Panel};
-pub use plan::{Plan, PlanInput};
+pub use plan::{Footprint, Plan, PlanGrid, PlanInput};

@@ -10,6 +10,7 @@ use super::contacts::{self, Footprint};
 use super::context::{unique, Ctx, MaterialInfo, RawSurface};
 use super::error::SceneError;
 use super::file::{BandsDef, SceneFile};
+use super::layout::{Block, Layout, RoomPlan};
 use super::mesh::{check_face, mesh_face, triangulate};
 use super::openings::CONTACT_TOLERANCE;
 use super::room::Room;
@@ -97,6 +98,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         max_edge,
     )?;
 
+    let layout = layout(&file, &geometry, &claimed);
     Ok(Scene {
         name: file.scene.name,
         bands,
@@ -113,7 +115,29 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         site,
         windows,
         obstructions,
+        layout,
     })
+}
+
+/// The rooms, the blocks inside them and the openings, seen from above.
+fn layout(file: &SceneFile, geometry: &Geometry, claimed: &[bool]) -> Layout {
+    Layout {
+        rooms: geometry
+            .rooms
+            .iter()
+            .map(|r| RoomPlan {
+                name: r.name.clone(),
+                corners: r.plan.corners.clone(),
+                floor: r.floor,
+                ceiling: r.ceiling,
+            })
+            .collect(),
+        blocks: inside_blocks(file, geometry)
+            .into_iter()
+            .map(|(name, min, max)| Block { name, min, max })
+            .collect(),
+        openings: (0..claimed.len()).filter(|&i| claimed[i]).collect(),
+    }
 }
 
 /// Checks each OBJ file's faces for one wound against its neighbours ([`winding::check`]),

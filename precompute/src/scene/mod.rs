@@ -14,6 +14,7 @@ mod error;
 pub(crate) mod file;
 pub mod grid;
 mod inputs;
+pub mod layout;
 mod limits;
 mod luminaires;
 mod mesh;
@@ -271,6 +272,8 @@ pub struct Scene {
     /// Surfaces outside the room that shade the windows (`exterior = true`), one per surface,
     /// in surface order (blocks, quads, then OBJ files).
     pub obstructions: Vec<Obstruction>,
+    /// The rooms, their blocks and openings seen from above, for plans.
+    pub layout: layout::Layout,
 }
 
 /// Reads, validates and meshes the scene file at `path`.

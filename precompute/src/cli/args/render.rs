@@ -47,9 +47,10 @@ pub(super) struct RenderArgs {
     /// beside) to this .png or .svg file, atomically; repeatable.
     #[arg(long, value_name = "FILE")]
     surfaces: Vec<PathBuf>,
-    /// The work-plane zone of the plan [default: the scene's only one].
+    /// The work-plane zone of the plan [default: the scene's only one]; repeatable: zones of
+    /// one floor (planes at one height) are drawn together on one colour scale.
     #[arg(long, value_name = "NAME")]
-    zone: Option<String>,
+    zone: Vec<String>,
     /// What colours the surfaces.
     #[arg(long, value_enum, default_value = "illuminance")]
     quantity: QuantityArg,
@@ -83,7 +84,7 @@ impl RenderArgs {
             basis: self.basis.as_deref().zip(bytes.as_deref()),
             levels: &self.levels.level_args(),
             units: self.units.units(),
-            zone: self.zone.as_deref(),
+            zones: &self.zone,
             plan: !self.plan.is_empty(),
             surfaces: (!self.surfaces.is_empty()).then_some(match self.quantity {
                 QuantityArg::Illuminance => cli::SurfaceQuantity::Illuminance,

@@ -14,6 +14,19 @@ pub(super) const MAX_ORDER: usize = 8;
 /// Signature of a sample that contributes nothing (behind, outside a sensor's view, hidden).
 const NOTHING: usize = usize::MAX;
 
+/// The apparent size (rad) of a window cell of radius `r` (m) whose centre lies at `distance`
+/// (m) from the viewer in the unit direction `towards`, on a pane facing `normal` (into the
+/// room): `2 r √cos θ_w / distance`, the square root of twice the solid angle of a square
+/// cell seen at the incidence θ_w. Seen face-on it is the cell's angular diameter; seen
+/// edge-on it shrinks with the solid angle, which bounds what a misplaced boundary inside the
+/// cell can move. Near the window's own plane every sky patch's boundary crowds into thin
+/// strips of the pane seen almost edge-on: their angular diameter would split the strips to
+/// `edge_depth` while what they carry vanishes with `cos θ_w`.
+fn apparent_size(r: f64, distance: f64, normal: Vec3, towards: Vec3) -> f64 {
+    let cos_w = (-normal.dot(towards)).clamp(0.0, 1.0);
+    2.0 * r * cos_w.sqrt() / distance
+}
+
 /// A receiving point: where it is, where it faces, what it sees.
 #[derive(Clone, Copy)]
 pub(super) struct Viewer<'a> {
@@ -124,8 +137,8 @@ impl Ctx<'_> {
     /// `∫ sample · cos θ_x cos θ_w / r² dA` over a cell of a window pane seen from the viewer,
     /// times `scale`, added into `acc` by bin. The cell is split while it is large for its
     /// distance (`cell_angle`, `max_depth`) and, where its points fall in different bins or
-    /// some are hidden, while its angular diameter exceeds `edge_angle` (at most
-    /// `edge_depth` splits).
+    /// some are hidden, while its apparent size ([`apparent_size`]) exceeds `edge_angle` (at
+    /// most `edge_depth` splits).
     #[allow(clippy::too_many_arguments)]
     fn window_cell(
         &self,
@@ -165,7 +178,9 @@ impl Ctx<'_> {
             }
         });
         let taken = &samples[..count];
-        if depth < self.opts.edge_depth && 2.0 * r > self.opts.edge_angle * distance {
+        if depth < self.opts.edge_depth
+            && apparent_size(r, distance, pane.normal, (c - v.x) / distance) > self.opts.edge_angle
+        {
             let first = taken.first().map_or(NOTHING, |s| s.0);
             let uniform = taken.iter().all(|s| s.0 == first)
                 && (first == NOTHING || self.corners_agree(v, pane, corners, sample, first));

@@ -25,10 +25,11 @@
 //! (`order` points per side) on cells split while they are large for their distance from
 //! `x` (`cell_angle`, `max_depth`), and split again where their points or corners see
 //! different sky patches or some points are hidden (the corners catch a patch boundary that
-//! runs between the outermost points and the cell's edge), until a cell subtends less than
-//! `edge_angle` from `x`
-//! (`edge_depth` at most): the patches' boundaries are resolved to a fraction of
-//! `edge_angle`. The ground's edge, the largest jump, is exact: each window patch is first cut
+//! runs between the outermost points and the cell's edge), until a cell's apparent size from
+//! `x` (its angular diameter times `√cos θ_w`, the square root of its solid angle) is less
+//! than `edge_angle` (`edge_depth` at most): the patches' boundaries are resolved to a
+//! fraction of `edge_angle`, and cells seen almost edge-on from a point near the window's
+//! own plane, which carry little light, are not split for boundaries that crowd there. The ground's edge, the largest jump, is exact: each window patch is first cut
 //! along the receiving point's horizontal plane. The sum over the patches of a uniform sky is
 //! the smooth form-factor integral, exact to the quadrature's error whatever the patch
 //! boundaries do. A receiving patch's value is its mean, by Gauss–Legendre rules
@@ -100,8 +101,9 @@ pub struct DaylightOptions {
     /// it). Default 4.
     pub max_depth: u32,
     /// A window cell whose points see different sky patches (or some of which are hidden) is
-    /// split until it subtends less than this angle from the receiving point, rad. Default
-    /// 0.02 (1.1°, a tenth of a Tregenza patch's 12°).
+    /// split until its apparent size from the receiving point is less than this angle, rad:
+    /// its angular diameter seen face-on, shrinking as `√cos θ_w` with the solid angle seen
+    /// obliquely. Default 0.02 (1.1°, a tenth of a Tregenza patch's 12°).
     pub edge_angle: f64,
     /// Most times a cell is split along an edge (a sky patch's boundary, a shadow's, the sun
     /// patch's). Default 8: 1/256 of its side.
