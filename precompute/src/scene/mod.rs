@@ -13,6 +13,7 @@ mod daylight;
 mod error;
 pub(crate) mod file;
 pub mod grid;
+mod import;
 mod inputs;
 mod limits;
 mod luminaires;
@@ -233,6 +234,17 @@ pub struct Obstruction {
     pub reflectance: f64,
 }
 
+/// A face of a room imported from a building model that the model shares with another space
+/// (HBJSON `boundary_condition: Surface`, gbXML `AdjacentSpaceId` pairs), kept for the
+/// building manifest.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Adjacency {
+    /// The room's surface (`<room>.<face>`).
+    pub surface: String,
+    /// The identifier, in the model, of the space on the other side.
+    pub space: String,
+}
+
 /// A loaded, validated and meshed scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -271,6 +283,11 @@ pub struct Scene {
     /// Surfaces outside the room that shade the windows (`exterior = true`), one per surface,
     /// in surface order (blocks, quads, then OBJ files).
     pub obstructions: Vec<Obstruction>,
+    /// The faces of imported rooms shared with another space of their model.
+    pub adjacency: Vec<Adjacency>,
+    /// What the `[[import]]`s' models hold and could not be mapped (shades, air boundaries,
+    /// unknown face types, sensor grids), each naming its file: reported, not guessed.
+    pub warnings: Vec<String>,
 }
 
 /// Reads, validates and meshes the scene file at `path`.
