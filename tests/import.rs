@@ -30,14 +30,21 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// The L-shaped office's scene at a coarse mesh (2 m), its files found from anywhere, with
+/// The L-shaped office's scene at a coarse mesh and grid (2 m), its files found from anywhere, with
 /// its `[[room]]` and window quads replaced by `room` when given.
 fn l_office(room: Option<&str>) -> String {
     let text = std::fs::read_to_string(root().join("examples/l-office/scene.toml")).unwrap();
-    let text = text.replace("max_edge = 0.6", "max_edge = 2.0").replace(
-        "\"../photometry/",
-        &format!("\"{}/examples/photometry/", root().display()),
-    );
+    // Daylight is gathered through every window at each receiver: a 2 m grid keeps it cheap.
+    let text = text
+        .replace("max_edge = 0.6", "max_edge = 2.0")
+        .replace(
+            "max_edge = 2.0 }",
+            "max_edge = 2.0, grid = { spacing = 2.0 } }",
+        )
+        .replace(
+            "\"../photometry/",
+            &format!("\"{}/examples/photometry/", root().display()),
+        );
     match room {
         None => text,
         Some(room) => {
