@@ -2,6 +2,7 @@
 //! stage and the accuracy of the result measured through the runtime. The report's types and
 //! its checks through the runtime are in `report`, the calculation grids' readouts in `grids`.
 
+use std::io::Write;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -167,6 +168,10 @@ pub fn prepare(path: &Path, opts: &FormFactorOptions) -> Result<Prepared> {
 fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Result<Prepared> {
     let opts = &build.form_factors;
     let scene = stages.run("scene and meshing", None, || scene::load(path))?;
+    // What the imported building models hold and the scene could not map: said, not hidden.
+    for w in &scene.warnings {
+        let _ = writeln!(std::io::stderr(), "warning: {w}");
+    }
     let n = scene.patches.len();
     let storage = opts.operator.storage(n);
     // Refused before the n×n form factors are allocated (`memory::build_bytes`).

@@ -15,9 +15,9 @@ use super::mesh::{check_face, mesh_face, triangulate};
 use super::openings::CONTACT_TOLERANCE;
 use super::room::Room;
 use super::{
-    channels, daylight, limits, luminaires, obj, observers, openings, primitives, winding,
+    channels, daylight, import, limits, luminaires, obj, observers, openings, primitives, winding,
 };
-use super::{Bands, Luminaire, Scene, Surface, Window};
+use super::{Adjacency, Bands, Luminaire, Scene, Surface, Window};
 use crate::geometry::{Aabb, Face, Patch, Polygon, Vec3};
 
 /// Default planarity tolerance: a corner may sit 0.1 % of the face's diagonal off its plane.
@@ -116,6 +116,8 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         windows,
         obstructions,
         layout,
+        adjacency: geometry.adjacency,
+        warnings: geometry.warnings,
     })
 }
 
@@ -186,10 +188,30 @@ fn cut_openings(
         .zip(geometry.room_faces.clone())
     {
         openings::cut(
-            ctx,
-            r,
+            &openings::OpeningList::of(ctx, r),
             room,
             faces,
+            &mut geometry.raw,
+            flip,
+            &mut claimed,
+            &openings::OpenBlocks {
+                standing: &standing,
+                hanging: &hanging,
+            },
+        )?;
+    }
+    // The imported rooms follow the scene's own, in `rooms` and `room_faces`.
+    let first = file.room.len();
+    for (k, (names, at)) in geometry.imported_openings.iter().enumerate() {
+        let room = &geometry.rooms[first + k];
+        openings::cut(
+            &openings::OpeningList {
+                names,
+                at: at.clone(),
+                field: format!("imported room `{}`.openings", room.name),
+            },
+            room,
+            geometry.room_faces[first + k].clone(),
             &mut geometry.raw,
             flip,
             &mut claimed,
@@ -330,12 +352,19 @@ fn scene_materials(
 
 /// Every surface of the file before meshing, with the boxes the later checks need.
 struct Geometry {
-    /// Rooms, blocks, quads and OBJ groups, in that order.
+    /// Rooms, imported rooms (each followed by its openings), blocks, quads and OBJ groups,
+    /// in that order.
     raw: Vec<RawSurface>,
-    /// The rooms, in file order.
+    /// The rooms: the scene's `[[room]]`s in file order, then the imported ones.
     rooms: Vec<Room>,
     /// Each room's faces in `raw`.
     room_faces: Vec<Range<usize>>,
+    /// Each imported room's openings (surface names) and where its `[[import]]` was written.
+    imported_openings: Vec<(Vec<String>, super::error::Location)>,
+    /// The imported rooms' faces shared with other spaces of their models.
+    adjacency: Vec<Adjacency>,
+    /// What the imports could not map.
+    warnings: Vec<String>,
     /// Each block's name and corners (m).
     blocks: Vec<(String, Vec3, Vec3)>,
     /// Each OBJ file's surfaces in `raw`.
@@ -358,6 +387,22 @@ fn geometry(
         raw.extend(room.surfaces());
         room_faces.push(start..raw.len());
         rooms.push(room);
+    }
+    let mut imported_openings = Vec::new();
+    let mut adjacency = Vec::new();
+    let mut warnings = Vec::new();
+    for i in &file.import {
+        let imported = import::read(ctx, i, &file.surfaces, materials)?;
+        for r in imported.rooms {
+            let start = raw.len();
+            raw.extend(r.room.surfaces());
+            room_faces.push(start..raw.len());
+            rooms.push(r.room);
+            imported_openings.push((r.openings.iter().map(|o| o.name.clone()).collect(), r.at));
+            raw.extend(r.openings);
+            adjacency.extend(r.adjacency);
+        }
+        warnings.extend(imported.warnings);
     }
     let mut blocks: Vec<(String, Vec3, Vec3)> = Vec::new();
     for b in &file.block {
@@ -389,6 +434,9 @@ fn geometry(
         raw,
         rooms,
         room_faces,
+        imported_openings,
+        adjacency,
+        warnings,
         blocks,
         obj_surfaces,
     })

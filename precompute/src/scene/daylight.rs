@@ -24,7 +24,7 @@ use crate::geometry::{Face, Polygon, Vec3};
 const GROUND_REFLECTANCE: f64 = 0.2;
 
 /// Panes of a glazed material that does not say.
-const PANES: u8 = 2;
+pub(crate) const PANES: u8 = 2;
 
 /// The latest UTC offset in use anywhere, seconds east (+14:00, Line Islands).
 const MOST_EAST: i32 = 14 * 3600;

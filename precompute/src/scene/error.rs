@@ -91,6 +91,17 @@ pub enum SceneError {
         /// The resolved path that was looked for.
         path: PathBuf,
     },
+    /// A building model (`[[import]]`) is malformed or holds a space that cannot be
+    /// imported; the location is the model file's, the element its id.
+    #[error("{at}: {element}: {message}")]
+    Import {
+        /// The model file and, when known, the line of the element.
+        at: Location,
+        /// The element at fault (space, face, opening, material), by its id in the file.
+        element: String,
+        /// What is wrong.
+        message: String,
+    },
     /// A value is outside its allowed range (reflectance, exitance, flux, angle, size...).
     #[error("{at}: {field}: {message}")]
     OutOfRange {

@@ -47,6 +47,8 @@ pub(crate) struct SceneFile {
     #[serde(default)]
     pub room: Vec<Spanned<RoomDef>>,
     #[serde(default)]
+    pub import: Vec<Spanned<ImportDef>>,
+    #[serde(default)]
     pub block: Vec<Spanned<BlockDef>>,
     #[serde(default)]
     pub quad: Vec<Spanned<QuadDef>>,
@@ -291,6 +293,22 @@ pub(crate) struct RoomDef {
     /// Quads set flush into the room's faces; the faces are meshed around them.
     #[serde(default)]
     pub openings: Option<Spanned<Vec<String>>>,
+}
+
+/// `[[import]]`: rooms from a building model (HBJSON or gbXML), each space a room.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct ImportDef {
+    /// The model file, relative to the scene file: `.hbjson`/`.json` (Honeybee) or
+    /// `.xml`/`.gbxml` (gbXML).
+    pub file: Spanned<String>,
+    /// The spaces to import, by identifier or display name (default: all, in file order).
+    #[serde(default)]
+    pub spaces: Option<Spanned<Vec<String>>>,
+    /// Scene materials for the model's materials (by the model's name), or for faces the
+    /// model gives none (by kind: `Floor`, `Wall`, `RoofCeiling`, `Aperture`, `Door`).
+    #[serde(default)]
+    pub materials: BTreeMap<String, Spanned<String>>,
 }
 
 /// `[[block]]`: axis-aligned box seen from outside.

@@ -13,7 +13,8 @@ use super::obj::mtl_paths;
 pub struct SceneInputs {
     /// `scene.name`.
     pub name: String,
-    /// The scene file, then every OBJ file and the MTL files each names, then the
+    /// The scene file, then every OBJ file and the MTL files each names, the building models
+    /// of the `[[import]]`s, then the
     /// luminaires' photometric files (each once), as the scene's loader would open them
     /// (relative to the scene's folder). Files that do not exist are listed too: loading will
     /// report them.
@@ -37,6 +38,9 @@ pub fn inputs(path: &Path) -> Result<SceneInputs, SceneError> {
             .unwrap_or_default();
         files.push(obj);
         files.extend(mtls);
+    }
+    for i in &file.import {
+        files.push(super::import::model_path(path, i.get_ref().file.get_ref()));
     }
     for luminaire in &file.luminaire {
         let photometry = dir.join(luminaire.get_ref().file.get_ref());

@@ -13,6 +13,7 @@ mod daylight;
 mod error;
 pub(crate) mod file;
 pub mod grid;
+mod import;
 mod inputs;
 pub mod layout;
 mod limits;
@@ -234,6 +235,17 @@ pub struct Obstruction {
     pub reflectance: f64,
 }
 
+/// A face of a room imported from a building model that the model shares with another space
+/// (HBJSON `boundary_condition: Surface`, gbXML `AdjacentSpaceId` pairs), kept for the
+/// building manifest.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Adjacency {
+    /// The room's surface (`<room>.<face>`).
+    pub surface: String,
+    /// The identifier, in the model, of the space on the other side.
+    pub space: String,
+}
+
 /// A loaded, validated and meshed scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -274,6 +286,11 @@ pub struct Scene {
     pub obstructions: Vec<Obstruction>,
     /// The rooms, their blocks and openings seen from above, for plans.
     pub layout: layout::Layout,
+    /// The faces of imported rooms shared with another space of their model.
+    pub adjacency: Vec<Adjacency>,
+    /// What the `[[import]]`s' models hold and could not be mapped (shades, air boundaries,
+    /// unknown face types, sensor grids), each naming its file: reported, not guessed.
+    pub warnings: Vec<String>,
 }
 
 /// Reads, validates and meshes the scene file at `path`.

@@ -86,15 +86,14 @@ pub(crate) struct OpenBlocks<'a> {
 /// Cuts the openings of one room, and the footprints of the blocks standing on its floor
 /// without a bottom face, out of its faces.
 ///
-/// `faces` are the room's surfaces in `raw`, in the order of `shape.faces` (a box's: floor,
+/// `list` names the openings; `faces` are the room's surfaces in `raw`, in the order of `shape.faces` (a box's: floor,
 /// ceiling, wall_xmin, wall_xmax, wall_ymin, wall_ymax); `flip` says which surfaces will have their winding reversed;
 /// `claimed` marks surfaces already used as an opening (by this or an earlier room);
 /// `open` are the blocks without a bottom or a top face. The openings'
 /// corners are snapped onto the face plane and the shared grid lines.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn cut(
-    ctx: &Ctx,
-    def: &Spanned<RoomDef>,
+    list: &OpeningList,
     shape: &RoomShape,
     faces: Range<usize>,
     raw: &mut [RawSurface],
@@ -103,9 +102,6 @@ pub(crate) fn cut(
     open: &OpenBlocks,
 ) -> Result<(), SceneError> {
     let (standing, hanging) = (open.standing, open.hanging);
-    let r = def.get_ref();
-    let empty = Vec::new();
-    let list = r.openings.as_ref().map_or(&empty, |l| l.get_ref());
     // The rectangles cut on a grid: every face of a box, the walls of a plan room.
     let hosts: Vec<usize> = shape
         .faces
@@ -120,11 +116,8 @@ pub(crate) fn cut(
         .collect();
     let diagonal = (shape.hi - shape.lo).length();
     let room = Room {
-        at: r
-            .openings
-            .as_ref()
-            .map_or_else(|| ctx.at(def), |l| ctx.at(l)),
-        field: format!("room `{}`.openings", r.name),
+        at: list.at.clone(),
+        field: list.field.clone(),
         faces,
         hosts,
         frames,
@@ -134,7 +127,7 @@ pub(crate) fn cut(
     // A plan room's openings in its floor and ceiling, as plan polygons.
     let mut floor_holes: Vec<Vec<Point2>> = Vec::new();
     let mut ceiling_holes: Vec<Vec<Point2>> = Vec::new();
-    for name in list {
+    for name in list.names {
         if !shape.is_box {
             if let Some((kind, hole)) = room.in_plan_face(shape, name, raw, flip, claimed)? {
                 match kind {
@@ -176,6 +169,32 @@ pub(crate) fn cut(
         room.cut_face(k, raw, &mut placed)?;
     }
     Ok(())
+}
+
+/// A room's openings: the surfaces named, and where and under which field the list was
+/// written (for the messages).
+pub(crate) struct OpeningList<'a> {
+    /// The openings' surface names.
+    pub names: &'a [String],
+    /// Where the list was written (the room's entry when it has none).
+    pub at: Location,
+    /// The list's field, e.g. ``room `office`.openings``.
+    pub field: String,
+}
+
+impl<'a> OpeningList<'a> {
+    /// The `openings` of a `[[room]]`.
+    pub fn of(ctx: &Ctx, def: &'a Spanned<RoomDef>) -> Self {
+        let r = def.get_ref();
+        OpeningList {
+            names: r.openings.as_ref().map_or(&[], |l| l.get_ref().as_slice()),
+            at: r
+                .openings
+                .as_ref()
+                .map_or_else(|| ctx.at(def), |l| ctx.at(l)),
+            field: format!("room `{}`.openings", r.name),
+        }
+    }
 }
 
 /// The footprints (plan rectangles, m) of the `blocks` whose end (`end(min, max)`, m) is at

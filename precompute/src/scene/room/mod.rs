@@ -24,7 +24,7 @@ use super::openings::CONTACT_TOLERANCE;
 use super::primitives::{box_corners, box_faces};
 use crate::geometry::Vec3;
 
-pub(crate) use plan::{Plan, Point2};
+pub(crate) use plan::{Plan, PlanProblem, Point2};
 
 /// What a room face is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -122,7 +122,7 @@ impl Room {
                 let label = |suffix: &str, _edge: usize| {
                     (suffix.to_owned(), walls.get_ref().clone(), ctx.at(walls))
                 };
-                Ok(base.boxed(ctx, r, plan, lo.z, hi.z, label))
+                Ok(base.boxed(plan, lo.z, hi.z, &ends(ctx, r), label))
             }
             (None, None, Some(plan)) => {
                 let (plan, floor, ceiling) = read_plan(ctx, &what, def, plan)?;
@@ -138,11 +138,7 @@ impl Room {
                     let material = materials.map_or(walls, |l| &l[w]);
                     (name, material.get_ref().clone(), ctx.at(material))
                 };
-                Ok(if plan.is_rectangle() {
-                    base.boxed(ctx, r, plan, floor, ceiling, label)
-                } else {
-                    base.prism(ctx, r, plan, floor, ceiling, label)
-                })
+                Ok(base.laid_out(plan, floor, ceiling, &ends(ctx, r), label))
             }
             _ => Err(invalid(
                 ctx.at(def),
@@ -150,6 +146,26 @@ impl Room {
                 "give either `min` and `max` (a box) or `plan` and `height` (a floor plan)".into(),
             )),
         }
+    }
+
+    /// A room built by an importer: the prism on `plan` from `floor` to `ceiling` (m), its
+    /// floor's and ceiling's materials in `ends`, `wall(edge)` naming the wall on each plan
+    /// edge (counter-clockwise numbering) and giving its material. A rectangular plan is laid
+    /// out as the box, as a `[[room]]` with that plan would be.
+    pub fn from_plan(
+        name: String,
+        at: Location,
+        plan: Plan,
+        (floor, ceiling): (f64, f64),
+        ends: &Ends,
+        wall: impl Fn(usize) -> (String, String, Location),
+    ) -> Room {
+        let base = RoomBase {
+            name,
+            at,
+            max_edge: None,
+        };
+        base.laid_out(plan, floor, ceiling, ends, |_, edge| wall(edge))
     }
 
     /// [`CONTACT_TOLERANCE`] of its diagonal, metres.
@@ -298,6 +314,24 @@ impl Room {
     }
 }
 
+/// The materials of a room's floor and ceiling, and where each was named.
+pub(crate) struct Ends {
+    pub floor: (String, Location),
+    pub ceiling: (String, Location),
+}
+
+/// A `[[room]]`'s floor and ceiling materials: their own, or the room's `material`.
+fn ends(ctx: &Ctx, r: &RoomDef) -> Ends {
+    let own = |m: Option<&Spanned<String>>| {
+        let m = m.unwrap_or(&r.material);
+        (m.get_ref().clone(), ctx.at(m))
+    };
+    Ends {
+        floor: own(r.floor.as_ref()),
+        ceiling: own(r.ceiling.as_ref()),
+    }
+}
+
 /// What every room has before its faces are laid out.
 struct RoomBase {
     name: String,
@@ -306,15 +340,31 @@ struct RoomBase {
 }
 
 impl RoomBase {
+    /// The room on `plan`: as a box when the plan is an axis-aligned rectangle, as a prism
+    /// else.
+    fn laid_out(
+        self,
+        plan: Plan,
+        floor: f64,
+        ceiling: f64,
+        ends: &Ends,
+        label: impl Fn(&str, usize) -> (String, String, Location),
+    ) -> Room {
+        if plan.is_rectangle() {
+            self.boxed(plan, floor, ceiling, ends, label)
+        } else {
+            self.prism(plan, floor, ceiling, ends, label)
+        }
+    }
+
     /// The room on a rectangular `plan` from `floor` to `ceiling` (m), laid out as the box:
     /// `label(box suffix, plan edge)` names a wall and gives its material.
     fn boxed(
         self,
-        ctx: &Ctx,
-        r: &RoomDef,
         plan: Plan,
         floor: f64,
         ceiling: f64,
+        ends: &Ends,
         label: impl Fn(&str, usize) -> (String, String, Location),
     ) -> Room {
         let (lo2, hi2) = plan.bounds();
@@ -336,13 +386,12 @@ impl RoomBase {
             .map(|(suffix, _, corners)| {
                 let (kind, suffix, material, material_at) = match suffix {
                     "floor" | "ceiling" => {
-                        let (kind, own) = if suffix == "floor" {
-                            (FaceKind::Floor, r.floor.as_ref())
+                        let (kind, (m, at)) = if suffix == "floor" {
+                            (FaceKind::Floor, &ends.floor)
                         } else {
-                            (FaceKind::Ceiling, r.ceiling.as_ref())
+                            (FaceKind::Ceiling, &ends.ceiling)
                         };
-                        let m = own.unwrap_or(&r.material);
-                        (kind, suffix.to_owned(), m.get_ref().clone(), ctx.at(m))
+                        (kind, suffix.to_owned(), m.clone(), at.clone())
                     }
                     _ => {
                         let edge = match suffix {
@@ -382,11 +431,10 @@ impl RoomBase {
     /// plan edge in counter-clockwise order, `label("", edge)` naming each.
     fn prism(
         self,
-        ctx: &Ctx,
-        r: &RoomDef,
         plan: Plan,
         floor: f64,
         ceiling: f64,
+        ends: &Ends,
         label: impl Fn(&str, usize) -> (String, String, Location),
     ) -> Room {
         let at = |z: f64| -> Vec<Vec3> {
@@ -395,12 +443,8 @@ impl RoomBase {
                 .map(|c| Vec3::new(c[0], c[1], z))
                 .collect()
         };
-        let own = |m: Option<&Spanned<String>>| {
-            let m = m.unwrap_or(&r.material);
-            (m.get_ref().clone(), ctx.at(m))
-        };
         let mut faces = Vec::with_capacity(plan.len() + 2);
-        let (material, material_at) = own(r.floor.as_ref());
+        let (material, material_at) = ends.floor.clone();
         faces.push(RoomFace {
             suffix: "floor".into(),
             kind: FaceKind::Floor,
@@ -408,7 +452,7 @@ impl RoomBase {
             material_at,
             outline: at(floor),
         });
-        let (material, material_at) = own(r.ceiling.as_ref());
+        let (material, material_at) = ends.ceiling.clone();
         let mut down = at(ceiling);
         down.reverse();
         faces.push(RoomFace {
