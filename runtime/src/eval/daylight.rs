@@ -77,7 +77,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + MODES)
         + 4 * 3
         + core::mem::size_of::<[(u32, f32); 4]>()
-        + core::mem::size_of::<Option<DirectSun<'static>>>()
+        + DirectSun::STATE_BYTES
         + 4 * 4;
 
     /// An evaluator of `basis`' daylight, dark (no sky, no sun).

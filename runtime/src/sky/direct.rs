@@ -43,8 +43,9 @@ const PLANE_MARGIN: f32 = 1.0e-4;
 #[derive(Clone, Copy, Debug)]
 pub struct DirectSun<'a> {
     basis: Basis<'a>,
-    /// Window faces, room occluders, exterior occluders.
-    counts: [usize; 3],
+    /// Window faces, room occluders, exterior occluders (`u32`, so that the state is the
+    /// same size on every target).
+    counts: [u32; 3],
     /// Sine and cosine of the site's north angle: the sun's direction in the room's frame.
     north_sin_cos: [f32; 2],
 }
@@ -59,6 +60,10 @@ enum Weighting {
 }
 
 impl<'a> DirectSun<'a> {
+    /// Bytes of its state besides its view of the basis (which, like every evaluator's,
+    /// points into the basis' bytes): the three counts and the north angle's sine and cosine.
+    pub const STATE_BYTES: usize = 4 * 3 + 4 * 2;
+
     /// The direct sun of `basis`, `Ok(None)` when it stores no such geometry (a basis
     /// without daylight, or whose every sun reading is interpolated). Its tables are checked
     /// here (docs/format.md, "Direct sun"): a table of the wrong length or with a value out
@@ -69,7 +74,7 @@ impl<'a> DirectSun<'a> {
         if t.sun_polygon_counts.is_empty() {
             return Ok(None);
         }
-        let count = |k: usize| u32_at(t.sun_polygon_counts, k) as usize;
+        let count = |k: usize| u32_at(t.sun_polygon_counts, k);
         let north = basis.site().map_or(0.0, |s| s.north);
         let (sin, cos) = approx::sin_cos(north.to_radians());
         Ok(Some(DirectSun {
@@ -81,7 +86,7 @@ impl<'a> DirectSun<'a> {
 
     /// Window faces, room occluders and exterior occluders stored.
     pub fn polygon_counts(&self) -> [usize; 3] {
-        self.counts
+        self.counts.map(|c| c as usize)
     }
 
     /// Bytes of the six direct-sun tables, their lengths included (one byte each while under
@@ -152,7 +157,7 @@ impl<'a> DirectSun<'a> {
         if weight.is_nan() || weight <= 0.0 || s[2].is_nan() || s[2] < 0.0 {
             return 0.0;
         }
-        let [windows, room, exterior] = self.counts;
+        let [windows, room, exterior] = self.polygon_counts();
         let sizes = self.basis.tables.sun_polygon_sizes;
         let size = |k: usize| usize::from(sizes.get(k).copied().unwrap_or(0));
         // The polygons are walked in the stored order: each takes its normal and vertices.
