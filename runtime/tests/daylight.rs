@@ -332,10 +332,10 @@ fn the_direct_sun_is_added_at_sensors_and_grid_points() {
     for (response, weight) in cases {
         let bytes = with_direct_sun(response).to_bytes().unwrap();
         let basis = Basis::from_bytes(&bytes).unwrap();
-        let direct = eigenrad_runtime::sky::direct::DirectSun::new(basis)
+        let direct = eigenrad_runtime::sky::direct::DirectSun::new(&basis)
             .unwrap()
             .unwrap();
-        assert!(eigenrad_runtime::sky::direct::DirectSun::new(plain)
+        assert!(eigenrad_runtime::sky::direct::DirectSun::new(&plain)
             .unwrap()
             .is_none());
         let dark = vec![0.0; TREGENZA];

@@ -5,7 +5,7 @@
 use super::{fits, grid_figures, luminance, ChannelEvaluator, Figures, MAX_EXITANCE};
 use crate::basis::{check_index, Basis};
 use crate::error::{Error, Result};
-use crate::sky::direct::DirectSun;
+use crate::sky::direct::{DirectSun, DirectSunState};
 use crate::sky::sun_grid::NodeWeight;
 use crate::storage::{dot_f32, f32_at, f32_row};
 
@@ -61,7 +61,7 @@ pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const M
     sun: [(u32, f32); 4],
     /// The direct sun's geometry, when the basis stores it: sensors and grid points then
     /// add the sun they see through the windows themselves.
-    direct: Option<DirectSun<'a>>,
+    direct: Option<DirectSunState>,
     /// The sun in the room's frame and its direct normal illuminance (lux; 0 without sun).
     direct_sun: ([f32; 3], f32),
     /// Every output's daylight illuminance, lux.
@@ -77,7 +77,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + MODES)
         + 4 * 3
         + core::mem::size_of::<[(u32, f32); 4]>()
-        + DirectSun::STATE_BYTES
+        + core::mem::size_of::<Option<DirectSunState>>()
         + 4 * 4;
 
     /// An evaluator of `basis`' daylight, dark (no sky, no sun).
@@ -107,7 +107,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
                 .sun_grid()
                 .map_or([0.0, 1.0], |g| g.latitude_sin_cos()),
             sun: [(NO_COLUMN, 0.0); 4],
-            direct: DirectSun::new(basis)?,
+            direct: DirectSun::new(&basis)?.map(|d| d.state()),
             direct_sun: ([0.0, 0.0, 1.0], 0.0),
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),
@@ -194,7 +194,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
         weights.table(tables.daylight_outputs, columns, &mut self.outputs);
         weights.table(tables.daylight_modes, columns, &mut self.amplitude);
         self.direct_sun = ([0.0, 0.0, 1.0], 0.0);
-        if let (Some(direct), Some(s)) = (self.direct, sun) {
+        if let (Some(state), Some(s)) = (self.direct, sun) {
+            let direct = DirectSun::with(&self.basis, state);
             let room = direct.room_direction(s.direction);
             self.direct_sun = (room, s.direct_normal);
             for (sensor, reading) in self.outputs.iter_mut().enumerate() {
@@ -263,8 +264,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
         }
         let (sun, direct_normal) = self.direct_sun;
         match self.direct {
-            Some(direct) if direct_normal > 0.0 => {
-                sum + direct_normal * direct.at_grid_point(g, sun)
+            Some(state) if direct_normal > 0.0 => {
+                sum + direct_normal * DirectSun::with(&self.basis, state).at_grid_point(g, sun)
             }
             _ => sum,
         }

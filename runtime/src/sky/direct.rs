@@ -38,16 +38,23 @@ pub const GLAZING_STEPS: usize = 64;
 /// surface it lies on does not shade it. A relative `f32` margin of about 800 ulp.
 const PLANE_MARGIN: f32 = 1.0e-4;
 
-/// The direct sun's geometry of a basis: window faces with their glazing, the occluders
-/// that may shade them, each sensor's weighting.
+/// What an evaluator keeps of the direct sun between calls: the counts of the stored polygons
+/// and the north angle (20 bytes on every target; the tables stay in the basis).
 #[derive(Clone, Copy, Debug)]
-pub struct DirectSun<'a> {
-    basis: Basis<'a>,
-    /// Window faces, room occluders, exterior occluders (`u32`, so that the state is the
-    /// same size on every target).
+pub struct DirectSunState {
+    /// Window faces, room occluders, exterior occluders.
     counts: [u32; 3],
     /// Sine and cosine of the site's north angle: the sun's direction in the room's frame.
     north_sin_cos: [f32; 2],
+}
+
+/// The direct sun's geometry of a basis: window faces with their glazing, the occluders
+/// that may shade them, each sensor's weighting. It borrows the basis view of its evaluator
+/// rather than holding a copy of it, so that an evaluator carries one view only.
+#[derive(Clone, Copy, Debug)]
+pub struct DirectSun<'b, 'a> {
+    basis: &'b Basis<'a>,
+    state: DirectSunState,
 }
 
 /// How a receiver weighs the direction light arrives from, at cosine `c` to its normal.
@@ -59,16 +66,12 @@ enum Weighting {
     Response { first: usize, rows: usize },
 }
 
-impl<'a> DirectSun<'a> {
-    /// Bytes of its state besides its view of the basis (which, like every evaluator's,
-    /// points into the basis' bytes): the three counts and the north angle's sine and cosine.
-    pub const STATE_BYTES: usize = 4 * 3 + 4 * 2;
-
+impl<'b, 'a> DirectSun<'b, 'a> {
     /// The direct sun of `basis`, `Ok(None)` when it stores no such geometry (a basis
     /// without daylight, or whose every sun reading is interpolated). Its tables are checked
     /// here (docs/format.md, "Direct sun"): a table of the wrong length or with a value out
     /// of range is the decoder's error naming it.
-    pub fn new(basis: Basis<'a>) -> crate::Result<Option<Self>> {
+    pub fn new(basis: &'b Basis<'a>) -> crate::Result<Option<Self>> {
         let t = &basis.tables;
         crate::decode::direct_sun(t, &basis.counts)?;
         if t.sun_polygon_counts.is_empty() {
@@ -79,14 +82,26 @@ impl<'a> DirectSun<'a> {
         let (sin, cos) = approx::sin_cos(north.to_radians());
         Ok(Some(DirectSun {
             basis,
-            counts: [count(0), count(1), count(2)],
-            north_sin_cos: [sin, cos],
+            state: DirectSunState {
+                counts: [count(0), count(1), count(2)],
+                north_sin_cos: [sin, cos],
+            },
         }))
+    }
+
+    /// The direct sun of `basis` from the `state` that [`DirectSun::new`] made of it.
+    pub fn with(basis: &'b Basis<'a>, state: DirectSunState) -> Self {
+        DirectSun { basis, state }
+    }
+
+    /// What an evaluator keeps of it.
+    pub fn state(&self) -> DirectSunState {
+        self.state
     }
 
     /// Window faces, room occluders and exterior occluders stored.
     pub fn polygon_counts(&self) -> [usize; 3] {
-        self.counts.map(|c| c as usize)
+        self.state.counts.map(|c| c as usize)
     }
 
     /// Bytes of the six direct-sun tables, their lengths included (one byte each while under
@@ -109,7 +124,7 @@ impl<'a> DirectSun<'a> {
     /// The sun's unit direction `site` (x east, y north, z up) in the room's frame: turned
     /// by the site's north angle.
     pub fn room_direction(&self, site: [f32; 3]) -> [f32; 3] {
-        let [s, c] = self.north_sin_cos;
+        let [s, c] = self.state.north_sin_cos;
         [
             site[0] * c - site[1] * s,
             site[0] * s + site[1] * c,
