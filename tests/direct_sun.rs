@@ -117,7 +117,7 @@ fn sensors_and_grid_points_read_the_sun_between_nodes() {
     // cos 35°, cos θ_x = sin 35°; at 40° the overhang hides it (y = −0.41 at z = 2.4), at
     // 30° the building (z = 8.6 < 9 at y = −12).
     let basis = Basis::from_bytes(&bytes).unwrap();
-    let direct = DirectSun::new(basis)
+    let direct = DirectSun::new(&basis)
         .unwrap()
         .expect("the direct sun's geometry");
     let south = |altitude: f32| {

@@ -280,7 +280,7 @@ fn split_direct_sun(
 ) -> std::result::Result<(), eigenrad_runtime::Error> {
     let bytes = t.to_bytes()?;
     let basis = eigenrad_runtime::Basis::from_bytes(&bytes)?;
-    let Some(direct) = DirectSun::new(basis)? else {
+    let Some(direct) = DirectSun::new(&basis)? else {
         return Ok(());
     };
     let d = nodes.len();

@@ -93,7 +93,7 @@ pub fn sun_interpolation(
     bytes: &[u8],
 ) -> Result<SunInterpolation> {
     let basis = eigenrad_runtime::Basis::from_bytes(bytes)?;
-    let direct = DirectSun::new(basis)?;
+    let direct = DirectSun::new(&basis)?;
     let Some(site) = &scene.site else {
         return Ok(SunInterpolation::default());
     };

@@ -165,7 +165,7 @@ impl DaylightReport {
             bytes: bytes_added,
             direct_sun: {
                 let basis = eigenrad_runtime::Basis::from_bytes(bytes)?;
-                eigenrad_runtime::sky::direct::DirectSun::new(basis)?.map(|d| {
+                eigenrad_runtime::sky::direct::DirectSun::new(&basis)?.map(|d| {
                     let [w, r, e] = d.polygon_counts();
                     DirectSunReport {
                         window_faces: w,
