@@ -628,6 +628,32 @@ fn daylight_crosses_the_door_as_one_solve_of_both_rooms_reads_it() {
         }
     }
     eprintln!("daylight through the door, merged against one solve of both rooms: largest relative difference {worst:.2e} at the outputs, patch exitance through every mode {worst_patches:.2e} (area-weighted RMS)");
+
+    // The right room with daylight of its own under another site: refused, naming the room.
+    let parts_dir = building::parts_dir(out);
+    let mut parts: Vec<Part> = manifest
+        .rooms
+        .iter()
+        .map(|r| Part::read_checked(&parts_dir, r).unwrap_or_else(|e| panic!("{e}")))
+        .collect();
+    let (lit, dark) = (parts[0].clone(), &mut parts[1]);
+    dark.tables.sky_subdivision = lit.tables.sky_subdivision;
+    dark.tables.daylight_site = lit.tables.daylight_site.clone();
+    dark.tables.daylight_site[0] += 1.0;
+    dark.tables.sun_lattice = lit.tables.sun_lattice.clone();
+    dark.tables.sun_spacing = lit.tables.sun_spacing.clone();
+    dark.ports.daylight = vec![vec![0.0; dark.ports.openings[0].area.len()]; 146];
+    let e = port::couple(manifest, &parts, &parts_dir)
+        .expect_err("two sites")
+        .to_string();
+    for expected in [
+        "building.toml:",
+        "room right",
+        "differs from room left's",
+        "[site]",
+    ] {
+        assert!(e.contains(expected), "{expected:?} not in: {e}");
+    }
 }
 
 /// The merged room's readings (coupled tables) against the two rooms as one scene with the
@@ -749,6 +775,38 @@ fn the_diffuse_port_against_the_open_doorway() {
         "light through the door: {neighbour:.3e}"
     );
     assert!(total <= BOTH_TOLERANCE, "both channels: {total:.3e}");
+}
+
+/// Rooms joined through a port are solved band by band: a photopic room and an RGB one are
+/// refused at the merge, naming the manifest's line, the port and both rooms' bands, and
+/// nothing is written.
+#[test]
+fn rooms_of_different_bands_are_not_joined() {
+    let dir = common::scratch("ports-bands");
+    let path = two_rooms(&dir, PORT);
+    let rgb = right_scene(0.5).replace("bands = \"photopic\"", "bands = \"rgb\"");
+    std::fs::write(dir.join("right.toml"), rgb).expect("scene");
+    let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let out = dir.join("out");
+    let parts = building::parts_dir(&out);
+    std::fs::create_dir_all(&parts).expect("parts folder");
+    building::build_rooms(&manifest, &[0, 1], &BuildOptions::default(), &parts)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let e = building::merge(&manifest, &parts, &out, manifest.flash)
+        .expect_err("bands differ")
+        .to_string();
+    for expected in [
+        "building.toml:27:",
+        "port door",
+        "room left (1 bands)",
+        "room right (3 bands)",
+        "same `bands`",
+    ] {
+        assert!(e.contains(expected), "{expected:?} not in: {e}");
+    }
+    assert!(!out.join("building.json").exists());
+    assert!(!building::basis_path(&out, "left").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Every file of `dir` (not its folders), sorted.
