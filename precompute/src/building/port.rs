@@ -3,12 +3,13 @@
 //!
 //! A port's opening is a black quad in each of its two rooms: light reaching it from inside
 //! leaves the room. Each room's build answers for its ports' patches ([`respond`]): the flux
-//! each of its channels sends onto every port patch, and, for unit diffuse exitance entering
-//! through each port patch, what the room reads at every output, its exitance on every patch
-//! and the flux it sends back onto every port patch. The merge ([`couple`]) solves the small
-//! system of the exitances entering through every port patch, per channel of the building,
-//! and adds what they give to each room's channel responses: the controllers' bases are cut
-//! from these coupled tables, and the runtime reads them as any other.
+//! each of its channels and each of its daylight nodes sends onto every port patch, and, for
+//! unit diffuse exitance entering through each port patch, what the room reads at every
+//! output, its exitance on every patch and the flux it sends back onto every port patch. The
+//! merge ([`couple`]) solves the small system of the exitances entering through every port
+//! patch, per channel and daylight node of the building, and adds what they give to each
+//! room's channel responses and daylight rows: the controllers' bases are cut from these
+//! coupled tables, and the runtime reads them as any other.
 
 use eigenrad_runtime::writer::BasisTables;
 use faer::linalg::solvers::Solve;
@@ -571,7 +572,7 @@ pub fn couple(
             tables.daylight_grid = daylight(points, &t.daylight_grid, &reading(outputs));
             // The daylight's mode amplitudes (photopic: one band, `n × p` modes), with those
             // of the exitance the daylight entering through the ports gives: the amplitudes of
-            // each port patch's response `N` ([`Model::mode_amplitudes`]).
+            // each port patch's response `N` (as `Model::mode_amplitudes` takes them).
             let p = t.mode_count;
             let entering_amplitudes: Vec<Vec<f64>> = (0..ports.exitance[0].len())
                 .map(|i| {
