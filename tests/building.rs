@@ -204,9 +204,10 @@ fn every_controller_reads_what_its_whole_room_reads_to_the_bit() {
                 controller.name
             );
             let daylight = mine.iter().any(|(n, _)| n.starts_with("daylight"));
+            // The office's daylight, and the corridor's through the open door.
             assert_eq!(
                 daylight,
-                room.name == "office",
+                room.name == "office" || room.name == "corridor",
                 "{}: daylight rows",
                 controller.name
             );
@@ -238,10 +239,6 @@ fn every_controller_reads_what_its_whole_room_reads_to_the_bit() {
         ["office/lum1", "office/lum2", "office/lum3", "office/lum4"]
     );
     assert_eq!(of("meeting").channels, ["table", "walls"]);
-    assert_eq!(
-        merged.notes,
-        ["port office-door: the daylight of room office is not carried through it into room corridor (only channels are coupled through ports)"]
-    );
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | [`manifest`] | `building.toml`: its rooms and controllers, checked against the rooms' scenes |
+//! | [`manifest`] | `building.toml`: its rooms, controllers and ports, checked against the rooms' scenes |
 //! | [`part`] | a room built: its tables, the hash of its scene's files, the program's version |
 //! | [`port`] | rooms sharing light through openings: each room's responses at its ports, and the merge's port system |
 //! | [`controller`] | a controller's basis cut from its room's tables, its size by section |

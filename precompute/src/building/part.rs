@@ -21,11 +21,15 @@ use crate::atomic;
 /// The first bytes of every part file.
 const MAGIC: &[u8] = b"EIGENRAD PART\n";
 
+/// The layout of [`Part`]: 2 since the ports' responses hold the daylight's flux onto the
+/// port patches.
+const PART_FORMAT: u32 = 2;
+
 /// The program that builds parts: a part of another version is refused. The basis format's
-/// version is part of it, since the tables follow it.
+/// version and the part's layout are part of it, since the tables and the part follow them.
 pub fn program_version() -> String {
     format!(
-        "eigenrad {} (basis format {})",
+        "eigenrad {} (basis format {}, part format {PART_FORMAT})",
         env!("CARGO_PKG_VERSION"),
         eigenrad_runtime::format::FORMAT_VERSION
     )

@@ -3,12 +3,13 @@
 //!
 //! A port's opening is a black quad in each of its two rooms: light reaching it from inside
 //! leaves the room. Each room's build answers for its ports' patches ([`respond`]): the flux
-//! each of its channels sends onto every port patch, and, for unit diffuse exitance entering
-//! through each port patch, what the room reads at every output, its exitance on every patch
-//! and the flux it sends back onto every port patch. The merge ([`couple`]) solves the small
-//! system of the exitances entering through every port patch, per channel of the building,
-//! and adds what they give to each room's channel responses: the controllers' bases are cut
-//! from these coupled tables, and the runtime reads them as any other.
+//! each of its channels and each of its daylight nodes sends onto every port patch, and, for
+//! unit diffuse exitance entering through each port patch, what the room reads at every
+//! output, its exitance on every patch and the flux it sends back onto every port patch. The
+//! merge ([`couple`]) solves the small system of the exitances entering through every port
+//! patch, per channel and daylight node of the building, and adds what they give to each
+//! room's channel responses and daylight rows: the controllers' bases are cut from these
+//! coupled tables, and the runtime reads them as any other.
 
 use eigenrad_runtime::writer::BasisTables;
 use faer::linalg::solvers::Solve;
@@ -18,7 +19,9 @@ use serde::{Deserialize, Serialize};
 use super::error::BuildingError;
 use super::manifest::Manifest;
 use super::part::Part;
+use crate::basis::BasisDaylight;
 use crate::formfactor::exchange;
+use crate::radiosity::model::amplitude_weight;
 use crate::radiosity::system::alone;
 use crate::radiosity::System;
 use crate::scene::Scene;
@@ -61,6 +64,11 @@ pub struct RoomPorts {
     /// `exitance[b][i][k]`: exitance of patch `k` for exitance 1 entering through port patch
     /// `i` (1 on patch `i` itself, which is black).
     pub exitance: Vec<Vec<Vec<f64>>>,
+    /// `daylight[d][j]`: flux reaching port patch `j` from inside with daylight node `d`
+    /// alone at 1 (the nodes of the room's daylight section in their order: a sky patch per
+    /// cd/m², the exterior per cd/m² of `E_gh/π`, a sun node per lux of direct normal
+    /// illuminance), in lm. Empty for a room without daylight; daylight is photopic, one band.
+    pub daylight: Vec<Vec<f64>>,
 }
 
 impl RoomPorts {
@@ -71,10 +79,12 @@ impl RoomPorts {
 }
 
 /// The responses of a built room at the openings `openings` (`(port, surface)`, in the
-/// manifest's order of ports), from its meshed scene and its radiosity system.
+/// manifest's order of ports), from its meshed scene, its radiosity system and the daylight
+/// its basis carries.
 pub fn respond(
     scene: &Scene,
     system: &System,
+    daylight: Option<&BasisDaylight>,
     openings: &[(String, String)],
 ) -> Result<RoomPorts, crate::Error> {
     if openings.is_empty() {
@@ -152,6 +162,22 @@ pub fn respond(
         ports.readings.push(readings);
         ports.exitance.push(exitance);
     }
+    if let Some(daylight) = daylight {
+        ports.daylight = daylight
+            .nodes
+            .lights
+            .iter()
+            .zip(&daylight.responses)
+            .map(|(light, response)| {
+                let irradiance = system.light_irradiance_at(0, light, &response.exitance, &patches);
+                patches
+                    .iter()
+                    .zip(irradiance)
+                    .map(|(&j, e)| system.area[j] * e)
+                    .collect()
+            })
+            .collect();
+    }
     Ok(ports)
 }
 
@@ -164,16 +190,13 @@ struct Entering {
     patch: usize,
 }
 
-/// What the merge made of the ports: every room's tables with the light its ports bring,
-/// and what the coupling leaves out.
+/// What the merge made of the ports: every room's tables with the light its ports bring.
 #[derive(Clone, Debug)]
 pub struct Coupled {
     /// Per room of the manifest, its tables with every channel of the building whose light
     /// reaches it through ports (named `room/channel`, after the room's own), the responses
     /// of its own channels including the light that comes back through its ports.
     pub tables: Vec<BasisTables>,
-    /// What is not coupled (a room's daylight through its ports), one sentence each.
-    pub notes: Vec<String>,
 }
 
 /// The name a channel of room `room` takes in the tables of another room.
@@ -191,7 +214,6 @@ pub fn couple(
 ) -> Result<Coupled, BuildingError> {
     let mut coupled = Coupled {
         tables: parts.iter().map(|p| p.tables.clone()).collect(),
-        notes: Vec::new(),
     };
     if manifest.ports.is_empty() {
         return Ok(coupled);
@@ -253,6 +275,20 @@ pub fn couple(
     // Each port's patches in its second room, matched to its first room's.
     let mut matched: Vec<Vec<usize>> = Vec::new();
     for (p, port) in manifest.ports.iter().enumerate() {
+        let [x, y] = port.rooms.map(|r| &parts[r].tables);
+        if x.bands != y.bands {
+            return Err(BuildingError::Manifest {
+                at: port.at.clone(),
+                item: format!("port {}", port.name),
+                message: format!(
+                    "joins room {} ({} bands) and room {} ({} bands): rooms that share light are solved band by band, so give their scenes the same `bands`",
+                    manifest.rooms[port.rooms[0]].name,
+                    x.bands,
+                    manifest.rooms[port.rooms[1]].name,
+                    y.bands
+                ),
+            });
+        }
         let opening = |side: usize| opening(p, side);
         let (a, b) = (opening(0), opening(1));
         let fail = || {
@@ -306,42 +342,6 @@ pub fn couple(
             })
         })
         .collect();
-    let first_channel: Vec<usize> = parts
-        .iter()
-        .scan(0, |next, part| {
-            let first = *next;
-            *next += part.tables.channel_names.len();
-            Some(first)
-        })
-        .collect();
-    let channels: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
-    let bands = parts.first().map_or(1, |p| p.tables.bands);
-    let u_count = unknowns.len();
-    // `entering[b]`: u × channels, the exitance entering through each port patch per channel
-    // of the building at level 1.
-    let mut entering = Vec::with_capacity(bands);
-    for b in 0..bands {
-        let mut system = Mat::<f64>::identity(u_count, u_count);
-        let mut rhs = Mat::<f64>::zeros(u_count, channels);
-        for (row, u) in unknowns.iter().enumerate() {
-            let port = &manifest.ports[u.port];
-            let from_side = 1 - u.side;
-            let from = port.rooms[from_side];
-            let ports = &parts[from].ports;
-            let j = local(u.port, from_side, u.patch);
-            let factor = port.transmittance / opening(u.port, 0).area[u.patch];
-            for c in 0..parts[from].tables.channel_names.len() {
-                rhs[(row, first_channel[from] + c)] = factor * ports.leaving[b][c][j];
-            }
-            for (col, v) in unknowns.iter().enumerate() {
-                if manifest.ports[v.port].rooms[v.side] == from {
-                    let i = local(v.port, v.side, v.patch);
-                    system[(row, col)] -= factor * ports.returned[b][i][j];
-                }
-            }
-        }
-        entering.push(system.partial_piv_lu().solve(rhs.as_ref()));
-    }
     // Rooms joined through ports, directly or through others.
     let rooms = parts.len();
     let mut group: Vec<usize> = (0..rooms).collect();
@@ -360,6 +360,62 @@ pub fn couple(
         if !changed {
             break;
         }
+    }
+    let first_channel: Vec<usize> = parts
+        .iter()
+        .scan(0, |next, part| {
+            let first = *next;
+            *next += part.tables.channel_names.len();
+            Some(first)
+        })
+        .collect();
+    let channels: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
+    // Each room's daylight nodes are right-hand sides too, after the building's channels.
+    let first_node: Vec<usize> = parts
+        .iter()
+        .scan(channels, |next, part| {
+            let first = *next;
+            *next += part.ports.daylight.len();
+            Some(first)
+        })
+        .collect();
+    let sources = channels + parts.iter().map(|p| p.ports.daylight.len()).sum::<usize>();
+    let bands = parts.iter().map(|p| p.tables.bands).max().unwrap_or(1);
+    let u_count = unknowns.len();
+    // `entering[b]`: u × sources, the exitance entering through each port patch per channel
+    // of the building at level 1 (and, in the photopic band, per daylight node at 1).
+    let mut entering = Vec::with_capacity(bands);
+    for b in 0..bands {
+        let mut system = Mat::<f64>::identity(u_count, u_count);
+        let mut rhs = Mat::<f64>::zeros(u_count, sources);
+        for (row, u) in unknowns.iter().enumerate() {
+            let port = &manifest.ports[u.port];
+            let from_side = 1 - u.side;
+            let from = port.rooms[from_side];
+            if b >= parts[from].tables.bands {
+                // A band the rooms of this port do not have (joined rooms share their bands):
+                // nothing enters.
+                continue;
+            }
+            let ports = &parts[from].ports;
+            let j = local(u.port, from_side, u.patch);
+            let factor = port.transmittance / opening(u.port, 0).area[u.patch];
+            for c in 0..parts[from].tables.channel_names.len() {
+                rhs[(row, first_channel[from] + c)] = factor * ports.leaving[b][c][j];
+            }
+            if b == 0 {
+                for (d, flux) in ports.daylight.iter().enumerate() {
+                    rhs[(row, first_node[from] + d)] = factor * flux[j];
+                }
+            }
+            for (col, v) in unknowns.iter().enumerate() {
+                if manifest.ports[v.port].rooms[v.side] == from {
+                    let i = local(v.port, v.side, v.patch);
+                    system[(row, col)] -= factor * ports.returned[b][i][j];
+                }
+            }
+        }
+        entering.push(system.partial_piv_lu().solve(rhs.as_ref()));
     }
     for (r, part) in parts.iter().enumerate() {
         let into: Vec<(usize, usize)> = unknowns
@@ -394,22 +450,25 @@ pub fn couple(
             }
         }
         let t = &part.tables;
+        let bands = t.bands;
         let own = t.channel_names.len();
         let outputs = t.sensor_names.len() + t.zone_names.len();
         let points = t.grid_position.len();
         let n = t.patch_area.len();
         let ports = &part.ports;
+        // What the exitance entering through the room's port patches for source `g` (a
+        // column of `entering`) adds in band `b` where the room's response to unit exitance
+        // entering through its port patch `i` is `through(i)`.
+        let through_ports = |b: usize, g: usize, through: &dyn Fn(usize) -> f64| -> f64 {
+            into.iter()
+                .map(|&(row, i)| through(i) * entering[b][(row, g)])
+                .sum()
+        };
         // Column `kc` of `kept` at one output or patch in band `b`: the room's own response
-        // there (`own_value`, 0 for another room's channel), plus, for every port patch `i`
-        // light enters through, the room's response to it (`through(i)`) times the exitance
-        // the channel sends in through it.
+        // there (`own_value`, 0 for another room's channel) plus what the channel's light
+        // entering through the ports gives.
         let value = |own_value: f64, b: usize, kc: usize, through: &dyn Fn(usize) -> f64| -> f64 {
-            let g = kept[kc].0;
-            let mut v = own_value;
-            for &(row, i) in &into {
-                v += through(i) * entering[b][(row, g)];
-            }
-            v
+            own_value + through_ports(b, kept[kc].0, through)
         };
         let table = |rows: usize, offset: usize, old: &[f64]| -> Vec<f64> {
             let mut out = Vec::with_capacity(rows * bands * kept.len());
@@ -449,18 +508,123 @@ pub fn couple(
             tables.channel_response = response;
         }
         tables.channel_names = kept.into_iter().map(|(_, name)| name).collect();
+        // The daylight of every joined room that has daylight, this room's own included
+        // (what leaves through a port and comes back).
+        let lit: Vec<usize> = (0..rooms)
+            .filter(|&q| group[q] == group[r] && !parts[q].ports.daylight.is_empty())
+            .collect();
+        if let Some(&first) = lit.first() {
+            let frame = DaylightFrame::of(&parts[first]);
+            for &q in &lit {
+                if DaylightFrame::of(&parts[q]) != frame {
+                    return Err(BuildingError::Manifest {
+                        at: manifest.rooms[q].at.clone(),
+                        item: format!("room {}", parts[q].room),
+                        message: format!(
+                            "its daylight (the site, the sky's patches or the sun grid) differs from room {}'s, which ports join to it: daylight crossing a port is read under one sky, so give the rooms' scenes the same [site] and build them with the same sun grid",
+                            parts[first].room
+                        ),
+                    });
+                }
+            }
+            // The sky's patches and the exterior, the same nodes in every joined room.
+            let sky_nodes = parts[first].ports.daylight.len() - parts[first].tables.sun_nodes.len();
+            // Every joined room's sun nodes: a neighbour's sun lights this room through the
+            // ports at nodes where it reaches none of this room's own surfaces.
+            let mut sun_nodes: Vec<u32> = lit
+                .iter()
+                .flat_map(|&q| parts[q].tables.sun_nodes.iter().copied())
+                .collect();
+            sun_nodes.sort_unstable();
+            sun_nodes.dedup();
+            let d_all = sky_nodes + sun_nodes.len();
+            // Column of node `d` of room `q`'s daylight among the joined nodes.
+            let column = |q: usize, d: usize| -> usize {
+                if d < sky_nodes {
+                    d
+                } else {
+                    let node = parts[q].tables.sun_nodes[d - sky_nodes];
+                    sky_nodes + sun_nodes.partition_point(|&x| x < node)
+                }
+            };
+            let own_nodes = ports.daylight.len();
+            // `rows × D` of this room's own daylight (`old`, empty without) with every joined
+            // room's daylight entering through the ports added, where row `o`'s response to
+            // unit exitance entering through port patch `i` is `response(i, o)`.
+            let daylight = |rows: usize, old: &[f64], response: &dyn Fn(usize, usize) -> f64| {
+                let mut out = vec![0.0; rows * d_all];
+                for o in 0..rows {
+                    for d in 0..own_nodes {
+                        out[o * d_all + column(r, d)] = old[o * own_nodes + d];
+                    }
+                    for &q in &lit {
+                        for d in 0..parts[q].ports.daylight.len() {
+                            out[o * d_all + column(q, d)] +=
+                                through_ports(0, first_node[q] + d, &|i| response(i, o));
+                        }
+                    }
+                }
+                out
+            };
+            let reading =
+                |offset: usize| move |i: usize, o: usize| ports.readings[0][i][offset + o];
+            tables.daylight_outputs = daylight(outputs, &t.daylight_outputs, &reading(0));
+            tables.daylight_grid = daylight(points, &t.daylight_grid, &reading(outputs));
+            // The daylight's mode amplitudes (photopic: one band, `n × p` modes), with those
+            // of the exitance the daylight entering through the ports gives: the amplitudes of
+            // each port patch's response `N` (as `Model::mode_amplitudes` takes them).
+            let p = t.mode_count;
+            let entering_amplitudes: Vec<Vec<f64>> = (0..ports.exitance[0].len())
+                .map(|i| {
+                    (0..p)
+                        .map(|k| {
+                            (0..n)
+                                .map(|j| {
+                                    amplitude_weight(
+                                        t.formulation,
+                                        t.patch_area[j],
+                                        t.patch_reflectance[j],
+                                    ) * t.modes[j * p + k]
+                                        * ports.exitance[0][i][j]
+                                })
+                                .sum()
+                        })
+                        .collect()
+                })
+                .collect();
+            tables.daylight_modes =
+                daylight(p, &t.daylight_modes, &|i, k| entering_amplitudes[i][k]);
+            let from = &parts[first].tables;
+            tables.sky_subdivision = from.sky_subdivision;
+            tables.daylight_site.clone_from(&from.daylight_site);
+            tables.sun_lattice.clone_from(&from.sun_lattice);
+            tables.sun_spacing.clone_from(&from.sun_spacing);
+            tables.sun_nodes = sun_nodes;
+        }
         coupled.tables[r] = tables;
     }
-    for port in &manifest.ports {
-        for side in 0..2 {
-            let (from, to) = (port.rooms[side], port.rooms[1 - side]);
-            if !parts[from].tables.daylight_outputs.is_empty() {
-                coupled.notes.push(format!(
-                    "port {}: the daylight of room {} is not carried through it into room {} (only channels are coupled through ports)",
-                    port.name, manifest.rooms[from].name, manifest.rooms[to].name
-                ));
-            }
+    Ok(coupled)
+}
+
+/// What a room's daylight nodes are: its site, its sky's patches and its sun grid. Rooms
+/// joined through ports must agree on it for their daylight to be added node by node.
+#[derive(PartialEq)]
+struct DaylightFrame<'a> {
+    sky_subdivision: u8,
+    site: &'a [f64],
+    sun_lattice: &'a [u32],
+    sun_spacing: &'a [f64],
+}
+
+impl<'a> DaylightFrame<'a> {
+    /// The frame of `part`'s daylight.
+    fn of(part: &'a Part) -> Self {
+        let t = &part.tables;
+        DaylightFrame {
+            sky_subdivision: t.sky_subdivision,
+            site: &t.daylight_site,
+            sun_lattice: &t.sun_lattice,
+            sun_spacing: &t.sun_spacing,
         }
     }
-    Ok(coupled)
 }

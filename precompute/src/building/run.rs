@@ -143,7 +143,7 @@ fn build_room(
         &room.scene,
         options,
         Some("responses at the ports"),
-        |scene, system| port::respond(scene, system, &openings),
+        |scene, system, daylight| port::respond(scene, system, daylight, &openings),
     )
     .map_err(fail)?;
     let part = Part {
@@ -195,9 +195,6 @@ pub struct Merged {
     pub flash: String,
     /// The bases, in the manifest's order of controllers.
     pub controllers: Vec<ControllerBasis>,
-    /// What the bases leave out of the light through ports (a room's daylight), one sentence
-    /// each.
-    pub notes: Vec<String>,
 }
 
 /// The basis file of `controller` in `dir`.
@@ -226,7 +223,6 @@ pub fn merge(
         building: manifest.name.clone(),
         flash: flash.to_string(),
         controllers: Vec::new(),
-        notes: coupled.notes,
     };
     for c in &manifest.controllers {
         let room = &coupled.tables[c.room];

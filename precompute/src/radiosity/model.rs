@@ -228,11 +228,7 @@ impl<'s> Model<'s> {
         let v = &self.bands[b].modes.vectors;
         let reflectance = self.reflectance(b);
         let area = self.area();
-        let weight = |j: usize| match (self.formulation, reflectance[j]) {
-            (_, r) if r <= 0.0 => 0.0,
-            (Formulation::Split, r) => area[j] / r,
-            (Formulation::Seed, _) => 1.0,
-        };
+        let weight = |j: usize| amplitude_weight(self.formulation, area[j], reflectance[j]);
         (0..p)
             .map(|k| {
                 if k >= v.ncols() {
@@ -241,6 +237,18 @@ impl<'s> Model<'s> {
                 (0..m.len()).map(|j| weight(j) * v[(j, k)] * m[j]).sum()
             })
             .collect()
+    }
+}
+
+/// The weight `w_j` of a patch of area `area` (m²) and reflectance `reflectance` in a mode
+/// amplitude `a_k = Σ_j w_j v_jk m_j` ([`Model::mode_amplitudes`]): `A/ρ` in the split
+/// formulation (`Vᵀ B V = I`), 1 in the seed one (orthonormal modes), 0 on a black patch,
+/// which the modes do not span.
+pub fn amplitude_weight(formulation: Formulation, area: f64, reflectance: f64) -> f64 {
+    match (formulation, reflectance) {
+        (_, r) if r <= 0.0 => 0.0,
+        (Formulation::Split, r) => area / r,
+        (Formulation::Seed, _) => 1.0,
     }
 }
 

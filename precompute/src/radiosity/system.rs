@@ -290,6 +290,35 @@ impl System {
             })
             .collect())
     }
+
+    /// The irradiance (W/m² or lux) in band `b` on each patch of `patches` from `light` alone,
+    /// whose exact exitance is `m` (its [`LightResponse::exitance`]): what
+    /// [`System::light_responses_with_irradiance`] gives on those patches, from the operator's
+    /// rows of those patches only, without a pass over every patch.
+    pub fn light_irradiance_at(
+        &self,
+        b: usize,
+        light: &ChannelLight,
+        m: &[f64],
+        patches: &[usize],
+    ) -> Vec<f64> {
+        let mut row = vec![0.0; self.patch_count()];
+        patches
+            .iter()
+            .map(|&j| {
+                self.operator.row(j, &mut row);
+                // `F M` plus the light from beyond the patches, `E_direct − F emission`: the
+                // emission's own share of `F M` is in its direct light already.
+                let passed: f64 = row
+                    .iter()
+                    .zip(m)
+                    .zip(&light.emission[b])
+                    .map(|((g, x), e)| g * (x - e))
+                    .sum();
+                passed / self.area[j] + light.patch_irradiance[b][j]
+            })
+            .collect()
+    }
 }
 
 /// The levels of `m` channels with channel `c` alone at level 1.

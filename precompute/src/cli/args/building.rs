@@ -190,8 +190,5 @@ fn format_merged(m: &Merged) -> String {
         }
         let _ = writeln!(text, " -> {}", c.file.display());
     }
-    for note in &m.notes {
-        let _ = writeln!(text, "note: {note}");
-    }
     text
 }
