@@ -136,6 +136,53 @@ impl<'a> Matrix<'a> {
         }
     }
 
+    /// Row `row`'s sums per band, `Σ_c value(row, c·B + b) · x[c]` for `b < B` over the
+    /// first `x.len() · B` columns ([`weighted_sums`]): a patch's exitance from its channel
+    /// responses (`x` the levels), the precision dispatched once for the row.
+    #[inline]
+    pub fn weighted_row<const B: usize>(&self, row: usize, x: &[f32]) -> [f32; B] {
+        self.weighted(self.span(row, 0, x.len() * B), x)
+    }
+
+    /// [`weighted_row`](Self::weighted_row) of every row from the first into `out`, one
+    /// entry per row: the rows are walked in order, each row's bytes bounds-checked once and
+    /// its precision dispatched once, so that the whole matrix reads at about the speed of a
+    /// plain loop over its bytes. Entries past the matrix' rows are sums of nothing.
+    pub fn weighted_rows<const B: usize>(&self, x: &[f32], out: &mut [[f32; B]]) {
+        let w = self.precision.bytes();
+        let used = x.len() * B * w;
+        // `chunks` needs a positive size; a matrix without columns has no bytes.
+        let mut rows = self.data.chunks((self.cols * w).max(1));
+        for slot in out {
+            let row = rows.next().unwrap_or(&[]);
+            *slot = self.weighted(row.get(..used).unwrap_or(&[]), x);
+        }
+    }
+
+    /// The sums of [`weighted_row`](Self::weighted_row) over `data`, one row's stored values
+    /// from column 0, with a loop specialised per precision.
+    #[inline]
+    fn weighted<const B: usize>(&self, data: &[u8], x: &[f32]) -> [f32; B] {
+        let scales = f32s(self.scale_span(0, x.len() * B));
+        match self.precision {
+            Precision::F32 => weighted_sums(f32s(data), x),
+            Precision::F16 => weighted_sums(
+                data.chunks_exact(2).zip(scales).map(|(c, s)| match *c {
+                    [lo, hi] => f16_finite_to_f32(u16::from_le_bytes([lo, hi])) * s,
+                    _ => 0.0,
+                }),
+                x,
+            ),
+            Precision::I16 => weighted_sums(
+                data.chunks_exact(2).zip(scales).map(|(c, s)| match *c {
+                    [lo, hi] => f32::from(i16::from_le_bytes([lo, hi])) * s,
+                    _ => 0.0,
+                }),
+                x,
+            ),
+        }
+    }
+
     /// `Σ_k value(row, col + k) · x[k]` for `k < x.len()`. Specialised per precision so
     /// that the inner loop is a plain zip the compiler can unroll.
     #[inline]
@@ -167,4 +214,28 @@ impl<'a> Matrix<'a> {
             }
         }
     }
+}
+
+/// `Σ_c v[c·B + b] · x[c]` for each band `b < B`, over `values` in order (channel-major,
+/// band-minor): the one rule for a row's weighted sums, so that a patch read alone and every
+/// patch read at once agree to the bit. One band is a plain dot product; several bands add
+/// each product to its band's sum in turn, from 0.
+#[inline]
+fn weighted_sums<const B: usize>(mut values: impl Iterator<Item = f32>, x: &[f32]) -> [f32; B] {
+    let mut out = [0.0f32; B];
+    if B == 1 {
+        if let Some(slot) = out.first_mut() {
+            *slot = values.zip(x).map(|(v, &l)| v * l).sum();
+        }
+        return out;
+    }
+    for &level in x {
+        for slot in out.iter_mut() {
+            match values.next() {
+                Some(v) => *slot += v * level,
+                None => return out,
+            }
+        }
+    }
+    out
 }
