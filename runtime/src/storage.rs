@@ -138,25 +138,12 @@ impl<'a> Matrix<'a> {
 
     /// Row `row`'s sums per band, `Σ_c value(row, c·B + b) · x[c]` for `b < B` over the
     /// first `x.len() · B` columns ([`weighted_sums`]): a patch's exitance from its channel
-    /// responses (`x` the levels), the precision dispatched once for the row.
+    /// responses (`x` the levels). The row's bytes are bounds-checked once and its precision
+    /// dispatched once, then read in a plain loop, so that rows read one after the other go
+    /// at about the speed of a plain loop over the matrix' bytes.
     #[inline]
     pub fn weighted_row<const B: usize>(&self, row: usize, x: &[f32]) -> [f32; B] {
         self.weighted(self.span(row, 0, x.len() * B), x)
-    }
-
-    /// [`weighted_row`](Self::weighted_row) of every row from the first into `out`, one
-    /// entry per row: the rows are walked in order, each row's bytes bounds-checked once and
-    /// its precision dispatched once, so that the whole matrix reads at about the speed of a
-    /// plain loop over its bytes. Entries past the matrix' rows are sums of nothing.
-    pub fn weighted_rows<const B: usize>(&self, x: &[f32], out: &mut [[f32; B]]) {
-        let w = self.precision.bytes();
-        let used = x.len() * B * w;
-        // `chunks` needs a positive size; a matrix without columns has no bytes.
-        let mut rows = self.data.chunks((self.cols * w).max(1));
-        for slot in out {
-            let row = rows.next().unwrap_or(&[]);
-            *slot = self.weighted(row.get(..used).unwrap_or(&[]), x);
-        }
     }
 
     /// The sums of [`weighted_row`](Self::weighted_row) over `data`, one row's stored values

@@ -200,9 +200,10 @@ fn bad_requests_are_errors_and_change_nothing() {
     assert!(matches!(lean.exitance(0), Err(Error::Capacity { .. })));
 }
 
-/// Where a bad daylight section is refused: its shape (which tables, how long, a
-/// photometric basis) by `Basis::from_bytes`, its values when daylight is used
-/// (`Basis::check_daylight`, which `DaylightEvaluator::new` calls), each with the table named.
+/// Where a bad daylight section is refused: its shape (a sky or none, a photometric basis,
+/// its tables' bytes together) by `Basis::from_bytes`, the tables one by one when daylight
+/// is used (`Basis::check_daylight`, which `DaylightEvaluator::new` calls), each with the
+/// table named; the channels read a basis whose daylight is corrupt as before.
 #[test]
 fn decoder_refuses_bad_daylight_sections() {
     let named = |err: Error| match err {
@@ -226,21 +227,43 @@ fn decoder_refuses_bad_daylight_sections() {
         let err = Day::new(basis).unwrap_err();
         assert_eq!(named(err), field);
         // The electric light does not read the daylight section.
-        assert!(ChannelEvaluator::<1, 4>::new(basis).is_ok());
+        let mut lights = ChannelEvaluator::<1, 4>::new(basis).unwrap();
+        lights.set_channel_level(0, 1.0).unwrap();
+        assert!(lights.sensor_irradiance(0).unwrap()[0].is_finite());
     };
     at_decode(&|t| t.sky_subdivision = 9, "sky_subdivision");
     at_decode(&|t| t.quantity = Quantity::Radiometric, "sky_subdivision");
+    at_decode(&|t| t.sun_nodes.pop().map(drop).unwrap(), "daylight");
+    at_decode(&|t| t.daylight_site.pop().map(drop).unwrap(), "daylight");
+    at_decode(&|t| t.sun_lattice.push(1), "daylight");
+    at_decode(&|t| t.sun_spacing.pop().map(drop).unwrap(), "daylight");
+    at_decode(&|t| t.daylight_outputs.truncate(10), "daylight");
+    at_decode(&|t| t.daylight_modes.push(0.0), "daylight");
+    at_decode(&|t| t.daylight_grid.push(1.0), "daylight");
+    // Daylight tables without a sky.
+    at_decode(&|t| t.sky_subdivision = 0, "daylight");
     at_decode(
-        &|t| t.daylight_site.pop().map(drop).unwrap(),
+        &|t| {
+            t.sky_subdivision = 0;
+            t.quantity = Quantity::Radiometric;
+        },
+        "daylight",
+    );
+    // Lengths that make up the right total between them: the table is named at use.
+    at_use(
+        &|t| {
+            t.daylight_outputs.pop();
+            t.daylight_modes.push(0.0);
+        },
+        "daylight_outputs",
+    );
+    at_use(
+        &|t| {
+            t.sun_spacing.pop();
+            t.daylight_site.push(0.0);
+        },
         "daylight_site",
     );
-    at_decode(&|t| t.sun_lattice.push(1), "sun_lattice");
-    at_decode(&|t| t.sun_spacing.pop().map(drop).unwrap(), "sun_spacing");
-    at_decode(&|t| t.daylight_outputs.truncate(10), "daylight_outputs");
-    at_decode(&|t| t.daylight_modes.push(0.0), "daylight_modes");
-    at_decode(&|t| t.daylight_grid.push(1.0), "daylight_grid.data");
-    // Daylight tables without a sky.
-    at_decode(&|t| t.sky_subdivision = 0, "daylight_site");
     at_use(&|t| t.daylight_site[0] = 91.0, "daylight_site");
     at_use(&|t| t.daylight_site[4] = f64::NAN, "daylight_site");
     at_use(&|t| t.sun_lattice[0] = 0, "sun_lattice");

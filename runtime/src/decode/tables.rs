@@ -128,8 +128,8 @@ impl Allowed {
     }
 }
 
-/// Checks every `f32` of a table against `allowed` (its length checked before).
-pub(super) fn check_f32(field: &'static str, bytes: &[u8], allowed: Allowed) -> Result<()> {
+/// Checks every `f32` of a table against `allowed`.
+fn check_f32(field: &'static str, bytes: &[u8], allowed: Allowed) -> Result<()> {
     match f32s(bytes).position(|v| !allowed.admits(v)) {
         Some(index) => Err(bad_value(field, index)),
         None => Ok(()),
@@ -166,23 +166,8 @@ pub(super) fn u16_table(
 }
 
 /// A `rows × cols` matrix in `precision` (`docs/format.md`, "Matrices"): data and scales of
-/// the right lengths ([`matrix_len`]), every value finite, every scale finite and
-/// non-negative ([`matrix_values`]).
+/// the right lengths, every value finite, every scale finite and non-negative.
 pub(super) fn matrix(
-    field: &'static str,
-    scales_field: &'static str,
-    raw: MatrixBytes<'_>,
-    precision: Precision,
-    rows: usize,
-    cols: usize,
-) -> Result<()> {
-    matrix_len(field, scales_field, raw, precision, rows, cols)?;
-    matrix_values(field, scales_field, raw, precision)
-}
-
-/// The lengths of a `rows × cols` matrix in `precision`: `rows × cols` values and, in 16
-/// bits, a scale per column.
-pub(super) fn matrix_len(
     field: &'static str,
     scales_field: &'static str,
     raw: MatrixBytes<'_>,
@@ -195,17 +180,7 @@ pub(super) fn matrix_len(
         Precision::F32 => 0,
         Precision::F16 | Precision::I16 => cols,
     };
-    check_len(scales_field, raw.scales, scale_count, 4)
-}
-
-/// The values of a matrix whose lengths [`matrix_len`] checked: every value finite, every
-/// scale finite and non-negative.
-pub(super) fn matrix_values(
-    field: &'static str,
-    scales_field: &'static str,
-    raw: MatrixBytes<'_>,
-    precision: Precision,
-) -> Result<()> {
+    check_len(scales_field, raw.scales, scale_count, 4)?;
     check_f32(scales_field, raw.scales, Allowed::NonNegative)?;
     match precision {
         Precision::F32 => check_f32(field, raw.data, Allowed::Bounded),

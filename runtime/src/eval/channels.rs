@@ -140,7 +140,7 @@ impl<'a, const BANDS: usize, const CHANNELS: usize> ChannelEvaluator<'a, BANDS, 
 
     /// Fills `out[i]` with the exitance of every patch `i` (W/m² or lux); `out` must have
     /// one entry per patch. O(n·m) per band: the channel responses are read row after row,
-    /// as a plain loop over their bytes would, to the same values as
+    /// each row checked and its precision dispatched once, to the same values as
     /// [`exitance`](Self::exitance) patch by patch, to the bit.
     pub fn exitance_all(&self, out: &mut [[f32; BANDS]]) -> Result<()> {
         let n = self.basis.counts.patch_count;
@@ -151,9 +151,10 @@ impl<'a, const BANDS: usize, const CHANNELS: usize> ChannelEvaluator<'a, BANDS, 
                 found: out.len(),
             });
         }
-        self.basis
-            .channel_response()
-            .weighted_rows(&self.levels, out);
+        let response = self.basis.channel_response();
+        for (patch, slot) in out.iter_mut().enumerate() {
+            *slot = response.weighted_row(patch, &self.levels);
+        }
         Ok(())
     }
 
