@@ -62,19 +62,17 @@ pub(super) fn shape(
     if quantity != Quantity::Photometric {
         return Err(field_value("sky_subdivision", raw.sky_subdivision));
     }
-    let d = c.daylight_node_count;
-    let per_node = cols(c.output_count().and_then(|o| o.checked_add(c.mode_count)))?;
+    // Per node: its value for every output and mode (4 bytes each), its grid column, and its
+    // grid scale in 16 bits.
+    let outputs_and_modes = cols(c.output_count().and_then(|o| o.checked_add(c.mode_count)))?;
     let grid = mul(c.grid_point_count, precision.bytes())?;
-    let scales = match precision {
+    let scale = match precision {
         Precision::F32 => 0,
         Precision::F16 | Precision::I16 => 4,
     };
-    let expected = cols(
-        mul(d, 4 * per_node + scales)
-            .ok()
-            .and_then(|nodes| nodes.checked_add(mul(d, grid).ok()?))
-            .and_then(|tables| tables.checked_add(SETTINGS_BYTES)),
-    )?;
+    let per_node = cols(mul(outputs_and_modes, 4)?.checked_add(grid))?;
+    let per_node = cols(per_node.checked_add(scale))?;
+    let expected = cols(mul(c.daylight_node_count, per_node)?.checked_add(SETTINGS_BYTES))?;
     total(expected, sized)
 }
 
@@ -93,11 +91,11 @@ fn total(expected: usize, found: usize) -> Result<()> {
 }
 
 /// The section's tables, where daylight is used: each of the length the counts give it
-/// (named), the site within [`SITE_LIMITS`], a sun
-/// grid of at most [`MAX_SUN_GRID`] nodes with declinations within ±90° and hour angles
-/// within ±360°, stepping forward, its stored nodes ascending inside it, every node table
-/// finite and bounded; then the direct sun's tables ([`super::direct_sun::check`]). Nothing
-/// to check without a sky ([`shape`] found every table empty).
+/// (named), the site within [`SITE_LIMITS`], a sun grid of at most [`MAX_SUN_GRID`] nodes
+/// with declinations within ±90° and hour angles within ±360°, stepping forward, its stored
+/// nodes ascending inside it, every node table finite and bounded; then the direct sun's
+/// tables ([`super::direct_sun::check`]). Nothing to check without a sky ([`shape`] found
+/// every table empty).
 pub(crate) fn check_values(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
     if raw.sky_subdivision == 0 {
         return Ok(());

@@ -151,10 +151,9 @@ impl<'a, const BANDS: usize, const CHANNELS: usize> ChannelEvaluator<'a, BANDS, 
                 found: out.len(),
             });
         }
-        let response = self.basis.channel_response();
-        for (patch, slot) in out.iter_mut().enumerate() {
-            *slot = response.weighted_row(patch, &self.levels);
-        }
+        self.basis
+            .channel_response()
+            .weighted_rows(&self.levels, out);
         Ok(())
     }
 
