@@ -206,15 +206,15 @@ const BUDGET_CHANNEL_UPDATE: u64 = 300;
 /// Flash the runtime's own code may take (`.text`, bytes), as the code-size probes of the
 /// firmware example measure it (`scripts/firmware.sh`, docs/embedded.md, "The runtime's own
 /// code"), each a little above its figure so that growth shows here: decoding plus every
-/// operation of the `ChannelEvaluator`, grids included (11 096 bytes, the channel-only
+/// operation of the `ChannelEvaluator`, grids included (11 264 bytes, the channel-only
 /// controller; within 12 KiB as issue 30 asks), decoding plus every operation of the full
-/// `Evaluator` but the grids' (13 652), a channel-only controller that also solves its
-/// levels for a target (15 672), and decoding plus every `DaylightEvaluator` operation with
-/// the runtime's sun and sky (23 748). Decoding checks the daylight section's shape only;
+/// `Evaluator` but the grids' (13 816), a channel-only controller that also solves its
+/// levels for a target (15 668), and decoding plus every `DaylightEvaluator` operation with
+/// the runtime's sun and sky (23 740). Decoding checks the daylight section's shape only;
 /// its values are checked, and linked, where daylight is used.
 const BUDGET_RUNTIME_TEXT: [(&str, usize); 4] = [
-    ("runtime_channels", 11 * 1024),
-    ("runtime_patches", 13 * 1024 + 512),
+    ("runtime_channels", 11 * 1024 + 512),
+    ("runtime_patches", 14 * 1024),
     ("runtime_levels", 15 * 1024 + 512),
     ("runtime_daylight", 23 * 1024 + 512),
 ];
