@@ -93,8 +93,9 @@ pub struct Site {
     pub utc_offset_minutes: f32,
 }
 
-// The accessors trust the tables: `Basis::from_bytes`, in `decode.rs`, checked them. It
-// lives there so that decoding builds on this type and this module imports nothing of it.
+// The accessors trust the tables: `Basis::from_bytes`, in `decode/`, checked them (the
+// daylight's values: `check_daylight`, before any daylight reader). It lives there so that
+// decoding builds on this type and this module imports nothing of it.
 impl<'a> Basis<'a> {
     /// Spectral bands: 1 (photopic) or 3 (RGB).
     pub fn bands(&self) -> usize {
@@ -360,6 +361,21 @@ impl<'a> Basis<'a> {
         self.tables.sky_subdivision != 0
     }
 
+    /// Checks the values of the basis' daylight section (docs/format.md, "Daylight" and
+    /// "Direct sun"): the site, the sun grid and its nodes in range, every node table finite
+    /// and bounded, the direct sun's geometry. `Ok` without daylight.
+    ///
+    /// [`Basis::from_bytes`] checks only the section's shape (which tables, how long), so that
+    /// a firmware that reads no daylight links none of this; every daylight reader calls it:
+    /// [`DirectSun::new`](crate::sky::direct::DirectSun::new) and so
+    /// [`DaylightEvaluator::new`](crate::DaylightEvaluator::new). A tool that reads
+    /// [`site`](Self::site) or [`sun_grid`](Self::sun_grid) alone calls it first: until it
+    /// has, those are the stored values as they are. A corrupt value is the decoder's error
+    /// naming its table.
+    pub fn check_daylight(&self) -> Result<()> {
+        crate::decode::check_daylight(&self.tables, &self.counts, self.precision)
+    }
+
     /// The sky patches of the basis' daylight, `None` without daylight. A
     /// [`DaylightEvaluator`](crate::DaylightEvaluator) takes one luminance per patch, in
     /// their order.
@@ -367,7 +383,8 @@ impl<'a> Basis<'a> {
         crate::sky::patches::SkyPatches::reinhart(self.tables.sky_subdivision).ok()
     }
 
-    /// The site of the basis' daylight, `None` without daylight.
+    /// The site of the basis' daylight, `None` without daylight: as stored, within the
+    /// ranges of docs/format.md once [`check_daylight`](Self::check_daylight) has passed.
     pub fn site(&self) -> Option<Site> {
         if !self.has_daylight() {
             return None;
@@ -383,7 +400,8 @@ impl<'a> Basis<'a> {
     }
 
     /// The grid of sun directions the basis' daylight stores the sun at, `None` without
-    /// daylight.
+    /// daylight: as stored, within the ranges of docs/format.md once
+    /// [`check_daylight`](Self::check_daylight) has passed.
     pub fn sun_grid(&self) -> Option<crate::sky::sun_grid::SunGrid> {
         let site = self.site()?;
         let t = &self.tables;

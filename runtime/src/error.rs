@@ -52,7 +52,9 @@ pub enum Error {
     },
     /// A table's byte length does not match the counts in the payload.
     DecodeLength {
-        /// The table, as named in `docs/format.md`.
+        /// The table, as named in `docs/format.md`, or `daylight` for the daylight section's
+        /// sized tables together (`Basis::from_bytes` checks their total; the table is named
+        /// when daylight is used).
         field: &'static str,
         /// Byte length the dimensions require.
         expected: usize,

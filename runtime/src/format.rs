@@ -1,6 +1,6 @@
 //! The serialized basis, format version 6: the wire types a writer fills and the reader
 //! decodes in place. `docs/format.md` is the normative description; this module is its
-//! layout and header, the checks of the payload's sections are in `decode.rs`.
+//! layout and header, the checks of the payload's sections are in `decode/`.
 //!
 //! A basis is a 20-byte header followed by a postcard-encoded [`Payload`]:
 //!

@@ -136,6 +136,65 @@ impl<'a> Matrix<'a> {
         }
     }
 
+    /// Row `row`'s sums per band, `Σ_c value(row, c·B + b) · x[c]` for `b < B` over the
+    /// first `x.len() · B` columns ([`weighted_sums`]): a patch's exitance from its channel
+    /// responses (`x` the levels). [`weighted_rows`](Self::weighted_rows) on the matrix from
+    /// that row on, so that a patch read alone and every patch read at once are the same
+    /// code and agree to the bit. Sums of nothing past the last row.
+    #[inline]
+    pub fn weighted_row<const B: usize>(&self, row: usize, x: &[f32]) -> [f32; B] {
+        let stride = self.cols * self.precision.bytes();
+        let from_row = Matrix {
+            data: row
+                .checked_mul(stride)
+                .and_then(|start| self.data.get(start..))
+                .unwrap_or(&[]),
+            ..*self
+        };
+        let mut out = [[0.0f32; B]];
+        from_row.weighted_rows(x, &mut out);
+        let [sums] = out;
+        sums
+    }
+
+    /// [`weighted_row`](Self::weighted_row) of every row from the first into `out`, one
+    /// entry per row, for rows of at least `x.len() · B` values (the channel responses have
+    /// `m·B`, one per channel and band): the rows are walked in order as consecutive slices
+    /// of the matrix' bytes, the precision dispatched once for them all and each row read in
+    /// a plain loop, so that the whole matrix reads at about the speed of a plain loop over
+    /// its bytes. Entries past the matrix' rows are left as they are.
+    pub fn weighted_rows<const B: usize>(&self, x: &[f32], out: &mut [[f32; B]]) {
+        // `chunks_exact` needs a positive size; a matrix without columns has no bytes.
+        let stride = (self.cols * self.precision.bytes()).max(1);
+        let rows = self.data.chunks_exact(stride).zip(out);
+        let scales = || f32s(self.scale_span(0, x.len() * B));
+        match self.precision {
+            Precision::F32 => {
+                for (row, slot) in rows {
+                    *slot = weighted_sums(f32s(row), x);
+                }
+            }
+            Precision::F16 => {
+                for (row, slot) in rows {
+                    let values = row.chunks_exact(2).zip(scales()).map(|(c, s)| match *c {
+                        [lo, hi] => f16_finite_to_f32(u16::from_le_bytes([lo, hi])) * s,
+                        _ => 0.0,
+                    });
+                    *slot = weighted_sums(values, x);
+                }
+            }
+            Precision::I16 => {
+                for (row, slot) in rows {
+                    let values = row.chunks_exact(2).zip(scales()).map(|(c, s)| match *c {
+                        [lo, hi] => f32::from(i16::from_le_bytes([lo, hi])) * s,
+                        _ => 0.0,
+                    });
+                    *slot = weighted_sums(values, x);
+                }
+            }
+        }
+    }
+
     /// `Σ_k value(row, col + k) · x[k]` for `k < x.len()`. Specialised per precision so
     /// that the inner loop is a plain zip the compiler can unroll.
     #[inline]
@@ -167,4 +226,28 @@ impl<'a> Matrix<'a> {
             }
         }
     }
+}
+
+/// `Σ_c v[c·B + b] · x[c]` for each band `b < B`, over `values` in order (channel-major,
+/// band-minor): the one rule for a row's weighted sums, so that a patch read alone and every
+/// patch read at once agree to the bit. One band is a plain dot product; several bands add
+/// each product to its band's sum in turn, from 0.
+#[inline]
+fn weighted_sums<const B: usize>(mut values: impl Iterator<Item = f32>, x: &[f32]) -> [f32; B] {
+    let mut out = [0.0f32; B];
+    if B == 1 {
+        if let Some(slot) = out.first_mut() {
+            *slot = values.zip(x).map(|(v, &l)| v * l).sum();
+        }
+        return out;
+    }
+    for &level in x {
+        for slot in out.iter_mut() {
+            match values.next() {
+                Some(v) => *slot += v * level,
+                None => return out,
+            }
+        }
+    }
+    out
 }

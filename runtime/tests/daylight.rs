@@ -200,38 +200,90 @@ fn bad_requests_are_errors_and_change_nothing() {
     assert!(matches!(lean.exitance(0), Err(Error::Capacity { .. })));
 }
 
+/// Where a bad daylight section is refused: its shape (a sky or none, a photometric basis,
+/// its tables' bytes together) by `Basis::from_bytes`, the tables one by one when daylight
+/// is used (`Basis::check_daylight`, which `DaylightEvaluator::new` calls), each with the
+/// table named; the channels read a basis whose daylight is corrupt as before.
 #[test]
 fn decoder_refuses_bad_daylight_sections() {
-    let check = |edit: &dyn Fn(&mut eigenrad_runtime::writer::BasisTables), field: &str| {
+    let named = |err: Error| match err {
+        Error::DecodeField { field, .. }
+        | Error::DecodeLength { field, .. }
+        | Error::DecodeValue { field, .. } => field,
+        other => panic!("{other:?}"),
+    };
+    let at_decode = |edit: &dyn Fn(&mut eigenrad_runtime::writer::BasisTables), field: &str| {
         let mut t = tiny_daylight();
         edit(&mut t);
         let bytes = t.to_bytes().unwrap();
-        let err = Basis::from_bytes(&bytes).unwrap_err();
-        let named = match err {
-            Error::DecodeField { field, .. }
-            | Error::DecodeLength { field, .. }
-            | Error::DecodeValue { field, .. } => field,
-            other => panic!("{field}: {other:?}"),
-        };
-        assert_eq!(named, field, "{err:?}");
+        assert_eq!(named(Basis::from_bytes(&bytes).unwrap_err()), field);
     };
-    check(&|t| t.sky_subdivision = 9, "sky_subdivision");
-    check(&|t| t.quantity = Quantity::Radiometric, "sky_subdivision");
-    check(&|t| t.daylight_site[0] = 91.0, "daylight_site");
-    check(
-        &|t| t.daylight_site.pop().map(drop).unwrap(),
+    let at_use = |edit: &dyn Fn(&mut eigenrad_runtime::writer::BasisTables), field: &str| {
+        let mut t = tiny_daylight();
+        edit(&mut t);
+        let bytes = t.to_bytes().unwrap();
+        let basis = Basis::from_bytes(&bytes).expect("the shape is sound");
+        assert_eq!(named(basis.check_daylight().unwrap_err()), field);
+        let err = Day::new(basis).unwrap_err();
+        assert_eq!(named(err), field);
+        // The electric light does not read the daylight section.
+        let mut lights = ChannelEvaluator::<1, 4>::new(basis).unwrap();
+        lights.set_channel_level(0, 1.0).unwrap();
+        assert!(lights.sensor_irradiance(0).unwrap()[0].is_finite());
+    };
+    at_decode(&|t| t.sky_subdivision = 9, "sky_subdivision");
+    at_decode(&|t| t.quantity = Quantity::Radiometric, "sky_subdivision");
+    at_decode(&|t| t.sun_nodes.pop().map(drop).unwrap(), "daylight");
+    at_decode(&|t| t.daylight_site.pop().map(drop).unwrap(), "daylight");
+    at_decode(&|t| t.sun_lattice.push(1), "daylight");
+    at_decode(&|t| t.sun_spacing.pop().map(drop).unwrap(), "daylight");
+    at_decode(&|t| t.daylight_outputs.truncate(10), "daylight");
+    at_decode(&|t| t.daylight_modes.push(0.0), "daylight");
+    at_decode(&|t| t.daylight_grid.push(1.0), "daylight");
+    // Daylight tables without a sky.
+    at_decode(&|t| t.sky_subdivision = 0, "daylight");
+    at_decode(
+        &|t| {
+            t.sky_subdivision = 0;
+            t.quantity = Quantity::Radiometric;
+        },
+        "daylight",
+    );
+    // Lengths that make up the right total between them: the table is named at use.
+    at_use(
+        &|t| {
+            t.daylight_outputs.pop();
+            t.daylight_modes.push(0.0);
+        },
+        "daylight_outputs",
+    );
+    at_use(
+        &|t| {
+            t.sun_spacing.pop();
+            t.daylight_site.push(0.0);
+        },
         "daylight_site",
     );
-    check(&|t| t.sun_lattice[0] = 0, "sun_lattice");
-    check(&|t| t.sun_spacing[1] = 0.0, "sun_spacing");
-    check(&|t| t.sun_spacing[0] = 80.0, "sun_spacing");
-    check(&|t| t.sun_nodes = vec![7, 6, 8], "sun_nodes");
-    check(&|t| t.sun_nodes = vec![6, 7, 15], "sun_nodes");
-    check(&|t| t.daylight_outputs.truncate(10), "daylight_outputs");
-    check(&|t| t.daylight_modes[0] = f64::NAN, "daylight_modes");
-    check(&|t| t.daylight_grid.push(1.0), "daylight_grid.data");
-    // Daylight tables without a sky.
-    check(&|t| t.sky_subdivision = 0, "daylight_site");
+    at_use(&|t| t.daylight_site[0] = 91.0, "daylight_site");
+    at_use(&|t| t.daylight_site[4] = f64::NAN, "daylight_site");
+    at_use(&|t| t.sun_lattice[0] = 0, "sun_lattice");
+    at_use(&|t| t.sun_spacing[1] = 0.0, "sun_spacing");
+    at_use(&|t| t.sun_spacing[0] = 80.0, "sun_spacing");
+    at_use(&|t| t.sun_nodes = vec![7, 6, 8], "sun_nodes");
+    at_use(&|t| t.sun_nodes = vec![6, 7, 15], "sun_nodes");
+    at_use(
+        &|t| t.daylight_outputs[3] = f64::INFINITY,
+        "daylight_outputs",
+    );
+    at_use(&|t| t.daylight_modes[0] = f64::NAN, "daylight_modes");
+    at_use(&|t| t.daylight_grid[5] = 2.0e9, "daylight_grid.data");
+    // The sound section passes both.
+    let bytes = tiny_daylight().to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    basis.check_daylight().unwrap();
+    // Without daylight there is nothing to check.
+    let bytes = tiny().to_bytes().unwrap();
+    Basis::from_bytes(&bytes).unwrap().check_daylight().unwrap();
 }
 
 /// The sky's patch luminances are the sky's relative luminance at each centre times the scale

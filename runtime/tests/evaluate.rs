@@ -535,3 +535,111 @@ fn channel_evaluator_reads_what_the_full_one_reads_without_patch_exitance() {
         }
     }
 }
+
+/// Channel exitance of every patch computed here from the stored bytes, in `f32`, in the
+/// order the runtime has always summed a row (docs/format.md, "Matrices"): value = stored ×
+/// column scale (f16 through `format::f16_to_f32`, i16 as an integer; f32 as it is), then one
+/// band as a dot product (`Iterator::sum` of the products), several bands each adding its
+/// products channel by channel from 0. `exitance_all` and `exitance` must both give it to the
+/// bit, in every precision, in one and three bands, on both evaluators (the full one also
+/// after patch exitance has been set and cleared).
+fn rows_summed_by_hand<const B: usize>(precision: Precision) {
+    let t = common::random(59, Formulation::Split, precision, B);
+    let bytes = t.to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let raw = eigenrad_runtime::format::decode(&bytes).unwrap();
+    let (n, m) = (t.patch_area.len(), t.channel_names.len());
+    let cols = m * B;
+    let stored = |i: usize, col: usize| -> f32 {
+        let scale = |c: usize| {
+            f32::from_le_bytes(
+                raw.channel_response.scales[4 * c..4 * c + 4]
+                    .try_into()
+                    .unwrap(),
+            )
+        };
+        let d = raw.channel_response.data;
+        match precision {
+            Precision::F32 => {
+                let k = 4 * (i * cols + col);
+                f32::from_le_bytes(d[k..k + 4].try_into().unwrap())
+            }
+            Precision::F16 => {
+                let k = 2 * (i * cols + col);
+                eigenrad_runtime::format::f16_to_f32(u16::from_le_bytes([d[k], d[k + 1]]))
+                    * scale(col)
+            }
+            Precision::I16 => {
+                let k = 2 * (i * cols + col);
+                f32::from(i16::from_le_bytes([d[k], d[k + 1]])) * scale(col)
+            }
+        }
+    };
+    let by_hand = |levels: &[f32]| -> Vec<[f32; B]> {
+        (0..n)
+            .map(|i| {
+                let mut out = [0.0f32; B];
+                if B == 1 {
+                    out[0] = (0..m).map(|c| stored(i, c) * levels[c]).sum();
+                } else {
+                    for c in 0..m {
+                        for b in 0..B {
+                            out[b] += stored(i, c * B + b) * levels[c];
+                        }
+                    }
+                }
+                out
+            })
+            .collect()
+    };
+    let mut full = Evaluator::<B, 64, 16, 8, 8>::new(basis).unwrap();
+    let mut channels = ChannelEvaluator::<B, 8>::new(basis).unwrap();
+    let mut rng = Rng(17);
+    for case in 0..6 {
+        let levels: Vec<f32> = (0..m)
+            .map(|c| match (case, c) {
+                (0, _) => 0.0,
+                (1, 0) => 1.0,
+                _ => rng.range(0.0, 1.0) as f32,
+            })
+            .collect();
+        full.set_channel_levels(&levels).unwrap();
+        channels.set_channel_levels(&levels).unwrap();
+        if case == 3 {
+            full.set_patch_exitance(4, [90.0; B]).unwrap();
+            full.clear_patch_exitance();
+        }
+        let want = by_hand(&levels);
+        let what = format!("{precision:?}/{B} bands/case {case}");
+        for (name, eval) in [
+            ("channels", &channels as &dyn Reads<B>),
+            ("full", &full as &dyn Reads<B>),
+        ] {
+            let mut all = vec![[f32::NAN; B]; n];
+            eval.exitance_all(&mut all).unwrap();
+            for i in 0..n {
+                let one = eval.exitance(i).unwrap();
+                for b in 0..B {
+                    assert_eq!(
+                        all[i][b].to_bits(),
+                        want[i][b].to_bits(),
+                        "{what}: {name} exitance_all {i}"
+                    );
+                    assert_eq!(
+                        one[b].to_bits(),
+                        want[i][b].to_bits(),
+                        "{what}: {name} exitance {i}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn every_patch_at_once_sums_each_row_as_one_patch_alone() {
+    for p in [Precision::F32, Precision::F16, Precision::I16] {
+        rows_summed_by_hand::<1>(p);
+        rows_summed_by_hand::<3>(p);
+    }
+}

@@ -204,12 +204,20 @@ const DAYLIGHT_INSTRUCTIONS: [&str; 7] = [
 const BUDGET_FULL_UPDATE_READ_OUTPUTS: u64 = 1000;
 const BUDGET_CHANNEL_UPDATE: u64 = 300;
 /// Flash the runtime's own code may take (`.text`, bytes), as the code-size probes of the
-/// firmware example measure it (`scripts/firmware.sh`, docs/embedded.md): decoding plus every
-/// operation of the full `Evaluator` but the calculation grids', and decoding plus every
-/// operation of the `ChannelEvaluator`, grids included. The level solver comes on top.
-/// Decoding checks a basis' daylight section too (format v5), whether or not the firmware
-/// reads daylight: about 2.3 KB of the 14 KiB.
-const BUDGET_RUNTIME_TEXT: usize = 14 * 1024;
+/// firmware example measure it (`scripts/firmware.sh`, docs/embedded.md, "The runtime's own
+/// code"), each a little above its figure so that growth shows here: decoding plus every
+/// operation of the `ChannelEvaluator`, grids included (11 264 bytes, the channel-only
+/// controller; within 12 KiB as issue 30 asks), decoding plus every operation of the full
+/// `Evaluator` but the grids' (13 816), a channel-only controller that also solves its
+/// levels for a target (15 668), and decoding plus every `DaylightEvaluator` operation with
+/// the runtime's sun and sky (23 740). Decoding checks the daylight section's shape only;
+/// its values are checked, and linked, where daylight is used.
+const BUDGET_RUNTIME_TEXT: [(&str, usize); 4] = [
+    ("runtime_channels", 11 * 1024 + 512),
+    ("runtime_patches", 14 * 1024),
+    ("runtime_levels", 15 * 1024 + 512),
+    ("runtime_daylight", 23 * 1024 + 512),
+];
 
 #[test]
 fn firmware_matches_eval_office_f32() {
@@ -233,11 +241,11 @@ fn firmware_matches_eval_office_f32() {
         one <= BUDGET_CHANNEL_UPDATE,
         "one channel: {one} instructions, budget {BUDGET_CHANNEL_UPDATE}"
     );
-    for probe in ["runtime_channels", "runtime_patches"] {
+    for (probe, budget) in BUDGET_RUNTIME_TEXT {
         let text = run.sizes[probe]["text"];
         assert!(
-            0 < text && text <= BUDGET_RUNTIME_TEXT,
-            "{probe} .text {text} bytes, budget {BUDGET_RUNTIME_TEXT}"
+            0 < text && text <= budget,
+            "{probe} .text {text} bytes, budget {budget}"
         );
     }
 }

@@ -89,6 +89,7 @@ fn read<const B: usize>(
 /// without daylight.
 pub fn daylight_units(bytes: &[u8]) -> Result<Option<DaylightUnits>> {
     let basis = Basis::from_bytes(bytes)?;
+    basis.check_daylight()?;
     let (Some(patches), Some(site)) = (basis.sky_patches(), basis.site()) else {
         return Ok(None);
     };

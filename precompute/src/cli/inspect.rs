@@ -76,6 +76,8 @@ fn names<'a>(
 pub fn inspect(path: &Path, bytes: &[u8]) -> Result<BasisInfo> {
     let b = Basis::from_bytes(bytes).map_err(basis_error(path))?;
     let e = basis_error(path);
+    // The daylight's site and sun grid are printed: their values are checked first.
+    b.check_daylight().map_err(&e)?;
     let mut zones = Vec::new();
     let mut grids = Vec::new();
     for z in 0..b.zone_count() {

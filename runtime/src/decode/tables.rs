@@ -1,12 +1,12 @@
 //! The checks every table goes through, whichever section it belongs to: its length
-//! against the counts, its values against their range ([`Allowed`]), its indices, a
-//! matrix's data and scales. Each is one function, so that one copy in flash serves every
-//! table.
+//! against the counts (or empty), its values against their range ([`Allowed`]), its
+//! indices, its counts summed, a matrix's data and scales. Each is one function, so that one
+//! copy in flash serves every table.
 
 use crate::basis::MIN_REFLECTANCE;
 use crate::error::{Error, Result};
 use crate::format::{MatrixBytes, Precision, NO_CHANNEL};
-use crate::storage::{f32s, u16_at};
+use crate::storage::{f32s, u16_at, u32_at};
 
 /// Largest magnitude accepted for any stored number. Keeps every sum the evaluator forms
 /// far from `f32` overflow, while leaving room for any physical scene (10⁹ lux is 10⁴ suns).
@@ -52,6 +52,44 @@ pub(super) fn check_len(
     }
 }
 
+/// Checks that every table of `tables` (name, bytes) is empty: a section the basis does not
+/// carry.
+pub(super) fn empty(tables: &[(&'static str, &[u8])]) -> Result<()> {
+    for &(field, bytes) in tables {
+        check_len(field, bytes, 0, 1)?;
+    }
+    Ok(())
+}
+
+/// The error of a value out of its range: `field`'s value number `index`.
+pub(super) fn bad_value(field: &'static str, index: usize) -> Error {
+    Error::DecodeValue { field, index }
+}
+
+/// Checks that `bytes` holds `count` little-endian `u32` and returns their sum, or the
+/// overflow error of [`cols`]: the number of items that a table of counts (pieces per zone,
+/// response rows per sensor) announces.
+pub(super) fn u32_sum(field: &'static str, bytes: &[u8], count: usize) -> Result<usize> {
+    check_len(field, bytes, count, 4)?;
+    (0..count).try_fold(0usize, |sum, i| {
+        cols(sum.checked_add(u32_at(bytes, i) as usize))
+    })
+}
+
+/// Checks that the little-endian `u32` of `bytes` (whose length [`check_len`] checked) rise
+/// strictly and stay below `limit`: a list of indices, each named once.
+pub(super) fn ascending_below(field: &'static str, bytes: &[u8], limit: usize) -> Result<()> {
+    let mut previous: Option<u32> = None;
+    for i in 0..bytes.len() / 4 {
+        let index = u32_at(bytes, i);
+        if index as usize >= limit || previous.is_some_and(|p| p >= index) {
+            return Err(bad_value(field, i));
+        }
+        previous = Some(index);
+    }
+    Ok(())
+}
+
 /// The values a stored `f32` table may hold. A value rather than a closure, so that one
 /// checking loop serves every table (one copy of it in flash).
 #[derive(Clone, Copy)]
@@ -70,6 +108,8 @@ pub(super) enum Allowed {
     Lambda,
     /// Bounded and ≥ −1 (a grid's layout: its normal's components and its sizes).
     NotBelowMinusOne,
+    /// In `[0, 1]` (a glazing's transmittance).
+    Fraction,
 }
 
 impl Allowed {
@@ -83,6 +123,7 @@ impl Allowed {
             Allowed::Mu => v.abs() <= MAX_MU,
             Allowed::Lambda => bounded && v >= MIN_LAMBDA,
             Allowed::NotBelowMinusOne => bounded && v >= -1.0,
+            Allowed::Fraction => (0.0..=1.0).contains(&v),
         }
     }
 }
@@ -90,7 +131,7 @@ impl Allowed {
 /// Checks every `f32` of a table against `allowed`.
 fn check_f32(field: &'static str, bytes: &[u8], allowed: Allowed) -> Result<()> {
     match f32s(bytes).position(|v| !allowed.admits(v)) {
-        Some(index) => Err(Error::DecodeValue { field, index }),
+        Some(index) => Err(bad_value(field, index)),
         None => Ok(()),
     }
 }
@@ -119,7 +160,7 @@ pub(super) fn u16_table(
     check_len(field, bytes, count, 2)?;
     let admits = |v: u16| usize::from(v) < limit || (no_channel_allowed && v == NO_CHANNEL);
     match (0..count).position(|i| !admits(u16_at(bytes, i))) {
-        Some(index) => Err(Error::DecodeValue { field, index }),
+        Some(index) => Err(bad_value(field, index)),
         None => Ok(()),
     }
 }
@@ -149,7 +190,7 @@ pub(super) fn matrix(
             .chunks_exact(2)
             .position(|c| matches!(*c, [_, hi] if hi & 0x7C == 0x7C))
         {
-            Some(index) => Err(Error::DecodeValue { field, index }),
+            Some(index) => Err(bad_value(field, index)),
             None => Ok(()),
         },
         // Every 16-bit integer is a value.

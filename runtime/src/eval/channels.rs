@@ -130,36 +130,18 @@ impl<'a, const BANDS: usize, const CHANNELS: usize> ChannelEvaluator<'a, BANDS, 
         Ok(self.exitance_unchecked(patch))
     }
 
-    /// [`exitance`](Self::exitance) for an index already checked.
+    /// [`exitance`](Self::exitance) for an index already checked: the patch's row of
+    /// channel responses weighted by the levels.
     fn exitance_unchecked(&self, patch: usize) -> [f32; BANDS] {
-        let levels = &self.levels;
-        let response = self.basis.channel_response();
-        let mut out = [0.0f32; BANDS];
-        if BANDS == 1 {
-            // One band: the row is one value per channel, a plain dot product.
-            if let Some(slot) = out.first_mut() {
-                *slot = response.row_dot(patch, 0, levels);
-            }
-            return out;
-        }
-        // Several bands: one pass over the row (channel-major, band-minor), no index
-        // arithmetic per value.
-        let (mut channel, mut band) = (0, 0);
-        response.for_each_compact(patch, 0, levels.len() * BANDS, |_, v| {
-            if let (Some(slot), Some(&level)) = (out.get_mut(band), levels.get(channel)) {
-                *slot += v * level;
-            }
-            band += 1;
-            if band == BANDS {
-                band = 0;
-                channel += 1;
-            }
-        });
-        out
+        self.basis
+            .channel_response()
+            .weighted_row(patch, &self.levels)
     }
 
     /// Fills `out[i]` with the exitance of every patch `i` (W/m² or lux); `out` must have
-    /// one entry per patch. O(n·m) per band.
+    /// one entry per patch. O(n·m) per band: the channel responses are read row after row,
+    /// each row checked and its precision dispatched once, to the same values as
+    /// [`exitance`](Self::exitance) patch by patch, to the bit.
     pub fn exitance_all(&self, out: &mut [[f32; BANDS]]) -> Result<()> {
         let n = self.basis.counts.patch_count;
         if out.len() != n {
@@ -169,9 +151,9 @@ impl<'a, const BANDS: usize, const CHANNELS: usize> ChannelEvaluator<'a, BANDS, 
                 found: out.len(),
             });
         }
-        for (i, slot) in out.iter_mut().enumerate() {
-            *slot = self.exitance_unchecked(i);
-        }
+        self.basis
+            .channel_response()
+            .weighted_rows(&self.levels, out);
         Ok(())
     }
 

@@ -84,10 +84,12 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     ///
     /// [`Error::NoDaylight`] when the basis carries none; [`Error::Capacity`] when its sky,
     /// its outputs or (with `MODES > 0`) its modes do not fit; a decoding error naming the
-    /// table when the direct sun's tables are malformed (checked here, not by
-    /// [`Basis::from_bytes`]).
+    /// table when a value of the daylight section is out of range (checked here,
+    /// [`Basis::check_daylight`], not by [`Basis::from_bytes`]).
     pub fn new(basis: Basis<'a>) -> Result<Self> {
         let sky_patches = basis.sky_patches().ok_or(Error::NoDaylight)?;
+        // Checks the daylight section's values before anything reads them.
+        let direct = DirectSun::new(&basis)?.map(|d| d.state());
         fits("sky patches", sky_patches.count(), SKY)?;
         let outputs = basis.sensor_count() + basis.zone_count();
         fits("outputs", outputs, OUTPUTS)?;
@@ -107,7 +109,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
                 .sun_grid()
                 .map_or([0.0, 1.0], |g| g.latitude_sin_cos()),
             sun: [(NO_COLUMN, 0.0); 4],
-            direct: DirectSun::new(&basis)?.map(|d| d.state()),
+            direct,
             direct_sun: ([0.0, 0.0, 1.0], 0.0),
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),

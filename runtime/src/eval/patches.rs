@@ -249,7 +249,14 @@ impl<
     /// responses, plus, where exitance is set patch by patch, that exitance (where carried
     /// exactly) and the modes. O(m) per band, O(p + m) with patch exitance set.
     pub fn exitance(&self, patch: usize) -> Result<[f32; BANDS]> {
-        let mut out = self.channels.exitance(patch)?;
+        let channels = self.channels.exitance(patch)?;
+        self.with_patch_exitance(patch, channels)
+    }
+
+    /// `channels`, the channels' exitance of `patch`, plus what exitance set patch by patch
+    /// adds there: nothing while none is set.
+    fn with_patch_exitance(&self, patch: usize, channels: [f32; BANDS]) -> Result<[f32; BANDS]> {
+        let mut out = channels;
         if self.lit == 0 {
             return Ok(out);
         }
@@ -270,18 +277,16 @@ impl<
     }
 
     /// Fills `out[i]` with the exitance of every patch `i` (W/m² or lux); `out` must have
-    /// one entry per patch. O(n·m) per band, O(n·(p + m)) with patch exitance set.
+    /// one entry per patch. O(n·m) per band, O(n·(p + m)) with patch exitance set: the
+    /// channels' part row after row ([`ChannelEvaluator::exitance_all`]), then the modes'
+    /// patch by patch, to the same values as [`exitance`](Self::exitance), to the bit.
     pub fn exitance_all(&self, out: &mut [[f32; BANDS]]) -> Result<()> {
-        let n = self.channels.basis.counts.patch_count;
-        if out.len() != n {
-            return Err(Error::LengthMismatch {
-                what: "out",
-                expected: n,
-                found: out.len(),
-            });
+        self.channels.exitance_all(out)?;
+        if self.lit == 0 {
+            return Ok(());
         }
-        for (i, slot) in out.iter_mut().enumerate() {
-            *slot = self.exitance(i)?;
+        for (patch, slot) in out.iter_mut().enumerate() {
+            *slot = self.with_patch_exitance(patch, *slot)?;
         }
         Ok(())
     }

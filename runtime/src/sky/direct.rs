@@ -68,12 +68,12 @@ enum Weighting {
 
 impl<'b, 'a> DirectSun<'b, 'a> {
     /// The direct sun of `basis`, `Ok(None)` when it stores no such geometry (a basis
-    /// without daylight, or whose every sun reading is interpolated). Its tables are checked
-    /// here (docs/format.md, "Direct sun"): a table of the wrong length or with a value out
-    /// of range is the decoder's error naming it.
+    /// without daylight, or whose every sun reading is interpolated). The daylight section's
+    /// values, its tables among them, are checked here ([`Basis::check_daylight`]): a table
+    /// of the wrong length or with a value out of range is the decoder's error naming it.
     pub fn new(basis: &'b Basis<'a>) -> crate::Result<Option<Self>> {
+        basis.check_daylight()?;
         let t = &basis.tables;
-        crate::decode::direct_sun(t, &basis.counts)?;
         if t.sun_polygon_counts.is_empty() {
             return Ok(None);
         }

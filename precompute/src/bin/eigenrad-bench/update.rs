@@ -18,6 +18,7 @@ use eigenrad_precompute::radiosity::exact::ExactSolver;
 use eigenrad_precompute::radiosity::iterative::BandSystem;
 use eigenrad_precompute::radiosity::model::Model;
 use eigenrad_precompute::scene::Scene;
+use eigenrad_runtime::format::MatrixBytes;
 use eigenrad_runtime::{Basis, Evaluator, Precision};
 
 use crate::REFERENCE_MODES;
@@ -88,6 +89,8 @@ struct Row {
     method: String,
     outputs_s: f64,
     patches_s: f64,
+    /// (b) by a plain loop over the same bytes ([`plain_rows`]), for the eigenbasis rows.
+    plain_s: Option<f64>,
     outputs_err: f64,
     patches_err: f64,
     bytes: usize,
@@ -234,6 +237,29 @@ impl<'m> Bench<'m> {
             }
             black_box(&out);
         });
+        let raw = eigenrad_runtime::format::decode(&bytes)?;
+        let mut plain = vec![0.0f32; n];
+        let plain_s = per_call(|| {
+            k += 1;
+            let l = self.levels32(k);
+            plain_rows(raw.channel_response, precision, &l, &mut plain);
+            black_box(&plain);
+        });
+        // The plain loop is a reference for the time only if it computes the same sums.
+        let l = self.levels32(1);
+        if eval.set_channel_levels(&l).is_ok() && eval.exitance_all(&mut out).is_ok() {
+            plain_rows(raw.channel_response, precision, &l, &mut plain);
+            if out
+                .iter()
+                .zip(&plain)
+                .any(|(a, b)| a[0].to_bits() != b.to_bits())
+            {
+                bail!(
+                    "the plain loop and exitance_all disagree ({})",
+                    precision.name()
+                );
+            }
+        }
         let (outputs_err, patches_err) = self.errors(&mut |l| {
             let lf: Vec<f32> = l.iter().map(|&x| x as f32).collect();
             let mut o = vec![[0.0f32; 1]; n];
@@ -259,6 +285,7 @@ impl<'m> Bench<'m> {
             method: format!("eigenbasis p = {p}, {}", precision.name()),
             outputs_s,
             patches_s,
+            plain_s: Some(plain_s),
             outputs_err,
             patches_err,
             // Bytes read by (b): every patch's row of channel responses (format v2: channel
@@ -319,6 +346,7 @@ impl<'m> Bench<'m> {
             method: "exact per-channel superposition (f32)".into(),
             outputs_s,
             patches_s,
+            plain_s: None,
             outputs_err,
             patches_err,
             bytes: n * m * 4,
@@ -355,6 +383,7 @@ impl<'m> Bench<'m> {
                 method: "dense LU per update (faer)".into(),
                 outputs_s: per_update_s,
                 patches_s: per_update_s,
+                plain_s: None,
                 outputs_err,
                 patches_err,
                 bytes: n * n * 8,
@@ -364,6 +393,7 @@ impl<'m> Bench<'m> {
             method: "LU factorisation reused (substitution)".into(),
             outputs_s: reused_s,
             patches_s: reused_s,
+            plain_s: None,
             outputs_err,
             patches_err,
             bytes: n * n * 8,
@@ -415,6 +445,7 @@ impl<'m> Bench<'m> {
                 ),
                 outputs_s: sw_s,
                 patches_s: sw_s,
+                plain_s: None,
                 outputs_err: sw_o,
                 patches_err: sw_p,
                 bytes: n * n * 8,
@@ -423,6 +454,7 @@ impl<'m> Bench<'m> {
                 method: format!("Gauss–Seidel to 1e-3 residual ({} sweeps)", counts.1),
                 outputs_s: gs_s,
                 patches_s: gs_s,
+                plain_s: None,
                 outputs_err: gs_o,
                 patches_err: gs_p,
                 bytes: n * n * 8,
@@ -431,20 +463,79 @@ impl<'m> Bench<'m> {
     }
 }
 
-/// The table, with every time also as a ratio to the reference eigenbasis row, and that row
-/// against the copy bandwidth.
+/// A plain loop over the bytes `exitance_all` reads: row after row of the `m` stored channel
+/// responses of a patch (`n × m`, one band), each value (a 16-bit one times its column's
+/// scale, a half converted as the runtime does) times its channel's level, summed in order.
+/// No evaluator, no checks beyond the slices': the speed the row-major table allows.
+fn plain_rows(raw: MatrixBytes<'_>, precision: Precision, levels: &[f32], out: &mut [f32]) {
+    let m = levels.len();
+    if m == 0 {
+        out.fill(0.0);
+        return;
+    }
+    let scales: Vec<f32> = raw
+        .scales
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    match precision {
+        Precision::F32 => {
+            for (row, o) in raw.data.chunks_exact(4 * m).zip(out) {
+                *o = row
+                    .chunks_exact(4)
+                    .zip(levels)
+                    .map(|(b, &l)| f32::from_le_bytes([b[0], b[1], b[2], b[3]]) * l)
+                    .sum();
+            }
+        }
+        Precision::F16 => {
+            // Sign, exponent and mantissa shifted into an f32, times 2^112: exact for every
+            // finite half.
+            let half = |b: &[u8]| {
+                let bits = u32::from(u16::from_le_bytes([b[0], b[1]]));
+                f32::from_bits(((bits & 0x8000) << 16) | ((bits & 0x7FFF) << 13))
+                    * f32::from_bits((127 + 112) << 23)
+            };
+            for (row, o) in raw.data.chunks_exact(2 * m).zip(out) {
+                *o = row
+                    .chunks_exact(2)
+                    .zip(&scales)
+                    .zip(levels)
+                    .map(|((b, &s), &l)| half(b) * s * l)
+                    .sum();
+            }
+        }
+        _ => {
+            for (row, o) in raw.data.chunks_exact(2 * m).zip(out) {
+                *o = row
+                    .chunks_exact(2)
+                    .zip(&scales)
+                    .zip(levels)
+                    .map(|((b, &s), &l)| f32::from(i16::from_le_bytes([b[0], b[1]])) * s * l)
+                    .sum();
+            }
+        }
+    }
+}
+
+/// The table, with every time also as a ratio to the reference eigenbasis row, the
+/// eigenbasis' (b) against a plain loop over the same bytes, and the reference row against
+/// the copy bandwidth.
 fn print_table(rows: &[Row]) {
     let reference_row = rows
         .iter()
         .find(|r| r.method == format!("eigenbasis p = {REFERENCE_MODES}, f32"));
     let reference = reference_row.map_or((1.0, 1.0), |r| (r.outputs_s, r.patches_s));
     let reference_bytes = reference_row.map_or(0, |r| r.bytes);
-    println!("Times per update; ratios are to the eigenbasis at p = {REFERENCE_MODES}, f32, measured in the same run. Errors are relative to the exact (LU) solve, worst of {ACCURACY_CASES} level vectors.\n");
-    println!("| method | (a) sensors & zones µs | ratio | (b) all patches µs | ratio | (a) error | (b) error | table bytes |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("Times per update; ratios are to the eigenbasis at p = {REFERENCE_MODES}, f32, measured in the same run; (b) against a plain loop over the same bytes for the eigenbasis rows. Errors are relative to the exact (LU) solve, worst of {ACCURACY_CASES} level vectors.\n");
+    println!("| method | (a) sensors & zones µs | ratio | (b) all patches µs | ratio | (b) plain loop µs | (b) / plain loop | (a) error | (b) error | table bytes |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     for r in rows {
+        let (plain, against) = r.plain_s.map_or(("–".to_owned(), "–".to_owned()), |p| {
+            (format!("{:.1}", p * 1e6), format!("{:.2}", r.patches_s / p))
+        });
         println!(
-            "| {} | {:.3} | {:.3} | {:.1} | {:.3} | {:.1e} | {:.1e} | {} |",
+            "| {} | {:.3} | {:.3} | {:.1} | {:.3} | {plain} | {against} | {:.1e} | {:.1e} | {} |",
             r.method,
             r.outputs_s * 1e6,
             r.outputs_s / reference.0,

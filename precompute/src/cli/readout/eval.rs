@@ -85,6 +85,8 @@ fn add_basis_daylight(
     electric: Readout,
 ) -> Result<Readout> {
     let basis = Basis::from_bytes(bytes).map_err(basis_error(path))?;
+    // The sky is computed at the stored site: its values are checked first.
+    basis.check_daylight().map_err(basis_error(path))?;
     let report = basis_sky(path, &basis, args)?;
     let sun = (report.direct_normal_lux > 0.0).then(|| eigenrad_runtime::Sun {
         direction: eigenrad_runtime::sky::direction(
