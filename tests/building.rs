@@ -289,25 +289,6 @@ fn the_example_gives_the_same_bytes_on_one_machine_and_as_three_shards() {
     let _ = std::fs::remove_dir_all(&sharded);
 }
 
-/// Runs `eigenrad` with `args`; it must fail, say `expected`, and write no basis nor index.
-fn refused(args: &[&str], out: &Path, expected: &[&str]) {
-    let o = common::run(args);
-    let err = common::stderr(&o);
-    assert!(!o.status.success(), "{args:?} succeeded");
-    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
-    for e in expected {
-        assert!(err.contains(e), "{args:?}: {e:?} not in:\n{err}");
-    }
-    let written: Vec<String> = std::fs::read_dir(out)
-        .into_iter()
-        .flatten()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".basis") || n == "building.json" || n.ends_with(".tmp"))
-        .collect();
-    assert!(written.is_empty(), "{args:?} wrote {written:?}");
-}
-
 #[test]
 fn bad_manifests_name_the_file_line_and_item() {
     let dir = common::scratch("building-manifests");
@@ -319,7 +300,7 @@ fn bad_manifests_name_the_file_line_and_item() {
     let m = path(&case(
         "[[controller]]\nname = \"a\"\nroom = \"cube-c\"\nsensors = [\"floor\"]\n",
     ));
-    refused(
+    common::refused(
         &["building", &m, "--out", o],
         &out,
         &[
@@ -331,7 +312,7 @@ fn bad_manifests_name_the_file_line_and_item() {
     );
 
     let m = path(&case("[[controller]]\nname = \"a\"\nroom = \"cube-a\"\ndrives = [\"lamp\", \"lmap\"]\nsensors = [\"floor\"]\n"));
-    refused(
+    common::refused(
         &["building", &m, "--out", o],
         &out,
         &[
@@ -345,14 +326,14 @@ fn bad_manifests_name_the_file_line_and_item() {
     let m = path(&case(
         "[[controller]]\nname = \"a\"\nroom = \"cube-a\"\ndrives = [\"lamp\"]\n",
     ));
-    refused(
+    common::refused(
         &["merge", &m, "--out", o],
         &out,
         &["building.toml:13:", "controller a", "reads nothing"],
     );
 
     let m = path(&case("[[controller]]\nname = \"a\"\nroom = \"cube-a\"\nsensors = [\"floor\"]\nbounds = { lamp = 2000 }\n"));
-    refused(
+    common::refused(
         &["building", &m, "--out", o],
         &out,
         &[
@@ -365,29 +346,29 @@ fn bad_manifests_name_the_file_line_and_item() {
     let m = path(&case(
         "[[controller]]\nname = \"a\"\nroom = \"cube-a\"\nsensors = [\"floor\"]\ncolour = 3\n",
     ));
-    refused(
+    common::refused(
         &["building", &m, "--out", o],
         &out,
         &["building.toml:16:", "unknown field `colour`"],
     );
 
     let m = path(&common::small_building(&dir, 1.0, None));
-    refused(
+    common::refused(
         &["building", &m, "--out", o, "--shard", "2/2"],
         &out,
         &["building.toml", "--shard 2/2", "out of range", "0 to 1"],
     );
-    refused(
+    common::refused(
         &["building", &m, "--out", o, "--shard", "0/3"],
         &out,
         &["--shard 0/3", "3 shards for 2 rooms"],
     );
-    refused(
+    common::refused(
         &["building", &m, "--out", o, "--shard", "x"],
         &out,
         &["--shard x", "not a shard I/N"],
     );
-    refused(
+    common::refused(
         &["building", &m, "--out", o, "--room", "cube-c"],
         &out,
         &["--room cube-c", "no room of that name", "cube-a, cube-b"],
@@ -408,7 +389,7 @@ fn merge_refuses_missing_parts_and_parts_of_other_scenes_or_versions() {
     assert!(parts.join("cube-a.part").is_file() && !parts.join("cube-b.part").exists());
 
     // A part missing: the room, its line and the part looked for are named.
-    refused(
+    common::refused(
         &["merge", &m, "--out", &o],
         &out,
         &[
@@ -434,7 +415,7 @@ fn merge_refuses_missing_parts_and_parts_of_other_scenes_or_versions() {
     let mut part = Part::read(&part_path).unwrap_or_else(|e| panic!("{e}"));
     part.program = "eigenrad 0.0.9 (basis format 4)".into();
     part.write(&part_path).unwrap_or_else(|e| panic!("{e}"));
-    refused(
+    common::refused(
         &["merge", &m, "--out", &o],
         &out,
         &[
@@ -449,7 +430,7 @@ fn merge_refuses_missing_parts_and_parts_of_other_scenes_or_versions() {
     let middle = damaged.len() / 2;
     damaged[middle] ^= 1;
     std::fs::write(&part_path, &damaged).expect("part");
-    refused(
+    common::refused(
         &["merge", &m, "--out", &o],
         &out,
         &["cube-b.part", "damaged"],
@@ -457,7 +438,7 @@ fn merge_refuses_missing_parts_and_parts_of_other_scenes_or_versions() {
 
     // Another room's part under this room's name.
     std::fs::copy(parts.join("cube-a.part"), &part_path).expect("copy part");
-    refused(
+    common::refused(
         &["merge", &m, "--out", &o],
         &out,
         &["cube-b.part", "holds room cube-a, not room cube-b"],
@@ -468,7 +449,7 @@ fn merge_refuses_missing_parts_and_parts_of_other_scenes_or_versions() {
     let scene = dir.join("cube-b.toml");
     let edited = common::scene(1.0).replace("flux = 1000", "flux = 1200");
     std::fs::write(&scene, edited).expect("scene");
-    refused(
+    common::refused(
         &["merge", &m, "--out", &o],
         &out,
         &[
@@ -502,7 +483,7 @@ fn a_basis_over_its_flash_names_the_controller_and_its_sections() {
         Some("[[controller]]\nname = \"a\"\nroom = \"cube-a\"\ndrives = [\"lamp\"]\nsensors = [\"floor\"]\nmodes = true\n"),
     );
     let m = manifest.to_str().expect("utf-8").to_string();
-    refused(
+    common::refused(
         &["building", &m, "--out", &o, "--flash", "1KiB"],
         &out,
         &[

@@ -874,24 +874,6 @@ fn one_machine_and_two_shards_give_the_same_bytes_and_a_closed_door_leaves_the_r
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Runs `eigenrad` with `args`; it must fail, say `expected`, and write no basis nor index.
-fn refused(args: &[&str], out: &Path, expected: &[&str]) {
-    let o = common::run(args);
-    let err = common::stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
-    for e in expected {
-        assert!(err.contains(e), "{args:?}: {e:?} not in:\n{err}");
-    }
-    let written: Vec<String> = std::fs::read_dir(out)
-        .into_iter()
-        .flatten()
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.ends_with(".basis") || n == "building.json" || n.ends_with(".tmp"))
-        .collect();
-    assert!(written.is_empty(), "{args:?} wrote {written:?}");
-}
-
 #[test]
 fn bad_ports_name_the_manifest_line_and_item() {
     let dir = common::scratch("ports-bad");
@@ -900,7 +882,7 @@ fn bad_ports_name_the_manifest_line_and_item() {
     let with = |ports: &str| two_rooms(&dir, ports).to_str().expect("utf-8").to_string();
 
     let m = with("[[port]]\nname = \"door\"\nrooms = [\"left\", \"hall\"]\n");
-    refused(
+    common::refused(
         &["building", &m, "--out", &o],
         &out,
         &[
@@ -912,7 +894,7 @@ fn bad_ports_name_the_manifest_line_and_item() {
     );
 
     let m = with("[[port]]\nname = \"door\"\nrooms = [\"left\", \"right\"]\nopenings = [\"door\", \"doorway\"]\n");
-    refused(
+    common::refused(
         &["building", &m, "--out", &o],
         &out,
         &[
@@ -924,7 +906,7 @@ fn bad_ports_name_the_manifest_line_and_item() {
     );
 
     let m = with("[[port]]\nname = \"door\"\nrooms = [\"left\", \"left\"]\n");
-    refused(
+    common::refused(
         &["building", &m, "--out", &o],
         &out,
         &["building.toml:28:", "port door", "joins a room to itself"],
@@ -934,7 +916,7 @@ fn bad_ports_name_the_manifest_line_and_item() {
     let m = with(PORT);
     let moved = DOOR.map(|[x, y, z]| [x, y + 0.1, z]);
     std::fs::write(dir.join("left.toml"), left_scene(&moved)).expect("scene");
-    refused(
+    common::refused(
         &["building", &m, "--out", &o],
         &out,
         &[
@@ -950,7 +932,7 @@ fn bad_ports_name_the_manifest_line_and_item() {
     let m = with(PORT);
     let grey = left_scene(&DOOR).replace("material = \"door\"", "material = \"wall\"");
     std::fs::write(dir.join("left.toml"), grey).expect("scene");
-    refused(
+    common::refused(
         &["building", &m, "--out", &o],
         &out,
         &[
@@ -963,7 +945,7 @@ fn bad_ports_name_the_manifest_line_and_item() {
     // The door meshed finer in the right room: refused at the merge, nothing written.
     let m = with(PORT);
     std::fs::write(dir.join("right.toml"), right_scene(0.25)).expect("scene");
-    refused(
+    common::refused(
         &["building", &m, "--out", &o],
         &out,
         &[
@@ -984,7 +966,7 @@ fn bad_ports_name_the_manifest_line_and_item() {
         std::fs::remove_file(out.join(f)).expect("remove output");
     }
     let m = with(PORT);
-    refused(
+    common::refused(
         &["merge", &m, "--out", &o],
         &out,
         &[

@@ -140,6 +140,25 @@ pub fn listing(dir: &Path) -> Vec<String> {
     names
 }
 
+/// Runs `eigenrad` with `args`; it must fail (exit code 1), say every one of `expected` on
+/// stderr, and leave no basis, building index nor temporary file in `out`.
+pub fn refused(args: &[&str], out: &Path, expected: &[&str]) {
+    let o = run(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+    for e in expected {
+        assert!(err.contains(e), "{args:?}: {e:?} not in:\n{err}");
+    }
+    let written: Vec<String> = std::fs::read_dir(out)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".basis") || n == "building.json" || n.ends_with(".tmp"))
+        .collect();
+    assert!(written.is_empty(), "{args:?} wrote {written:?}");
+}
+
 /// A 3 m × 2 m × 2.5 m room (walls ρ 0.5, floor 0.25) with a desk (ρ 0.4, no bottom face)
 /// that shades part of the floor, and two channels: a black ceiling lamp (ρ 0, 3000 lm) and a
 /// reflecting wall panel (ρ 0.3, 800 lm), both flush openings. `name` and `max_edge` (m) are

@@ -45,6 +45,7 @@ mod visibility;
 pub use bvh::Occluders;
 pub(crate) use bvh::Shaft;
 pub use hierarchical::Hierarchical;
+pub(crate) use kernel::point_to_polygon;
 pub use operator::{DenseF32, FormFactorOperator, OperatorChoice, Storage};
 // The patch rules, for the direct light of sources that are not patches (`crate::sources`).
 pub use health::{

@@ -4,7 +4,7 @@
 
 use super::outside::{centre, clip};
 use super::Ctx;
-use crate::formfactor::{for_each_on_cell, split_cell, Shaft};
+use crate::formfactor::{for_each_on_cell, point_to_polygon, split_cell, Shaft};
 use crate::geometry::Vec3;
 use crate::scene::FieldOfView;
 
@@ -25,6 +25,20 @@ const NOTHING: usize = usize::MAX;
 fn apparent_size(r: f64, distance: f64, normal: Vec3, towards: Vec3) -> f64 {
     let cos_w = (-normal.dot(towards)).clamp(0.0, 1.0);
     2.0 * r * cos_w.sqrt() / distance
+}
+
+/// What a point `x` facing `normal` gets from the window `panes` under a uniform sky of
+/// 1 cd/m² (lux), unoccluded and through glass of τ = 1: `Σ π F`, the point-to-polygon form
+/// factors exact (Lambert's contour integral). Smooth where the windows' light is, and
+/// cheap: what receiving cells are refined against.
+pub(super) fn uniform_light<'p>(
+    panes: impl Iterator<Item = Pane<'p>>,
+    x: Vec3,
+    normal: Vec3,
+) -> f64 {
+    panes
+        .map(|p| std::f64::consts::PI * point_to_polygon(x, normal, p.corners, p.normal))
+        .sum()
 }
 
 /// A receiving point: where it is, where it faces, what it sees.
@@ -54,24 +68,54 @@ pub(super) type Sample<'s> = dyn Fn(Vec3, Vec3, f64) -> Option<(usize, f64)> + '
 impl Ctx<'_> {
     /// Calls `f(point, weight)` (m, m²) over the convex cell `corners` of a receiving patch,
     /// split in four while its diameter exceeds `receiver_cell_angle` times its distance to
-    /// the nearest window (`near`, m, from a point), at most `max_depth` times, then by the
-    /// Gauss–Legendre rule of `receiver_order`.
+    /// the nearest window (`near`, m, from a point), at most `max_depth` times, and while
+    /// splitting moves the rule's integral of `light` (the windows' light at a point, lux per
+    /// cd/m², smooth and cheap: [`uniform_light`]) by more than `receiver_tolerance` of the
+    /// whole patch's; then by the Gauss–Legendre rule of `receiver_order`.
     pub(super) fn over_cells(
         &self,
         corners: &[Vec3],
         near: &dyn Fn(Vec3) -> f64,
+        light: &dyn Fn(Vec3) -> f64,
+        f: &mut dyn FnMut(Vec3, f64),
+    ) {
+        let least = self.opts.receiver_tolerance * self.rule(corners, light).abs();
+        self.over_cells_within(corners, near, light, least, 0, f);
+    }
+
+    /// [`Ctx::over_cells`] on a cell at `depth`, split while splitting moves the integral of
+    /// `light` by more than `least` (lux m² per cd/m²).
+    fn over_cells_within(
+        &self,
+        corners: &[Vec3],
+        near: &dyn Fn(Vec3) -> f64,
+        light: &dyn Fn(Vec3) -> f64,
+        least: f64,
         depth: u32,
         f: &mut dyn FnMut(Vec3, f64),
     ) {
         let (c, r) = centre(corners);
         let gap = (near(c) - r).max(0.0);
         if depth < self.opts.max_depth && 2.0 * r > self.opts.receiver_cell_angle * gap {
-            for cell in split_cell(corners) {
-                self.over_cells(&cell, near, depth + 1, f);
+            let cells = split_cell(corners);
+            // The parent's rule against its children's: the error the split removes, most
+            // of the parent's own (the children's is ~2^-(2 order) of it on a smooth integrand).
+            let parts: f64 = cells.iter().map(|cell| self.rule(cell, light)).sum();
+            if (self.rule(corners, light) - parts).abs() > least {
+                for cell in cells {
+                    self.over_cells_within(&cell, near, light, least, depth + 1, f);
+                }
+                return;
             }
-            return;
         }
         for_each_on_cell(corners, &self.gl_receiver, f);
+    }
+
+    /// The receiving cells' rule of `light` on `corners`, lux m² per cd/m².
+    fn rule(&self, corners: &[Vec3], light: &dyn Fn(Vec3) -> f64) -> f64 {
+        let mut sum = 0.0;
+        for_each_on_cell(corners, &self.gl_receiver, |x, w| sum += w * light(x));
+        sum
     }
 
     /// [`Ctx::window_pane`] for window patch `j` seen from a point `x` facing `normal` (within

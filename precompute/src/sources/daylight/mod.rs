@@ -34,7 +34,9 @@
 //! the smooth form-factor integral, exact to the quadrature's error whatever the patch
 //! boundaries do. A receiving patch's value is its mean, by Gauss–Legendre rules
 //! (`receiver_order`) on cells of the patch split while they are large for their distance to
-//! the nearest window (`receiver_cell_angle`).
+//! the nearest window (`receiver_cell_angle`) and the split still moves the integral of the
+//! windows' unoccluded light under a uniform sky (exact and cheap: Lambert's contour
+//! integral) by more than `receiver_tolerance` of the patch's.
 //!
 //! The sun is a direction `s`: `E(x) = τ(θ_w) max(0, n_x · s) V(x, s)` where the ray from
 //! `x` towards the sun crosses a window, no room surface before it and no obstruction after
@@ -76,7 +78,7 @@ mod sun;
 #[cfg(test)]
 mod tests;
 
-use cells::{Pane, Viewer, MAX_ORDER};
+use cells::{uniform_light, Pane, Viewer, MAX_ORDER};
 use outside::{distance_to_polygon, Outside};
 
 /// How finely daylight through the windows is integrated.
@@ -97,6 +99,12 @@ pub struct DaylightOptions {
     /// window is within 2.5e-4 of a fine midpoint rule, a single sky patch's share within
     /// 5.4e-3 of the total (the tests).
     pub receiver_cell_angle: f64,
+    /// A cell of a receiving patch, large for its distance to the windows, is split only
+    /// while that moves its rule's integral of the windows' light (unoccluded, a uniform sky
+    /// through τ = 1: smooth, exact and cheap) by more than this share of the whole patch's
+    /// (dimensionless). Default 1e-5. Next to a window's plane, where the light fades to
+    /// nothing at the wall, the distance alone would cut the cells to `max_depth`.
+    pub receiver_tolerance: f64,
     /// Most times a cell is split for its distance (its finest cells are `4^-max_depth` of
     /// it). Default 4.
     pub max_depth: u32,
@@ -120,6 +128,7 @@ impl Default for DaylightOptions {
             cell_angle: 0.25,
             receiver_order: 3,
             receiver_cell_angle: 0.5,
+            receiver_tolerance: 1e-5,
             max_depth: 4,
             edge_angle: 0.02,
             edge_depth: 8,
@@ -396,7 +405,8 @@ impl<'a> Ctx<'a> {
                 .shaft(pane.corners, pane.normal, corners, p.normal, &ignore);
             let mut f = [0.0];
             let near = |x: Vec3| distance_to_polygon(x, pane.corners, pane.normal);
-            self.over_cells(corners, &near, 0, &mut |x, weight| {
+            let light = |x: Vec3| uniform_light([pane].into_iter(), x, p.normal);
+            self.over_cells(corners, &near, &light, &mut |x, weight| {
                 let v = Viewer {
                     x,
                     normal: p.normal,

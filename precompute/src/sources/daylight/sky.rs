@@ -3,7 +3,7 @@
 
 use eigenrad_runtime::sky::patches::SkyPatches;
 
-use super::cells::{Pane, Viewer};
+use super::cells::{uniform_light, Pane, Viewer};
 use super::outside::{Outside, Seen};
 use super::{facing, Aperture, Ctx, DaylightOptions, SkyResponse, Transmittance};
 use crate::formfactor::{for_each_on_cell, Occluders, Shaft};
@@ -105,7 +105,17 @@ impl Ctx<'_> {
             .map(|t| self.clear_sample(t.window))
             .collect();
         let near = |x: Vec3| self.near(x, false);
-        self.over_cells(corners, &near, 0, &mut |x, weight| {
+        let panes = || {
+            targets.iter().map(|t| {
+                let w = &self.scene.patches[t.patch];
+                Pane {
+                    corners: &w.polygon.vertices,
+                    normal: w.normal,
+                }
+            })
+        };
+        let light = |x: Vec3| uniform_light(panes(), x, p.normal);
+        self.over_cells(corners, &near, &light, &mut |x, weight| {
             for (t, sample) in targets.iter().zip(&samples) {
                 let w = &self.scene.patches[t.patch];
                 let pane = Pane {

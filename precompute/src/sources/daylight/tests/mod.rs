@@ -511,9 +511,9 @@ fn overcast(patches: SkyPatches, k: usize) -> f64 {
     (1.0 + 2.0 * centre.sin()) / 3.0
 }
 
-/// Points next to the window's own plane (2 mm and 2 cm in front of the wall, under the sill
-/// and beside the window), where the window is seen almost edge-on and all the sky's patches
-/// crowd into thin strips of it. Their overcast sky component against a midpoint rule on
+/// Points next to the window's own plane (0.2 mm, 2 mm and 2 cm in front of the wall, under
+/// the sill and beside the window), where the window is seen almost edge-on and all the sky's
+/// patches crowd into thin strips of it. Their overcast sky component against a midpoint rule on
 /// 1 mm squares of the window that classifies every point by the same sky patches, and their
 /// uniform sky (the sum over the patches) against π times the exact form factor
 /// (`formfactor::point_form_factors`, Lambert's contour integral), split at the horizon.
@@ -530,8 +530,8 @@ fn points_next_to_the_window_plane_agree_with_a_fine_quadrature() {
     let bins = patches.count() + 1;
     let up = Vec3::new(0.0, 0.0, 1.0);
     // Cells are split for the sky's boundaries by their solid angle (the apparent size), not
-    // their angular diameter: measured 6.6e-5, 2.9e-5 and 1.5e-4 at the points seen at
-    // usual incidence (7.7e-6, 5.1e-6 and 5.6e-6 with the angular diameter, at 10 to 40
+    // their angular diameter: measured 5.8e-5 at 0.2 mm from the wall; 6.6e-5, 2.9e-5 and
+    // 1.5e-4 at the other points seen at usual incidence (7.7e-6, 5.1e-6 and 5.6e-6 with the angular diameter, at 10 to 40
     // times the cost), within the 3e-4 the boundary test above holds the quadrature to.
     // Where the window is seen within 1° of edge-on as a whole (beside it, 2 mm from its
     // plane) the component is 2.0e-3 from the reference (1.9e-5 with the angular diameter),
@@ -540,6 +540,7 @@ fn points_next_to_the_window_plane_agree_with_a_fine_quadrature() {
     const EDGE_ON: f64 = 3e-3;
     for (x, normal, tolerance) in [
         // On the work plane under the window's middle, 0.2 m below the sill.
+        (Vec3::new(2.0, 0.0002, 0.8), up, 3e-4),
         (Vec3::new(2.0, 0.002, 0.8), up, 3e-4),
         (Vec3::new(2.0, 0.02, 0.8), up, 3e-4),
         // Beside the window, level with its middle: the horizon cuts it.
@@ -589,4 +590,92 @@ fn points_next_to_the_window_plane_agree_with_a_fine_quadrature() {
         );
         assert!(smooth < SMOOTH, "{x:?}: uniform sky {smooth:.2e} from π F");
     }
+}
+
+/// A receiving patch of the work plane that reaches the window wall (0.5 m × 0.25 m, under
+/// the window's middle, 0.2 m below the sill), as the work plane's receivers with no margin
+/// are: its mean under a uniform sky (τ ≡ 1, no ground) against the mean of π times the exact
+/// form factor (Lambert's contour integral, `formfactor::point_form_factors`) by a fine
+/// Gauss–Legendre rule over the patch, and its overcast sky component against a midpoint rule
+/// over the patch of the point quadrature (itself held to a 1 mm midpoint rule over the
+/// window by the test above).
+#[test]
+fn a_receiver_at_the_window_wall_is_its_area_mean() {
+    let scene = daylit(room("", 0.5), clear(), 0.0, 0.0);
+    let occ = occluders(&scene);
+    let opts = DaylightOptions::default();
+    let patches = SkyPatches::TREGENZA;
+    let site = scene.site.as_ref().expect("a site");
+    let outside = Outside::new(&scene, patches, site.north, site.ground_reflectance);
+    let ctx = Ctx::new(&scene, &occ, outside, &opts, &unit);
+    let bins = patches.count() + 1;
+    let up = Vec3::new(0.0, 0.0, 1.0);
+    let (x0, x1, y1, z) = (1.75, 2.25, 0.25, 0.8);
+    let receiver = Patch::new(
+        Polygon::new(vec![
+            Vec3::new(x0, 0.0, z),
+            Vec3::new(x1, 0.0, z),
+            Vec3::new(x1, y1, z),
+            Vec3::new(x0, y1, z),
+        ]),
+        0,
+    );
+    assert!((receiver.normal - up).length() < 1e-12);
+    let start = std::time::Instant::now();
+    let ours = ctx.sky_on_patch(&receiver, None, bins);
+    let took = start.elapsed();
+    let uniform: f64 = ours[..patches.count()].iter().sum();
+    let component: f64 = (0..patches.count())
+        .map(|k| overcast(patches, k) * ours[k])
+        .sum();
+    // π F by Gauss–Legendre of order 8 on 16 × 16 cells of the patch.
+    let gl = formfactor::gauss_legendre(8);
+    let n = 16;
+    let mut exact = 0.0;
+    for a in 0..n {
+        for b in 0..n {
+            for &(u, wu) in &gl {
+                for &(v, wv) in &gl {
+                    let x = Vec3::new(
+                        x0 + (x1 - x0) * (a as f64 + u) / n as f64,
+                        y1 * (b as f64 + v) / n as f64,
+                        z,
+                    );
+                    exact += wu * wv * PI * window_form_factor(x, up, 1.0, 2.0);
+                }
+            }
+        }
+    }
+    exact /= (n * n) as f64;
+    // The overcast component by the midpoint rule on 24 × 24 points of the patch.
+    let m = 24;
+    let mut reference = 0.0;
+    for a in 0..m {
+        for b in 0..m {
+            let x = Vec3::new(
+                x0 + (x1 - x0) * (a as f64 + 0.5) / m as f64,
+                y1 * (b as f64 + 0.5) / m as f64,
+                z,
+            );
+            let e = ctx.sky_at_point(x, up, scene::FieldOfView::HEMISPHERE, bins);
+            reference += (0..patches.count())
+                .map(|k| overcast(patches, k) * e[k])
+                .sum::<f64>()
+                / (m * m) as f64;
+        }
+    }
+    let (smooth, error) = (relative(uniform, exact), relative(component, reference));
+    println!(
+        "receiver at the wall: uniform {uniform:.6e} against π F {exact:.6e} ({smooth:.2e}), \
+         overcast {component:.6e} against {reference:.6e} ({error:.2e}), {took:?}"
+    );
+    assert!(
+        smooth < SMOOTH,
+        "uniform sky {smooth:.2e} from the mean of π F"
+    );
+    // The patch rule against the midpoint rule, as for the patches of `a_patch_is_its_area_mean`.
+    assert!(
+        error < 5e-4,
+        "overcast component {error:.2e} from the midpoint rule"
+    );
 }
