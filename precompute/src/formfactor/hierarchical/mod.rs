@@ -32,7 +32,7 @@ use super::operator::FormFactorOperator;
 use super::PairStats;
 use crate::geometry::{Patch, Vec3};
 use aca::Compressed;
-use tree::{BlockSpan, ClusterTree, Kind, Seeing};
+use tree::{BlockSpan, ClearBetween, ClusterTree, Kind, Seeing};
 
 /// How the operator is built; `Default` gives the settings `--operator hierarchical` uses.
 #[derive(Clone, Debug, PartialEq)]
@@ -212,7 +212,7 @@ pub struct Hierarchical {
 pub(super) struct Occlusion<'a> {
     /// `clear(a, a_normal, b, b_normal)`: no blocker can cut a segment from `a` to `b` (the
     /// normals: the unit normals of their lit sides).
-    pub(super) clear: &'a (dyn Fn(&[Vec3], Vec3, &[Vec3], Vec3) -> bool + Sync),
+    pub(super) clear: &'a ClearBetween<'a>,
     /// `hidden(a, b)`: one blocker cuts every segment from `a` to `b`.
     pub(super) hidden: &'a (dyn Fn(&[Vec3], &[Vec3]) -> bool + Sync),
 }

@@ -135,7 +135,8 @@ fn plate_of(patches: &[Patch], members: &[usize], tolerance: f64, extent: f64) -
     let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
     for &i in members {
         let p = &patches[i];
-        if !((p.normal - normal).length() * extent <= tolerance) {
+        let turned = (p.normal - normal).length() * extent;
+        if turned.is_nan() || turned > tolerance {
             return None;
         }
         for &c in &p.polygon.vertices {
@@ -144,7 +145,8 @@ fn plate_of(patches: &[Patch], members: &[usize], tolerance: f64, extent: f64) -
             high = high.max(h);
         }
     }
-    if !(high - low <= tolerance) {
+    let spread = high - low;
+    if spread.is_nan() || spread > tolerance {
         return None;
     }
     // Two unit vectors in the plane: across the normal's smallest component, then the third.
@@ -313,6 +315,10 @@ impl BlockSpan {
     }
 }
 
+/// `clear(a, a_normal, b, b_normal)`: no blocker can cut a segment between the planar
+/// polygons `a` and `b` (corners, metres; the unit normals of their lit sides).
+pub(super) type ClearBetween<'a> = dyn Fn(&[Vec3], Vec3, &[Vec3], Vec3) -> bool + Sync + 'a;
+
 /// What decides a well-separated pair's [`Sight`]: `clear(a, a_normal, b, b_normal)` says
 /// whether no blocker can cut a segment between the planar polygons `a` and `b` (corners,
 /// metres, and the unit normals of the sides that emit and receive); `dark_tolerance` is the
@@ -320,7 +326,7 @@ impl BlockSpan {
 /// tolerance, so that a block called dark is one whose pair integrals all return 0);
 /// `hidden(a, b)` says whether one blocker cuts every segment between the polygons.
 pub(super) struct Seeing<'a> {
-    pub(super) clear: &'a (dyn Fn(&[Vec3], Vec3, &[Vec3], Vec3) -> bool + Sync),
+    pub(super) clear: &'a ClearBetween<'a>,
     pub(super) hidden: &'a (dyn Fn(&[Vec3], &[Vec3]) -> bool + Sync),
     pub(super) dark_tolerance: f64,
 }
