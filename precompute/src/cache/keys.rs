@@ -83,6 +83,7 @@ pub fn hierarchical_key(
         leaf,
         admissibility,
         tolerance,
+        split_by_sight,
     } = settings;
     let mut h = Sha256::new();
     h.update(b"eigenrad hierarchical form factors\0");
@@ -90,6 +91,7 @@ pub fn hierarchical_key(
     hash_usize(&mut h, *leaf);
     h.update(admissibility.to_bits().to_le_bytes());
     h.update(tolerance.to_bits().to_le_bytes());
+    h.update([u8::from(*split_by_sight)]);
     h.finalize().into()
 }
 

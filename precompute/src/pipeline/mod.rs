@@ -199,6 +199,7 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
             available / 1e9
         )));
     }
+    let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
     let plan = Plan::of(
         &scene,
         build,
@@ -206,6 +207,7 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
         opts.operator.reason(n),
         storage.operator_bytes(n as f64),
         needed + rows_needed,
+        formfactor::occluded_share(&scene.patches, &occluders),
     );
     if stages.narration().tells_plan() {
         for line in plan.lines() {
@@ -213,7 +215,6 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
         }
     }
     let expected = plan.seconds.clone();
-    let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
     let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
     let names: Vec<String> = scene.surfaces.iter().map(|s| s.name.clone()).collect();
     let (g, form_factor_health, compression): (Arc<dyn FormFactorOperator>, _, _) = stages.run(

@@ -1,5 +1,5 @@
 //! What a build will do, said before the form factors: its expected time per stage (a time
-//! model measured on the office builds), its expected peak memory ([`crate::memory`]) and the
+//! model measured on the office builds, scaled by the share of pairs a blocker may cut), its expected peak memory ([`crate::memory`]) and the
 //! size of the basis it will write, section by section, against the flash budget
 //! (`--flash`). A build that would not fit says so here, with what would make it fit, before
 //! the long stages rather than after them.
@@ -34,6 +34,18 @@ pub mod time_model {
     pub const HIERARCHICAL_FORM_FACTOR_EXPONENT: f64 = 1.3;
     /// The patch count the figures above are measured at.
     pub const REFERENCE_PATCHES: f64 = 9905.0;
+    /// What a pair that a blocker may cut costs against a clear one (dimensionless): the
+    /// exact visibility casts a shadow per blocker per quadrature point. On the open-plan
+    /// floor cut to 1809 patches (docs/performance.md, "Why the floor's form factors are
+    /// slow") the pair integrals with blockers in their shaft took 194 µs each and the clear
+    /// ones 19.7 µs, in one run. The office the figures above come from has two desks, so
+    /// its own few occluded pairs are in them. With `s` the sampled share of pairs a blocker
+    /// may cut and `T_d(n)`, `T_h(n)` the office's dense and hierarchical figures, the form
+    /// factors are expected to take `(1 − s) T_d + c s T_d` dense and `(1 − s) T_h + c s T_d`
+    /// hierarchical: the occluded pairs fall in blocks stored whole, so they grow as `n²`
+    /// with either operator. For that floor (`s` = 0.71, dense) 42.7 s, against the 49 s its
+    /// 97.6 CPU-seconds make on two cores.
+    pub const OCCLUDED_PAIR_COST: f64 = 10.0;
     /// Operator bytes the block Lanczos eigensolve streams per second: the 785 MB of `G` in
     /// 10.0 s at 9905 patches (about a hundred products of sixteen vectors).
     pub const EIGEN_OPERATOR_BYTES_PER_SECOND: f64 = 7.85e7;
@@ -69,18 +81,30 @@ pub struct StageSeconds {
 
 impl StageSeconds {
     /// Expected seconds of a build of `patches` patches whose operator is `storage` and holds
-    /// `operator_bytes` bytes ([`time_model`]).
-    pub fn of(patches: f64, storage: Storage, operator_bytes: f64) -> StageSeconds {
+    /// `operator_bytes` bytes, `occluded_share` of its facing pairs having a blocker between
+    /// them ([`time_model`]; [`crate::formfactor::occluded_share`]).
+    pub fn of(
+        patches: f64,
+        storage: Storage,
+        operator_bytes: f64,
+        occluded_share: f64,
+    ) -> StageSeconds {
         use time_model::*;
         let scale = patches / REFERENCE_PATCHES;
+        let share = occluded_share.clamp(0.0, 1.0);
+        let dense = DENSE_FORM_FACTOR_SECONDS * scale.powf(DENSE_FORM_FACTOR_EXPONENT);
+        // The pairs a blocker may cut are read whole by either operator (the hierarchical one
+        // stores the blocks they fall in whole), at `OCCLUDED_PAIR_COST` times a clear pair's
+        // work; only the clear rest compresses.
+        let occluded = OCCLUDED_PAIR_COST * share * dense;
         let form_factors = match storage {
-            Storage::F64 | Storage::F32 => {
-                DENSE_FORM_FACTOR_SECONDS * scale.powf(DENSE_FORM_FACTOR_EXPONENT)
-            }
+            Storage::F64 | Storage::F32 => (1.0 - share) * dense + occluded,
             Storage::Hierarchical => {
-                DENSE_FORM_FACTOR_SECONDS
+                (1.0 - share)
+                    * DENSE_FORM_FACTOR_SECONDS
                     * HIERARCHICAL_FORM_FACTOR_RATIO
                     * scale.powf(HIERARCHICAL_FORM_FACTOR_EXPONENT)
+                    + occluded
             }
         };
         let solve = operator_bytes / SOLVE_OPERATOR_BYTES_PER_SECOND;
@@ -213,11 +237,15 @@ pub struct Plan {
     pub flash_bytes: u64,
     /// Bytes one more mode per band adds to the basis.
     pub bytes_per_mode: f64,
+    /// Share of the facing pairs with a blocker between them, sampled
+    /// ([`crate::formfactor::occluded_share`]; dimensionless).
+    pub occluded_share: f64,
 }
 
 impl Plan {
     /// The plan of building `scene` (meshed) with `opts`, its operator `storage` holding about
-    /// `operator_bytes`, the build expected to peak at `memory_bytes`.
+    /// `operator_bytes`, the build expected to peak at `memory_bytes`, `occluded_share` of
+    /// its facing pairs having a blocker between them.
     pub(crate) fn of(
         scene: &Scene,
         opts: &BuildOptions,
@@ -225,6 +253,7 @@ impl Plan {
         operator_reason: String,
         operator_bytes: f64,
         memory_bytes: f64,
+        occluded_share: f64,
     ) -> Plan {
         let n = scene.patches.len();
         let modes = match opts.modes {
@@ -257,11 +286,12 @@ impl Plan {
             operator: storage.name(),
             operator_reason,
             memory_bytes,
-            seconds: StageSeconds::of(n as f64, storage, operator_bytes),
+            seconds: StageSeconds::of(n as f64, storage, operator_bytes, occluded_share),
             modes,
             basis,
             flash_bytes: opts.flash.bytes,
             bytes_per_mode,
+            occluded_share,
         }
     }
 
@@ -275,12 +305,13 @@ impl Plan {
     pub fn lines(&self) -> Vec<String> {
         let mut lines = vec![
             format!(
-                "{} patches, operator {} ({}); expected about {} and {:.2} GB at the peak (time model of the office builds on 2 cores, docs/performance.md)",
+                "{} patches, operator {} ({}); expected about {} and {:.2} GB at the peak (time model of the office builds on 2 cores, with {:.0} % of the pairs a blocker may cut, docs/performance.md)",
                 self.patches,
                 self.operator,
                 self.operator_reason,
                 super::stages::seconds(self.seconds.total()),
-                self.memory_bytes / 1e9
+                self.memory_bytes / 1e9,
+                100.0 * self.occluded_share
             ),
             format!(
                 "basis about {} ({}), flash budget {}",

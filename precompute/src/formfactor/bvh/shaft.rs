@@ -70,6 +70,43 @@ impl Occluders {
         shaft
     }
 
+    /// Does one blocker cut every segment from the convex polygon `a` to the convex polygon
+    /// `b` (corners, metres), so that no light passes between any of their points? True when
+    /// a blocker's plane has `a` strictly on one side and `b`
+    /// strictly on the other, and the points where the segments between their corners cross
+    /// that plane all lie strictly inside the blocker. Those points span every crossing: a
+    /// point of the plane on a segment from `a` to `b` lies in the convex hull of `a ∪ b`,
+    /// whose section by the plane is the hull of the corner segments' crossings. "Strictly"
+    /// is by ten times the hierarchy's tolerance, so that the shadow of the blocker from any
+    /// point of `a` covers all of `b` with room to spare for rounding.
+    pub(crate) fn one_blocker_hides(&self, a: &[Vec3], b: &[Vec3]) -> bool {
+        if self.blockers.is_empty() || a.is_empty() || b.is_empty() {
+            return false;
+        }
+        let margin = 10.0 * self.tolerance;
+        let bounds = Aabb::of(a).union(Aabb::of(b));
+        let mut stack = [0usize; STACK];
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let node = self.nodes[stack[top]];
+            if !node.bounds.overlaps(&bounds) {
+                continue;
+            }
+            if node.count > 0 {
+                let run = &self.blockers[node.first..node.first + node.count];
+                if run.iter().any(|k| k.hides(a, b, margin)) {
+                    return true;
+                }
+            } else if top + 2 <= STACK {
+                stack[top] = node.first;
+                stack[top + 1] = node.right;
+                top += 2;
+            }
+        }
+        false
+    }
+
     /// [`Occluders::visible`] for a segment between the two polygons `shaft` was built for:
     /// only the shaft's occluders are tested (all of them when it overflowed).
     pub(crate) fn visible_in(&self, shaft: &Shaft, from: Vec3, to: Vec3, ignore: &[usize]) -> bool {
@@ -95,6 +132,30 @@ impl Occluders {
                 .iter()
                 .filter_map(|&k| self.blockers.get(k as usize))
                 .map(|b| &b.corners[..b.len])
+        })
+    }
+}
+
+impl Blocker {
+    /// [`Occluders::one_blocker_hides`] for this blocker.
+    fn hides(&self, a: &[Vec3], b: &[Vec3], margin: f64) -> bool {
+        let height = |p: Vec3| self.normal.dot(p) - self.offset;
+        let above = |side: &[Vec3]| side.iter().all(|&p| height(p) > margin);
+        let below = |side: &[Vec3]| side.iter().all(|&p| height(p) < -margin);
+        if !(above(a) && below(b) || below(a) && above(b)) {
+            return false;
+        }
+        let inside = |x: Vec3| {
+            (0..self.len).all(|k| {
+                let m = self.edge_normals[k];
+                (x - self.corners[k]).dot(m) > margin * m.length()
+            })
+        };
+        a.iter().all(|&p| {
+            b.iter().all(|&q| {
+                let (hp, hq) = (height(p), height(q));
+                inside(p + (q - p) * (hp / (hp - hq)))
+            })
         })
     }
 }

@@ -30,9 +30,9 @@ use serde::Serialize;
 
 use super::operator::FormFactorOperator;
 use super::PairStats;
-use crate::geometry::Patch;
+use crate::geometry::{Patch, Vec3};
 use aca::Compressed;
-use tree::{BlockSpan, ClusterTree, Kind};
+use tree::{BlockSpan, ClearBetween, ClusterTree, Kind, Seeing};
 
 /// How the operator is built; `Default` gives the settings `--operator hierarchical` uses.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,6 +47,11 @@ pub struct Settings {
     /// Relative Frobenius error each low-rank block is approximated to (dimensionless).
     /// Default 1e-6.
     pub tolerance: f64,
+    /// Classify each well-separated pair by what lies between its clusters before reading
+    /// any entry (`tree` module docs): pairs facing away are 0 unread, pairs a blocker may
+    /// cut are split further rather than approximated whole. Default true; false gives the
+    /// partition by distance alone.
+    pub split_by_sight: bool,
 }
 
 impl Default for Settings {
@@ -55,6 +60,7 @@ impl Default for Settings {
             leaf: 32,
             admissibility: 1.0,
             tolerance: 1e-6,
+            split_by_sight: true,
         }
     }
 }
@@ -201,6 +207,16 @@ pub struct Hierarchical {
     compression: Compression,
 }
 
+/// What lies between two planar polygons (corners in metres), for the partition's sight of
+/// well-separated clusters (`tree` module docs).
+pub(super) struct Occlusion<'a> {
+    /// `clear(a, a_normal, b, b_normal)`: no blocker can cut a segment from `a` to `b` (the
+    /// normals: the unit normals of their lit sides).
+    pub(super) clear: &'a ClearBetween<'a>,
+    /// `hidden(a, b)`: one blocker cuts every segment from `a` to `b`.
+    pub(super) hidden: &'a (dyn Fn(&[Vec3], &[Vec3]) -> bool + Sync),
+}
+
 /// A non-finite entry met during assembly: the patches of the pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NonFiniteEntry {
@@ -216,18 +232,38 @@ const COLUMNS_PER_TASK: usize = 4;
 impl Hierarchical {
     /// Assembles the operator over `patches` from `scaled(i, j, stats)`, the entry `S_ij` of
     /// patches `i` and `j` (called with `i ≠ j` only; the diagonal is 0, as for flat
-    /// patches), which records the pair's reciprocity in `stats`. `progress` counts the
-    /// blocks. Returns the reciprocity figures of the pairs read, merged in the
-    /// partition's order.
+    /// patches), which records the pair's reciprocity in `stats`. `occlusion` says what lies
+    /// between two planar polygons (`None` where nothing occludes). `progress` counts the
+    /// blocks. Returns the reciprocity figures of the pairs read, merged in the partition's
+    /// order.
     pub(super) fn assemble(
         patches: &[Patch],
         settings: &Settings,
         scaled: &(dyn Fn(usize, usize, &mut PairStats) -> f64 + Sync),
+        occlusion: Option<&Occlusion>,
         progress: &ProgressBar,
     ) -> Result<(Hierarchical, PairStats), NonFiniteEntry> {
         let n = patches.len();
-        let tree = ClusterTree::new(patches, settings.leaf);
-        let spans = tree::partition(&tree, settings);
+        // A pair integral counts a corner as in front of the source beyond 1e-9 of the sum of
+        // the two patches' radii. Half of 1e-9 of the smallest radius is the most a cluster's
+        // planes may spread, the most its normals may turn a height across the scene, and
+        // the most a corner may stand in front of a dark pair's plane: together 1.5e-9 of
+        // that radius, below every pair's own tolerance, so that a block called dark is one
+        // whose pair integrals all return 0.
+        let half = 0.5e-9
+            * patches
+                .iter()
+                .map(smallest_radius)
+                .fold(f64::INFINITY, f64::min);
+        let tree = ClusterTree::new(patches, settings.leaf, half);
+        let nothing_between = |_: &[Vec3], _: Vec3, _: &[Vec3], _: Vec3| true;
+        let nothing_hides = |_: &[Vec3], _: &[Vec3]| false;
+        let seeing = Seeing {
+            clear: occlusion.map_or(&nothing_between, |o| o.clear),
+            hidden: occlusion.map_or(&nothing_hides, |o| o.hidden),
+            dark_tolerance: half,
+        };
+        let spans = tree::partition(&tree, settings, Some(&seeing));
         progress.set_length(spans.len() as u64);
         let order = &tree.order;
         let built: Vec<(Block, PairStats, Outcome)> = spans
@@ -249,14 +285,16 @@ impl Hierarchical {
             let entries = block.span.rows.len() * block.span.cols.len();
             match (block.span.kind, &block.data) {
                 (Kind::Near, _) => compression.near_blocks += 1,
-                (Kind::Far, Data::LowRank { rank, .. }) => {
+                (Kind::Far | Kind::Dark, Data::LowRank { rank, .. }) => {
                     compression.low_rank_blocks += 1;
                     compression.max_rank = compression.max_rank.max(*rank);
                     rank_sum += rank;
                     low_rank_entries += entries * if block.span.is_diagonal() { 1 } else { 2 };
                 }
-                (Kind::Far, Data::Dense(_)) if outcome.guarded => compression.guard_fallbacks += 1,
-                (Kind::Far, Data::Dense(_)) => compression.rank_fallbacks += 1,
+                (Kind::Far | Kind::Dark, Data::Dense(_)) if outcome.guarded => {
+                    compression.guard_fallbacks += 1
+                }
+                (Kind::Far | Kind::Dark, Data::Dense(_)) => compression.rank_fallbacks += 1,
             }
             if let Some(pair) = outcome.non_finite {
                 return Err(NonFiniteEntry { patches: pair });
@@ -360,6 +398,16 @@ impl Hierarchical {
     }
 }
 
+/// The distance from a patch's centroid to its farthest corner, metres (what the pair
+/// integrals call its radius).
+fn smallest_radius(p: &Patch) -> f64 {
+    p.polygon
+        .vertices
+        .iter()
+        .map(|&v| (v - p.centroid).length())
+        .fold(0.0, f64::max)
+}
+
 /// How one block's assembly went.
 struct Outcome {
     /// Entries read through the pair integrals.
@@ -411,6 +459,11 @@ fn fill(
             Data::Dense(d)
         }
         Kind::Near => Data::Dense(dense_f32(m, n, &entry)),
+        Kind::Dark => Data::LowRank {
+            rank: 0,
+            u: Vec::new(),
+            v: Vec::new(),
+        },
         Kind::Far => match aca::compress(m, n, &entry, settings.tolerance, seed) {
             Compressed::LowRank(approximation) => Data::LowRank {
                 rank: approximation.rank(),

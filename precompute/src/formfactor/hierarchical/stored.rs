@@ -36,7 +36,8 @@ impl Hierarchical {
             out.extend([index(span.row_node), index(span.col_node)]);
             out.push(match span.kind {
                 Kind::Near => 0.0,
-                Kind::Far => 1.0,
+                // A dark block is a far one of rank 0.
+                Kind::Far | Kind::Dark => 1.0,
             });
             match &block.data {
                 Data::Dense(d) => {

@@ -9,6 +9,15 @@
 //! [`Settings::admissibility`] times the gap between the boxes; other pairs are split until
 //! one side is a leaf, and stored dense there.
 //!
+//! Occlusion makes the kernel of a well-separated pair discontinuous wherever a blocker's
+//! silhouette crosses it, and such a block is of high rank. So an admissible pair is first
+//! classified by what lies between its clusters ([`Sight`]): *dark* when the clusters face
+//! away from each other or one blocker hides each from the other (every entry is 0, nothing
+//! is read), *clear* when no blocker can cut a
+//! segment between them (the kernel is smooth: low rank), and *mixed* otherwise, split
+//! further like an inadmissible pair, so that only the parts a silhouette crosses are stored
+//! dense and the rest of the block still compresses.
+//!
 //! Only the upper half of the symmetric partition is kept: diagonal blocks `(τ, τ)` and
 //! blocks whose rows all come before their columns in the tree's order. Every stored
 //! off-diagonal block stands for itself and its transpose.
@@ -77,6 +86,101 @@ pub(super) struct Node {
     pub(super) bounds: Bounds,
     /// The two halves, or none for a leaf.
     pub(super) children: Option<[usize; 2]>,
+    /// The plane the cluster's patches lie in, when they share one.
+    pub(super) plate: Option<Plate>,
+}
+
+/// A cluster whose patches all lie in one plane and face the same way: the rectangle in that
+/// plane that holds them, for the shaft between two clusters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Plate {
+    /// Corners of the rectangle, in order, metres.
+    pub(super) corners: [Vec3; 4],
+    /// The patches' unit normal.
+    pub(super) normal: Vec3,
+}
+
+impl Plate {
+    /// Is every corner of `other` at most `tolerance` metres in front of this plate's plane?
+    /// Then no patch of the other cluster is in front of a patch of this one.
+    fn faces_away_from(&self, other: &Plate, tolerance: f64) -> bool {
+        let offset = self.normal.dot(self.corners[0]);
+        other
+            .corners
+            .iter()
+            .all(|&c| self.normal.dot(c) - offset <= tolerance)
+    }
+}
+
+/// What lies between two well-separated clusters (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Sight {
+    /// The clusters face away from each other, or one blocker hides each from the other:
+    /// every entry is 0.
+    Dark,
+    /// No blocker can cut a segment between them.
+    Clear,
+    /// A blocker may cut some of the segments between them, or the clusters are not planar.
+    Mixed,
+}
+
+/// The plate of the patches `members`: `None` unless their planes lie within `tolerance`
+/// metres of each other and their normals within `tolerance / extent` (`extent` metres, the
+/// scene's size: over it the normals' difference moves a height by at most `tolerance`).
+/// The rectangle lies in the lowest of their planes, so that whatever is in front of a patch
+/// is in front of it.
+fn plate_of(patches: &[Patch], members: &[usize], tolerance: f64, extent: f64) -> Option<Plate> {
+    let first = patches.get(*members.first()?)?;
+    let normal = first.normal;
+    let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &i in members {
+        let p = &patches[i];
+        let turned = (p.normal - normal).length() * extent;
+        if turned.is_nan() || turned > tolerance {
+            return None;
+        }
+        for &c in &p.polygon.vertices {
+            let h = normal.dot(c);
+            low = low.min(h);
+            high = high.max(h);
+        }
+    }
+    let spread = high - low;
+    if spread.is_nan() || spread > tolerance {
+        return None;
+    }
+    // Two unit vectors in the plane: across the normal's smallest component, then the third.
+    let axis = (0..3).fold(0, |best, k| {
+        if normal.axis(k).abs() < normal.axis(best).abs() {
+            k
+        } else {
+            best
+        }
+    });
+    let e = [
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+    ][axis];
+    let u = normal.cross(e).normalized();
+    let v = normal.cross(u);
+    let (mut s0, mut s1, mut t0, mut t1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &i in members {
+        for &c in &patches[i].polygon.vertices {
+            let (s, t) = (u.dot(c), v.dot(c));
+            (s0, s1, t0, t1) = (s0.min(s), s1.max(s), t0.min(t), t1.max(t));
+        }
+    }
+    let at = |s: f64, t: f64| normal * low + u * s + v * t;
+    Some(Plate {
+        corners: [at(s0, t0), at(s1, t0), at(s1, t1), at(s0, t1)],
+        normal,
+    })
 }
 
 /// The cluster tree: nodes (the root first) and the order it puts the patches in.
@@ -88,8 +192,10 @@ pub(super) struct ClusterTree {
 }
 
 impl ClusterTree {
-    /// The tree over `patches`, with leaves of at most `leaf` patches.
-    pub(super) fn new(patches: &[Patch], leaf: usize) -> ClusterTree {
+    /// The tree over `patches`, with leaves of at most `leaf` patches; a cluster whose
+    /// patches' planes lie within `flat` metres of each other across the scene has a
+    /// [`Plate`].
+    pub(super) fn new(patches: &[Patch], leaf: usize, flat: f64) -> ClusterTree {
         let leaf = leaf.max(1);
         let mut order: Vec<usize> = (0..patches.len()).collect();
         let mut nodes = Vec::new();
@@ -118,6 +224,9 @@ impl ClusterTree {
             })
             .collect();
         split(&keys, &bounds, &mut order, 0, leaf, &mut nodes);
+        for node in &mut nodes {
+            node.plate = plate_of(patches, &order[node.range.clone()], flat, orientation_scale);
+        }
         ClusterTree { nodes, order }
     }
 
@@ -147,6 +256,7 @@ fn split(
         range: start..start + order.len(),
         bounds: own,
         children: None,
+        plate: None,
     });
     if order.len() <= leaf {
         return index;
@@ -184,6 +294,8 @@ pub(super) enum Kind {
     Near,
     /// Admissible: approximated at low rank.
     Far,
+    /// Admissible and dark ([`Sight::Dark`]): every entry is 0, stored at rank 0 unread.
+    Dark,
 }
 
 /// A block of the partition: rows of cluster `row_node`, columns of `col_node`.
@@ -203,16 +315,63 @@ impl BlockSpan {
     }
 }
 
+/// `clear(a, a_normal, b, b_normal)`: no blocker can cut a segment between the planar
+/// polygons `a` and `b` (corners, metres; the unit normals of their lit sides).
+pub(super) type ClearBetween<'a> = dyn Fn(&[Vec3], Vec3, &[Vec3], Vec3) -> bool + Sync + 'a;
+
+/// What decides a well-separated pair's [`Sight`]: `clear(a, a_normal, b, b_normal)` says
+/// whether no blocker can cut a segment between the planar polygons `a` and `b` (corners,
+/// metres, and the unit normals of the sides that emit and receive); `dark_tolerance` is the
+/// height in metres up to which a corner counts as in a plane (below every pair integral's own
+/// tolerance, so that a block called dark is one whose pair integrals all return 0);
+/// `hidden(a, b)` says whether one blocker cuts every segment between the polygons.
+pub(super) struct Seeing<'a> {
+    pub(super) clear: &'a ClearBetween<'a>,
+    pub(super) hidden: &'a (dyn Fn(&[Vec3], &[Vec3]) -> bool + Sync),
+    pub(super) dark_tolerance: f64,
+}
+
+impl Seeing<'_> {
+    fn sight(&self, a: Option<&Plate>, b: Option<&Plate>) -> Sight {
+        let (Some(a), Some(b)) = (a, b) else {
+            return Sight::Mixed;
+        };
+        if a.faces_away_from(b, self.dark_tolerance) || b.faces_away_from(a, self.dark_tolerance) {
+            Sight::Dark
+        } else if (self.clear)(&a.corners, a.normal, &b.corners, b.normal) {
+            Sight::Clear
+        } else if (self.hidden)(&a.corners, &b.corners) {
+            Sight::Dark
+        } else {
+            Sight::Mixed
+        }
+    }
+}
+
 /// The upper half of the block partition of the tree's `S` (module docs), in a fixed order.
-pub(super) fn partition(tree: &ClusterTree, settings: &Settings) -> Vec<BlockSpan> {
+/// Without `seeing` (or with [`Settings::split_by_sight`] off) every admissible pair is one
+/// far block, as if nothing could occlude.
+pub(super) fn partition(
+    tree: &ClusterTree,
+    settings: &Settings,
+    seeing: Option<&Seeing>,
+) -> Vec<BlockSpan> {
     let mut blocks = Vec::new();
+    let seeing = seeing.filter(|_| settings.split_by_sight);
     if !tree.nodes.is_empty() {
-        visit(tree, settings, 0, 0, &mut blocks);
+        visit(tree, settings, seeing, 0, 0, &mut blocks);
     }
     blocks
 }
 
-fn visit(tree: &ClusterTree, settings: &Settings, t: usize, s: usize, out: &mut Vec<BlockSpan>) {
+fn visit(
+    tree: &ClusterTree,
+    settings: &Settings,
+    seeing: Option<&Seeing>,
+    t: usize,
+    s: usize,
+    out: &mut Vec<BlockSpan>,
+) {
     let (tn, sn) = (&tree.nodes[t], &tree.nodes[s]);
     let span = |kind| BlockSpan {
         row_node: t,
@@ -225,9 +384,9 @@ fn visit(tree: &ClusterTree, settings: &Settings, t: usize, s: usize, out: &mut 
         match tn.children {
             None => out.push(span(Kind::Near)),
             Some([a, b]) => {
-                visit(tree, settings, a, a, out);
-                visit(tree, settings, a, b, out);
-                visit(tree, settings, b, b, out);
+                visit(tree, settings, seeing, a, a, out);
+                visit(tree, settings, seeing, a, b, out);
+                visit(tree, settings, seeing, b, b, out);
             }
         }
         return;
@@ -235,22 +394,26 @@ fn visit(tree: &ClusterTree, settings: &Settings, t: usize, s: usize, out: &mut 
     let gap = tn.bounds.distance(&sn.bounds);
     let small = tn.bounds.diameter().min(sn.bounds.diameter());
     if gap > 0.0 && small <= settings.admissibility * gap {
-        out.push(span(Kind::Far));
-        return;
+        match seeing.map(|seeing| seeing.sight(tn.plate.as_ref(), sn.plate.as_ref())) {
+            None | Some(Sight::Clear) => return out.push(span(Kind::Far)),
+            Some(Sight::Dark) => return out.push(span(Kind::Dark)),
+            // Split like a close pair: the parts no silhouette crosses compress.
+            Some(Sight::Mixed) => {}
+        }
     }
     match (tn.children, sn.children) {
         (None, None) => out.push(span(Kind::Near)),
         (None, Some([c, d])) => {
-            visit(tree, settings, t, c, out);
-            visit(tree, settings, t, d, out);
+            visit(tree, settings, seeing, t, c, out);
+            visit(tree, settings, seeing, t, d, out);
         }
         (Some([a, b]), None) => {
-            visit(tree, settings, a, s, out);
-            visit(tree, settings, b, s, out);
+            visit(tree, settings, seeing, a, s, out);
+            visit(tree, settings, seeing, b, s, out);
         }
         (Some([a, b]), Some([c, d])) => {
             for (x, y) in [(a, c), (a, d), (b, c), (b, d)] {
-                visit(tree, settings, x, y, out);
+                visit(tree, settings, seeing, x, y, out);
             }
         }
     }
