@@ -33,8 +33,8 @@ impl CeilingPlane {
     pub fn through(suffix: String, p: [Vec3; 3]) -> Option<CeilingPlane> {
         let n = (p[1] - p[0]).cross(p[2] - p[0]);
         let scale = (p[1] - p[0]).length().max((p[2] - p[0]).length());
-        // A plane steeper than 1e6 : 1 is a wall, not a ceiling.
-        if !(n.z.abs() > 1e-6 * n.length()) || n.length() <= 1e-12 * scale * scale {
+        // Three points on one line span no plane.
+        if n.length() <= 1e-12 * scale * scale {
             return None;
         }
         CeilingPlane::square_to(suffix, p[0], n)
@@ -43,7 +43,8 @@ impl CeilingPlane {
     /// The plane through `point` (m) square to `normal`, or `None` when it is vertical (or
     /// within 1e-6 of it).
     pub fn square_to(suffix: String, point: Vec3, normal: Vec3) -> Option<CeilingPlane> {
-        if !(normal.z.abs() > 1e-6 * normal.length()) {
+        // A plane steeper than 1e6 : 1 is a wall, not a ceiling.
+        if !normal.z.is_finite() || normal.z.abs() <= 1e-6 * normal.length() {
             return None;
         }
         let slope = [-normal.x / normal.z, -normal.y / normal.z];

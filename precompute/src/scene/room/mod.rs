@@ -636,7 +636,7 @@ impl RoomBase {
         // not through it.
         for &c in &plan.corners {
             let z = ceiling::lowest(&planes, c);
-            if !(z >= floor - tol) {
+            if z < floor - tol {
                 return Err(format!(
                     "the ceiling is at z = {z} m over the plan corner {c:?} m, not above the \
                      floor (z = {floor} m)"
@@ -726,7 +726,7 @@ impl RoomBase {
             .chain(all_pieces.iter().map(Vec::as_slice));
         let (mut sum, mut total) = (Vec3::new(0.0, 0.0, 0.0), 0.0);
         for p in shells {
-            sum = sum + vector_area(p);
+            sum += vector_area(p);
             total += crate::geometry::Polygon::new(p.to_vec()).area();
         }
         if sum.length() > 1e-9 * total {
@@ -742,7 +742,7 @@ impl RoomBase {
             .chain(all_pieces.iter().flatten())
             .map(|p| p.z)
             .fold(top, f64::max);
-        if !(high > floor + tol) {
+        if high <= floor + tol {
             return Err(format!(
                 "the ceiling is nowhere above the floor (z = {floor} m): the room has no volume"
             ));
