@@ -206,7 +206,8 @@ fn the_hbjson_example_takes_the_models_materials() {
 /// two storeys of 10 m × 10 m × 3 m, one over the other, under a gabled attic. The storeys
 /// import, their faces without modifiers mapped by kind, the first floor's windows glazed by
 /// the model's own glass; the ceiling and floor they share are recorded from each side. The
-/// attic's roof is not a prism: an error naming it.
+/// gabled attic, its roof slopes typed as walls coming down to its floor, imports as a room
+/// under two ceiling planes with two triangular gable walls.
 #[test]
 fn a_honeybee_sample_imports_with_its_adjacency() {
     let dir = scratch("sample");
@@ -271,14 +272,36 @@ glass = {{ reflectance = 0.08, transmittance = 0.6 }}
         ]
     );
     std::fs::write(&path, scene_text("")).unwrap();
-    let e = load(&path).expect_err("the attic").to_string();
-    println!("{e}");
-    for part in [
-        "model_complete_multiroom_radiance.hbjson:",
-        "space `Attic`, face `AtticFace2`",
-        "sloped walls are not supported yet",
-    ] {
-        assert!(e.contains(part), "{e}\nlacks {part}");
+    let scene = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let area = |name: &str| -> f64 {
+        scene
+            .patches
+            .iter()
+            .filter(|p| scene.surfaces[p.surface].name == name)
+            .map(|p| p.area)
+            .sum()
+    };
+    let attic: Vec<(&str, f64)> = scene
+        .surfaces
+        .iter()
+        .filter(|s| s.name.starts_with("Attic."))
+        .map(|s| (s.name.as_str(), area(&s.name)))
+        .collect();
+    println!("attic: {attic:?}");
+    // 10 m × 10 m at z = 6 m, the ridge at 9 m along x = 5: two slopes of 10 m × √(5² + 3²),
+    // two gable triangles of 10 m × 3 m / 2, no wall along the eaves.
+    let slope = 10.0 * 34f64.sqrt();
+    let want = [
+        ("Attic.floor", 100.0),
+        ("Attic.AtticFace2", slope),
+        ("Attic.AtticFace3", slope),
+        ("Attic.AtticFace4", 15.0),
+        ("Attic.AtticFace5", 15.0),
+    ];
+    assert_eq!(attic.len(), want.len(), "{attic:?}");
+    for (name, a) in want {
+        let got = area(name);
+        assert!((got - a).abs() < 1e-9 * a, "{name}: {got} m² vs {a} m²");
     }
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -365,8 +388,15 @@ fn face<'a>(model: &'a mut serde_json::Value, id: &str) -> &'a mut serde_json::V
         .unwrap()
 }
 
+/// The identifier in the first ``face `<id>` `` of `message`.
+fn face_named(message: &str) -> &str {
+    let start = message.find("face `").expect("a face named") + "face `".len();
+    let len = message[start..].find('`').unwrap();
+    &message[start..start + len]
+}
+
 #[test]
-fn a_sloped_ceiling_is_refused_naming_the_space_and_face() {
+fn a_sloped_ceiling_over_walls_that_stop_short_is_refused_naming_the_wall() {
     let (e, path) = refused(
         "sloped",
         |m| {
@@ -381,12 +411,18 @@ fn a_sloped_ceiling_is_refused_naming_the_space_and_face() {
         },
         "",
     );
-    let at = format!("model.hbjson:{}", line_of(&path, "office_ceiling"));
+    // The ceiling alone may slope, but the walls still stop at 3 m: the first wall whose top
+    // is not the ceiling is named.
+    let wall = face_named(&e);
+    assert!(
+        wall.starts_with("office_") && wall != "office_ceiling",
+        "{e}"
+    );
+    let at = format!("model.hbjson:{}", line_of(&path, wall));
     for part in [
         at.as_str(),
         "space `office`",
-        "face `office_ceiling`",
-        "sloped ceilings are not supported yet",
+        "the wall does not run from the floor",
     ] {
         assert!(e.contains(part), "{e}\nlacks {part}");
     }
@@ -648,14 +684,16 @@ fn gbxml_mistakes_are_refused_naming_the_element_and_line() {
     let level = ceiling_loop(|_| "3".into());
     let sloped = ceiling_loop(|y| (3.0 + 0.1 * y).to_string());
     let (e, path) = refused_xml("xml-sloped", &[(level, sloped)]);
+    // Its walls still stop at 3 m: the first whose top is not the ceiling is named.
+    let wall = face_named(&e);
     let at = format!(
         "model.xml:{}",
-        line_with(&path, "<Surface id=\"office-ceiling\"")
+        line_with(&path, &format!("<Surface id=\"{wall}\""))
     );
     for part in [
         at.as_str(),
-        "space `office-space`, face `office-ceiling`",
-        "sloped ceilings are not supported yet",
+        "space `office-space`, face `",
+        "the wall does not run from the floor",
     ] {
         assert!(e.contains(part), "{e}\nlacks {part}");
     }

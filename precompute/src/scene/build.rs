@@ -10,15 +10,15 @@ use super::contacts::{self, Footprint};
 use super::context::{unique, Ctx, MaterialInfo, RawSurface};
 use super::error::SceneError;
 use super::file::{BandsDef, SceneFile};
-use super::layout::{Block, Layout, RoomPlan};
-use super::mesh::{check_face, mesh_face, triangulate};
+use super::layout::Layout;
+use super::mesh::{mesh_surfaces, Meshed};
 use super::openings::CONTACT_TOLERANCE;
 use super::room::Room;
 use super::{
     channels, daylight, import, limits, luminaires, obj, observers, openings, primitives, winding,
 };
-use super::{Adjacency, Bands, Luminaire, Scene, Surface, Window};
-use crate::geometry::{Aabb, Face, Patch, Polygon, Vec3};
+use super::{Adjacency, Bands, Luminaire, Scene, Window};
+use crate::geometry::{Aabb, Face, Patch, Vec3};
 
 /// Default planarity tolerance: a corner may sit 0.1 % of the face's diagonal off its plane.
 const PLANARITY: f64 = 1e-3;
@@ -60,7 +60,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
 
     let raw = &geometry.raw;
     let footprints = obj_footprints(raw, &is_obj);
-    let meshed = mesh(
+    let meshed = mesh_surfaces(
         raw,
         &materials,
         &flip,
@@ -69,14 +69,10 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         max_edge,
         planarity,
     )?;
+    // Name and corners (m) of each block inside the rooms.
+    let inside = inside_blocks(&file, &geometry);
     let luminaires = luminaires::place(&ctx, &file.luminaire, &file.channel)?;
-    luminaires::check_placement(
-        &ctx,
-        &file.luminaire,
-        &luminaires,
-        &geometry.rooms,
-        &inside_blocks(&file, &geometry),
-    )?;
+    luminaires::check_placement(&ctx, &file.luminaire, &luminaires, &geometry.rooms, &inside)?;
     let emitters = resolve_channels(&ctx, &file, &luminaires, &meshed, raw)?;
     let (emission, channel_of_patch) = patch_emission(&meshed.patches, &emitters);
     let windows = glazed_windows(&ctx, &file, &geometry, &claimed, &materials, &emitters)?;
@@ -84,7 +80,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         &ctx,
         &file.sensor,
         &geometry.rooms,
-        &inside_blocks(&file, &geometry),
+        &inside,
         extent(raw),
         &enclosures(&geometry.rooms, &meshed.faces),
     )?;
@@ -92,13 +88,13 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         &ctx,
         &file.zone,
         &geometry.rooms,
-        &inside_blocks(&file, &geometry),
+        &inside,
         &meshed.surfaces,
         &meshed.patches,
         max_edge,
     )?;
 
-    let layout = layout(&file, &geometry, &claimed);
+    let layout = Layout::of(&geometry.rooms, &inside, &claimed);
     Ok(Scene {
         name: file.scene.name,
         bands,
@@ -119,27 +115,6 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         adjacency: geometry.adjacency,
         warnings: geometry.warnings,
     })
-}
-
-/// The rooms, the blocks inside them and the openings, seen from above.
-fn layout(file: &SceneFile, geometry: &Geometry, claimed: &[bool]) -> Layout {
-    Layout {
-        rooms: geometry
-            .rooms
-            .iter()
-            .map(|r| RoomPlan {
-                name: r.name.clone(),
-                corners: r.plan.corners.clone(),
-                floor: r.floor,
-                ceiling: r.ceiling,
-            })
-            .collect(),
-        blocks: inside_blocks(file, geometry)
-            .into_iter()
-            .map(|(name, min, max)| Block { name, min, max })
-            .collect(),
-        openings: (0..claimed.len()).filter(|&i| claimed[i]).collect(),
-    }
 }
 
 /// Checks each OBJ file's faces for one wound against its neighbours ([`winding::check`]),
@@ -474,17 +449,6 @@ fn surface_settings(
     Ok((flip, split))
 }
 
-/// The surfaces meshed into patches, with what each patch takes from its material.
-struct Meshed {
-    surfaces: Vec<Surface>,
-    patches: Vec<Patch>,
-    faces: Vec<Face>,
-    /// Per patch, per band.
-    reflectance: Vec<Vec<f64>>,
-    /// Per surface, its material's exitance per band (lux or W/m²).
-    material_emission: Vec<Vec<f64>>,
-}
-
 /// The box around every face of the scene (m), `None` for a scene without faces.
 fn extent(raw: &[RawSurface]) -> Option<(Vec3, Vec3)> {
     let mut b = Aabb::EMPTY;
@@ -523,104 +487,4 @@ fn contact_tolerance(raw: &[RawSurface]) -> f64 {
         .map(|(lo, hi)| CONTACT_TOLERANCE * (hi - lo).length())
         .filter(|t| t.is_finite())
         .unwrap_or(0.0)
-}
-
-/// Resolves each surface's material, checks its faces (flat within `planarity`) and meshes
-/// them into patches no longer than `max_edge` (m) or the surface's own, cut along the
-/// `footprints` of OBJ objects standing on them.
-fn mesh(
-    raw: &[RawSurface],
-    materials: &BTreeMap<String, MaterialInfo>,
-    flip: &[bool],
-    split: &[bool],
-    footprints: &[Footprint],
-    max_edge: f64,
-    planarity: f64,
-) -> Result<Meshed, SceneError> {
-    let mut surfaces = Vec::with_capacity(raw.len());
-    let mut patches = Vec::new();
-    let mut faces = Vec::new();
-    let mut reflectance = Vec::new();
-    let mut material_emission = Vec::with_capacity(raw.len());
-    for (index, s) in raw.iter().enumerate() {
-        let Some(material) = materials.get(&s.material) else {
-            return Err(SceneError::Unknown {
-                at: s.material_at.clone(),
-                field: format!("surface `{}`.material", s.name),
-                kind: "material",
-                name: s.material.clone(),
-            });
-        };
-        if s.faces.is_empty() {
-            return Err(SceneError::BadFace {
-                at: s.at.clone(),
-                surface: s.name.clone(),
-                face: 0,
-                message: "surface has no faces".into(),
-            });
-        }
-        let start = patches.len();
-        let edge = s.max_edge.unwrap_or(max_edge);
-        let mut polygons = Vec::new();
-        for (f, face) in s.faces.iter().enumerate() {
-            let mut face = face.clone();
-            if flip[index] {
-                face.reverse();
-            }
-            let bad = |p: super::mesh::FaceProblem| SceneError::BadFace {
-                at: s.at.clone(),
-                surface: s.name.clone(),
-                face: f + 1,
-                message: p.to_string(),
-            };
-            let pieces = if split[index] {
-                triangulate(&face)
-            } else {
-                vec![face]
-            };
-            let standing: Vec<&Footprint> = footprints
-                .iter()
-                .filter(|fp| fp.surface == index && fp.face == f)
-                .collect();
-            for piece in pieces {
-                check_face(&piece, planarity).map_err(bad)?;
-                let first = patches.len() + polygons.len();
-                let mut grid = Vec::new();
-                mesh_face(&piece, edge, &mut grid);
-                for footprint in &standing {
-                    grid = grid
-                        .into_iter()
-                        .flat_map(|p| {
-                            let normal = p.normal();
-                            contacts::cut(&p.vertices, footprint, normal)
-                        })
-                        .map(Polygon::new)
-                        .collect();
-                }
-                polygons.extend(grid);
-                faces.push(Face {
-                    polygon: Polygon::new(piece),
-                    patches: first..patches.len() + polygons.len(),
-                });
-            }
-        }
-        for polygon in polygons {
-            patches.push(Patch::new(polygon, index));
-            reflectance.push(material.reflectance.clone());
-        }
-        surfaces.push(Surface {
-            name: s.name.clone(),
-            material: s.material.clone(),
-            reflectance: material.reflectance.clone(),
-            patch_range: start..patches.len(),
-        });
-        material_emission.push(material.emission.clone());
-    }
-    Ok(Meshed {
-        surfaces,
-        patches,
-        faces,
-        reflectance,
-        material_emission,
-    })
 }

@@ -275,6 +275,10 @@ pub(crate) struct RoomDef {
     /// The floor's z, in the scene's unit (with `plan`; default 0).
     #[serde(default)]
     pub level: Option<Spanned<f64>>,
+    /// A sloped or pitched ceiling (with `plan`, instead of `height`): the lowest of these
+    /// planes over each point of the plan.
+    #[serde(default)]
+    pub ceiling_planes: Option<Spanned<Vec<Spanned<CeilingPlaneDef>>>>,
     /// One name per plan edge, in edge order (with `plan`; default `wall_1`, `wall_2`, ...).
     #[serde(default)]
     pub wall_names: Option<Spanned<Vec<String>>>,
@@ -293,6 +297,19 @@ pub(crate) struct RoomDef {
     /// Quads set flush into the room's faces; the faces are meshed around them.
     #[serde(default)]
     pub openings: Option<Spanned<Vec<String>>>,
+}
+
+/// One plane of a `[[room]]`'s `ceiling_planes`: three points of the ceiling as a section
+/// drawing gives them (two along the eaves, one on the ridge, say).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct CeilingPlaneDef {
+    /// Its face's name after the room's (default `ceiling` for a single plane, `ceiling_k`
+    /// for plane `k` of several).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Three points of the plane, `[x, y, z]` in the scene's unit, not on one line.
+    pub through: Vec<Spanned<Xyz>>,
 }
 
 /// `[[import]]`: rooms from a building model (HBJSON or gbXML), each space a room.

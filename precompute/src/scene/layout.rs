@@ -2,6 +2,7 @@
 //! blocks standing in the rooms, and which surfaces are openings cut in the rooms' faces.
 //! Meshing and light never read it: the patches carry all of that for them.
 
+use super::room::Room;
 use crate::geometry::Vec3;
 
 /// A room seen from above.
@@ -13,7 +14,7 @@ pub struct RoomPlan {
     pub corners: Vec<[f64; 2]>,
     /// The floor's z, m.
     pub floor: f64,
-    /// The ceiling's z, m.
+    /// The ceiling's z (a sloped ceiling's highest), m.
     pub ceiling: f64,
 }
 
@@ -38,4 +39,31 @@ pub struct Layout {
     /// Indices into [`super::Scene::surfaces`] of the openings cut in the rooms' faces
     /// (windows, doors, flush luminaires), in surface order.
     pub openings: Vec<usize>,
+}
+
+impl Layout {
+    /// The `rooms`, the `blocks` inside them (name and corners, m) and the surfaces
+    /// `claimed` as openings, seen from above.
+    pub(crate) fn of(rooms: &[Room], blocks: &[(String, Vec3, Vec3)], claimed: &[bool]) -> Self {
+        Layout {
+            rooms: rooms
+                .iter()
+                .map(|r| RoomPlan {
+                    name: r.name.clone(),
+                    corners: r.plan.corners.clone(),
+                    floor: r.floor,
+                    ceiling: r.ceiling,
+                })
+                .collect(),
+            blocks: blocks
+                .iter()
+                .map(|(name, min, max)| Block {
+                    name: name.clone(),
+                    min: *min,
+                    max: *max,
+                })
+                .collect(),
+            openings: (0..claimed.len()).filter(|&i| claimed[i]).collect(),
+        }
+    }
 }

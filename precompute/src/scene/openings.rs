@@ -42,22 +42,110 @@ struct Placed {
     upper: Vec<(bool, bool)>,
 }
 
-/// A face rectangle a-b-c-d and its parameterisation `a + (b − a) s + (d − a) t`.
+/// A face rectangle a-b-c-d and its parameterisation `a + (b − a) s + (d − a) t`; for a
+/// face that is not a parallelogram (a wall under a sloped ceiling), the rectangle around it
+/// whose cells are clipped to the face.
 struct Frame {
     a: Vec3,
     ab: Vec3,
     ad: Vec3,
     /// Inward unit normal of the face.
     normal: Vec3,
+    /// The face's outline when the rectangle is larger than the face, else `None`.
+    outline: Option<Vec<Vec3>>,
 }
 
 impl Frame {
+    /// The frame of a face wound from `a` up its first side to `b` and back along its last
+    /// side to `d`; of any other convex face, the rectangle on its last side `a`–`d` that
+    /// holds it.
     fn new(corners: &[Vec3]) -> Self {
+        let normal = Polygon::new(corners.to_vec()).normal();
+        let n = corners.len();
+        let (a, ad) = (corners[0], corners[n - 1] - corners[0]);
+        if let [a, b, c, d] = corners {
+            let skew = (*c - (*b + *d - *a)).length();
+            if skew <= 1e-12 * (*c - *a).length() {
+                return Frame {
+                    a: *a,
+                    ab: *b - *a,
+                    ad: *d - *a,
+                    normal,
+                    outline: None,
+                };
+            }
+        }
+        // Square to the last side, towards the face's first corner after `a` (up a wall),
+        // as far as the face reaches.
+        let mut up = normal.cross(ad).normalized();
+        if (corners[1] - a).dot(up) < 0.0 {
+            up = up * -1.0;
+        }
+        let reach = corners.iter().map(|&p| (p - a).dot(up)).fold(0.0, f64::max);
         Frame {
-            a: corners[0],
-            ab: corners[1] - corners[0],
-            ad: corners[3] - corners[0],
-            normal: Polygon::new(corners.to_vec()).normal(),
+            a,
+            ab: up * reach,
+            ad,
+            normal,
+            outline: Some(corners.to_vec()),
+        }
+    }
+
+    /// Whether `p` (m, in the face's plane) lies in the face, within `tol` (m).
+    fn holds(&self, p: Vec3, tol: f64) -> bool {
+        let Some(outline) = &self.outline else {
+            let (s, t) = self.params(p);
+            let (ts, tt) = (tol / self.ab.length(), tol / self.ad.length());
+            return s >= -ts && s <= 1.0 + ts && t >= -tt && t <= 1.0 + tt;
+        };
+        let n = outline.len();
+        (0..n).all(|i| {
+            let (u, v) = (outline[i], outline[(i + 1) % n]);
+            let inward = self.normal.cross(v - u).normalized();
+            (p - u).dot(inward) >= -tol
+        })
+    }
+
+    /// The convex cell `cell` (m, in the face's plane) clipped to the face
+    /// (Sutherland–Hodgman, one edge at a time); empty when nothing wider than `tol` (m) is
+    /// left.
+    fn clip(&self, cell: Vec<Vec3>, tol: f64) -> Vec<Vec3> {
+        let Some(outline) = &self.outline else {
+            return cell;
+        };
+        let mut out = cell;
+        let n = outline.len();
+        for i in 0..n {
+            let (u, v) = (outline[i], outline[(i + 1) % n]);
+            let inward = self.normal.cross(v - u).normalized();
+            let f = |p: Vec3| (p - u).dot(inward);
+            let input = std::mem::take(&mut out);
+            for k in 0..input.len() {
+                let (p, q) = (input[k], input[(k + 1) % input.len()]);
+                let (fp, fq) = (f(p), f(q));
+                if fp >= -tol {
+                    out.push(p);
+                }
+                if (fp < -tol && fq > tol) || (fp > tol && fq < -tol) {
+                    out.push(p + (q - p) * (fp / (fp - fq)));
+                }
+            }
+        }
+        // Corners left within `tol` of each other are one.
+        let mut kept: Vec<Vec3> = Vec::with_capacity(out.len());
+        for p in out {
+            if kept.last().is_none_or(|&l: &Vec3| (p - l).length() > tol) {
+                kept.push(p);
+            }
+        }
+        while kept.len() > 1 && (kept[0] - kept[kept.len() - 1]).length() <= tol {
+            kept.pop();
+        }
+        let big_enough = kept.len() >= 3 && Polygon::new(kept.clone()).area() > tol * tol;
+        if big_enough {
+            kept
+        } else {
+            Vec::new()
         }
     }
 
@@ -127,11 +215,14 @@ pub(crate) fn cut(
     // A plan room's openings in its floor and ceiling, as plan polygons.
     let mut floor_holes: Vec<Vec<Point2>> = Vec::new();
     let mut ceiling_holes: Vec<Vec<Point2>> = Vec::new();
+    // A sloped ceiling's, per plane.
+    let mut plane_holes: Vec<Vec<Vec<Point2>>> = vec![Vec::new(); shape.roof.len()];
     for name in list.names {
         if !shape.is_box {
             if let Some((kind, hole)) = room.in_plan_face(shape, name, raw, flip, claimed)? {
                 match kind {
                     FaceKind::Floor => floor_holes.push(hole),
+                    FaceKind::CeilingPlane { index } => plane_holes[index].push(hole),
                     _ => ceiling_holes.push(hole),
                 }
                 continue;
@@ -145,7 +236,13 @@ pub(crate) fn cut(
         room.place_footprints(hanging, 1, raw, &mut placed)?;
     } else {
         floor_holes.extend(ends_at(shape, standing, shape.floor, |lo, _| lo.z));
-        ceiling_holes.extend(ends_at(shape, hanging, shape.ceiling, |_, hi| hi.z));
+        if shape.roof.is_empty() {
+            ceiling_holes.extend(ends_at(shape, hanging, shape.ceiling, |_, hi| hi.z));
+        } else {
+            for (index, hole) in under_ceiling_planes(shape, hanging) {
+                plane_holes[index].push(hole);
+            }
+        }
         for (k, f) in shape.faces.iter().enumerate() {
             let index = room.faces.start + k;
             match f.kind {
@@ -154,6 +251,9 @@ pub(crate) fn cut(
                 }
                 FaceKind::Ceiling if !ceiling_holes.is_empty() => {
                     raw[index].faces = shape.ceiling_faces(&ceiling_holes)
+                }
+                FaceKind::CeilingPlane { index: plane } if !plane_holes[plane].is_empty() => {
+                    raw[index].faces = shape.plane_faces(plane, &plane_holes[plane])
                 }
                 _ => continue,
             }
@@ -210,6 +310,27 @@ fn ends_at(
         .iter()
         .filter(|(_, lo, hi)| (end(*lo, *hi) - z).abs() <= tol)
         .map(|(_, lo, hi)| vec![[lo.x, lo.y], [hi.x, lo.y], [hi.x, hi.y], [lo.x, hi.y]])
+        .collect()
+}
+
+/// The footprints (plan rectangles, m) of the `blocks` whose tops meet a sloped ceiling of
+/// `shape` flush, with the plane they meet: the plane is level over the whole top there.
+fn under_ceiling_planes(
+    shape: &RoomShape,
+    blocks: &[(String, Vec3, Vec3)],
+) -> Vec<(usize, Vec<Point2>)> {
+    let tol = shape.tolerance();
+    blocks
+        .iter()
+        .filter_map(|(_, lo, hi)| {
+            let footprint = vec![[lo.x, lo.y], [hi.x, lo.y], [hi.x, hi.y], [lo.x, hi.y]];
+            let centre = [0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y)];
+            let index = shape.roof.iter().position(|plane| {
+                plane.holds(&shape.roof, centre, tol)
+                    && footprint.iter().all(|&c| (plane.z(c) - hi.z).abs() <= tol)
+            })?;
+            Some((index, footprint))
+        })
         .collect()
 }
 
@@ -276,7 +397,10 @@ impl Room {
         let Some(face) = shape.face_holding(quad) else {
             return Ok(None);
         };
-        if !matches!(face.kind, FaceKind::Floor | FaceKind::Ceiling) {
+        if !matches!(
+            face.kind,
+            FaceKind::Floor | FaceKind::Ceiling | FaceKind::CeilingPlane { .. }
+        ) {
             return Ok(None);
         }
         if self.faces.contains(&index) || claimed[index] {
@@ -426,7 +550,8 @@ impl Room {
                  `{face_name}` (or has zero width)"
             )));
         }
-        if s[0] < -tol_s || t[0] < -tol_t || s[1] > 1.0 + tol_s || t[1] > 1.0 + tol_t {
+        let outside = s[0] < -tol_s || t[0] < -tol_t || s[1] > 1.0 + tol_s || t[1] > 1.0 + tol_t;
+        if outside || quad.iter().any(|&p| !frame.holds(p, self.tol)) {
             return Err(self.invalid(format!(
                 "opening `{name}` reaches outside face `{face_name}`"
             )));
@@ -526,12 +651,18 @@ impl Room {
                     .iter()
                     .any(|p| p.s[0] < sm && sm < p.s[1] && p.t[0] < tm && tm < p.t[1]);
                 if !covered {
-                    cells.push(vec![
-                        frame.point(s0, t0),
-                        frame.point(s1, t0),
-                        frame.point(s1, t1),
-                        frame.point(s0, t1),
-                    ]);
+                    let cell = frame.clip(
+                        vec![
+                            frame.point(s0, t0),
+                            frame.point(s1, t0),
+                            frame.point(s1, t1),
+                            frame.point(s0, t1),
+                        ],
+                        self.tol,
+                    );
+                    if !cell.is_empty() {
+                        cells.push(cell);
+                    }
                 }
             }
         }

@@ -138,16 +138,20 @@ pub(crate) fn check_inside_rooms(
 ) -> Result<(), SceneError> {
     let b = def.get_ref();
     if let Some(room) = rooms.iter().find(|r| r.holds_box(lo, hi)) {
-        if !b.top && (hi.z - room.ceiling).abs() > room.tolerance() {
+        let flush = [[lo.x, lo.y], [hi.x, lo.y], [hi.x, hi.y], [lo.x, hi.y]]
+            .iter()
+            .all(|&c| (hi.z - room.ceiling_at(c)).abs() <= room.tolerance());
+        if !b.top && !flush {
             return Err(SceneError::Invalid {
                 at: ctx.at(&b.max),
                 field: format!("block `{}`.top", b.name),
                 message: format!(
                     "`top = false` leaves the block open above, but it stops at z = {} below \
-                     the ceiling of room `{}` (z = {}): make it reach the ceiling or keep its top",
+                     the ceiling of room `{}` (z = {} over its centre): make it reach the \
+                     ceiling (a level part of it) or keep its top",
                     hi.z / ctx.unit,
                     room.name,
-                    room.ceiling / ctx.unit
+                    room.ceiling_at([0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y)]) / ctx.unit
                 ),
             });
         }

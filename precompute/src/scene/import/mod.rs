@@ -227,7 +227,16 @@ impl Importer<'_> {
             });
         }
         let mut walls = Vec::with_capacity(p.walls.len());
-        for w in &p.walls {
+        for (k, w) in p.walls.iter().enumerate() {
+            let Some(w) = w else {
+                // No wall where the roof meets the floor: the room has no face there either.
+                walls.push((
+                    format!("wall_{}", k + 1),
+                    ceiling.0.clone(),
+                    ceiling.1.clone(),
+                ));
+                continue;
+            };
             let (material, material_at) = self.material(
                 &w.id,
                 w.line,
@@ -237,14 +246,32 @@ impl Importer<'_> {
             )?;
             walls.push((w.name.clone(), material, material_at));
         }
-        let room = Room::from_plan(
-            space.name.clone(),
-            self.location(space.line),
-            p.plan.clone(),
-            (p.floor, p.ceiling),
-            &Ends { floor, ceiling },
-            |edge| walls[edge].clone(),
-        );
+        let ends = Ends { floor, ceiling };
+        let room = if p.roof.is_empty() {
+            Room::from_plan(
+                space.name.clone(),
+                self.location(space.line),
+                p.plan.clone(),
+                (p.floor, p.ceiling),
+                &ends,
+                |edge| walls[edge].clone(),
+            )
+        } else {
+            Room::from_sloped_plan(
+                space.name.clone(),
+                self.location(space.line),
+                p.plan.clone(),
+                p.floor,
+                p.roof.clone(),
+                &ends,
+                |edge| walls[edge].clone(),
+            )
+            .map_err(|message| ImportError {
+                line: space.line,
+                element: format!("space `{}`", space.id),
+                message,
+            })?
+        };
 
         // Each host face of the model and the room face it became.
         let mut hosts: Vec<(&model::ModelFace, &super::room::RoomFace)> = Vec::new();
@@ -252,7 +279,12 @@ impl Importer<'_> {
             match f.kind {
                 FaceKind::Floor => hosts.push((p.floor_face, f)),
                 FaceKind::Ceiling => hosts.extend(p.ceiling_faces.iter().map(|&c| (c, f))),
-                FaceKind::Wall { edge } => hosts.push((p.walls[edge], f)),
+                FaceKind::CeilingPlane { index } => hosts.extend(
+                    (p.ceiling_faces.iter().zip(&p.plane_of))
+                        .filter(|&(_, &k)| k == index)
+                        .map(|(&c, _)| (c, f)),
+                ),
+                FaceKind::Wall { edge } => hosts.extend(p.walls[edge].map(|w| (w, f))),
             }
         }
         let mut openings = Vec::new();

@@ -25,9 +25,11 @@ mod estimate;
 #[cfg(test)]
 mod fixtures;
 mod regular;
+mod surfaces;
 
 pub(crate) use check::{check_face, FaceProblem};
 pub(crate) use estimate::estimate;
+pub(crate) use surfaces::{mesh_surfaces, Meshed};
 
 use crate::geometry::{aspect, Polygon, Vec3};
 use cut::cut;

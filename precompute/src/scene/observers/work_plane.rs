@@ -156,7 +156,7 @@ fn plane_room<'r>(
 /// The plane's height above the floor of `room`, m: below its ceiling.
 fn plane_height(ctx: &Ctx, what: &str, wp: &WorkPlaneDef, room: &Room) -> Result<f64, SceneError> {
     let height = ctx.length(&wp.height, &format!("{what}.work_plane.height"))?;
-    if height >= room.ceiling - room.floor {
+    if height >= room.lowest_ceiling() - room.floor {
         return Err(SceneError::OutOfRange {
             at: ctx.at(&wp.height),
             field: format!("{what}.work_plane.height"),

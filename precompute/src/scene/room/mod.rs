@@ -9,9 +9,13 @@
 //! faces come in the box's order with the box's corners, so both spellings give the same
 //! patches and the same basis bytes (walls keep the names the plan gives them).
 //!
-//! Sources of other shapes (sloped ceilings, imported shells) fit the same type as more
-//! [`FaceKind`]s; today every room is a prism on its plan.
+//! A plan room may have a sloped or pitched ceiling instead of a height (`ceiling_planes`):
+//! the lowest of a few planes over each point of the plan ([`ceiling`]). Its ceiling is then
+//! one face per plane, each the plan clipped to where that plane is the lowest, and each wall
+//! the polygon under the ceiling's broken line over its edge (a trapezoid under a single
+//! slope, a pentagon under a gable).
 
+pub(crate) mod ceiling;
 mod plan;
 
 use geo::coordinate_position::CoordPos;
@@ -19,11 +23,12 @@ use toml::Spanned;
 
 use super::context::{Ctx, RawSurface};
 use super::error::{Location, SceneError};
-use super::file::RoomDef;
+use super::file::{CeilingPlaneDef, RoomDef};
 use super::openings::CONTACT_TOLERANCE;
 use super::primitives::{box_corners, box_faces};
 use crate::geometry::Vec3;
 
+pub(crate) use ceiling::CeilingPlane;
 pub(crate) use plan::{Plan, PlanProblem, Point2};
 
 /// What a room face is.
@@ -33,6 +38,11 @@ pub(crate) enum FaceKind {
     Floor,
     /// The ceiling, facing down.
     Ceiling,
+    /// The part of a sloped ceiling under plane `index` of [`Room::roof`], facing down.
+    CeilingPlane {
+        /// Index of the plane in [`Room::roof`].
+        index: usize,
+    },
     /// The wall standing on edge `edge` of the plan (counter-clockwise numbering).
     Wall {
         /// Index of the edge in [`Plan::corners`] order.
@@ -52,11 +62,27 @@ pub(crate) struct RoomFace {
     pub material: String,
     pub material_at: Location,
     /// Its outline, metres, wound so that its normal points into the room (the floor and the
-    /// ceiling of a plan room: the plan itself, which may be concave).
+    /// ceiling of a plan room: the plan itself, which may be concave; a sloped ceiling's
+    /// face: the first of its convex pieces).
     pub outline: Vec<Vec3>,
 }
 
-/// A closed room: a prism on a floor plan, seen from inside.
+impl RoomFace {
+    /// A face that is no wall (a floor, a ceiling or a ceiling plane's part) named `suffix`,
+    /// of the material `end` names (with where it was named), around `outline` (m).
+    fn end(kind: FaceKind, suffix: &str, end: &(String, Location), outline: Vec<Vec3>) -> Self {
+        RoomFace {
+            suffix: suffix.to_owned(),
+            kind,
+            material: end.0.clone(),
+            material_at: end.1.clone(),
+            outline,
+        }
+    }
+}
+
+/// A closed room: a prism on a floor plan (under a flat or a sloped ceiling), seen from
+/// inside.
 #[derive(Clone, Debug)]
 pub(crate) struct Room {
     /// Its name; its faces are `<name>.<suffix>`.
@@ -65,16 +91,19 @@ pub(crate) struct Room {
     pub at: Location,
     /// Its floor plan, counter-clockwise seen from above, metres.
     pub plan: Plan,
-    /// The floor's and the ceiling's z, metres.
+    /// The floor's and the ceiling's z, metres (a sloped ceiling's highest point).
     pub floor: f64,
     pub ceiling: f64,
+    /// The planes of a sloped ceiling (empty: the ceiling is flat at `ceiling`).
+    pub roof: Vec<CeilingPlane>,
     /// Its bounding box, metres.
     pub lo: Vec3,
     pub hi: Vec3,
     /// Whether the plan is an axis-aligned rectangle: the room is then meshed, cut by its
     /// openings and by the blocks standing on it as a box.
     pub is_box: bool,
-    /// Floor, ceiling, then the walls (in the box's order for a box, in plan order else).
+    /// Floor, ceiling (one face per plane of a sloped ceiling), then the walls (in the box's
+    /// order for a box, in plan order else).
     pub faces: Vec<RoomFace>,
     /// Longest patch edge of its faces, metres (`None`: the scene's).
     pub max_edge: Option<f64>,
@@ -100,6 +129,10 @@ impl Room {
             (Some(min), Some(max), None) => {
                 for (field, given) in [
                     ("height", r.height.as_ref().map(|h| ctx.at(h))),
+                    (
+                        "ceiling_planes",
+                        r.ceiling_planes.as_ref().map(|h| ctx.at(h)),
+                    ),
                     ("level", r.level.as_ref().map(|h| ctx.at(h))),
                     ("wall_names", r.wall_names.as_ref().map(|h| ctx.at(h))),
                     (
@@ -125,7 +158,7 @@ impl Room {
                 Ok(base.boxed(plan, lo.z, hi.z, &ends(ctx, r), label))
             }
             (None, None, Some(plan)) => {
-                let (plan, floor, ceiling) = read_plan(ctx, &what, def, plan)?;
+                let (plan, floor, height) = read_plan(ctx, &what, def, plan)?;
                 let n = plan.len();
                 let names = per_edge(ctx, &what, "wall_names", r.wall_names.as_ref(), n)?;
                 let materials =
@@ -138,7 +171,24 @@ impl Room {
                     let material = materials.map_or(walls, |l| &l[w]);
                     (name, material.get_ref().clone(), ctx.at(material))
                 };
-                Ok(base.laid_out(plan, floor, ceiling, &ends(ctx, r), label))
+                match (height, &r.ceiling_planes) {
+                    (Some(height), _) => {
+                        Ok(base.laid_out(plan, floor, floor + height, &ends(ctx, r), label))
+                    }
+                    (None, Some(list)) => {
+                        let planes = read_ceiling_planes(ctx, &what, list)?;
+                        let at = ctx.at(list);
+                        let field = format!("{what}.ceiling_planes");
+                        base.sloped(plan, floor, planes, &ends(ctx, r), label)
+                            .map_err(|message| SceneError::Invalid { at, field, message })
+                    }
+                    // `read_plan` refuses a plan with neither.
+                    (None, None) => Err(invalid(
+                        ctx.at(def),
+                        "height",
+                        "a room given by its `plan` needs its `height`".into(),
+                    )),
+                }
             }
             _ => Err(invalid(
                 ctx.at(def),
@@ -168,6 +218,26 @@ impl Room {
         base.laid_out(plan, floor, ceiling, ends, |_, edge| wall(edge))
     }
 
+    /// A room built by an importer under a sloped ceiling: as [`Room::from_plan`], the
+    /// ceiling the lowest of `planes` over each point. An error (a message) names the plane or
+    /// corner at fault.
+    pub fn from_sloped_plan(
+        name: String,
+        at: Location,
+        plan: Plan,
+        floor: f64,
+        planes: Vec<CeilingPlane>,
+        ends: &Ends,
+        wall: impl Fn(usize) -> (String, String, Location),
+    ) -> Result<Room, String> {
+        let base = RoomBase {
+            name,
+            at,
+            max_edge: None,
+        };
+        base.sloped(plan, floor, planes, ends, |_, edge| wall(edge))
+    }
+
     /// [`CONTACT_TOLERANCE`] of its diagonal, metres.
     pub fn tolerance(&self) -> f64 {
         CONTACT_TOLERANCE * (self.hi - self.lo).length()
@@ -185,6 +255,7 @@ impl Room {
                 faces: match (self.is_box, f.kind) {
                     (false, FaceKind::Floor) => self.floor_faces(&[]),
                     (false, FaceKind::Ceiling) => self.ceiling_faces(&[]),
+                    (_, FaceKind::CeilingPlane { index }) => self.plane_faces(index, &[]),
                     _ => vec![f.outline.clone()],
                 },
                 max_edge: self.max_edge,
@@ -221,10 +292,47 @@ impl Room {
             .collect()
     }
 
+    /// The part of a sloped ceiling under plane `index` of [`Room::roof`] less `holes`
+    /// (convex, plan coordinates in metres) in convex pieces, facing down.
+    pub fn plane_faces(&self, index: usize, holes: &[Vec<Point2>]) -> Vec<Vec<Vec3>> {
+        let plane = &self.roof[index];
+        self.plan
+            .convex_pieces_within(&plane.cell, holes, self.tolerance())
+            .into_iter()
+            .map(|p| {
+                p.iter()
+                    .rev()
+                    .map(|&c| Vec3::new(c[0], c[1], plane.z(c)))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The ceiling's z over the plan point `p` (m), m.
+    pub fn ceiling_at(&self, p: Point2) -> f64 {
+        if self.roof.is_empty() {
+            self.ceiling
+        } else {
+            ceiling::lowest(&self.roof, p)
+        }
+    }
+
+    /// The ceiling's lowest z over the plan, m: over one of its corners (the lowest of planes
+    /// is concave).
+    pub fn lowest_ceiling(&self) -> f64 {
+        self.plan
+            .corners
+            .iter()
+            .map(|&c| self.ceiling_at(c))
+            .fold(self.ceiling, f64::min)
+    }
+
     /// Whether `p` (m) is inside the room or on its faces, within [`Room::tolerance`].
     pub fn contains(&self, p: Vec3) -> bool {
         let tol = self.tolerance();
-        p.z >= self.floor - tol && p.z <= self.ceiling + tol && self.plan.holds([p.x, p.y], tol)
+        p.z >= self.floor - tol
+            && p.z <= self.ceiling_at([p.x, p.y]) + tol
+            && self.plan.holds([p.x, p.y], tol)
     }
 
     /// Whether `p` (m) is strictly inside: inside and farther than the tolerance from every
@@ -232,15 +340,19 @@ impl Room {
     pub fn strictly_contains(&self, p: Vec3) -> bool {
         let tol = self.tolerance();
         p.z > self.floor + tol
-            && p.z < self.ceiling - tol
+            && p.z < self.ceiling_at([p.x, p.y]) - tol
             && self.plan.position([p.x, p.y], tol) == CoordPos::Inside
     }
 
     /// Whether the box `lo`..`hi` (m) is inside the room (it may touch its faces).
     pub fn holds_box(&self, lo: Vec3, hi: Vec3) -> bool {
         let tol = self.tolerance();
+        // The lowest of planes is concave: over a rectangle it is lowest at a corner.
+        let under = [[lo.x, lo.y], [hi.x, lo.y], [hi.x, hi.y], [lo.x, hi.y]]
+            .iter()
+            .all(|&c| hi.z <= self.ceiling_at(c) + tol);
         lo.z >= self.floor - tol
-            && hi.z <= self.ceiling + tol
+            && under
             && self.plan.holds_rectangle([lo.x, lo.y], [hi.x, hi.y], tol)
     }
 
@@ -256,6 +368,13 @@ impl Room {
                 };
                 (p.z - z).abs() <= tol && self.plan.holds([p.x, p.y], tol)
             }
+            FaceKind::CeilingPlane { index } => {
+                let plane = &self.roof[index];
+                let q = [p.x, p.y];
+                (p.z - plane.z(q)).abs() <= tol
+                    && plane.holds(&self.roof, q, tol)
+                    && self.plan.holds(q, tol)
+            }
             FaceKind::Wall { edge } => {
                 let (a, b) = self.plan.edge(edge);
                 let along = Vec3::new(b[0] - a[0], b[1] - a[1], 0.0);
@@ -267,7 +386,7 @@ impl Room {
                     && s >= -tol
                     && s <= length + tol
                     && p.z >= self.floor - tol
-                    && p.z <= self.ceiling + tol
+                    && p.z <= self.ceiling_at([p.x, p.y]) + tol
             }
         }
     }
@@ -304,11 +423,18 @@ impl Room {
                 .iter()
                 .map(|c| [c[0] / unit, c[1] / unit])
                 .collect();
+            let top = if self.roof.is_empty() {
+                format!("{}", self.ceiling / unit)
+            } else {
+                format!(
+                    "its sloped ceiling (highest at z = {})",
+                    self.ceiling / unit
+                )
+            };
             format!(
-                "`{}` has the plan {corners:?} from z = {} to {}",
+                "`{}` has the plan {corners:?} from z = {} to {top}",
                 self.name,
                 self.floor / unit,
-                self.ceiling / unit
             )
         }
     }
@@ -384,32 +510,24 @@ impl RoomBase {
         let faces = box_faces(lo, hi)
             .into_iter()
             .map(|(suffix, _, corners)| {
-                let (kind, suffix, material, material_at) = match suffix {
-                    "floor" | "ceiling" => {
-                        let (kind, (m, at)) = if suffix == "floor" {
-                            (FaceKind::Floor, &ends.floor)
-                        } else {
-                            (FaceKind::Ceiling, &ends.ceiling)
-                        };
-                        (kind, suffix.to_owned(), m.clone(), at.clone())
+                let outline = corners.to_vec();
+                let edge = match suffix {
+                    "floor" => return RoomFace::end(FaceKind::Floor, suffix, &ends.floor, outline),
+                    "ceiling" => {
+                        return RoomFace::end(FaceKind::Ceiling, suffix, &ends.ceiling, outline)
                     }
-                    _ => {
-                        let edge = match suffix {
-                            "wall_xmin" => edge_at(0, lo.x),
-                            "wall_xmax" => edge_at(0, hi.x),
-                            "wall_ymin" => edge_at(1, lo.y),
-                            _ => edge_at(1, hi.y),
-                        };
-                        let (name, material, at) = label(suffix, edge);
-                        (FaceKind::Wall { edge }, name, material, at)
-                    }
+                    "wall_xmin" => edge_at(0, lo.x),
+                    "wall_xmax" => edge_at(0, hi.x),
+                    "wall_ymin" => edge_at(1, lo.y),
+                    _ => edge_at(1, hi.y),
                 };
+                let (suffix, material, material_at) = label(suffix, edge);
                 RoomFace {
                     suffix,
-                    kind,
+                    kind: FaceKind::Wall { edge },
                     material,
                     material_at,
-                    outline: corners.to_vec(),
+                    outline,
                 }
             })
             .collect();
@@ -421,6 +539,7 @@ impl RoomBase {
             ceiling,
             lo,
             hi,
+            roof: Vec::new(),
             is_box: true,
             faces,
             max_edge: self.max_edge,
@@ -444,24 +563,20 @@ impl RoomBase {
                 .collect()
         };
         let mut faces = Vec::with_capacity(plan.len() + 2);
-        let (material, material_at) = ends.floor.clone();
-        faces.push(RoomFace {
-            suffix: "floor".into(),
-            kind: FaceKind::Floor,
-            material,
-            material_at,
-            outline: at(floor),
-        });
-        let (material, material_at) = ends.ceiling.clone();
+        faces.push(RoomFace::end(
+            FaceKind::Floor,
+            "floor",
+            &ends.floor,
+            at(floor),
+        ));
         let mut down = at(ceiling);
         down.reverse();
-        faces.push(RoomFace {
-            suffix: "ceiling".into(),
-            kind: FaceKind::Ceiling,
-            material,
-            material_at,
-            outline: down,
-        });
+        faces.push(RoomFace::end(
+            FaceKind::Ceiling,
+            "ceiling",
+            &ends.ceiling,
+            down,
+        ));
         for edge in 0..plan.len() {
             let (a, b) = plan.edge(edge);
             let (suffix, material, material_at) = label("", edge);
@@ -488,6 +603,7 @@ impl RoomBase {
             ceiling,
             lo: Vec3::new(lo2[0], lo2[1], floor),
             hi: Vec3::new(hi2[0], hi2[1], ceiling),
+            roof: Vec::new(),
             is_box: false,
             faces,
             max_edge: self.max_edge,
@@ -495,14 +611,225 @@ impl RoomBase {
     }
 }
 
-/// Reads and checks `room.plan` with `room.height` and `room.level`: the plan (metres, wound
-/// counter-clockwise) and the floor's and ceiling's z (m).
+impl RoomBase {
+    /// The room on `plan` from `floor` (m) up to the lowest of `planes` over each point:
+    /// floor, one ceiling face per plane, then one wall per plan edge as in
+    /// [`RoomBase::prism`], each wall's top following the ceiling. Errors (as messages)
+    /// name the plane or the corner at fault.
+    fn sloped(
+        self,
+        plan: Plan,
+        floor: f64,
+        mut planes: Vec<CeilingPlane>,
+        ends: &Ends,
+        label: impl Fn(&str, usize) -> (String, String, Location),
+    ) -> Result<Room, String> {
+        let (lo2, hi2) = plan.bounds();
+        let size = (hi2[0] - lo2[0]).hypot(hi2[1] - lo2[1]);
+        let top = plan
+            .corners
+            .iter()
+            .map(|&c| ceiling::lowest(&planes, c))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let tol = CONTACT_TOLERANCE * size.hypot(top - floor);
+        // The roof may come down to the floor along an edge (an attic without knee walls),
+        // not through it.
+        for &c in &plan.corners {
+            let z = ceiling::lowest(&planes, c);
+            if z < floor - tol {
+                return Err(format!(
+                    "the ceiling is at z = {z} m over the plan corner {c:?} m, not above the \
+                     floor (z = {floor} m)"
+                ));
+            }
+        }
+        ceiling::set_cells(
+            &mut planes,
+            [lo2[0] - size, lo2[1] - size],
+            [hi2[0] + size, hi2[1] + size],
+        );
+        let mut faces = Vec::with_capacity(plan.len() + planes.len() + 1);
+        let outline = plan.corners.iter().map(|c| Vec3::new(c[0], c[1], floor));
+        faces.push(RoomFace::end(
+            FaceKind::Floor,
+            "floor",
+            &ends.floor,
+            outline.collect(),
+        ));
+        let mut all_pieces = Vec::new();
+        for (index, plane) in planes.iter().enumerate() {
+            let pieces = plan.convex_pieces_within(&plane.cell, &[], tol);
+            let Some(first) = pieces.first() else {
+                return Err(format!(
+                    "ceiling plane `{}` is the ceiling nowhere: over every point of the plan \
+                     another plane is lower (or the same)",
+                    plane.suffix
+                ));
+            };
+            let outline = first
+                .iter()
+                .rev()
+                .map(|&c| Vec3::new(c[0], c[1], plane.z(c)))
+                .collect();
+            all_pieces.extend(pieces.iter().map(|p| {
+                p.iter()
+                    .rev()
+                    .map(|&c| Vec3::new(c[0], c[1], plane.z(c)))
+                    .collect::<Vec<_>>()
+            }));
+            faces.push(RoomFace::end(
+                FaceKind::CeilingPlane { index },
+                &plane.suffix,
+                &ends.ceiling,
+                outline,
+            ));
+        }
+        for edge in 0..plan.len() {
+            let (a, b) = plan.edge(edge);
+            // Seen from the room: a low, up to the ceiling, along under it, b low; where the
+            // ceiling meets the floor the wall has no side there (a triangle under a gable
+            // that comes down to the floor), or no area at all (no wall).
+            let top: Vec<Vec3> = ceiling::over_edge(&planes, a, b, tol)
+                .into_iter()
+                .map(|(p, z)| Vec3::new(p[0], p[1], z))
+                .collect();
+            if top.iter().all(|p| p.z <= floor + tol) {
+                continue;
+            }
+            let (suffix, material, material_at) = label("", edge);
+            let mut outline = vec![Vec3::new(a[0], a[1], floor)];
+            let last = top.len() - 1;
+            outline.extend(
+                top.iter()
+                    .enumerate()
+                    .filter(|&(k, p)| (k != 0 && k != last) || p.z > floor + tol)
+                    .map(|(_, &p)| p),
+            );
+            outline.push(Vec3::new(b[0], b[1], floor));
+            faces.push(RoomFace {
+                suffix,
+                kind: FaceKind::Wall { edge },
+                material,
+                material_at,
+                outline,
+            });
+        }
+        // A closed shell wound one way has area vectors summing to zero.
+        let vector_area = |p: &[Vec3]| {
+            let polygon = crate::geometry::Polygon::new(p.to_vec());
+            polygon.normal() * polygon.area()
+        };
+        let shells = faces
+            .iter()
+            .filter(|f| !matches!(f.kind, FaceKind::CeilingPlane { .. }))
+            .map(|f| f.outline.as_slice())
+            .chain(all_pieces.iter().map(Vec::as_slice));
+        let (mut sum, mut total) = (Vec3::new(0.0, 0.0, 0.0), 0.0);
+        for p in shells {
+            sum += vector_area(p);
+            total += crate::geometry::Polygon::new(p.to_vec()).area();
+        }
+        if sum.length() > 1e-9 * total {
+            return Err(format!(
+                "the floor, the walls and the ceiling planes do not close the room: their \
+                 area vectors sum to {:?} m² (the planes may cross below a wall's top)",
+                sum.to_array()
+            ));
+        }
+        let high = faces
+            .iter()
+            .flat_map(|f| &f.outline)
+            .chain(all_pieces.iter().flatten())
+            .map(|p| p.z)
+            .fold(top, f64::max);
+        if high <= floor + tol {
+            return Err(format!(
+                "the ceiling is nowhere above the floor (z = {floor} m): the room has no volume"
+            ));
+        }
+        Ok(Room {
+            name: self.name,
+            at: self.at,
+            floor,
+            ceiling: high,
+            lo: Vec3::new(lo2[0], lo2[1], floor),
+            hi: Vec3::new(hi2[0], hi2[1], high),
+            plan,
+            roof: planes,
+            is_box: false,
+            faces,
+            max_edge: self.max_edge,
+        })
+    }
+}
+
+/// Reads and checks `room.ceiling_planes`: the planes (metres), named.
+fn read_ceiling_planes(
+    ctx: &Ctx,
+    what: &str,
+    list: &Spanned<Vec<Spanned<CeilingPlaneDef>>>,
+) -> Result<Vec<CeilingPlane>, SceneError> {
+    let defs = list.get_ref();
+    if defs.is_empty() {
+        return Err(SceneError::Invalid {
+            at: ctx.at(list),
+            field: format!("{what}.ceiling_planes"),
+            message: "lists no plane: give at least one, or `height` for a flat ceiling".into(),
+        });
+    }
+    let mut planes: Vec<CeilingPlane> = Vec::with_capacity(defs.len());
+    for (k, def) in defs.iter().enumerate() {
+        let d = def.get_ref();
+        let field = format!("{what}.ceiling_planes[{}]", k + 1);
+        let suffix = d.name.clone().unwrap_or_else(|| {
+            if defs.len() == 1 {
+                "ceiling".into()
+            } else {
+                format!("ceiling_{}", k + 1)
+            }
+        });
+        let invalid = |message: String| SceneError::Invalid {
+            at: ctx.at(def),
+            field: field.clone(),
+            message,
+        };
+        if planes.iter().any(|p| p.suffix == suffix) {
+            return Err(invalid(format!(
+                "the name `{suffix}` is already another plane's"
+            )));
+        }
+        let [a, b, c] = &d.through[..] else {
+            return Err(invalid(format!(
+                "`through` gives {} points; a plane is given by three",
+                d.through.len()
+            )));
+        };
+        let p = [
+            ctx.point(a, &format!("{field}.through"))?,
+            ctx.point(b, &format!("{field}.through"))?,
+            ctx.point(c, &format!("{field}.through"))?,
+        ];
+        let plane = CeilingPlane::through(suffix, p).ok_or_else(|| {
+            invalid(
+                "its three points lie on one line or in a vertical plane: a ceiling plane \
+                 needs three points not on one line, not all straight above each other"
+                    .into(),
+            )
+        })?;
+        planes.push(plane);
+    }
+    Ok(planes)
+}
+
+/// Reads and checks `room.plan` with `room.height` (or `room.ceiling_planes`) and
+/// `room.level`: the plan (metres, wound counter-clockwise), the floor's z and the height
+/// (m; `None` under ceiling planes).
 fn read_plan(
     ctx: &Ctx,
     what: &str,
     def: &Spanned<RoomDef>,
     plan: &Spanned<Vec<Vec<f64>>>,
-) -> Result<(Plan, f64, f64), SceneError> {
+) -> Result<(Plan, f64, Option<f64>), SceneError> {
     let r = def.get_ref();
     let field = format!("{what}.plan");
     let mut corners = Vec::with_capacity(plan.get_ref().len());
@@ -521,14 +848,28 @@ fn read_plan(
         let p = ctx.coordinates([x, y, 0.0], plan, &field)?;
         corners.push([p.x, p.y]);
     }
-    let Some(height) = &r.height else {
-        return Err(SceneError::Invalid {
-            at: ctx.at(def),
-            field: format!("{what}.height"),
-            message: "a room given by its `plan` needs its `height` (floor to ceiling)".into(),
-        });
+    let height = match (&r.height, &r.ceiling_planes) {
+        (Some(height), None) => Some(ctx.length(height, &format!("{what}.height"))?),
+        (None, Some(_)) => None,
+        (Some(height), Some(_)) => {
+            return Err(SceneError::Invalid {
+                at: ctx.at(height),
+                field: format!("{what}.height"),
+                message: "give either `height` (a flat ceiling) or `ceiling_planes` (a sloped \
+                 one), not both"
+                    .into(),
+            })
+        }
+        (None, None) => {
+            return Err(SceneError::Invalid {
+                at: ctx.at(def),
+                field: format!("{what}.height"),
+                message: "a room given by its `plan` needs its `height` (floor to ceiling) or \
+                 its `ceiling_planes`"
+                    .into(),
+            })
+        }
     };
-    let height = ctx.length(height, &format!("{what}.height"))?;
     let floor = match &r.level {
         Some(l) => {
             ctx.coordinates([0.0, 0.0, *l.get_ref()], l, &format!("{what}.level"))?
@@ -541,7 +882,7 @@ fn read_plan(
         written_edge: Vec::new(),
     }
     .bounds();
-    let diagonal = Vec3::new(hi[0] - lo[0], hi[1] - lo[1], height).length();
+    let diagonal = Vec3::new(hi[0] - lo[0], hi[1] - lo[1], height.unwrap_or(0.0)).length();
     let plan = Plan::new(&corners, CONTACT_TOLERANCE * diagonal).map_err(|problem| {
         SceneError::Invalid {
             at: ctx.at(plan),
@@ -549,7 +890,7 @@ fn read_plan(
             message: problem.to_string(),
         }
     })?;
-    Ok((plan, floor, floor + height))
+    Ok((plan, floor, height))
 }
 
 /// A per-edge list (`wall_names` or `wall_materials`) checked to have one entry per plan edge.

@@ -234,6 +234,40 @@ impl Plan {
         pieces_of(&region)
     }
 
+    /// The part of the plan inside the convex polygon `cell` (m, counter-clockwise) less the
+    /// `holes`, in convex pieces as [`Plan::convex_pieces`]; corners within `tol` (m) of a
+    /// corner of the plan, the cell or a hole are that corner exactly.
+    pub fn convex_pieces_within(
+        &self,
+        cell: &[Point2],
+        holes: &[Vec<Point2>],
+        tol: f64,
+    ) -> Vec<Vec<Point2>> {
+        if cell.len() < 3 {
+            return Vec::new();
+        }
+        let clip = GeoPolygon::new(line_string(cell), Vec::new());
+        let mut region = self.polygon().intersection(&clip);
+        if !holes.is_empty() {
+            let cut = MultiPolygon::new(
+                holes
+                    .iter()
+                    .map(|h| GeoPolygon::new(line_string(h), Vec::new()))
+                    .collect(),
+            );
+            region = region.difference(&cut);
+        }
+        let known: Vec<Point2> = self
+            .corners
+            .iter()
+            .chain(cell)
+            .chain(holes.iter().flatten())
+            .copied()
+            .collect();
+        snap(&mut region, &known, tol);
+        pieces_of(&region)
+    }
+
     /// The plan less a band of `margin` (m) along its edges, in convex pieces as
     /// [`Plan::convex_pieces`]: geo's inward buffer (round at the plan's reflex corners,
     /// where the points `margin` from the walls lie on a quarter circle).
