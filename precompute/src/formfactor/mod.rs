@@ -297,7 +297,7 @@ pub fn patch_form_factors_hierarchical(
 }
 
 /// Pairs [`occluded_share`] samples.
-const SAMPLED_PAIRS: usize = 4096;
+pub const SAMPLED_PAIRS: usize = 4096;
 
 /// The share of the pairs of patches facing each other that have a blocker in their shaft
 /// (dimensionless): [`SAMPLED_PAIRS`] pairs drawn from a fixed sequence, so that the same
