@@ -275,11 +275,8 @@ glass = {{ reflectance = 0.08, transmittance = 0.6 }}
     let scene = load(&path).unwrap_or_else(|e| panic!("{e}"));
     let area = |name: &str| -> f64 {
         scene
-            .patches
-            .iter()
-            .filter(|p| scene.surfaces[p.surface].name == name)
-            .map(|p| p.area)
-            .sum()
+            .surface_area(name)
+            .unwrap_or_else(|| panic!("no surface `{name}`"))
     };
     let attic: Vec<(&str, f64)> = scene
         .surfaces

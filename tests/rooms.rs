@@ -252,11 +252,8 @@ corners = [[2, 0.5, 2.8], [2, 1.5, 3.4], [4, 1.5, 3.4], [4, 0.5, 2.8]]
     let scene = load(&path).unwrap();
     let area_of = |name: &str| -> f64 {
         scene
-            .patches
-            .iter()
-            .filter(|p| scene.surfaces[p.surface].name == name)
-            .map(|p| p.area)
-            .sum()
+            .surface_area(name)
+            .unwrap_or_else(|| panic!("no surface `{name}`"))
     };
     let total: f64 = scene.patches.iter().map(|p| p.area).sum();
     println!(

@@ -293,6 +293,20 @@ pub struct Scene {
     pub warnings: Vec<String>,
 }
 
+impl Scene {
+    /// The area (m²) of the surface named `name`, summed over its patches; `None` when the
+    /// scene has no surface of that name.
+    pub fn surface_area(&self, name: &str) -> Option<f64> {
+        let surface = self.surfaces.iter().find(|s| s.name == name)?;
+        Some(
+            self.patches[surface.patch_range.clone()]
+                .iter()
+                .map(|p| p.area)
+                .sum(),
+        )
+    }
+}
+
 /// Reads, validates and meshes the scene file at `path`.
 ///
 /// OBJ files it names are found relative to its folder.

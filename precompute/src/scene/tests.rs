@@ -34,7 +34,7 @@ fn patches<'s>(scene: &'s Scene, name: &str) -> &'s [Patch] {
 }
 
 fn area(scene: &Scene, name: &str) -> f64 {
-    patches(scene, name).iter().map(|p| p.area).sum()
+    scene.surface_area(name).expect("surface in scene")
 }
 
 #[test]
