@@ -60,6 +60,24 @@ pub(crate) struct RawSurface {
     pub exterior: bool,
 }
 
+impl RawSurface {
+    /// Its material among `materials`, or the error naming the surface and where the material
+    /// was named.
+    pub fn material_in<'m>(
+        &self,
+        materials: &'m std::collections::BTreeMap<String, MaterialInfo>,
+    ) -> Result<&'m MaterialInfo, SceneError> {
+        materials
+            .get(&self.material)
+            .ok_or_else(|| SceneError::Unknown {
+                at: self.material_at.clone(),
+                field: format!("surface `{}`.material", self.name),
+                kind: "material",
+                name: self.material.clone(),
+            })
+    }
+}
+
 impl Ctx<'_> {
     /// The location of a spanned value.
     pub fn at<T>(&self, s: &Spanned<T>) -> Location {

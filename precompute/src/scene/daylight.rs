@@ -380,14 +380,7 @@ pub(crate) fn obstructions(
                     .into(),
             ));
         }
-        let Some(material) = materials.get(&s.material) else {
-            return Err(SceneError::Unknown {
-                at: s.material_at.clone(),
-                field: format!("surface `{}`.material", s.name),
-                kind: "material",
-                name: s.material.clone(),
-            });
-        };
+        let material = s.material_in(materials)?;
         if material.emission.iter().any(|&e| e > 0.0) {
             return Err(invalid(
                 &s.material_at,

@@ -40,14 +40,7 @@ pub(crate) fn mesh_surfaces(
     let mut reflectance = Vec::new();
     let mut material_emission = Vec::with_capacity(raw.len());
     for (index, s) in raw.iter().enumerate() {
-        let Some(material) = materials.get(&s.material) else {
-            return Err(SceneError::Unknown {
-                at: s.material_at.clone(),
-                field: format!("surface `{}`.material", s.name),
-                kind: "material",
-                name: s.material.clone(),
-            });
-        };
+        let material = s.material_in(materials)?;
         if s.faces.is_empty() {
             return Err(SceneError::BadFace {
                 at: s.at.clone(),
