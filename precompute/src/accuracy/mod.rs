@@ -8,6 +8,7 @@ pub mod daylight;
 pub mod metric;
 pub mod rng;
 pub mod runtime_eval;
+pub mod sky;
 
 use crate::radiosity::eigen::EigenError;
 use crate::radiosity::model::Model;

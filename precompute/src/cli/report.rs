@@ -114,6 +114,22 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             d.sun_step_deg[1],
             d.bytes
         );
+        if let Some(e) = &d.sky_discretisation {
+            // The node tables are as wide as the nodes; the direct sun's tables are apart.
+            let tables = d.bytes - d.direct_sun.as_ref().map_or(0, |t| t.bytes);
+            let _ = writeln!(
+                s,
+                "  sky patches chosen for --sky-tolerance: Reinhart MF:{}, the direct daylight of {} readings under {} reference skies within {:.3} % of MF:{} (mean {:.3} %); the sky's columns take about {} of the {} bytes",
+                e.subdivision,
+                e.readings,
+                e.skies,
+                100.0 * e.max,
+                e.reference,
+                100.0 * e.mean,
+                tables * d.sky_patches / d.nodes.max(1),
+                d.bytes
+            );
+        }
         if let Some(direct) = &d.direct_sun {
             let _ = writeln!(
                 s,

@@ -62,6 +62,16 @@ pub enum ModeSelection {
     Tolerance(f64),
 }
 
+/// Which sky patches a basis with daylight stores.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SkySelection {
+    /// Reinhart MF:n (1: Tregenza's 145 patches).
+    Subdivision(u8),
+    /// The coarsest of MF:1, 2 and 4 whose sky-discretisation error at the outputs
+    /// ([`accuracy::sky::SkyDiscretisation`]) is at most this (relative).
+    Tolerance(f64),
+}
+
 /// Options of a build.
 #[derive(Clone, Debug)]
 pub struct BuildOptions {
@@ -83,6 +93,8 @@ pub struct BuildOptions {
     /// Degrees between the sun grid's declinations and between its hour angles, for a scene
     /// with daylight (`--sun-step`).
     pub sun_step: [f64; 2],
+    /// The sky's patches a basis with daylight stores (`--mf`, `--sky-tolerance`).
+    pub sky: SkySelection,
     /// The flash the basis should fit (`--flash`): a build that would not fit says so before
     /// its form factors, naming the sections and what would bring it under.
     pub flash: FlashBudget,
@@ -101,6 +113,7 @@ impl Default for BuildOptions {
             random_patterns: 4,
             grids: true,
             sun_step: sources::daylight::nodes::DEFAULT_SUN_STEP,
+            sky: SkySelection::Subdivision(1),
             flash: FlashBudget::DEFAULT,
             narration: Narration::Silent,
         }
@@ -376,18 +389,25 @@ pub fn build_tables_and<T>(
     };
     let daylight = if scene.site.is_some() && !scene.windows.is_empty() {
         Some(stages.run("daylight through the windows", None, || {
-            let nodes = sources::daylight::nodes::nodes(
+            let daylight_opts = sources::daylight::DaylightOptions::default();
+            let (sky, discretisation) =
+                accuracy::sky::choose(&scene, &occluders, opts.sky, &daylight_opts)?;
+            let nodes = sources::daylight::nodes::nodes_with_sky(
                 &scene,
                 &occluders,
-                eigenrad_runtime::sky::patches::SkyPatches::TREGENZA,
+                sky,
                 opts.sun_step,
-                &sources::daylight::DaylightOptions::default(),
+                &daylight_opts,
             );
             let responses = system.light_responses(0, &nodes.lights)?;
-            Ok::<_, Error>(basis::BasisDaylight { nodes, responses })
+            Ok::<_, Error>((basis::BasisDaylight { nodes, responses }, discretisation))
         })?)
     } else {
         None
+    };
+    let (daylight, sky_discretisation) = match daylight {
+        Some((d, error)) => (Some(d), error),
+        None => (None, None),
     };
     let extra = match stage {
         Some(stage) => stages.run(stage, None, || also(&scene, &system, daylight.as_ref()))?,
@@ -409,6 +429,7 @@ pub fn build_tables_and<T>(
         None => None,
         Some(d) => Some(stages.run("daylight through the runtime", None, || {
             DaylightReport::of(d, daylight_bytes, &scene, &occluders, &model, &bytes)
+                .map(|r| r.with_sky_discretisation(sky_discretisation))
         })?),
     };
     let sensor_ratios = stages.run("sensor ratios through the runtime", None, || {

@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use super::{BuildOptions, ModeSelection, TOLERANCE_MAX_MODES};
+use super::{BuildOptions, ModeSelection, SkySelection, TOLERANCE_MAX_MODES};
 use crate::flash::FlashBudget;
 use crate::formfactor::{outputs, Storage};
 use crate::scene::Scene;
@@ -276,7 +276,7 @@ impl Plan {
                 .iter()
                 .filter(|r| r.contains(&0.0))
                 .count() as f64,
-            daylight_nodes: daylight_nodes(scene, opts.sun_step) as f64,
+            daylight_nodes: daylight_nodes(scene, opts.sun_step, opts.sky) as f64,
             value_bytes: opts.precision.bytes() as f64,
         };
         let basis = BasisSize::of(counts(modes));
@@ -400,10 +400,11 @@ impl Plan {
     }
 }
 
-/// Nodes of the daylight the basis will carry: the Tregenza sky's 145 patches, the exterior,
-/// and the sun grid's nodes above the horizon (those that light nothing are dropped later,
-/// so this is an upper bound); 0 without a site and windows.
-fn daylight_nodes(scene: &Scene, sun_step: [f64; 2]) -> usize {
+/// Nodes of the daylight the basis will carry: the sky's patches (of `--mf`; the coarsest
+/// candidate for `--sky-tolerance`, whose choice is made later), the exterior, and the sun
+/// grid's nodes above the horizon (those that light nothing are dropped later, so this
+/// part is an upper bound); 0 without a site and windows.
+fn daylight_nodes(scene: &Scene, sun_step: [f64; 2], sky: SkySelection) -> usize {
     let Some(site) = scene.site.as_ref() else {
         return 0;
     };
@@ -418,7 +419,13 @@ fn daylight_nodes(scene: &Scene, sun_step: [f64; 2]) -> usize {
                 .is_some()
         })
         .count();
-    eigenrad_runtime::sky::patches::SkyPatches::TREGENZA.count() + 1 + suns
+    let subdivision = match sky {
+        SkySelection::Subdivision(n) => n,
+        SkySelection::Tolerance(_) => crate::accuracy::sky::CANDIDATES[0],
+    };
+    let patches =
+        eigenrad_runtime::sky::patches::SkyPatches::reinhart(subdivision).map_or(0, |p| p.count());
+    patches + 1 + suns
 }
 
 /// Bytes in the binary unit a part's flash is sold in, as the budget prints: `96 KiB`,

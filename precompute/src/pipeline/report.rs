@@ -137,6 +137,9 @@ pub struct DaylightReport {
     pub sun_interpolation: crate::accuracy::daylight::SunInterpolation,
     /// A sky state read through the runtime against the exact solve.
     pub check: crate::accuracy::daylight::DaylightCheck,
+    /// The sky patches' discretisation error at the outputs, when the build chose them from
+    /// a tolerance (`--sky-tolerance`); `None` for a subdivision taken as given.
+    pub sky_discretisation: Option<crate::accuracy::sky::SkyDiscretisation>,
 }
 
 impl DaylightReport {
@@ -179,7 +182,19 @@ impl DaylightReport {
                 scene, occluders, model, d, bytes,
             )?,
             check: accuracy::daylight::through_runtime(bytes, model, d)?,
+            sky_discretisation: None,
         })
+    }
+
+    /// The report with the sky's discretisation error the build measured, if it did.
+    pub(super) fn with_sky_discretisation(
+        self,
+        error: Option<crate::accuracy::sky::SkyDiscretisation>,
+    ) -> DaylightReport {
+        DaylightReport {
+            sky_discretisation: error,
+            ..self
+        }
     }
 }
 

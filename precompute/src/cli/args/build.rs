@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use super::groups::{help, CacheArgs, JsonFlag};
 use crate::cli::{self, atomic, guard};
 use crate::flash::FlashBudget;
-use crate::pipeline::{self, BuildOptions, ModeSelection, Narration};
+use crate::pipeline::{self, BuildOptions, ModeSelection, Narration, SkySelection};
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::scene;
 use crate::sources::daylight::nodes::DEFAULT_SUN_STEP;
@@ -50,6 +50,15 @@ pub(super) struct BuildArgs {
     /// flash (the build reports both). Default 5.86,7.5.
     #[arg(long, value_name = "DECLINATION,HOUR", value_parser = sun_step)]
     sun_step: Option<[f64; 2]>,
+    /// Sky patches a basis with daylight stores: Reinhart subdivision MF:n, 1 (Tregenza's
+    /// 145 patches) to 8 (144 n² + 1 patches). Default 1.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..=8), conflicts_with = "sky_tolerance")]
+    mf: Option<u8>,
+    /// Instead of --mf: the coarsest of MF:1, 2 and 4 whose direct daylight at the outputs
+    /// under the reference skies is within this relative error of the next finer
+    /// subdivision (docs/math.md, "Choosing the sky's patches"); the build reports it.
+    #[arg(long, value_parser = positive_fraction)]
+    sky_tolerance: Option<f64>,
     /// Flash the basis should fit, in bytes or with KiB, MiB, kB or MB (the build says
     /// before its form factors whether the basis will fit, and what would make it fit).
     #[arg(long, value_name = "SIZE", default_value_t = FlashBudget::DEFAULT)]
@@ -94,6 +103,10 @@ impl BuildArgs {
         BuildOptions {
             grids: !self.no_grids,
             sun_step: self.sun_step.unwrap_or(DEFAULT_SUN_STEP),
+            sky: match (self.mf, self.sky_tolerance) {
+                (_, Some(t)) => SkySelection::Tolerance(t),
+                (n, None) => SkySelection::Subdivision(n.unwrap_or(1)),
+            },
             modes: match (self.modes, self.tolerance) {
                 (Some(p), _) => ModeSelection::Count(p),
                 (None, Some(t)) => ModeSelection::Tolerance(t),

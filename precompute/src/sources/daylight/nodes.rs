@@ -8,7 +8,7 @@ use eigenrad_runtime::sky::patches::SkyPatches;
 use eigenrad_runtime::sky::sun_grid::SunGrid;
 use rayon::prelude::*;
 
-use super::{sky_response, sun_light, DaylightOptions};
+use super::{sky_response, sun_light, DaylightOptions, SkyResponse};
 use crate::formfactor::Occluders;
 use crate::geometry::Vec3;
 use crate::scene::{Scene, Site};
@@ -93,11 +93,28 @@ pub fn nodes(
     sun_step: [f64; 2],
     opts: &DaylightOptions,
 ) -> DaylightNodes {
+    let sky = sky_response(scene, occluders, patches, opts);
+    nodes_with_sky(scene, occluders, sky, sun_step, opts)
+}
+
+/// Every daylight node of `scene` (which has a site), its sky's response `sky` already
+/// computed (as [`sky_response`] gives it), its sun grid stepped by `sun_step`.
+///
+/// # Panics
+///
+/// As [`nodes`].
+pub fn nodes_with_sky(
+    scene: &Scene,
+    occluders: &Occluders,
+    sky: SkyResponse,
+    sun_step: [f64; 2],
+    opts: &DaylightOptions,
+) -> DaylightNodes {
     let site = scene
         .site
         .as_ref()
         .expect("daylight nodes need the scene's site");
-    let sky = sky_response(scene, occluders, patches, opts);
+    let patches = sky.patches;
     let grid = sun_grid(site, sun_step);
     let suns: Vec<(u32, ChannelLight)> = (0..grid.len())
         .into_par_iter()
