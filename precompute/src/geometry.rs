@@ -116,7 +116,7 @@ impl Neg for Vec3 {
 }
 
 /// Axis-aligned bounding box, metres.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
     /// Lowest corner.
     pub min: Vec3,

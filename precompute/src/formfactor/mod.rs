@@ -42,8 +42,8 @@ mod shadow;
 mod tests;
 mod visibility;
 
-pub use bvh::Occluders;
 pub(crate) use bvh::Shaft;
+pub use bvh::{Occluders, Solid};
 pub use hierarchical::Hierarchical;
 pub(crate) use kernel::point_to_polygon;
 pub use operator::{DenseF32, FormFactorOperator, OperatorChoice, Storage};
@@ -278,7 +278,8 @@ pub fn patch_form_factors_hierarchical(
     let clear = |a: &[Vec3], a_normal: Vec3, b: &[Vec3], b_normal: Vec3| {
         occluders.shaft(a, a_normal, b, b_normal, &[]).is_clear()
     };
-    let hidden = |a: &[Vec3], b: &[Vec3]| occluders.one_blocker_hides(a, b);
+    let hidden =
+        |a: &[Vec3], b: &[Vec3]| occluders.one_blocker_hides(a, b) || occluders.solid_hides(a, b);
     let occlusion = hierarchical::Occlusion {
         clear: &clear,
         hidden: &hidden,
@@ -300,7 +301,7 @@ pub fn patch_form_factors_hierarchical(
 pub const SAMPLED_PAIRS: usize = 4096;
 
 /// The share of the pairs of patches facing each other that have a blocker in their shaft
-/// (dimensionless): [`SAMPLED_PAIRS`] pairs drawn from a fixed sequence, so that the same
+/// and are not hidden whole by a solid ([`Solid`], 0 at once) (dimensionless): [`SAMPLED_PAIRS`] pairs drawn from a fixed sequence, so that the same
 /// scene gives the same figure. Such a pair's integral runs the exact visibility at every
 /// quadrature point, about ten times a clear pair's work
 /// ([`crate::pipeline::time_model::OCCLUDED_PAIR_COST`]).
@@ -337,6 +338,7 @@ pub fn occluded_share(patches: &[Patch], occluders: &Occluders) -> f64 {
         if !occluders
             .shaft(av, a.normal, bv, b.normal, &[i, j])
             .is_clear()
+            && !occluders.solid_hides(av, bv)
         {
             occluded += 1;
         }

@@ -238,6 +238,11 @@ impl Context<'_> {
         }
         let shaft = self.occluders.shaft(sv, src.normal, tv, tgt.normal, ignore);
         let occluded = !shaft.is_clear();
+        // A closed box that every segment between the two runs through hides the pair whole
+        // (`bvh::Solid`): no shadow is cast at any point.
+        if occluded && self.occluders.solid_hides(sv, tv) {
+            return 0.0;
+        }
         let touches = self.touches(src, sources.bounds[i], j);
         let mut order = self.source_order(sources.bounds[i], j, touches);
         if occluded && order <= self.opts.gauss_order {

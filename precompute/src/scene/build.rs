@@ -18,6 +18,7 @@ use super::{
     channels, daylight, import, limits, luminaires, obj, observers, openings, primitives, winding,
 };
 use super::{Adjacency, Bands, Luminaire, Scene, Window};
+use crate::formfactor::Solid;
 use crate::geometry::{Aabb, Face, Patch, Vec3};
 
 /// Default planarity tolerance: a corner may sit 0.1 % of the face's diagonal off its plane.
@@ -95,6 +96,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
     )?;
 
     let layout = Layout::of(&geometry.rooms, &inside, &claimed);
+    let solids = inside_solids(&file, &geometry);
     Ok(Scene {
         name: file.scene.name,
         bands,
@@ -112,6 +114,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         windows,
         obstructions,
         layout,
+        solids,
         adjacency: geometry.adjacency,
         warnings: geometry.warnings,
     })
@@ -274,6 +277,22 @@ fn inside_blocks(file: &SceneFile, geometry: &Geometry) -> Vec<(String, Vec3, Ve
         .zip(&file.block)
         .filter(|(_, def)| !def.get_ref().exterior)
         .map(|(b, _)| b.clone())
+        .collect()
+}
+
+/// The blocks inside the rooms as solids: every face of a block is a patch of the scene but
+/// the bottom or top it leaves out.
+fn inside_solids(file: &SceneFile, geometry: &Geometry) -> Vec<Solid> {
+    geometry
+        .blocks
+        .iter()
+        .zip(&file.block)
+        .filter(|(_, def)| !def.get_ref().exterior)
+        .map(|((_, lo, hi), def)| Solid {
+            bounds: Aabb { min: *lo, max: *hi },
+            open_below: !def.get_ref().bottom,
+            open_above: !def.get_ref().top,
+        })
         .collect()
 }
 

@@ -286,6 +286,9 @@ pub struct Scene {
     pub obstructions: Vec<Obstruction>,
     /// The rooms, their blocks and openings seen from above, for plans.
     pub layout: layout::Layout,
+    /// The blocks inside the rooms as closed boxes of blockers, for occlusion
+    /// ([`crate::formfactor::Occluders::with_solids`]), in file order.
+    pub solids: Vec<crate::formfactor::Solid>,
     /// The faces of imported rooms shared with another space of their model.
     pub adjacency: Vec<Adjacency>,
     /// What the `[[import]]`s' models hold and could not be mapped (shades, air boundaries,

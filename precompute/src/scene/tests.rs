@@ -374,3 +374,21 @@ fn scene_flip_reverses_normals() {
         .iter()
         .all(|p| (p.normal - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-15));
 }
+
+/// Reference: the file itself. The open-plan floor's blocks are its solids, in file order,
+/// open below (`bottom = false`: they stand on the floor) and closed above, with the corners
+/// the file gives (the first desk's and the last tower's).
+#[test]
+fn blocks_inside_the_rooms_are_solids() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scaling/open-plan-10k.toml");
+    let scene = load(&path).expect("the open-plan floor loads");
+    assert_eq!(scene.solids.len(), 51);
+    assert_eq!(scene.solids.len(), scene.layout.blocks.len());
+    assert!(scene.solids.iter().all(|s| s.open_below && !s.open_above));
+    let (first, last) = (scene.solids[0].bounds, scene.solids[50].bounds);
+    assert_eq!(
+        (first.min, first.max),
+        (Vec3::new(1.5, 3.0, 0.0), Vec3::new(3.1, 3.8, 0.75))
+    );
+    assert_eq!(last.max.z, 2.0);
+}

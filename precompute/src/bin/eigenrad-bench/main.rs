@@ -11,6 +11,8 @@
 //! - `eigenrad-bench eigen SCENE...`: dense against partial eigensolve on the same matrix.
 //! - `eigenrad-bench compress SCENE...`: the hierarchical form-factor operator against a dense
 //!   one: memory, form-factor time, every channel's readings, the strongest eigenvalues.
+//! - `eigenrad-bench sight SCENE...`: the hierarchical form factors without and with the
+//!   scene's blocks as solids: CPU time, entries read, blocks, and how far the products move.
 //! - `eigenrad-bench daylight SCENE...`: the room's response to the sky (Tregenza, Reinhart
 //!   MF:2) and to one sun direction, against the time to prepare the scene.
 //! - `eigenrad-bench building MANIFEST`: a building's rooms one after the other against all
@@ -23,6 +25,7 @@ mod compress;
 mod daylight;
 mod eigen;
 mod scale;
+mod sight;
 mod update;
 
 use std::path::PathBuf;
@@ -85,6 +88,12 @@ enum Command {
         #[arg(long, value_enum, default_value_t = OperatorChoice::DenseF32)]
         reference: OperatorChoice,
     },
+    /// The hierarchical form factors of each scene without and with its blocks as solids:
+    /// CPU time, entries read, blocks, and the largest difference of their products.
+    Sight {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+    },
     /// A building's rooms built one after the other, then all at once: wall times, the
     /// speed-up, and each controller's basis size.
     Building {
@@ -119,6 +128,10 @@ fn main() -> Result<()> {
         Command::Compress { scenes, reference } => {
             machine();
             compress::run(&scenes, reference)?;
+        }
+        Command::Sight { scenes } => {
+            machine();
+            sight::run(&scenes)?;
         }
         Command::Building { manifest } => {
             machine();

@@ -82,7 +82,7 @@ fn peak_rss() -> f64 {
 }
 
 /// CPU seconds (user + system) of this process so far, from `/proc/self/stat`.
-fn cpu_seconds() -> f64 {
+pub(crate) fn cpu_seconds() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
     // Fields after the command name (which is in parentheses): utime is field 14, stime 15.
     let rest = stat.rsplit(')').next().unwrap_or("");

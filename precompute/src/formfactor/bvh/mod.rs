@@ -9,10 +9,12 @@
 //! and every shaft far cheaper, and it is exact, because the patches of a face tile it.
 
 mod shaft;
+mod solid;
 
 use crate::geometry::{Aabb, Face, Patch, Vec3};
 
 pub(crate) use shaft::Shaft;
+pub use solid::Solid;
 
 /// What the hierarchy needs of a box besides [`Aabb`]'s own: planes and segments.
 impl Aabb {
@@ -132,6 +134,8 @@ pub struct Occluders {
     nodes: Vec<Node>,
     /// Geometric tolerance, metres (1e-9 of the scene's bounding-box diagonal).
     tolerance: f64,
+    /// Closed boxes among the blockers ([`Occluders::with_solids`]).
+    solids: Vec<Solid>,
 }
 
 impl Occluders {
@@ -202,6 +206,7 @@ impl Occluders {
             face_of_patch,
             nodes: Vec::new(),
             tolerance,
+            solids: Vec::new(),
         };
         if !occluders.blockers.is_empty() {
             let n = occluders.blockers.len();

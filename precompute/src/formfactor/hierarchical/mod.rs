@@ -213,7 +213,8 @@ pub(super) struct Occlusion<'a> {
     /// `clear(a, a_normal, b, b_normal)`: no blocker can cut a segment from `a` to `b` (the
     /// normals: the unit normals of their lit sides).
     pub(super) clear: &'a ClearBetween<'a>,
-    /// `hidden(a, b)`: one blocker cuts every segment from `a` to `b`.
+    /// `hidden(a, b)`: one blocker, or one closed box of blockers, cuts every segment from `a`
+    /// to `b`.
     pub(super) hidden: &'a (dyn Fn(&[Vec3], &[Vec3]) -> bool + Sync),
 }
 

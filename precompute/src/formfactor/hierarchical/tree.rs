@@ -12,8 +12,8 @@
 //! Occlusion makes the kernel of a well-separated pair discontinuous wherever a blocker's
 //! silhouette crosses it, and such a block is of high rank. So an admissible pair is first
 //! classified by what lies between its clusters ([`Sight`]): *dark* when the clusters face
-//! away from each other or one blocker hides each from the other (every entry is 0, nothing
-//! is read), *clear* when no blocker can cut a
+//! away from each other or one blocker, or one closed box of blockers (a desk), hides each
+//! from the other (every entry is 0, nothing is read), *clear* when no blocker can cut a
 //! segment between them (the kernel is smooth: low rank), and *mixed* otherwise, split
 //! further like an inadmissible pair, so that only the parts a silhouette crosses are stored
 //! dense and the rest of the block still compresses.
@@ -115,8 +115,8 @@ impl Plate {
 /// What lies between two well-separated clusters (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Sight {
-    /// The clusters face away from each other, or one blocker hides each from the other:
-    /// every entry is 0.
+    /// The clusters face away from each other, or one blocker or one solid hides each from
+    /// the other: every entry is 0.
     Dark,
     /// No blocker can cut a segment between them.
     Clear,
@@ -324,7 +324,8 @@ pub(super) type ClearBetween<'a> = dyn Fn(&[Vec3], Vec3, &[Vec3], Vec3) -> bool 
 /// metres, and the unit normals of the sides that emit and receive); `dark_tolerance` is the
 /// height in metres up to which a corner counts as in a plane (below every pair integral's own
 /// tolerance, so that a block called dark is one whose pair integrals all return 0);
-/// `hidden(a, b)` says whether one blocker cuts every segment between the polygons.
+/// `hidden(a, b)` says whether one blocker, or one closed box of blockers, cuts every segment
+/// between the polygons.
 pub(super) struct Seeing<'a> {
     pub(super) clear: &'a ClearBetween<'a>,
     pub(super) hidden: &'a (dyn Fn(&[Vec3], &[Vec3]) -> bool + Sync),
