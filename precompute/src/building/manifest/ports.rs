@@ -26,6 +26,9 @@ pub(super) struct PortDef {
     /// Share of the light reaching the opening that passes (1: an open door).
     #[serde(default)]
     transmittance: Option<Spanned<f64>>,
+    /// Number of direction bins of the light crossing it (1: diffuse).
+    #[serde(default)]
+    directions: Option<Spanned<i64>>,
 }
 
 /// A port: an opening shared by two rooms (an open door, internal glazing) through which
@@ -42,6 +45,11 @@ pub struct Port {
     /// Share of the flux reaching the opening from one side that leaves it on the other, in
     /// (0, 1] (1 for an open door).
     pub transmittance: f64,
+    /// Number of direction bins the light crossing it is resolved into, from 1 (diffuse: what
+    /// enters a room is re-emitted as Lambertian) to
+    /// [`MAX_DIRECTIONS`](crate::building::port::MAX_DIRECTIONS) (docs/math.md, "Directional
+    /// ports").
+    pub directions: usize,
     /// Where the manifest names it.
     pub at: Location,
 }
@@ -255,6 +263,23 @@ pub(super) fn check(
                 value
             }
         };
+        let directions = match &p.directions {
+            None => crate::building::port::DEFAULT_DIRECTIONS,
+            Some(d) => {
+                let value = *d.get_ref();
+                let max = crate::building::port::MAX_DIRECTIONS;
+                match usize::try_from(value) {
+                    Ok(v) if (1..=max).contains(&v) => v,
+                    _ => return Err(wrong(
+                        d.span().start,
+                        format!("{item}: directions"),
+                        format!(
+                            "{value} is not a number of direction bins from 1 (diffuse) to {max}"
+                        ),
+                    )),
+                }
+            }
+        };
         for other in &ports {
             for side in 0..2 {
                 let (room, opening) = (joined[side], openings[side].get_ref());
@@ -272,6 +297,7 @@ pub(super) fn check(
             rooms: joined,
             openings: openings.map(|o| o.get_ref().clone()),
             transmittance,
+            directions,
             at: at(offset),
         });
     }
