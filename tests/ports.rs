@@ -8,7 +8,8 @@
 //!   independently of the merge's port system), within 1e-4 at every sensor, zone and grid
 //!   point.
 //! - Against the two rooms as one scene whose doorway is a real hole, the difference the
-//!   diffuse port makes is measured and held to its stated bound.
+//!   diffuse port makes is measured and held to its stated bound, and a directional port
+//!   (direction bins, docs/math.md "Directional ports") errs less.
 //! - One machine or two shards give the same bytes; without the port the rooms are
 //!   independent; bad ports are errors naming the manifest's line and item.
 
@@ -60,6 +61,9 @@ const TESTED_DIRECTIONS: usize = 5;
 /// The other room's light through a door of [`TESTED_DIRECTIONS`] bins against the hole:
 /// measured (docs/accuracy.md, "Ports") with a margin.
 const DIRECTIONAL_THROUGH_DOOR_TOLERANCE: f64 = 1.0;
+/// The other room's light at the sensors and zones through a door of [`TESTED_DIRECTIONS`]
+/// bins against the hole: measured (41 %) with a margin; the diffuse port errs by 49 %.
+const DIRECTIONAL_SENSORS_AND_ZONES_TOLERANCE: f64 = 0.45;
 /// Both channels at level 1 through a door of [`TESTED_DIRECTIONS`] bins: measured with a
 /// margin.
 const DIRECTIONAL_BOTH_TOLERANCE: f64 = 0.15;
@@ -805,6 +809,16 @@ impl AgainstTheHole {
         self.worst(&|g, w| relative(g[1], w[1]))
     }
 
+    /// Largest relative difference of the other room's channel at the sensors and zones (the
+    /// grid points left out): what a controller's photocell and its zone figures read.
+    fn neighbour_at_sensors_and_zones(&self) -> f64 {
+        self.rows
+            .iter()
+            .filter(|(name, _, _)| name.contains(": sensor ") || name.contains(": zone "))
+            .map(|(_, got, want)| relative(got[1], want[1]))
+            .fold(0.0, f64::max)
+    }
+
     /// Largest relative difference of the other room's channel over its largest reading in
     /// the room: the error in lux at a point, as a share of what the door brings at its
     /// brightest, which does not grow where the neighbour's light is faint.
@@ -869,13 +883,14 @@ fn a_directional_port_against_the_open_doorway() {
         [
             h.own(),
             h.neighbour(),
+            h.neighbour_at_sensors_and_zones(),
             h.neighbour_of_brightest(),
             h.total(),
         ]
         .map(|x| 100.0 * x)
     };
     eprintln!(
-        "against the open doorway, largest relative difference (own channel, other room's, other room's over its brightest reading, both), %: diffuse {:.2?}, {TESTED_DIRECTIONS} directions {:.2?}",
+        "against the open doorway, largest relative difference (own channel, other room's, other room's at sensors and zones, other room's over its brightest reading, both), %: diffuse {:.2?}, {TESTED_DIRECTIONS} directions {:.2?}",
         figures(&diffuse),
         figures(&directional)
     );
@@ -886,7 +901,13 @@ fn a_directional_port_against_the_open_doorway() {
         directional.neighbour()
     );
     assert!(
-        directional.neighbour_of_brightest() < diffuse.neighbour_of_brightest(),
+        directional.neighbour_at_sensors_and_zones() <= DIRECTIONAL_SENSORS_AND_ZONES_TOLERANCE,
+        "light through the door at the sensors and zones: {:.3e}",
+        directional.neighbour_at_sensors_and_zones()
+    );
+    assert!(
+        directional.neighbour_at_sensors_and_zones() < diffuse.neighbour_at_sensors_and_zones()
+            && directional.neighbour_of_brightest() < diffuse.neighbour_of_brightest(),
         "the directional port errs more than the diffuse one"
     );
     assert!(directional.total() <= DIRECTIONAL_BOTH_TOLERANCE);
@@ -899,15 +920,16 @@ fn a_directional_port_against_the_open_doorway() {
 #[test]
 #[ignore]
 fn doorway_error_by_directions() {
-    println!("| directions | own channel | other room's channel | other room's, over its brightest reading | both channels |");
-    println!("|---|---|---|---|---|");
+    println!("| directions | own channel | other room's channel | other room's at sensors and zones | other room's, over its brightest reading | both channels |");
+    println!("|---|---|---|---|---|---|");
     for directions in [1, 2, 3, 5, 9, 17, 33] {
         let (manifest, out) = door_with_directions("ports-by-directions", directions);
         let hole = AgainstTheHole::measure(&manifest, &out);
         println!(
-            "| {directions} | {:.2} % | {:.1} % | {:.1} % | {:.2} % |",
+            "| {directions} | {:.2} % | {:.1} % | {:.1} % | {:.1} % | {:.2} % |",
             100.0 * hole.own(),
             100.0 * hole.neighbour(),
+            100.0 * hole.neighbour_at_sensors_and_zones(),
             100.0 * hole.neighbour_of_brightest(),
             100.0 * hole.total()
         );
@@ -1196,19 +1218,15 @@ fn bad_ports_name_the_manifest_line_and_item() {
     for bad in ["0", "65", "-1", "2.5"] {
         let m = with(&format!("{PORT}directions = {bad}\n"));
         let o2 = dir.join("out-directions");
-        let expected: &[&str] = if bad == "2.5" {
-            &["building.toml:30:", "directions"]
-        } else {
-            &[
-                "building.toml:30:",
-                "port door: directions",
-                "not a number of direction bins from 1 (diffuse) to 64",
-            ]
-        };
+        let expected = [
+            "building.toml:29:",
+            "port door: directions",
+            "not a number of direction bins from 1 (diffuse) to 64",
+        ];
         common::refused(
             &["building", &m, "--out", o2.to_str().expect("utf-8")],
             &o2,
-            expected,
+            &expected,
         );
     }
     let _ = std::fs::remove_dir_all(&dir);

@@ -26,9 +26,10 @@ pub(super) struct PortDef {
     /// Share of the light reaching the opening that passes (1: an open door).
     #[serde(default)]
     transmittance: Option<Spanned<f64>>,
-    /// Number of direction bins of the light crossing it (1: diffuse).
+    /// Number of direction bins of the light crossing it (1: diffuse). Read as a number, so
+    /// that `2.5` is refused naming the field, as `0` is.
     #[serde(default)]
-    directions: Option<Spanned<i64>>,
+    directions: Option<Spanned<f64>>,
 }
 
 /// A port: an opening shared by two rooms (an open door, internal glazing) through which
@@ -268,15 +269,16 @@ pub(super) fn check(
             Some(d) => {
                 let value = *d.get_ref();
                 let max = crate::building::port::MAX_DIRECTIONS;
-                match usize::try_from(value) {
-                    Ok(v) if (1..=max).contains(&v) => v,
-                    _ => return Err(wrong(
+                if value.fract() == 0.0 && (1.0..=max as f64).contains(&value) {
+                    value as usize
+                } else {
+                    return Err(wrong(
                         d.span().start,
                         format!("{item}: directions"),
                         format!(
                             "{value} is not a number of direction bins from 1 (diffuse) to {max}"
                         ),
-                    )),
+                    ));
                 }
             }
         };

@@ -2,10 +2,12 @@
 //! coupled through ports").
 //!
 //! A port's opening is a black quad in each of its two rooms: light reaching it from inside
-//! leaves the room. Each room's build answers for its ports' patches ([`respond`]): the flux
-//! each of its channels and each of its daylight nodes sends onto every port patch, and, for
-//! unit diffuse exitance entering through each port patch, what the room reads at every
-//! output, its exitance on every patch and the flux it sends back onto every port patch. The
+//! leaves the room. Each room's build answers for its ports' patches ([`respond`]), each
+//! resolved into its port's direction bins ([`directions`]; one bin, diffuse, by default): the
+//! flux each of its channels and each of its daylight nodes sends onto every port patch in
+//! every bin, and, for unit exitance entering through each port patch in each bin, what the
+//! room reads at every output, its exitance on every patch and the flux it sends back onto
+//! every port patch in every bin. The
 //! merge ([`couple`]) solves the small system of the exitances entering through every port
 //! patch, per channel and daylight node of the building, and adds what they give to each
 //! room's channel responses and daylight rows: the controllers' bases are cut from these
