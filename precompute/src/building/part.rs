@@ -22,8 +22,8 @@ use crate::atomic;
 const MAGIC: &[u8] = b"EIGENRAD PART\n";
 
 /// The layout of [`Part`]: 2 since the ports' responses hold the daylight's flux onto the
-/// port patches.
-const PART_FORMAT: u32 = 2;
+/// port patches, 3 since they are resolved into the ports' direction bins.
+const PART_FORMAT: u32 = 3;
 
 /// The program that builds parts: a part of another version is refused. The basis format's
 /// version and the part's layout are part of it, since the tables and the part follow them.

@@ -134,16 +134,24 @@ fn build_room(
     };
     // Hashed before the build: a scene edited while it is built is refused at the merge.
     let scene_hash = part::scene_hash(&room.scene).map_err(fail)?;
-    let openings: Vec<(String, String)> = manifest
+    let openings: Vec<port::PortAsked> = manifest
         .ports
         .iter()
-        .filter_map(|p| Some((p.name.clone(), p.opening_in(r)?.to_string())))
+        .filter_map(|p| {
+            Some(port::PortAsked {
+                port: p.name.clone(),
+                surface: p.opening_in(r)?.to_string(),
+                directions: p.directions,
+            })
+        })
         .collect();
     let (built, ports) = pipeline::build_tables_and(
         &room.scene,
         options,
         Some("responses at the ports"),
-        |scene, system, daylight| port::respond(scene, system, daylight, &openings),
+        |scene, occluders, system, daylight| {
+            port::respond(scene, occluders, system, daylight, &openings)
+        },
     )
     .map_err(fail)?;
     let part = Part {

@@ -322,18 +322,18 @@ pub struct Built {
 /// Runs the whole build as [`build`] does and keeps the tables too (a building cuts its
 /// controllers' bases from them). Writes nothing.
 pub fn build_tables(path: &Path, opts: &BuildOptions) -> Result<Built> {
-    build_tables_and(path, opts, None, |_, _, _| Ok(())).map(|(built, ())| built)
+    build_tables_and(path, opts, None, |_, _, _, _| Ok(())).map(|(built, ())| built)
 }
 
-/// [`build_tables`], and `also` asked of the meshed scene, its radiosity system and its
-/// daylight (when the basis carries one) once the channels' and the daylight's exact responses
+/// [`build_tables`], and `also` asked of the meshed scene, its occluders, its radiosity system
+/// and its daylight (when the basis carries one) once the channels' and the daylight's exact responses
 /// are solved (a building's room answers for its ports there), told as the stage `stage` when
 /// it is one.
 pub fn build_tables_and<T>(
     path: &Path,
     opts: &BuildOptions,
     stage: Option<&'static str>,
-    also: impl FnOnce(&Scene, &System, Option<&basis::BasisDaylight>) -> Result<T>,
+    also: impl FnOnce(&Scene, &Occluders, &System, Option<&basis::BasisDaylight>) -> Result<T>,
 ) -> Result<(Built, T)> {
     let mut stages = Stages::new(opts.narration);
     let prepared = prepare_stages(path, opts, &mut stages)?;
@@ -410,8 +410,10 @@ pub fn build_tables_and<T>(
         None => (None, None),
     };
     let extra = match stage {
-        Some(stage) => stages.run(stage, None, || also(&scene, &system, daylight.as_ref()))?,
-        None => also(&scene, &system, daylight.as_ref())?,
+        Some(stage) => stages.run(stage, None, || {
+            also(&scene, &occluders, &system, daylight.as_ref())
+        })?,
+        None => also(&scene, &occluders, &system, daylight.as_ref())?,
     };
     let (tables, bytes, daylight_bytes) =
         stages.run("serialization", Some(expected.serialization), || {

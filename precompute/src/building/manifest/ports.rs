@@ -26,6 +26,10 @@ pub(super) struct PortDef {
     /// Share of the light reaching the opening that passes (1: an open door).
     #[serde(default)]
     transmittance: Option<Spanned<f64>>,
+    /// Number of direction bins of the light crossing it (1: diffuse). Read as a number, so
+    /// that `2.5` is refused naming the field, as `0` is.
+    #[serde(default)]
+    directions: Option<Spanned<f64>>,
 }
 
 /// A port: an opening shared by two rooms (an open door, internal glazing) through which
@@ -42,6 +46,11 @@ pub struct Port {
     /// Share of the flux reaching the opening from one side that leaves it on the other, in
     /// (0, 1] (1 for an open door).
     pub transmittance: f64,
+    /// Number of direction bins the light crossing it is resolved into, from 1 (diffuse: what
+    /// enters a room is re-emitted as Lambertian) to
+    /// [`MAX_DIRECTIONS`](crate::building::port::MAX_DIRECTIONS) (docs/math.md, "Directional
+    /// ports").
+    pub directions: usize,
     /// Where the manifest names it.
     pub at: Location,
 }
@@ -255,6 +264,24 @@ pub(super) fn check(
                 value
             }
         };
+        let directions = match &p.directions {
+            None => crate::building::port::DEFAULT_DIRECTIONS,
+            Some(d) => {
+                let value = *d.get_ref();
+                let max = crate::building::port::MAX_DIRECTIONS;
+                if value.fract() == 0.0 && (1.0..=max as f64).contains(&value) {
+                    value as usize
+                } else {
+                    return Err(wrong(
+                        d.span().start,
+                        format!("{item}: directions"),
+                        format!(
+                            "{value} is not a number of direction bins from 1 (diffuse) to {max}"
+                        ),
+                    ));
+                }
+            }
+        };
         for other in &ports {
             for side in 0..2 {
                 let (room, opening) = (joined[side], openings[side].get_ref());
@@ -272,6 +299,7 @@ pub(super) fn check(
             rooms: joined,
             openings: openings.map(|o| o.get_ref().clone()),
             transmittance,
+            directions,
             at: at(offset),
         });
     }

@@ -1,5 +1,5 @@
 //! The merge's side of the ports: the small system of the exitances entering through every
-//! port patch, solved per channel and daylight node of the building, and what it adds to each
+//! port patch in every direction bin, solved per channel and daylight node of the building, and what it adds to each
 //! room's tables (docs/math.md, "Rooms coupled through ports").
 
 use eigenrad_runtime::writer::BasisTables;
@@ -18,12 +18,13 @@ use crate::radiosity::model::amplitude_weight;
 const PATCH_MATCH_TOLERANCE: f64 = 1e-6;
 
 /// One unknown of the port system: the exitance entering room `rooms[side]` of port `port`
-/// through its patch `patch` (numbered as in the port's first room).
+/// through its patch `patch` (numbered as in the port's first room) in direction bin `bin`.
 #[derive(Clone, Copy, Debug)]
 struct Entering {
     port: usize,
     side: usize,
     patch: usize,
+    bin: usize,
 }
 
 /// What the merge made of the ports: every room's tables with the light its ports bring.
@@ -56,24 +57,27 @@ pub fn couple(
     }
     // Each part must answer for exactly the manifest's ports of its room.
     for (r, part) in parts.iter().enumerate() {
-        let wanted: Vec<(String, String)> = manifest
+        let wanted: Vec<(String, String, usize)> = manifest
             .ports
             .iter()
-            .filter_map(|p| Some((p.name.clone(), p.opening_in(r)?.to_string())))
+            .filter_map(|p| Some((p.name.clone(), p.opening_in(r)?.to_string(), p.directions)))
             .collect();
-        let held: Vec<(String, String)> = part
+        let held: Vec<(String, String, usize)> = part
             .ports
             .openings
             .iter()
-            .map(|o| (o.port.clone(), o.surface.clone()))
+            .map(|o| (o.port.clone(), o.surface.clone(), o.directions))
             .collect();
         if wanted != held {
-            let list = |l: &[(String, String)]| {
+            let list = |l: &[(String, String, usize)]| {
                 if l.is_empty() {
                     "none".to_string()
                 } else {
                     l.iter()
-                        .map(|(p, s)| format!("{p} ({s})"))
+                        .map(|(p, s, d)| {
+                            let bins = if *d == 1 { "direction" } else { "directions" };
+                            format!("{p} ({s}, {d} {bins})")
+                        })
                         .collect::<Vec<_>>()
                         .join(", ")
                 }
@@ -157,11 +161,12 @@ pub fn couple(
         }
         matched.push(order);
     }
-    // Where patch `j` of port `p` (numbered as in its first room) lies among the port patches
-    // of its room on `side`.
-    let local = |p: usize, side: usize, j: usize| -> usize {
+    // Where bin `bin` of patch `j` of port `p` (numbered as in its first room) lies among the
+    // slots of its room on `side`.
+    let local = |p: usize, side: usize, j: usize, bin: usize| -> usize {
         let ports = &parts[manifest.ports[p].rooms[side]].ports;
-        ports.first_patch(slot[p][side]) + if side == 0 { j } else { matched[p][j] }
+        let patch = if side == 0 { j } else { matched[p][j] };
+        ports.first_slot(slot[p][side]) + patch * manifest.ports[p].directions + bin
     };
     let unknowns: Vec<Entering> = manifest
         .ports
@@ -169,11 +174,15 @@ pub fn couple(
         .enumerate()
         .flat_map(|(p, _)| {
             let patches = matched[p].len();
+            let bins = manifest.ports[p].directions;
             (0..2).flat_map(move |side| {
-                (0..patches).map(move |patch| Entering {
-                    port: p,
-                    side,
-                    patch,
+                (0..patches).flat_map(move |patch| {
+                    (0..bins).map(move |bin| Entering {
+                        port: p,
+                        side,
+                        patch,
+                        bin,
+                    })
                 })
             })
         })
@@ -218,7 +227,7 @@ pub fn couple(
     let sources = channels + parts.iter().map(|p| p.ports.daylight.len()).sum::<usize>();
     let bands = parts.iter().map(|p| p.tables.bands).max().unwrap_or(1);
     let u_count = unknowns.len();
-    // `entering[b]`: u × sources, the exitance entering through each port patch per channel
+    // `entering[b]`: u × sources, the exitance entering through each slot per channel
     // of the building at level 1 (and, in the photopic band, per daylight node at 1).
     let mut entering = Vec::with_capacity(bands);
     for b in 0..bands {
@@ -234,7 +243,9 @@ pub fn couple(
                 continue;
             }
             let ports = &parts[from].ports;
-            let j = local(u.port, from_side, u.patch);
+            // Light keeps its direction through the opening: bin `u.bin` of what leaves the
+            // other room is bin `u.bin` of what enters this one.
+            let j = local(u.port, from_side, u.patch, u.bin);
             let factor = port.transmittance / opening(u.port, 0).area[u.patch];
             for c in 0..parts[from].tables.channel_names.len() {
                 rhs[(row, first_channel[from] + c)] = factor * ports.leaving[b][c][j];
@@ -246,7 +257,7 @@ pub fn couple(
             }
             for (col, v) in unknowns.iter().enumerate() {
                 if manifest.ports[v.port].rooms[v.side] == from {
-                    let i = local(v.port, v.side, v.patch);
+                    let i = local(v.port, v.side, v.patch, v.bin);
                     system[(row, col)] -= factor * ports.returned[b][i][j];
                 }
             }
@@ -258,7 +269,7 @@ pub fn couple(
             .iter()
             .enumerate()
             .filter(|(_, u)| manifest.ports[u.port].rooms[u.side] == r)
-            .map(|(row, u)| (row, local(u.port, u.side, u.patch)))
+            .map(|(row, u)| (row, local(u.port, u.side, u.patch, u.bin)))
             .collect();
         if into.is_empty() {
             continue;
@@ -292,9 +303,9 @@ pub fn couple(
         let points = t.grid_position.len();
         let n = t.patch_area.len();
         let ports = &part.ports;
-        // What the exitance entering through the room's port patches for source `g` (a
-        // column of `entering`) adds in band `b` where the room's response to unit exitance
-        // entering through its port patch `i` is `through(i)`.
+        // What the exitance entering through the room's slots for source `g` (a column of
+        // `entering`) adds in band `b` where the room's response to unit exitance entering
+        // through its slot `i` (a port patch, in one direction bin) is `through(i)`.
         let through_ports = |b: usize, g: usize, through: &dyn Fn(usize) -> f64| -> f64 {
             into.iter()
                 .map(|&(row, i)| through(i) * entering[b][(row, g)])
@@ -386,7 +397,7 @@ pub fn couple(
             let own_nodes = ports.daylight.len();
             // `rows × D` of this room's own daylight (`old`, empty without) with every joined
             // room's daylight entering through the ports added, where row `o`'s response to
-            // unit exitance entering through port patch `i` is `response(i, o)`.
+            // unit exitance entering through slot `i` is `response(i, o)`.
             let daylight = |rows: usize, old: &[f64], response: &dyn Fn(usize, usize) -> f64| {
                 let mut out = vec![0.0; rows * d_all];
                 for o in 0..rows {
