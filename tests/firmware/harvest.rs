@@ -165,8 +165,13 @@ impl Harvest {
 
 /// `eigenrad eval BASIS --json --time TIME --cie 1 --dhi-lux D --dni-lux 0`: the daylight
 /// of the sensors and zones (lux) under the harvesting day's sky, by name.
-fn eval_overcast(basis: &Path, time: &str, diffuse: f32) -> (Vec<(String, f64)>, Vec<(String, f64)>) {
-    let json = eval_sky(basis, time, HARVEST_SKY_TYPE, diffuse, 0.0).unwrap_or_else(|e| panic!("{e}"));
+fn eval_overcast(
+    basis: &Path,
+    time: &str,
+    diffuse: f32,
+) -> (Vec<(String, f64)>, Vec<(String, f64)>) {
+    let json =
+        eval_sky(basis, time, HARVEST_SKY_TYPE, diffuse, 0.0).unwrap_or_else(|e| panic!("{e}"));
     let outputs = |key: &str| -> Vec<(String, f64)> {
         json[key]
             .as_array()
@@ -223,7 +228,13 @@ fn check_harvest(name: &str, path: &Path) -> Option<(f64, f64)> {
     let date = format!("{year:04}-{month:02}-{date:02}");
     assert_eq!(
         (h.date.as_str(), h.sky_type, h.target, h.sensor, h.zone),
-        (date.as_str(), HARVEST_SKY_TYPE, HARVEST_TARGET, sensor, zone)
+        (
+            date.as_str(),
+            HARVEST_SKY_TYPE,
+            HARVEST_TARGET,
+            sensor,
+            zone
+        )
     );
     let target = f64::from(HARVEST_TARGET);
     let weights: Vec<f64> = HARVEST_WATTS[..dimmed.len()]
@@ -249,7 +260,13 @@ fn check_harvest(name: &str, path: &Path) -> Option<(f64, f64)> {
     close(&night("sensor"), h.night_sensor, s1, HARVEST_RTOL, 1.0);
     close(&night("work plane"), h.night_zone, w1, HARVEST_RTOL, 1.0);
     close(&night("ratio"), h.ratio, s1 / w1, HARVEST_RTOL, 0.0);
-    close(&night("set point"), h.setpoint, s1 / w1 * target, HARVEST_RTOL, 1.0);
+    close(
+        &night("set point"),
+        h.setpoint,
+        s1 / w1 * target,
+        HARVEST_RTOL,
+        1.0,
+    );
 
     // The steps, hour by hour.
     let offset = offset_text(site.utc_offset_minutes.round() as i32);
@@ -296,19 +313,40 @@ fn check_harvest(name: &str, path: &Path) -> Option<(f64, f64)> {
         );
         assert!(sun.altitude > 0.0, "{time}: the sun is up");
         let diffuse = 300.0 + 21_000.0 * f64::from(sun.altitude).to_radians().sin();
-        close(&at("diffuse horizontal"), step.diffuse_horizontal, diffuse, HARVEST_RTOL, 1.0);
+        close(
+            &at("diffuse horizontal"),
+            step.diffuse_horizontal,
+            diffuse,
+            HARVEST_RTOL,
+            1.0,
+        );
         let (sensors, zones) = eval_overcast(path, &time, step.diffuse_horizontal);
         let sd = sensors[sensor].1;
         let wd = zones[zone].1;
-        close(&at("sensor daylight"), step.sensor_daylight, sd, HARVEST_DAYLIGHT_RTOL, 1.0);
-        close(&at("work-plane daylight"), step.zone_daylight, wd, HARVEST_DAYLIGHT_RTOL, 1.0);
+        close(
+            &at("sensor daylight"),
+            step.sensor_daylight,
+            sd,
+            HARVEST_DAYLIGHT_RTOL,
+            1.0,
+        );
+        close(
+            &at("work-plane daylight"),
+            step.zone_daylight,
+            wd,
+            HARVEST_DAYLIGHT_RTOL,
+            1.0,
+        );
         // The host's runtime under the same sky reads what eval reads.
         let overcast = CieSky::standard(HARVEST_SKY_TYPE, sun.direction).unwrap();
-        let zenith = overcast.zenith_luminance_for(step.diffuse_horizontal).unwrap();
+        let zenith = overcast
+            .zenith_luminance_for(step.diffuse_horizontal)
+            .unwrap();
         patches
             .luminances_at(&centres, &overcast, zenith, &mut luminance)
             .unwrap();
-        day.set_sky(&luminance, step.diffuse_horizontal, None).unwrap();
+        day.set_sky(&luminance, step.diffuse_horizontal, None)
+            .unwrap();
         close(
             &at("host runtime's work-plane daylight"),
             day.zone_illuminance(zone).unwrap(),
@@ -320,7 +358,13 @@ fn check_harvest(name: &str, path: &Path) -> Option<(f64, f64)> {
         // The model's controller: its reading at the levels of the step before; the daylight
         // it carries to the work plane is the work plane's.
         let model = &step.model;
-        close(&at("model reading"), model.reading, sd + dot(&sensor_gains, &model_levels), HARVEST_RTOL, 1.0);
+        close(
+            &at("model reading"),
+            model.reading,
+            sd + dot(&sensor_gains, &model_levels),
+            HARVEST_RTOL,
+            1.0,
+        );
         close(&at("model estimate"), model.estimate, sd, HARVEST_RTOL, 1.0);
         close(&at("model ambient"), model.ambient, wd, HARVEST_RTOL, 1.0);
         let (want, short) = greedy_levels(&zone_gains, &weights, wd, target);
@@ -332,9 +376,21 @@ fn check_harvest(name: &str, path: &Path) -> Option<(f64, f64)> {
                 dimmed[i]
             );
         }
-        close(&at("model power"), model.power, dot(&weights, &want), HARVEST_RTOL, 1.0);
+        close(
+            &at("model power"),
+            model.power,
+            dot(&weights, &want),
+            HARVEST_RTOL,
+            1.0,
+        );
         let plane = wd + dot(&zone_gains, &want);
-        close(&at("model work plane"), model.work_plane, plane, HARVEST_RTOL, 1.0);
+        close(
+            &at("model work plane"),
+            model.work_plane,
+            plane,
+            HARVEST_RTOL,
+            1.0,
+        );
         let error = plane / target - 1.0;
         assert!(
             (f64::from(model.error) - error).abs() <= HARVEST_ERROR_TOL,
@@ -350,7 +406,13 @@ fn check_harvest(name: &str, path: &Path) -> Option<(f64, f64)> {
         // The conventional controller: its reading at its level of the step before, then the
         // level at which its sensor reads the night's set point.
         let closed = &step.closed;
-        close(&at("closed-loop reading"), closed.reading, sd + closed_level * s1, HARVEST_RTOL, 1.0);
+        close(
+            &at("closed-loop reading"),
+            closed.reading,
+            sd + closed_level * s1,
+            HARVEST_RTOL,
+            1.0,
+        );
         let level = (target / w1 - sd / s1).clamp(0.0, 1.0);
         assert!(
             (f64::from(closed.level) - level).abs() <= HARVEST_LEVEL_TOL,
@@ -358,9 +420,21 @@ fn check_harvest(name: &str, path: &Path) -> Option<(f64, f64)> {
             closed.level
         );
         let power = level * weights.iter().sum::<f64>();
-        close(&at("closed-loop power"), closed.power, power, HARVEST_RTOL, 1.0);
+        close(
+            &at("closed-loop power"),
+            closed.power,
+            power,
+            HARVEST_RTOL,
+            1.0,
+        );
         let plane = wd + level * w1;
-        close(&at("closed-loop work plane"), closed.work_plane, plane, HARVEST_RTOL, 1.0);
+        close(
+            &at("closed-loop work plane"),
+            closed.work_plane,
+            plane,
+            HARVEST_RTOL,
+            1.0,
+        );
         let error = plane / target - 1.0;
         assert!(
             (f64::from(closed.error) - error).abs() <= HARVEST_ERROR_TOL,
@@ -416,7 +490,10 @@ fn parser_reads_harvest_records() {
         done\n";
     let run = FirmwareRun::parse(stdout, "");
     let h = run.harvest.unwrap();
-    assert_eq!((h.date.as_str(), h.sky_type, h.sensor, h.zone), ("2026-03-20", 1, 1, 0));
+    assert_eq!(
+        (h.date.as_str(), h.sky_type, h.sensor, h.zone),
+        ("2026-03-20", 1, 1, 0)
+    );
     assert_eq!((h.night_sensor, h.ratio, h.setpoint), (120.0, 0.2, 100.0));
     let step = &h.steps[0];
     assert_eq!(step.time, "2026-03-20T08:00+01:00");
