@@ -21,14 +21,16 @@ const HARVEST_WATTS: [f32; 8] = [36.0, 32.0, 28.0, 24.0, 20.0, 16.0, 12.0, 8.0];
 
 /// The runtime's sun position on the target against the same `f32` code on the host,
 /// degrees: the two compilations may order a sum differently, a few roundings of an `f32`
-/// angle of up to 360° (6 × 10⁻⁵° a unit in the last place at 360°).
+/// angle of up to 360° (3 × 10⁻⁵° a unit in the last place there).
 const HARVEST_SUN_TOL_DEG: f32 = 1e-3;
 /// Daylight at the sensor and on the work plane against `eigenrad eval` under the same sky,
 /// relative (floored at 1 lux): both weigh the same stored daylight; the overcast sky's
 /// luminance does not depend on where the sun is, so the firmware's sun (the runtime's) and
 /// eval's (SPA) give the same sky, and the diffuse horizontal illuminance is passed as the
 /// firmware printed it. What differs is the `f32` quadrature of the zenith luminance on two
-/// compilations and eval's `f64` patch centres: 10⁻⁶ of a reading at most.
+/// compilations and the sky's patch centres (the firmware's from `SkyPatches::centres`,
+/// eval's by its own path): roundings of `f32` sums, far below this tolerance, which still catches
+/// a wrong sky, sun or scale (each off by percents).
 const HARVEST_DAYLIGHT_RTOL: f64 = 1e-5;
 /// Levels (in [0, 1]), and the work plane's relative error, against the host's closed forms
 /// in `f64`: the firmware's are sums and ratios of `f32` readings of a few hundred lux, good
