@@ -165,16 +165,15 @@ impl Harvest {
     }
 }
 
+/// Readings by output name, lux.
+type Named = Vec<(String, f64)>;
+
 /// `eigenrad eval BASIS --json --time TIME --cie 1 --dhi-lux D --dni-lux 0`: the daylight
 /// of the sensors and zones (lux) under the harvesting day's sky, by name.
-fn eval_overcast(
-    basis: &Path,
-    time: &str,
-    diffuse: f32,
-) -> (Vec<(String, f64)>, Vec<(String, f64)>) {
+fn eval_overcast(basis: &Path, time: &str, diffuse: f32) -> (Named, Named) {
     let json =
         eval_sky(basis, time, HARVEST_SKY_TYPE, diffuse, 0.0).unwrap_or_else(|e| panic!("{e}"));
-    let outputs = |key: &str| -> Vec<(String, f64)> {
+    let outputs = |key: &str| -> Named {
         json[key]
             .as_array()
             .unwrap_or_else(|| panic!("no {key} in eval's JSON"))
