@@ -18,6 +18,8 @@
 #                         (a build of the office takes about a minute of CPU)
 #   EMBEDDED_TABLE_MODES  mode counts (default "16 32 64")
 #   EMBEDDED_TABLE_STORAGE storage precisions (default "f32 f16 i16")
+#   EIGENRAD_BIN          an eigenrad command to use instead of building one (release);
+#                         the bases it writes are the same whatever its build profile
 #
 # Progress goes to stderr; the tables go to stdout.
 set -euo pipefail
@@ -34,13 +36,17 @@ flash_limit=$((512 * 1024))
 log() { printf '== %s\n' "$*" >&2; }
 
 mkdir -p "$dir"
-log "building the eigenrad command (release)"
-(cd "$root" && cargo build --release --quiet -p eigenrad-precompute --bin eigenrad) >&2
-# Where cargo put it: CARGO_TARGET_DIR when set (relative to the workspace, where cargo ran),
-# else the workspace's target folder.
-target="${CARGO_TARGET_DIR:-target}"
-[[ $target == /* ]] || target="$root/$target"
-eigenrad="$target/release/eigenrad"
+if [[ -n ${EIGENRAD_BIN:-} ]]; then
+    eigenrad="$(realpath "$EIGENRAD_BIN")"
+else
+    log "building the eigenrad command (release)"
+    (cd "$root" && cargo build --release --quiet -p eigenrad-precompute --bin eigenrad) >&2
+    # Where cargo put it: CARGO_TARGET_DIR when set (relative to the workspace, where cargo
+    # ran), else the workspace's target folder.
+    target="${CARGO_TARGET_DIR:-target}"
+    [[ $target == /* ]] || target="$root/$target"
+    eigenrad="$target/release/eigenrad"
+fi
 
 # Value of field $2 in the first record of file $1 that starts with words $3...: records are
 # `word word ... key value key value`.

@@ -26,7 +26,10 @@
 //!   [`DAYLIGHT_REL_TOL`], the runtime's own sun position must be within 0.05° of SPA's at
 //!   every step, and a whole sky update by the runtime alone (sun, sky, patch luminances,
 //!   `set_sky`, every output) within 200 000 instructions (`firmware/checks.rs`,
-//!   `firmware_daylight_office`);
+//!   `firmware_daylight_office`). Then it runs a day as a daylight-harvesting controller under
+//!   an overcast sky built by the runtime, a model-based controller and one whose photocell
+//!   was commissioned at night side by side; every step agrees with the host's computation
+//!   of the same loop (`firmware/harvest.rs`, `firmware_harvest_office`);
 //! - the Cornell box example (`examples/cornell-box/scene.toml`, three bands, one channel) as
 //!   `eigenrad build` makes it by default;
 //! - a random three-band basis (tables of plausible size but no room behind them, several
@@ -53,6 +56,8 @@ use serde_json::Value;
 // The test's root stays `tests/firmware.rs`, the file the docs and scripts name.
 #[path = "firmware/checks.rs"]
 mod checks;
+#[path = "firmware/harvest.rs"]
+mod harvest;
 
 /// Readings agree within this fraction of the larger of the reference and the output's
 /// reading with every channel at 1. The firmware applies the levels step by step,
@@ -458,6 +463,9 @@ struct FirmwareRun {
     /// The `daylight` records (`examples/firmware/src/daylight.rs`), when the basis carries
     /// daylight.
     daylight: Option<Daylight>,
+    /// The `harvest` records (`examples/firmware/src/harvest.rs`), when the basis carries
+    /// daylight.
+    harvest: Option<harvest::Harvest>,
     /// `size` lines of `scripts/firmware.sh`: label → field → bytes.
     sizes: HashMap<String, HashMap<String, usize>>,
 }
@@ -756,6 +764,10 @@ impl FirmwareRun {
                     let figures = [a, mi, ma, u].map(|v| f64::from(number::<f32>(v, line)));
                     step.figures.push((name.join(" "), figures));
                 }
+                ["harvest", rest @ ..] => run
+                    .harvest
+                    .get_or_insert_with(Default::default)
+                    .parse(rest, line),
                 ["timing", ..] => {}
                 ["instructions", what, n] => {
                     run.instructions.insert(what.to_string(), number(n, line));

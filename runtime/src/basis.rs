@@ -150,15 +150,22 @@ impl<'a> Basis<'a> {
         Ok(f32_at(self.tables.eigenvalues, band * c.mode_count + k))
     }
 
-    /// The `index`-th string of the name table.
-    fn name(&self, index: usize) -> Option<&'a str> {
+    /// The `index`-th entry of the name table, as stored: a postcard byte string (a varint
+    /// length and the bytes; postcard writes a `&str` the same way). Stepping over entries as
+    /// bytes reads no UTF-8: only the name returned is checked ([`Basis::named`]), so that a
+    /// controller that finds channels by name links no UTF-8 validation.
+    fn name_bytes(&self, index: usize) -> Option<&'a [u8]> {
         let mut rest = self.tables.names;
         for _ in 0..index {
-            rest = postcard::take_from_bytes::<&str>(rest).ok()?.1;
+            rest = postcard::take_from_bytes::<&[u8]>(rest).ok()?.1;
         }
-        postcard::take_from_bytes::<&str>(rest).ok().map(|(s, _)| s)
+        postcard::take_from_bytes::<&[u8]>(rest)
+            .ok()
+            .map(|(s, _)| s)
     }
 
+    /// Name `index` of the names from `base` on (`count` of them): checked against the count,
+    /// then as UTF-8, the one check of the name table `from_bytes` leaves to the reader.
     fn named(
         &self,
         what: &'static str,
@@ -167,14 +174,20 @@ impl<'a> Basis<'a> {
         count: usize,
     ) -> Result<&'a str> {
         check_index(what, index, count)?;
-        self.name(base + index).ok_or(Error::DecodePayload)
+        let bytes = self.name_bytes(base + index).ok_or(Error::DecodePayload)?;
+        core::str::from_utf8(bytes).map_err(|_| Error::DecodeValue {
+            field: "names",
+            index: base + index,
+        })
     }
 
+    /// Index among the names from `base` on (`count` of them) of the one whose bytes are
+    /// `name`'s: a name that is not UTF-8 equals no `&str`.
     fn find(&self, base: usize, count: usize, name: &str) -> Option<usize> {
         let mut rest = self.tables.names;
         for i in 0..base + count {
-            let (s, tail) = postcard::take_from_bytes::<&str>(rest).ok()?;
-            if i >= base && s == name {
+            let (s, tail) = postcard::take_from_bytes::<&[u8]>(rest).ok()?;
+            if i >= base && s == name.as_bytes() {
                 return Some(i - base);
             }
             rest = tail;

@@ -61,7 +61,8 @@ pub enum Error {
         /// Byte length found.
         found: usize,
     },
-    /// A stored number is NaN, infinite or outside the range the format allows.
+    /// A stored number is NaN, infinite or outside the range the format allows, or a name
+    /// (`field` `names`, checked when it is read) is not UTF-8.
     DecodeValue {
         /// The table, as named in `docs/format.md`.
         field: &'static str,
@@ -203,7 +204,7 @@ impl fmt::Display for Error {
             ),
             Error::DecodeValue { field, index } => write!(
                 f,
-                "basis table `{field}` element {index} is not finite or out of range"
+                "basis table `{field}` element {index} is not finite, out of range or (a name) not UTF-8"
             ),
             Error::EncodeBuffer { needed, found } => write!(
                 f,

@@ -139,6 +139,38 @@ fn names_must_match_the_counts() {
     ));
 }
 
+/// A name that is not UTF-8 decodes (the name table's framing is checked, its text is not),
+/// and is refused when it is read, naming the table and the name's index; finding the
+/// other names by name still works, and no `&str` finds the bad one.
+#[test]
+fn a_name_that_is_not_utf8_is_refused_when_read() {
+    let mut t = common::tiny();
+    t.channel_names = vec!["m\u{e9}in".into()];
+    let mut bytes = t.to_bytes().unwrap();
+    // "méin" in UTF-8 is 6d c3 a9 69 6e; c3 followed by 'X' is no UTF-8.
+    let at = bytes
+        .windows(5)
+        .position(|w| w == [0x6d, 0xc3, 0xa9, 0x69, 0x6e])
+        .unwrap();
+    bytes[at + 2] = b'X';
+    common::reseal(&mut bytes);
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let surfaces = basis.surface_count();
+    assert_eq!(
+        basis.channel_name(0),
+        Err(Error::DecodeValue {
+            field: "names",
+            index: surfaces
+        })
+    );
+    assert_eq!(basis.surface_name(0), Ok("floor"));
+    assert_eq!(basis.sensor_name(0), Ok("desk"));
+    assert_eq!(basis.find_sensor("desk"), Some(0));
+    assert_eq!(basis.find_zone("plane"), Some(0));
+    assert_eq!(basis.find_channel("m\u{e9}in"), None);
+    assert_eq!(basis.find_channel("main"), None);
+}
+
 #[test]
 fn values_out_of_range() {
     let cases: Vec<(&str, Edit)> = vec![

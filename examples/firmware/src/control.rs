@@ -58,21 +58,25 @@ const SENSOR_MAX: f32 = 2000.0;
 const REPS: u32 = 100;
 
 /// What the controller works on.
-struct Plant {
+pub struct Plant {
     /// Basis indices of the dimmed channels: the first `count`.
     channels: [usize; CHANNELS],
     count: usize,
-    sensor: usize,
-    zone: usize,
+    /// The photosensor: the sensor named `ceiling`, else sensor 0.
+    pub sensor: usize,
+    /// The work plane: the zone named `work_plane`, else zone 0.
+    pub zone: usize,
 }
 
 impl Plant {
-    fn dimmed(&self) -> &[usize] {
+    /// Basis indices of the dimmed channels: every channel but the one named `window`.
+    pub fn dimmed(&self) -> &[usize] {
         self.channels.get(..self.count).unwrap_or(&[])
     }
 }
 
-fn plant(basis: &Basis<'_>) -> Option<Plant> {
+/// The plant of a one-band basis with a sensor, a zone and a dimmed channel.
+pub fn plant(basis: &Basis<'_>) -> Option<Plant> {
     if basis.bands() != 1 || basis.sensor_count() == 0 || basis.zone_count() == 0 {
         return None;
     }

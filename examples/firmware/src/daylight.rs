@@ -135,14 +135,14 @@ type Modal<'a> = DaylightEvaluator<'a, SKY, OUTPUTS, MODES>;
 
 /// A local date and time at the site.
 #[derive(Clone, Copy)]
-struct Moment {
-    year: i32,
-    month: u32,
-    day: u32,
+pub struct Moment {
+    pub year: i32,
+    pub month: u32,
+    pub day: u32,
     /// Minutes after local midnight.
-    minute: u32,
+    pub minute: u32,
     /// Local time minus UTC, minutes.
-    offset: i32,
+    pub offset: i32,
 }
 
 impl core::fmt::Display for Moment {
@@ -245,7 +245,7 @@ fn sky_luminances(
 
 /// The sun's position at `moment` from `site` by the runtime alone
 /// (`eigenrad_runtime::sky::sun`, `f32`): the controller's way, without SPA.
-fn runtime_position(
+pub fn runtime_position(
     site: &eigenrad_runtime::Site,
     moment: Moment,
 ) -> Result<sky::sun::Position, Error> {

@@ -32,6 +32,7 @@
 //! daylight reading <k> sensor <name> <lux>      daylight alone
 //! daylight reading <k> zone <name> <lux>
 //! daylight figures <k> average <lux> minimum <lux> maximum <lux> uniformity <u> zone <name>
+//! harvest ...                                  the daylight-harvesting day: see `harvest.rs`
 //! stack high_water <bytes> region <bytes>
 //! done
 //! ```
@@ -40,8 +41,10 @@
 //! firmware built with a basis that carries daylight (`build.rs`): the two solstices of
 //! sun and clear sky at the basis' site, stepped every 30 minutes while the sun is up, read
 //! through a `DaylightEvaluator`; the sun's altitude and azimuth are `f64` (`{:e}` reads back
-//! to the same `f64`). See `daylight.rs`. A firmware built with any other basis prints none of
-//! them and links none of their code.
+//! to the same `f64`). See `daylight.rs`. The `harvest` records, from the same bases only,
+//! are a day of two controllers that keep the work plane at its target under an overcast sky
+//! (`harvest.rs`). A firmware built with any other basis prints none of them and links none
+//! of their code.
 //!
 //! Any error is printed as `error <message>` and QEMU exits with a failure status.
 #![no_std]
@@ -53,6 +56,9 @@ mod control;
 // and linted always, and left out of the binary by the linker otherwise.
 #[cfg_attr(not(daylight), allow(dead_code))]
 mod daylight;
+// The daylight-harvesting controller's day: as `daylight`, only with a daylight basis.
+#[cfg_attr(not(daylight), allow(dead_code))]
+mod harvest;
 mod stack;
 mod timing;
 
@@ -174,6 +180,8 @@ fn run() -> Result<(), Fail> {
             controller(basis, &mut ticks, calibration)?;
             #[cfg(daylight)]
             daylight::run(basis, &mut ticks, calibration).map_err(Fail::Daylight)?;
+            #[cfg(daylight)]
+            harvest::run(basis)?;
         }
         3 => exercise::<3>(basis, &mut ticks, calibration)?,
         _ => return Err(Fail::Board("basis band count is neither 1 nor 3")),

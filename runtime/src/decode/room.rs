@@ -7,7 +7,9 @@ use crate::format::{Counts, Formulation, Payload, Precision, NO_CHANNEL};
 use crate::storage::{f32_at, u16_at, u32_at};
 
 /// Names: the surfaces', channels', sensors' and zones' as consecutive postcard strings,
-/// nothing after them.
+/// nothing after them. Each is stepped over as bytes (a varint length and that many bytes);
+/// whether a name is UTF-8 is checked when it is read (`Basis::channel_name` and the
+/// others), so that decoding links no UTF-8 validation.
 pub(super) fn names(raw: &Payload<'_>, c: &Counts) -> Result<()> {
     let count = c
         .surface_count
@@ -20,7 +22,7 @@ pub(super) fn names(raw: &Payload<'_>, c: &Counts) -> Result<()> {
     let mut rest = raw.names;
     for _ in 0..count {
         let (_, tail) =
-            postcard::take_from_bytes::<&str>(rest).map_err(|_| Error::DecodePayload)?;
+            postcard::take_from_bytes::<&[u8]>(rest).map_err(|_| Error::DecodePayload)?;
         rest = tail;
     }
     if !rest.is_empty() {
