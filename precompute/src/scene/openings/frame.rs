@@ -119,7 +119,7 @@ impl Frame {
     }
 
     /// The point of the face's plane at plane coordinates `q` ([`Frame::to_plane`]), m.
-    pub(super) fn from_plane(&self, q: Point2) -> Vec3 {
+    pub(super) fn point_in_plane(&self, q: Point2) -> Vec3 {
         self.point(q[0] / self.ab.length(), q[1] / self.ad.length())
     }
 

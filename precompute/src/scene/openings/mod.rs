@@ -681,7 +681,7 @@ impl Room {
         let holes: Vec<Vec<Point2>> = mine.iter().map(|p| p.in_plane(frame)).collect();
         for (p, hole) in mine.iter().zip(&holes) {
             if let Some(surface) = p.surface {
-                raw[surface].faces = vec![hole.iter().map(|&q| frame.from_plane(q)).collect()];
+                raw[surface].faces = vec![hole.iter().map(|&q| frame.point_in_plane(q)).collect()];
             }
         }
         let pieces = polygon::cut_around(frame, &holes, self.tol).map_err(|problem| {

@@ -102,7 +102,7 @@ pub(super) fn cut_around(
         .convex_pieces(holes, tol)
         .into_iter()
         .map(|piece| {
-            let mut corners: Vec<Vec3> = piece.iter().map(|&q| frame.from_plane(q)).collect();
+            let mut corners: Vec<Vec3> = piece.iter().map(|&q| frame.point_in_plane(q)).collect();
             if reversed {
                 corners.reverse();
             }
