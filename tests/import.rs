@@ -392,6 +392,47 @@ fn face_named(message: &str) -> &str {
     &message[start..start + len]
 }
 
+/// An aperture's true polygon is cut out of its wall, not its bounding rectangle: the
+/// east window made a trapezoid (2 m at the sill, 1 m at the head, 1.5 m high: 2.25 m²) in the
+/// 4 m × 3 m east wall, and a triangle in the south wall.
+#[test]
+fn an_aperture_of_any_convex_polygon_is_cut_out_of_its_wall() {
+    let dir = scratch("polygon-aperture");
+    let text = std::fs::read_to_string(root().join("examples/import/l-office.hbjson")).unwrap();
+    let mut model: serde_json::Value = serde_json::from_str(&text).unwrap();
+    face(&mut model, "office_east")["apertures"][0]["geometry"]["boundary"] =
+        serde_json::json!([[12, 1, 0.9], [12, 3, 0.9], [12, 2.5, 2.4], [12, 1.5, 2.4]]);
+    face(&mut model, "office_south")["apertures"][0]["geometry"]["boundary"] =
+        serde_json::json!([[1.5, 0, 0.9], [4.5, 0, 0.9], [3, 0, 2.4]]);
+    std::fs::write(
+        dir.join("model.hbjson"),
+        serde_json::to_string_pretty(&model).unwrap(),
+    )
+    .unwrap();
+    let scene = dir.join("scene.toml");
+    std::fs::write(
+        &scene,
+        "[scene]\nname = \"polygon\"\nbands = \"photopic\"\nunit = \"m\"\nmax_edge = 1.0\n\n\
+         [[import]]\nfile = \"model.hbjson\"\n",
+    )
+    .unwrap();
+    let scene = load(&scene).unwrap();
+    let area = |name: &str| scene.surface_area(name).unwrap();
+    let close = |got: f64, want: f64| (got - want).abs() <= 1e-9 * want;
+    for (name, want) in [
+        ("office.window_e", 2.25),
+        ("office.east", 4.0 * 3.0 - 2.25),
+        ("office.window_s1", 0.5 * 3.0 * 1.5),
+        // The south wall's other window is still the 3 m × 1.5 m rectangle.
+        ("office.south", 12.0 * 3.0 - 2.25 - 4.5),
+    ] {
+        println!("{name}: {:.12} m² (want {want})", area(name));
+        assert!(close(area(name), want), "{name}: {} vs {want}", area(name));
+    }
+    assert_eq!(scene.windows.len(), 3);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn a_sloped_ceiling_over_walls_that_stop_short_is_refused_naming_the_wall() {
     let (e, path) = refused(

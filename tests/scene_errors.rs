@@ -264,13 +264,13 @@ fn opening_not_in_a_face() {
 }
 
 #[test]
-fn opening_not_axis_aligned() {
+fn opening_self_intersecting() {
     expect(
-        "opening_not_axis_aligned.toml",
-        "opening_not_axis_aligned.toml",
+        "opening_self_intersecting.toml",
+        "opening_self_intersecting.toml",
         &[
             "room `room`.openings",
-            "not a rectangle with sides along the edges",
+            "opening `lamp` is not a simple polygon: edges 1 and 3 cross",
         ],
     );
 }

@@ -410,6 +410,9 @@ fn geometry(
     for q in &file.quad {
         raw.push(primitives::quad(ctx, q)?);
     }
+    for p in &file.polygon {
+        raw.push(primitives::polygon(ctx, p)?);
+    }
     let mut obj_surfaces = Vec::new();
     for o in &file.obj {
         let content = obj::load(ctx, o)?;

@@ -53,6 +53,8 @@ pub(crate) struct SceneFile {
     #[serde(default)]
     pub quad: Vec<Spanned<QuadDef>>,
     #[serde(default)]
+    pub polygon: Vec<Spanned<PolygonDef>>,
+    #[serde(default)]
     pub obj: Vec<Spanned<ObjDef>>,
     #[serde(default)]
     pub channel: Vec<Spanned<ChannelDef>>,
@@ -246,6 +248,22 @@ pub(crate) struct QuadDef {
     /// Counter-clockwise seen from the front.
     /// Four corners; a list of another length is an error naming it (not truncated).
     pub corners: Spanned<Vec<Xyz>>,
+    #[serde(default)]
+    pub max_edge: Option<Spanned<f64>>,
+    /// Outside the room: an obstruction shading the windows, not meshed into patches.
+    #[serde(default)]
+    pub exterior: bool,
+}
+
+/// `[[polygon]]`: one planar convex face of any number of corners (a triangular window, a
+/// trapezoid under a sloped ceiling).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct PolygonDef {
+    pub name: String,
+    pub material: Spanned<String>,
+    /// Counter-clockwise seen from the front; at least three.
+    pub vertices: Spanned<Vec<Xyz>>,
     #[serde(default)]
     pub max_edge: Option<Spanned<f64>>,
     /// Outside the room: an obstruction shading the windows, not meshed into patches.

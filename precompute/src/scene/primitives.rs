@@ -5,7 +5,7 @@ use toml::Spanned;
 
 use super::context::{Ctx, RawSurface};
 use super::error::SceneError;
-use super::file::{BlockDef, QuadDef, Xyz};
+use super::file::{BlockDef, PolygonDef, QuadDef, Xyz};
 use super::room::Room;
 use crate::geometry::Vec3;
 
@@ -107,7 +107,7 @@ pub(crate) fn quad(ctx: &Ctx, def: &Spanned<QuadDef>) -> Result<RawSurface, Scen
             at: ctx.at(&q.corners),
             field: format!("{what}.corners"),
             message: format!(
-                "a quad has 4 corners, found {}; use an OBJ file for other polygons",
+                "a quad has 4 corners, found {}; write other polygons as a [[polygon]]",
                 q.corners.get_ref().len()
             ),
         });
@@ -124,6 +124,38 @@ pub(crate) fn quad(ctx: &Ctx, def: &Spanned<QuadDef>) -> Result<RawSurface, Scen
         max_edge: ctx.optional_length(q.max_edge.as_ref(), &format!("{what}.max_edge"))?,
         at: ctx.at(&q.corners),
         exterior: q.exterior,
+    })
+}
+
+/// A polygon: one face of three or more corners, counter-clockwise seen from the front
+/// (checked planar and convex with every other face before meshing, and as an opening where
+/// it is one).
+pub(crate) fn polygon(ctx: &Ctx, def: &Spanned<PolygonDef>) -> Result<RawSurface, SceneError> {
+    let p = def.get_ref();
+    let field = format!("polygon `{}`.vertices", p.name);
+    let written = p.vertices.get_ref();
+    if written.len() < 3 {
+        return Err(SceneError::Invalid {
+            at: ctx.at(&p.vertices),
+            field,
+            message: format!("a polygon has at least 3 vertices, found {}", written.len()),
+        });
+    }
+    let mut corners = Vec::with_capacity(written.len());
+    for c in written {
+        corners.push(ctx.coordinates(**c, &p.vertices, &field)?);
+    }
+    Ok(RawSurface {
+        name: p.name.clone(),
+        material: p.material.get_ref().clone(),
+        material_at: ctx.at(&p.material),
+        faces: vec![corners],
+        max_edge: ctx.optional_length(
+            p.max_edge.as_ref(),
+            &format!("polygon `{}`.max_edge", p.name),
+        )?,
+        at: ctx.at(&p.vertices),
+        exterior: p.exterior,
     })
 }
 

@@ -326,12 +326,6 @@ impl Importer<'_> {
             element: format!("space `{}`, opening `{}`", space.id, o.id),
             message,
         };
-        if matches!(face.kind, FaceKind::Wall { .. }) && o.polygon.len() != 4 {
-            return Err(error(format!(
-                "it has {} corners; openings in walls are rectangles (4 corners) yet",
-                o.polygon.len()
-            )));
-        }
         let off = prism::off_plane(&o.polygon);
         if off > tol {
             return Err(error(format!(

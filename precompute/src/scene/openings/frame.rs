@@ -2,6 +2,7 @@
 //! parameters, and the grid of cut positions along each.
 
 use crate::geometry::{Polygon, Vec3};
+use crate::scene::room::Point2;
 
 /// A face rectangle a-b-c-d and its parameterisation `a + (b − a) s + (d − a) t`; for a
 /// face that is not a parallelogram (a wall under a sloped ceiling), the rectangle around it
@@ -107,6 +108,29 @@ impl Frame {
             kept
         } else {
             Vec::new()
+        }
+    }
+
+    /// `p` (m, in the face's plane) in the plane's coordinates: metres along `ab`, then along
+    /// `ad` (square to each other: a rectangle's sides, or a wall's foot and its rise).
+    pub(super) fn to_plane(&self, p: Vec3) -> Point2 {
+        let (s, t) = self.params(p);
+        [s * self.ab.length(), t * self.ad.length()]
+    }
+
+    /// The point of the face's plane at plane coordinates `q` ([`Frame::to_plane`]), m.
+    pub(super) fn point_in_plane(&self, q: Point2) -> Vec3 {
+        self.point(q[0] / self.ab.length(), q[1] / self.ad.length())
+    }
+
+    /// The face's outline in the plane's coordinates ([`Frame::to_plane`]).
+    pub(super) fn outline_in_plane(&self) -> Vec<Point2> {
+        match &self.outline {
+            Some(outline) => outline.iter().map(|&p| self.to_plane(p)).collect(),
+            None => {
+                let (s, t) = (self.ab.length(), self.ad.length());
+                vec![[0.0, 0.0], [s, 0.0], [s, t], [0.0, t]]
+            }
         }
     }
 

@@ -1,19 +1,22 @@
-//! Openings: quads set flush into a room's face (a window, a recessed luminaire). The face is
-//! meshed around them, so no part of the wall hides behind an opening and every patch of a
-//! closed room exchanges light with the rest of it.
+//! Openings: polygons set flush into a room's face (a window, a door, a skylight, a recessed
+//! luminaire). The face is meshed around them, so no part of the wall hides behind an opening
+//! and every patch of a closed room exchanges light with the rest of it.
 //!
 //! Blocks standing on the floor without a bottom face are cut out of the floor the same way:
 //! the floor under a desk sees only the inside of the desk, which is no surface at all.
 //!
-//! The face rectangle is cut into a grid at every opening's edge coordinates; the cells an
-//! opening covers are dropped and every other cell becomes a face of its own, meshed later at
-//! the face's `max_edge`. The cut depends only on the corners, so it is deterministic.
+//! A face whose openings are all rectangles along its edges is cut into a grid at every
+//! opening's edge coordinates; the cells an opening covers are dropped and every other cell
+//! becomes a face of its own, meshed later at the face's `max_edge`. A face holding any other
+//! convex polygon (a triangle, a trapezoid) is cut by a polygon difference instead
+//! ([`polygon`]). The cut depends only on the corners, so it is deterministic.
 //!
 //! The floor and the ceiling of a room given by its plan are not rectangles: openings in them
 //! (any convex quad) and the footprints of blocks standing on the floor are taken out of the
 //! plan polygon instead, which is then cut into convex pieces ([`RoomShape::floor_faces`]).
 
 mod frame;
+mod polygon;
 
 use std::ops::Range;
 
@@ -22,7 +25,7 @@ use toml::Spanned;
 use super::context::{Ctx, RawSurface};
 use super::error::{Location, SceneError};
 use super::file::RoomDef;
-use super::room::{FaceKind, Point2, Room as RoomShape};
+use super::room::{overlap_area, FaceKind, Point2, Room as RoomShape};
 use crate::geometry::{Polygon, Vec3};
 use frame::{grid, snap, Frame};
 
@@ -41,8 +44,46 @@ struct Placed {
     face: usize,
     s: [f64; 2],
     t: [f64; 2],
-    /// Per corner, whether its `s` (then `t`) is the upper bound.
+    /// Per corner, whether its `s` (then `t`) is the upper bound (a rectangle along the
+    /// face's edges).
     upper: Vec<(bool, bool)>,
+    /// Any other polygon's corners in the face's plane coordinates ([`Frame::to_plane`]);
+    /// `s` and `t` are then the bounds of its box.
+    outline: Option<Vec<Point2>>,
+}
+
+impl Placed {
+    /// Its corners in the plane coordinates of `frame`, the face it lies in, in the order
+    /// written (a footprint's counter-clockwise in `s`, `t`).
+    fn in_plane(&self, frame: &Frame) -> Vec<Point2> {
+        if let Some(outline) = &self.outline {
+            return outline.clone();
+        }
+        let (ls, lt) = (frame.ab.length(), frame.ad.length());
+        let corner = |us: bool, ut: bool| [self.s[us as usize] * ls, self.t[ut as usize] * lt];
+        if self.upper.is_empty() {
+            vec![
+                corner(false, false),
+                corner(true, false),
+                corner(true, true),
+                corner(false, true),
+            ]
+        } else {
+            self.upper.iter().map(|&(us, ut)| corner(us, ut)).collect()
+        }
+    }
+
+    /// Whether it and `other`, both in face `frame`, overlap by more than `tol` (m) across.
+    fn overlaps(&self, other: &Placed, frame: &Frame, tol: f64) -> bool {
+        let (ls, lt) = (frame.ab.length(), frame.ad.length());
+        if self.outline.is_none() && other.outline.is_none() {
+            let overlap_s = self.s[1].min(other.s[1]) - self.s[0].max(other.s[0]);
+            let overlap_t = self.t[1].min(other.t[1]) - self.t[0].max(other.t[0]);
+            return overlap_s > tol / ls && overlap_t > tol / lt;
+        }
+        // Polygons meeting along an edge share a sliver of at most `tol` across.
+        overlap_area(&self.in_plane(frame), &other.in_plane(frame)) > tol * (ls + lt)
+    }
 }
 
 /// The blocks open at one end, which cut the room face they end on: (name, min, max),
@@ -100,9 +141,28 @@ pub(crate) fn cut(
     let mut ceiling_holes: Vec<Vec<Point2>> = Vec::new();
     // A sloped ceiling's, per plane.
     let mut plane_holes: Vec<Vec<Vec<Point2>>> = vec![Vec::new(); shape.roof.len()];
+    // Every opening in a floor or a ceiling so far: its name, face and plan polygon.
+    let mut in_plan: Vec<(&str, FaceKind, Vec<Point2>)> = Vec::new();
     for name in list.names {
         if !shape.is_box {
             if let Some((kind, hole)) = room.in_plan_face(shape, name, raw, flip, claimed)? {
+                // Openings meeting along an edge share a sliver of at most the tolerance.
+                let slack = room.tol * (shape.hi - shape.lo).length();
+                if let Some((other, _, _)) = in_plan
+                    .iter()
+                    .find(|(_, k, h)| *k == kind && overlap_area(h, &hole) > slack)
+                {
+                    return Err(room.invalid(format!(
+                        "openings `{other}` and `{name}` overlap in face `{}.{}`",
+                        shape.name,
+                        shape
+                            .faces
+                            .iter()
+                            .find(|f| f.kind == kind)
+                            .map_or("?", |f| &f.suffix)
+                    )));
+                }
+                in_plan.push((name, kind, hole.clone()));
                 match kind {
                     FaceKind::Floor => floor_holes.push(hole),
                     FaceKind::CeilingPlane { index } => plane_holes[index].push(hole),
@@ -304,6 +364,9 @@ impl Room {
             )));
         }
         let tol = shape.tolerance();
+        if let Some(problem) = polygon::problem(name, quad, tol) {
+            return Err(self.invalid(problem));
+        }
         if let Some(p) = quad.iter().find(|p| !shape.plan.holds([p.x, p.y], tol)) {
             return Err(self.invalid(format!(
                 "opening `{name}` reaches outside face `{face_name}` (its corner {:?} is \
@@ -339,14 +402,18 @@ impl Room {
         }
         claimed[index] = true;
         let quad = match raw[index].faces.as_slice() {
-            [q] if q.len() == 4 => q.clone(),
+            [q] => q.clone(),
             _ => {
                 return Err(self.invalid(format!(
-                    "opening `{name}` must be one quadrilateral (a [[quad]]), found {} face(s)",
+                    "opening `{name}` must be one polygon (a [[quad]] or a [[polygon]]), found \
+                     {} face(s)",
                     raw[index].faces.len()
                 )))
             }
         };
+        if let Some(problem) = polygon::problem(name, &quad, self.tol) {
+            return Err(self.invalid(problem));
+        }
         let (face, nearest) = self.nearest_face(&quad);
         let face_name = &raw[self.hosts[face]].name;
         let tol = self.tol;
@@ -358,7 +425,10 @@ impl Room {
             )));
         }
         let frame = &self.frames[face];
-        let mut opening = self.rectangle(name, index, face, face_name, &quad)?;
+        let mut opening = match self.rectangle(name, index, face, face_name, &quad)? {
+            Some(rectangle) => rectangle,
+            None => self.polygon(name, index, face, face_name, &quad)?,
+        };
         let mut winding = quad.clone();
         if flip[index] {
             winding.reverse();
@@ -372,12 +442,8 @@ impl Room {
         }
         opening.s = [opening.s[0].max(0.0), opening.s[1].min(1.0)];
         opening.t = [opening.t[0].max(0.0), opening.t[1].min(1.0)];
-        let (s, t) = (opening.s, opening.t);
-        let (tol_s, tol_t) = (tol / frame.ab.length(), tol / frame.ad.length());
         for other in placed.iter().filter(|o| o.face == face) {
-            let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
-            let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
-            if overlap_s > tol_s && overlap_t > tol_t {
+            if opening.overlaps(other, frame, tol) {
                 return Err(self.invalid(format!(
                     "openings `{}` and `{name}` overlap in face `{face_name}`",
                     other.surface.map_or("?", |o| raw[o].name.as_str())
@@ -388,8 +454,9 @@ impl Room {
     }
 
     /// The opening `name` (surface `index` of the raw surfaces, corners `quad`) in face `face`
-    /// (named `face_name`), before clamping to the face: an error unless it is a rectangle of
-    /// non-zero width, with sides along the face's edges, inside the face.
+    /// (named `face_name`) as a rectangle with sides along the face's edges, before clamping
+    /// to the face; `None` when it is no such rectangle, an error when it is one of zero
+    /// width or reaching outside the face.
     fn rectangle(
         &self,
         name: &str,
@@ -397,7 +464,7 @@ impl Room {
         face: usize,
         face_name: &str,
         quad: &[Vec3],
-    ) -> Result<Placed, SceneError> {
+    ) -> Result<Option<Placed>, SceneError> {
         let frame = &self.frames[face];
         let st: Vec<(f64, f64)> = quad.iter().map(|&p| frame.params(p)).collect();
         let tol_s = self.tol / frame.ab.length();
@@ -410,6 +477,9 @@ impl Room {
             st.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
             st.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max),
         ];
+        if quad.len() != 4 {
+            return Ok(None);
+        }
         let mut upper = Vec::with_capacity(4);
         for &(cs, ct) in &st {
             let us = (cs - s[1]).abs() <= tol_s;
@@ -417,20 +487,19 @@ impl Room {
             let on_s = us || (cs - s[0]).abs() <= tol_s;
             let on_t = ut || (ct - t[0]).abs() <= tol_t;
             if !(on_s && on_t) {
-                return Err(self.invalid(format!(
-                    "opening `{name}` is not a rectangle with sides along the edges of face \
-                     `{face_name}`"
-                )));
+                return Ok(None);
             }
             upper.push((us, ut));
         }
         let mut kinds = upper.clone();
         kinds.sort_unstable();
         kinds.dedup();
-        if kinds.len() != 4 || s[1] - s[0] <= tol_s || t[1] - t[0] <= tol_t {
+        if kinds.len() != 4 {
+            return Ok(None);
+        }
+        if s[1] - s[0] <= tol_s || t[1] - t[0] <= tol_t {
             return Err(self.invalid(format!(
-                "opening `{name}` is not a rectangle with sides along the edges of face \
-                 `{face_name}` (or has zero width)"
+                "opening `{name}` has zero width in face `{face_name}`"
             )));
         }
         let outside = s[0] < -tol_s || t[0] < -tol_t || s[1] > 1.0 + tol_s || t[1] > 1.0 + tol_t;
@@ -439,12 +508,48 @@ impl Room {
                 "opening `{name}` reaches outside face `{face_name}`"
             )));
         }
-        Ok(Placed {
+        Ok(Some(Placed {
             surface: Some(index),
             face,
             s,
             t,
             upper,
+            outline: None,
+        }))
+    }
+
+    /// The opening `name` (surface `index` of the raw surfaces, corners `corners`, a checked
+    /// convex polygon) in face `face` (named `face_name`) as a polygon; an error when it
+    /// reaches outside the face.
+    fn polygon(
+        &self,
+        name: &str,
+        index: usize,
+        face: usize,
+        face_name: &str,
+        corners: &[Vec3],
+    ) -> Result<Placed, SceneError> {
+        let frame = &self.frames[face];
+        if let Some(p) = corners.iter().find(|&&p| !frame.holds(p, self.tol)) {
+            return Err(self.invalid(format!(
+                "opening `{name}` reaches outside face `{face_name}` (its corner {:?})",
+                p.to_array()
+            )));
+        }
+        let st: Vec<(f64, f64)> = corners.iter().map(|&p| frame.params(p)).collect();
+        let bounds = |along: fn(&(f64, f64)) -> f64| {
+            [
+                st.iter().map(along).fold(f64::INFINITY, f64::min),
+                st.iter().map(along).fold(f64::NEG_INFINITY, f64::max),
+            ]
+        };
+        Ok(Placed {
+            surface: Some(index),
+            face,
+            s: bounds(|p| p.0),
+            t: bounds(|p| p.1),
+            upper: Vec::new(),
+            outline: Some(corners.iter().map(|&p| frame.to_plane(p)).collect()),
         })
     }
 
@@ -472,24 +577,23 @@ impl Room {
             if s[1] <= s[0] || t[1] <= t[0] {
                 continue;
             }
-            let (tol_s, tol_t) = (tol / floor.ab.length(), tol / floor.ad.length());
+            let footprint = Placed {
+                surface: None,
+                face,
+                s,
+                t,
+                upper: Vec::new(),
+                outline: None,
+            };
             for other in placed.iter().filter(|o| o.face == face) {
-                let overlap_s = s[1].min(other.s[1]) - s[0].max(other.s[0]);
-                let overlap_t = t[1].min(other.t[1]) - t[0].max(other.t[0]);
-                if let (Some(o), true) = (other.surface, overlap_s > tol_s && overlap_t > tol_t) {
+                if let (Some(o), true) = (other.surface, footprint.overlaps(other, floor, tol)) {
                     return Err(self.invalid(format!(
                         "opening `{}` lies under block `{name}`, which stands on it",
                         raw[o].name
                     )));
                 }
             }
-            placed.push(Placed {
-                surface: None,
-                face,
-                s,
-                t,
-                upper: Vec::new(),
-            });
+            placed.push(footprint);
         }
         Ok(())
     }
@@ -508,6 +612,9 @@ impl Room {
             return Ok(());
         }
         let face = self.hosts[k];
+        if mine.iter().any(|p| p.outline.is_some()) {
+            return self.cut_around(k, raw, &mine);
+        }
         let tol_s = self.tol / frame.ab.length();
         let tol_t = self.tol / frame.ad.length();
         let grid_s = grid(mine.iter().flat_map(|p| p.s), tol_s);
@@ -557,6 +664,40 @@ impl Room {
             )));
         }
         raw[face].faces = cells;
+        Ok(())
+    }
+
+    /// Cuts face `k`, which holds an opening that is not a rectangle along its edges, around
+    /// its openings and footprints `mine` by a polygon difference ([`polygon::cut_around`]);
+    /// sets each opening's corners into the face's plane exactly, as the cut sees them.
+    fn cut_around(
+        &self,
+        k: usize,
+        raw: &mut [RawSurface],
+        mine: &[&mut Placed],
+    ) -> Result<(), SceneError> {
+        let frame = &self.frames[k];
+        let face = self.hosts[k];
+        let holes: Vec<Vec<Point2>> = mine.iter().map(|p| p.in_plane(frame)).collect();
+        for (p, hole) in mine.iter().zip(&holes) {
+            if let Some(surface) = p.surface {
+                raw[surface].faces = vec![hole.iter().map(|&q| frame.point_in_plane(q)).collect()];
+            }
+        }
+        let pieces = polygon::cut_around(frame, &holes, self.tol).map_err(|problem| {
+            self.invalid(format!(
+                "face `{}` cannot be cut around its openings: {problem}",
+                raw[face].name
+            ))
+        })?;
+        if pieces.is_empty() {
+            return Err(self.invalid(format!(
+                "the openings (or blocks standing on it) cover the whole face `{}`; leave them \
+                 out and give the face their material in [surfaces] instead",
+                raw[face].name
+            )));
+        }
+        raw[face].faces = pieces;
         Ok(())
     }
 }

@@ -31,7 +31,7 @@ use super::primitives::box_corners;
 use crate::geometry::Vec3;
 
 pub(crate) use ceiling::CeilingPlane;
-pub(crate) use plan::{Plan, PlanProblem, Point2};
+pub(crate) use plan::{is_convex, overlap_area, Plan, PlanProblem, Point2};
 
 /// What a room face is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -11,7 +11,7 @@ use geo::algorithm::line_intersection::{line_intersection, LineIntersection};
 use geo::coordinate_position::CoordPos;
 use geo::triangulate_delaunay::DelaunayTriangulationConfig;
 use geo::{
-    BooleanOps, Buffer, Coord, CoordinatePosition, Line, LineString, MultiPolygon,
+    Area, BooleanOps, Buffer, Coord, CoordinatePosition, Line, LineString, MultiPolygon,
     Polygon as GeoPolygon, TriangulateDelaunay,
 };
 
@@ -358,8 +358,16 @@ fn turn(a: Point2, b: Point2, c: Point2) -> f64 {
     (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0])
 }
 
+/// The area two simple polygons (m, either winding) have in common, m² (geo's boolean
+/// intersection).
+pub(crate) fn overlap_area(a: &[Point2], b: &[Point2]) -> f64 {
+    let a = GeoPolygon::new(line_string(a), Vec::new());
+    let b = GeoPolygon::new(line_string(b), Vec::new());
+    a.intersection(&b).unsigned_area()
+}
+
 /// Whether the counter-clockwise polygon `c` is convex, allowing straight corners.
-fn is_convex(c: &[Point2]) -> bool {
+pub(crate) fn is_convex(c: &[Point2]) -> bool {
     let n = c.len();
     (0..n).all(|i| turn(c[(i + n - 1) % n], c[i], c[(i + 1) % n]) >= 0.0)
 }

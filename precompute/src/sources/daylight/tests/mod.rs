@@ -21,6 +21,18 @@ use crate::sources::ChannelLight;
 /// A 4 m × 3 m × 2.5 m room with a 2 m × 1 m window in the wall y = 0 (x from 1 to 3, sill
 /// at 1 m, head at 2 m), facing into the room, and the sensors given as TOML.
 fn room(sensors: &str, max_edge: f64) -> Scene {
+    let window = r#"
+[[quad]]
+name = "window"
+material = "glass"
+corners = [[1, 0, 1], [1, 0, 2], [3, 0, 2], [3, 0, 1]]
+"#;
+    room_with(window, sensors, max_edge)
+}
+
+/// The 4 m × 3 m × 2.5 m room of [`room`] with the surface `window` (TOML, named `window`) as
+/// its opening, and the sensors given as TOML.
+fn room_with(window: &str, sensors: &str, max_edge: f64) -> Scene {
     let text = format!(
         r#"[scene]
 name = "daylit room"
@@ -38,12 +50,7 @@ min = [0, 0, 0]
 max = [4, 3, 2.5]
 material = "wall"
 openings = ["window"]
-
-[[quad]]
-name = "window"
-material = "glass"
-corners = [[1, 0, 1], [1, 0, 2], [3, 0, 2], [3, 0, 1]]
-
+{window}
 [[zone]]
 name = "floor"
 surfaces = ["room.floor"]
@@ -218,6 +225,78 @@ normal = [-0.6, -0.8, 0]
     let zone = uniform_sky(&r, floor_zone);
     // The midpoint rule's own error on a smooth integrand: ~1e-5 at this grid.
     assert!(relative(zone, exact) < 1e-4, "floor {zone} against {exact}");
+}
+
+/// A triangular window (base 2 m at the sill z = 1 m, apex at 2.2 m), cut out of its wall as
+/// a polygon: a uniform sky at a point below the sill is π times the point's form factor to
+/// the triangle (the exact Lambert contour integral, `formfactor::point_form_factors` on that
+/// one triangle, nothing occluding), within the cells' quadrature tolerance [`SMOOTH`].
+#[test]
+fn a_uniform_sky_through_a_triangular_window_is_pi_times_its_form_factor() {
+    let window = r#"
+[[polygon]]
+name = "window"
+material = "glass"
+vertices = [[1, 0, 1], [2, 0, 2.2], [3, 0, 1]]
+"#;
+    let sensors = r#"
+[[sensor]]
+name = "up"
+position = [2.0, 1.0, 0.3]
+normal = [0, 0, 1]
+
+[[sensor]]
+name = "facing"
+position = [1.5, 2.0, 0.8]
+normal = [0, -1, 0]
+
+[[sensor]]
+name = "oblique"
+position = [3.5, 0.7, 0.5]
+normal = [-0.6, -0.8, 0]
+"#;
+    let scene = daylit(room_with(window, sensors, 0.5), clear(), 0.0, 0.7);
+    let triangle = Patch::new(
+        Polygon::new(vec![
+            Vec3::new(1.0, 0.0, 1.0),
+            Vec3::new(2.0, 0.0, 2.2),
+            Vec3::new(3.0, 0.0, 1.0),
+        ]),
+        0,
+    );
+    // The window's patches are the triangle, whole: 1.2 m², none left behind the wall.
+    assert!((scene.surface_area("window").unwrap() - 1.2).abs() < 1e-12);
+    let wall = 4.0 * 2.5 - 1.2;
+    assert!((scene.surface_area("room.wall_ymin").unwrap() - wall).abs() < 1e-9 * wall);
+    let r = sky::response(
+        &scene,
+        &occluders(&scene),
+        SkyPatches::TREGENZA,
+        &DaylightOptions::default(),
+        &unit,
+    );
+    for (o, s) in scene.sensors.iter().enumerate() {
+        let exact = PI
+            * formfactor::point_form_factors(
+                s.position,
+                s.normal,
+                scene::FieldOfView::HEMISPHERE,
+                std::slice::from_ref(&triangle),
+                &Occluders::new(&[]),
+            )[0];
+        let sum = uniform_sky(&r, o);
+        println!(
+            "{}: {sum:.6} lux, π F = {exact:.6} lux, rel. err {:.1e}",
+            s.name,
+            relative(sum, exact)
+        );
+        assert!(
+            relative(sum, exact) < SMOOTH,
+            "{}: {sum} lux against π F = {exact}",
+            s.name
+        );
+        assert_eq!(r.exterior.output_irradiance[0][o], 0.0, "{}", s.name);
+    }
 }
 
 /// A sensor's field of view cuts the window: the sky it sees is π times the form factor of the
