@@ -169,8 +169,7 @@ fn a_sky_tolerance_no_candidate_meets_is_an_error_naming_it() {
         ..BuildOptions::default()
     };
     let err = pipeline::build(&scene, &opts)
-        .err()
-        .expect("no candidate meets 1e-9")
+        .expect_err("no candidate meets 1e-9")
         .to_string();
     assert!(
         err.contains("--sky-tolerance") && err.contains("MF:4") && err.contains("MF:8"),
