@@ -12,6 +12,10 @@
 #                         lux per 10 000 lux outside, i.e. the daylight factor in ‰
 #   daylight-sun.png      the same under the CIE clear sky (type 12) with the sun: 15 000 lux
 #                         diffuse, 70 000 lux direct normal
+#   daylight-surfaces.png the daylight office's surfaces under that clear sky, exact solve
+#   daylight-surfaces-basis.png
+#                         the same from its basis (32 modes) through the runtime: the first
+#                         reflection stored in the basis, the rest through the modes
 #   l-office-plan.png     the L-shaped office's work plane (examples/l-office), both channels
 #                         at level 1, no daylight (exact solve): the plan of the L, its walls,
 #                         windows, columns, desk and sensors
@@ -59,12 +63,20 @@ log "exact solve of $daylit with daylight, luminaires off"
     --cie overcast --dhi-lux 10000 --plan "$out/daylight-overcast.png"
 "$eigenrad" render "$daylit" "${off[@]}" --time 2026-03-20T12:00+01:00 \
     --cie 12 --dhi-lux 15000 --dni-lux 70000 --plan "$out/daylight-sun.png"
+"$eigenrad" render "$daylit" "${off[@]}" --time 2026-03-20T12:00+01:00 \
+    --cie 12 --dhi-lux 15000 --dni-lux 70000 --surfaces "$out/daylight-surfaces.png"
+log "basis of $daylit, its surfaces under daylight through the runtime"
+"$eigenrad" build "$daylit" -o "$work/office-daylight.basis" >"$work/office-daylight.report"
+"$eigenrad" render "$daylit" "${off[@]}" --basis "$work/office-daylight.basis" \
+    --time 2026-03-20T12:00+01:00 --cie 12 --dhi-lux 15000 --dni-lux 70000 \
+    --surfaces "$out/daylight-surfaces-basis.png"
 
 l_office="examples/l-office/scene.toml"
 log "exact solve of $l_office"
 "$eigenrad" render "$l_office" --plan "$out/l-office-plan.png"
 
-for f in office-plan office-surfaces office-luminance office-dimmed daylight-overcast daylight-sun l-office-plan; do
+for f in office-plan office-surfaces office-luminance office-dimmed daylight-overcast daylight-sun \
+    daylight-surfaces daylight-surfaces-basis l-office-plan; do
     bytes=$(stat -c %s "$out/$f.png")
     log "$f.png: $bytes bytes"
     if ((bytes >= 200 * 1024)); then

@@ -37,6 +37,11 @@ const F32_SUMS: f64 = 2e-5;
 /// the exact solve: the modes are complete, what remains is `f32` rounding of `n` terms.
 const FULL_MODES: f64 = 1e-4;
 
+/// Area-weighted RMS difference, relative, between the runtime's daylight patch exitance and
+/// the same expansion in `f64` on the host: `f32` sums of `r + p` terms and the sun lists'
+/// floor of 10⁻⁶ of a node's largest entry.
+const REFLECTION_ROUNDING: f64 = 1e-4;
+
 fn no_cache() -> FormFactorOptions {
     FormFactorOptions {
         cache: None,
@@ -328,4 +333,145 @@ fn daylight_requests_a_basis_cannot_serve_are_errors() {
         stderr(&o)
     );
     assert!(!stderr(&o).contains("panicked"));
+}
+
+/// The area-weighted RMS error of a patch exitance `got` against `exact` over the patches
+/// of `scene`.
+fn patch_error_in(scene: &Path, got: &[f64], exact: &[f64]) -> f64 {
+    let area: Vec<f64> = eigenrad_precompute::scene::load(scene)
+        .unwrap()
+        .patches
+        .iter()
+        .map(|p| p.area)
+        .collect();
+    eigenrad_precompute::accuracy::metric::patch_error(&area, got, exact)
+}
+
+/// Patch exitance under daylight from a basis of 16 modes (its first reflection stored, what
+/// the room reflects after it through the modes) against the exact solve of the same mesh:
+///
+/// - under the CIE overcast sky (`eval --time` against `solve --time`, which computes the
+///   daylight afresh), within the error the same 16 modes make for electric light set patch
+///   by patch (the build report's worst case);
+/// - under the sun at a node of the basis' grid, against the exact solve of that sun, within
+///   [`REFLECTION_ROUNDING`] of the best the 16 modes can do once the first reflection is
+///   exact: the exact first reflection (`System::initial_exitances`) plus the exact rest
+///   projected on the modes, computed here on the host;
+/// - both far closer (a fifth at most) than the modes alone carry the exact exitance, what
+///   format version 6 stored.
+#[test]
+fn patch_exitance_under_daylight_is_as_close_as_under_electric_light() {
+    let (_dir, scene) = scene_file("daylight-patches");
+    let opts = BuildOptions {
+        modes: ModeSelection::Count(16),
+        form_factors: no_cache(),
+        ..BuildOptions::default()
+    };
+    let (bytes, report) = pipeline::build(&scene, &opts).expect("build");
+    let first = report.daylight.as_ref().unwrap().first_reflection.clone();
+    let first = first.expect("a first reflection");
+    assert!(first.rank > 0 && first.sky_error <= opts.sky_rank_tolerance);
+    let electric = report
+        .accuracy
+        .iter()
+        .map(|c| c.patch_error)
+        .fold(0.0f64, f64::max);
+    assert!(
+        electric > 0.0,
+        "exitance set patch by patch goes through the modes"
+    );
+    let basis = scene.with_extension("basis");
+    std::fs::write(&basis, &bytes).unwrap();
+    let off = LevelArgs {
+        levels: vec!["lamp=0".into()],
+        arcs: Vec::new(),
+    };
+    let args = sky(
+        "2026-03-21T10:00",
+        SkyInput::Cie {
+            sky_type: 0,
+            diffuse_horizontal: 12_000.0,
+            direct_normal: 0.0,
+        },
+    );
+    let exitance = |r: &cli::Readout| -> Vec<f64> {
+        let patches = r.patches.as_ref().expect("patches");
+        patches.iter().map(|p| p.exitance[0]).collect()
+    };
+    let eval = cli::eval_with_daylight(&basis, &bytes, &off, Some(&args), true).unwrap();
+    let solve = cli::solve_with_daylight(&scene, &off, Some(&args), true, &no_cache()).unwrap();
+    let overcast = patch_error_in(&scene, &exitance(&eval), &exitance(&solve));
+    // The sun alone at a stored node near noon at the equinox.
+    let decoded = Basis::from_bytes(&bytes).unwrap();
+    let grid = decoded.sun_grid().unwrap();
+    let site = eigenrad_precompute::scene::load(&scene)
+        .unwrap()
+        .site
+        .unwrap();
+    let node = (0..grid.len())
+        .filter(|&k| {
+            let (d, h) = grid.angles(k).unwrap();
+            d.abs() < 6.0 && h.abs() < 16.0
+        })
+        .find(|&k| room_sun(&site, grid.direction(k).unwrap()).is_some())
+        .expect("a node near noon at the equinox");
+    let direction = grid.direction(node).unwrap();
+    let state = SkyState {
+        sky_luminance: vec![0.0; 145],
+        global_horizontal: 0.0,
+        sun: Some(Sun {
+            direction,
+            direct_normal: 1.0,
+        }),
+    };
+    let got = evaluate_daylight(&bytes, &state, &[0.0], true).unwrap();
+    let (_, exact) = exact_sun(&scene, room_sun(&site, direction).unwrap());
+    let sun = patch_error_in(&scene, &got.exitance, &exact);
+    // The modes alone: the exact exitance projected on the same 16 modes.
+    let prepared = pipeline::prepare(&scene, &no_cache()).unwrap();
+    let model = Model::new(&prepared.system, Formulation::Split, 16, Solver::Auto).unwrap();
+    let through_modes = |m: &[f64]| -> Vec<f64> {
+        let a = model.mode_amplitudes(0, m, 16);
+        let v = &model.bands[0].modes.vectors;
+        (0..m.len())
+            .map(|i| (0..v.ncols()).map(|k| v[(i, k)] * a[k]).sum())
+            .collect()
+    };
+    let sun_modes_alone = patch_error_in(&scene, &through_modes(&exact), &exact);
+    // The best 16 modes do with the first reflection exact.
+    let occluders = Occluders::with_faces(&prepared.scene.patches, &prepared.scene.faces);
+    let light = sun_light(
+        &prepared.scene,
+        &occluders,
+        room_sun(&site, direction).unwrap(),
+        &DaylightOptions::default(),
+    );
+    let first_reflection = prepared.system.initial_exitances(0, &[light]).remove(0);
+    let rest: Vec<f64> = exact
+        .iter()
+        .zip(&first_reflection)
+        .map(|(m, m0)| m - m0)
+        .collect();
+    let best: Vec<f64> = through_modes(&rest)
+        .iter()
+        .zip(&first_reflection)
+        .map(|(r, m0)| r + m0)
+        .collect();
+    let sun_best = patch_error_in(&scene, &best, &exact);
+    let overcast_modes_alone =
+        patch_error_in(&scene, &through_modes(&exitance(&solve)), &exitance(&solve));
+    println!(
+        "patch exitance at 16 modes: overcast {overcast:.2e} (modes alone {overcast_modes_alone:.2e}), sun {sun:.2e} (best {sun_best:.2e}, modes alone {sun_modes_alone:.2e}); electric light set patch by patch {electric:.2e}; sky rank {}",
+        first.rank
+    );
+    assert!(
+        overcast <= electric,
+        "overcast {overcast:.2e} vs {electric:.2e}"
+    );
+    assert!(
+        (sun - sun_best).abs() <= REFLECTION_ROUNDING,
+        "sun {sun:.2e} vs the modes' best {sun_best:.2e}"
+    );
+    assert!(overcast < 0.2 * overcast_modes_alone);
+    assert!(sun < 0.2 * sun_modes_alone);
 }

@@ -555,6 +555,57 @@ fn a_daylight_plan_shows_the_daylight_grid() {
     assert!(!out.exists());
 }
 
+/// The surfaces under daylight from a basis (`render --basis --time ... --surfaces`, lamp
+/// off): every patch carries the illuminance `eval --time` reads through the runtime (its
+/// first reflection from the basis, the rest through the modes), the black window and lamp
+/// none, and the picture names the basis and the sky.
+#[test]
+fn daylight_surfaces_from_a_basis_show_what_the_runtime_reads() {
+    let dir = scratch("daylight-surfaces");
+    let path = dir.join("daylit.toml");
+    std::fs::write(&path, common::daylit_room(common::VIENNA)).unwrap();
+    let opts = BuildOptions {
+        modes: ModeSelection::Count(8),
+        ..BuildOptions::default()
+    };
+    let (bytes, _) = pipeline::build(&path, &opts).unwrap();
+    let basis = dir.join("daylit.basis");
+    std::fs::write(&basis, &bytes).unwrap();
+    let levels = LevelArgs {
+        levels: vec!["lamp=0".into()],
+        arcs: Vec::new(),
+    };
+    let ff = FormFactorOptions::default();
+    let daylight = DaylightArgs {
+        time: "2026-03-20T12:00+01:00".into(),
+        input: SkyInput::Cie {
+            sky_type: 12,
+            diffuse_horizontal: 15_000.0,
+            direct_normal: 70_000.0,
+        },
+        water: 2.0,
+        subdivision: 1,
+    };
+    let mut r = request(&path, &levels, &ff);
+    r.basis = Some((&basis, &bytes));
+    r.plan = false;
+    r.daylight = Some(&daylight);
+    let pictures = cli::render(&r).unwrap();
+    let net = pictures.surfaces.as_ref().expect("the surfaces are drawn");
+    assert!(net.input.notes.iter().any(|n| n.contains("daylit.basis")));
+    assert!(net.input.notes.iter().any(|n| n.starts_with("daylight:")));
+    let eval = cli::eval_with_daylight(&basis, &bytes, &levels, Some(&daylight), true).unwrap();
+    let patches = eval.patches.as_ref().unwrap();
+    let mut lit = 0;
+    for (i, (drawn, read)) in net.input.patches.iter().zip(patches).enumerate() {
+        let read = read.irradiance.as_ref().map(|e| e[0]);
+        assert_eq!(drawn.value, read, "patch {i}");
+        lit += usize::from(read.is_some_and(|e| e > 0.0));
+    }
+    assert!(lit > patches.len() / 2, "{lit} patches lit");
+    assert!(net.png().is_ok());
+}
+
 #[test]
 fn errors_name_what_is_wrong() {
     let dir = scratch("errors");

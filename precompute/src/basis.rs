@@ -5,10 +5,12 @@ use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Precision, Quantity};
 
 use crate::radiosity::eigen::Formulation;
+use crate::radiosity::model::amplitude_weight;
 use crate::radiosity::{LightResponse, Model};
 use crate::scene::{Bands, Scene};
 use crate::sources::daylight::direct::direct_sun_tables;
 use crate::sources::daylight::nodes::DaylightNodes;
+use crate::sources::daylight::reflection::first_reflection;
 
 /// Fills every table of the basis for the first `p` modes of `model`, section by section of
 /// `docs/format.md`.
@@ -206,18 +208,22 @@ pub struct BasisDaylight {
     pub nodes: DaylightNodes,
     /// The exact response to each node alone, in the nodes' order.
     pub responses: Vec<LightResponse>,
+    /// Each node's initial exitance, its first reflection (lux per unit of the node;
+    /// [`crate::radiosity::System::initial_exitances`]), in the nodes' order.
+    pub initial: Vec<Vec<f64>>,
 }
 
 /// The daylight section (docs/format.md, "Daylight") of a basis whose other tables `t` holds:
 /// the site, the sky and the sun grid, then per node every output's and grid point's exact
-/// reading and the mode amplitudes of the room's exact exitance. Daylight is photopic: one
-/// band.
+/// reading, the first reflection (the sky's to `sky_rank_tolerance`) and the mode amplitudes
+/// of what the room reflects after it. Daylight is photopic: one band.
 pub fn daylight_tables(
     t: &mut BasisTables,
     scene: &Scene,
     model: &Model,
     daylight: &BasisDaylight,
-) -> std::result::Result<(), eigenrad_runtime::Error> {
+    sky_rank_tolerance: f64,
+) -> crate::error::Result<()> {
     let Some(site) = &scene.site else {
         return Ok(());
     };
@@ -247,15 +253,26 @@ pub fn daylight_tables(
     let column = |row: usize| daylight.responses.iter().map(move |r| r.readings[row]);
     t.daylight_outputs = (0..outputs).flat_map(column).collect();
     t.daylight_grid = (outputs..rows).flat_map(column).collect();
-    let p = t.mode_count;
-    let amplitudes: Vec<Vec<f64>> = daylight
+    let exact: Vec<Vec<f64>> = daylight
         .responses
         .iter()
-        .map(|r| model.mode_amplitudes(0, &r.exitance, p))
+        .map(|r| r.exitance.clone())
         .collect();
-    t.daylight_modes = (0..p)
-        .flat_map(|k| amplitudes.iter().map(move |a| a[k]))
-        .collect();
+    let first = first_reflection(
+        model,
+        &daylight.initial,
+        &exact,
+        nodes.patches.count() + 1,
+        t.mode_count,
+        sky_rank_tolerance,
+    )?;
+    t.reflection_rank = vec![first.rank as u32];
+    t.sky_reflection_weights = first.sky_weights;
+    t.sky_reflection = first.sky;
+    t.sun_reflection_counts = first.sun_counts;
+    t.sun_reflection_patches = first.sun_patches;
+    t.sun_reflection = first.sun_values;
+    t.daylight_modes = first.modes;
     debug_assert_eq!(t.daylight_outputs.len(), outputs * d);
     let direct = direct_sun_tables(scene, site);
     t.sun_polygon_counts = direct.counts.to_vec();
@@ -264,7 +281,72 @@ pub fn daylight_tables(
     t.sun_glazing = direct.glazing;
     t.sensor_response_rows = direct.sensor_rows;
     t.sensor_response = direct.sensor_response;
-    split_direct_sun(t, nodes)
+    Ok(split_direct_sun(t, nodes)?)
+}
+
+/// `t` with its daylight's first reflection folded into the modes: `daylight_modes` made
+/// `p × D` again, each node's amplitudes of its whole exitance (the stored first reflection's
+/// projection added to what followed it), and the first reflection's tables emptied. For
+/// bases whose daylight nodes change (a building's rooms joined through ports, which add
+/// their neighbours' nodes): their patches' daylight then comes through the modes alone, as
+/// in format version 6. Nothing to do without a first reflection.
+pub fn fold_daylight_reflection(t: &mut BasisTables) {
+    let Some(&rank) = t.reflection_rank.first() else {
+        return;
+    };
+    let rank = rank as usize;
+    let (n, p) = (t.patch_area.len(), t.mode_count);
+    let suns = t.sun_nodes.len();
+    let sky = t
+        .sky_reflection_weights
+        .len()
+        .checked_div(rank)
+        .unwrap_or(0);
+    let d = sky + suns;
+    let columns = rank + suns;
+    // Daylight is photopic: band 0's modes, `n × p`.
+    let weight =
+        |j: usize| amplitude_weight(t.formulation, t.patch_area[j], t.patch_reflectance[j]);
+    let project = |x: &dyn Fn(usize) -> f64, k: usize| -> f64 {
+        (0..n).map(|j| weight(j) * t.modes[j * p + k] * x(j)).sum()
+    };
+    let mut modes = vec![0.0; p * d];
+    let mut first_sun = 0usize;
+    let mut sun_starts = Vec::with_capacity(suns);
+    for &c in &t.sun_reflection_counts {
+        sun_starts.push(first_sun);
+        first_sun += c as usize;
+    }
+    for k in 0..p {
+        // Each coefficient's first reflection and what followed it, on mode k.
+        let per_coefficient: Vec<f64> = (0..rank)
+            .map(|j| {
+                project(&|i| t.sky_reflection[i * rank + j], k) + t.daylight_modes[k * columns + j]
+            })
+            .collect();
+        for node in 0..sky {
+            modes[k * d + node] = (0..rank)
+                .map(|j| per_coefficient[j] * t.sky_reflection_weights[j * sky + node])
+                .sum();
+        }
+        for s in 0..suns {
+            let start = sun_starts[s];
+            let listed: f64 = (start..start + t.sun_reflection_counts[s] as usize)
+                .map(|e| {
+                    let i = t.sun_reflection_patches[e] as usize;
+                    weight(i) * t.modes[i * p + k] * t.sun_reflection[e]
+                })
+                .sum();
+            modes[k * d + sky + s] = t.daylight_modes[k * columns + rank + s] + listed;
+        }
+    }
+    t.daylight_modes = modes;
+    t.reflection_rank.clear();
+    t.sky_reflection_weights.clear();
+    t.sky_reflection.clear();
+    t.sun_reflection_counts.clear();
+    t.sun_reflection_patches.clear();
+    t.sun_reflection.clear();
 }
 
 /// Takes out of every sun node's readings at the sensors and grid points the direct sun the

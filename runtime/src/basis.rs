@@ -450,6 +450,30 @@ impl<'a> Basis<'a> {
         self.matrix(self.tables.daylight_grid, self.counts.daylight_grid_cols())
     }
 
+    /// The `sky_reflection` matrix: `n × r` (empty without a first reflection).
+    pub(crate) fn sky_reflection(&self) -> Matrix<'a> {
+        self.matrix(
+            self.tables.sky_reflection,
+            Some(self.counts.reflection_rank.unwrap_or(0)),
+        )
+    }
+
+    /// The rank `r` of the sky's stored first reflection under daylight, `None` when the
+    /// basis stores none (its patches' daylight then comes through the modes alone:
+    /// docs/math.md, "Daylight's first reflection").
+    pub fn daylight_reflection_rank(&self) -> Option<usize> {
+        self.counts.reflection_rank
+    }
+
+    /// The values a [`DaylightEvaluator`](crate::DaylightEvaluator) keeps to read patch
+    /// exitance: the `p` mode amplitudes and the `r` coefficients of the first reflection.
+    /// Its capacity `EXITANCE` must hold them.
+    pub fn daylight_exitance_state(&self) -> usize {
+        self.counts
+            .mode_count
+            .saturating_add(self.counts.reflection_rank.unwrap_or(0))
+    }
+
     /// Position of patch `patch` in the black-patch list, if it is black in some band.
     pub(crate) fn black_index(&self, patch: usize) -> Option<usize> {
         search_u32(self.tables.black_patches, patch)

@@ -123,6 +123,18 @@ pub struct BasisTables {
     pub sensor_response_rows: Vec<u32>,
     /// Polar angle (rad) and relative sensitivity pairs, sensor by sensor.
     pub sensor_response: Vec<f64>,
+    /// Empty (no first reflection stored), or `r`, the rank of the sky's first reflection.
+    pub reflection_rank: Vec<u32>,
+    /// `r × (S_k + 1)`: each coefficient's weights of the sky's patches and the exterior.
+    pub sky_reflection_weights: Vec<f64>,
+    /// `n × r`: each patch's first reflection per unit of each coefficient (lux).
+    pub sky_reflection: Vec<f64>,
+    /// Per sun node: the patches its first reflection lists.
+    pub sun_reflection_counts: Vec<u32>,
+    /// The listed patches, sun node by sun node, ascending within a node.
+    pub sun_reflection_patches: Vec<u32>,
+    /// Each listed patch's first reflection, lux per lux of direct normal illuminance.
+    pub sun_reflection: Vec<f64>,
 }
 
 /// `values` rounded to `f32`, little-endian.
@@ -276,6 +288,12 @@ impl BasisTables {
             sun_glazing: Vec::new(),
             sensor_response_rows: Vec::new(),
             sensor_response: Vec::new(),
+            reflection_rank: Vec::new(),
+            sky_reflection_weights: Vec::new(),
+            sky_reflection: Vec::new(),
+            sun_reflection_counts: Vec::new(),
+            sun_reflection_patches: Vec::new(),
+            sun_reflection: Vec::new(),
         }
     }
 
@@ -293,6 +311,8 @@ impl BasisTables {
             grid_point_count: self.grid_position.len(),
             daylight_node_count: format::daylight_nodes(self.sky_subdivision, self.sun_nodes.len())
                 .unwrap_or(0),
+            sun_node_count: self.sun_nodes.len(),
+            reflection_rank: self.reflection_rank.first().map(|&r| r as usize),
         }
     }
 
@@ -398,6 +418,13 @@ impl BasisTables {
             sun_glazing: &f32_bytes(&self.sun_glazing),
             sensor_response_rows: &u32_bytes(&self.sensor_response_rows),
             sensor_response: &f32_bytes(&self.sensor_response),
+            reflection_rank: &u32_bytes(&self.reflection_rank),
+            sky_reflection_weights: &f32_bytes(&self.sky_reflection_weights),
+            sky_reflection: matrix(&self.sky_reflection, Some(c.reflection_rank.unwrap_or(0)))?
+                .bytes(),
+            sun_reflection_counts: &u32_bytes(&self.sun_reflection_counts),
+            sun_reflection_patches: &u32_bytes(&self.sun_reflection_patches),
+            sun_reflection: &f32_bytes(&self.sun_reflection),
         })
     }
 }

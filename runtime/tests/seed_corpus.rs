@@ -26,6 +26,11 @@ fn write_seed_corpus() {
         common::tiny_daylight().to_bytes().unwrap(),
     )
     .unwrap();
+    std::fs::write(
+        format!("{dir}/tiny-daylight-reflection.basis"),
+        common::tiny_daylight_reflection().to_bytes().unwrap(),
+    )
+    .unwrap();
     for f in [Formulation::Split, Formulation::Seed] {
         for p in [Precision::F32, Precision::F16, Precision::I16] {
             for bands in [1, 3] {

@@ -251,7 +251,8 @@ pub struct DaylightCheck {
     /// Largest relative error of a sensor, zone or grid point under either state (exact per
     /// node: `f32` and storage rounding).
     pub readings: f64,
-    /// Patch exitance through the modes under the overcast sky: [`patch_error`] against the
+    /// Patch exitance under the overcast sky (its first reflection from the basis' tables
+    /// when it stores them, the rest through the modes): [`patch_error`] against the
     /// exact exitance.
     pub patch_error_overcast: f64,
     /// The same with the sun at a node besides: the sun patch's sharp edges are what `p`

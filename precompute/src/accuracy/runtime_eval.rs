@@ -135,7 +135,8 @@ pub struct DaylightReadout {
     pub figures: Vec<Option<Figures>>,
     /// Each zone's grid figures under daylight and the channels together.
     pub figures_with_channels: Vec<Option<Figures>>,
-    /// Every patch's daylight exitance through the modes, lux (when asked).
+    /// Every patch's daylight exitance, lux (when asked): its first reflection from the
+    /// basis' tables, the rest through the modes.
     pub exitance: Vec<f64>,
 }
 
@@ -147,7 +148,11 @@ impl DaylightReadout {
     }
 }
 
-type HostDaylight<'a> = DaylightEvaluator<'a, MAX_SKY_PATCHES, MAX_OUTPUTS, MAX_MODES>;
+/// Patch-exitance state of the host's daylight evaluator: the most modes and the first
+/// reflection's largest rank (a sky's patches and the exterior).
+const MAX_DAYLIGHT_STATE: usize = MAX_MODES + MAX_SKY_PATCHES + 1;
+
+type HostDaylight<'a> = DaylightEvaluator<'a, MAX_SKY_PATCHES, MAX_OUTPUTS, MAX_DAYLIGHT_STATE>;
 
 /// Evaluates the daylight of `bytes` under `sky`, with the channels at `levels` for the
 /// figures of the two together; `patches`: also every patch's exitance.

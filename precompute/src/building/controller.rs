@@ -202,6 +202,7 @@ pub fn cut(room: &BasisTables, selection: &Selection) -> BasisTables {
             .collect()
     };
     let when_modes = |table: &Vec<f64>| if *modes { table.clone() } else { Vec::new() };
+    let when_rows = |table: &Vec<u32>| if *modes { table.clone() } else { Vec::new() };
     let mut t = BasisTables {
         quantity: room.quantity,
         formulation: room.formulation,
@@ -291,6 +292,13 @@ pub fn cut(room: &BasisTables, selection: &Selection) -> BasisTables {
                 .collect()
         },
         sensor_response: sensor_response_of(room, sensors),
+        // The daylight's first reflection is per patch, as the modes: kept with them.
+        reflection_rank: when_rows(&room.reflection_rank),
+        sky_reflection_weights: when_modes(&room.sky_reflection_weights),
+        sky_reflection: when_modes(&room.sky_reflection),
+        sun_reflection_counts: when_rows(&room.sun_reflection_counts),
+        sun_reflection_patches: when_rows(&room.sun_reflection_patches),
+        sun_reflection: when_modes(&room.sun_reflection),
     };
     if room.grid_pieces.is_empty() {
         // The room has no grid at all: written as it writes it.

@@ -145,6 +145,13 @@ fn build_room(
             })
         })
         .collect();
+    // The merge folds a room's first reflection into its modes (its daylight nodes become
+    // its neighbours' too, `basis::fold_daylight_reflection`): kept at full rank, the fold
+    // loses nothing of the sky's.
+    let options = &BuildOptions {
+        sky_rank_tolerance: f64::MIN_POSITIVE,
+        ..options.clone()
+    };
     let (built, ports) = pipeline::build_tables_and(
         &room.scene,
         options,

@@ -205,16 +205,10 @@ fn native_readout(request: &RenderRequest<'_>, scene: &Scene) -> Result<Readout>
     let path = request.scene;
     let patches = request.surfaces.is_some();
     match request.basis {
-        Some((basis_path, _)) if request.daylight.is_some() && patches => {
-            Err(render_error(
-                path,
-                format!(
-                    "{} holds the daylight of its patches only through its modes, too coarse for a picture of the surfaces (docs/math.md, \"Daylight in the basis\"); leave out --basis to draw them from the exact solve",
-                    basis_path.display()
-                ),
-            ))
-        }
         Some((basis_path, bytes)) => {
+            if request.daylight.is_some() && patches {
+                refuse_daylight_through_modes_alone(path, basis_path, bytes)?;
+            }
             let r = readout::eval_with_daylight(
                 basis_path,
                 bytes,
@@ -233,6 +227,30 @@ fn native_readout(request: &RenderRequest<'_>, scene: &Scene) -> Result<Readout>
             request.form_factors,
         ),
     }
+}
+
+/// A basis that stores no first reflection of its daylight (a building's room, whose
+/// daylight nodes its neighbours' join) holds its patches' daylight only through its modes,
+/// too coarse for a picture of the surfaces: an error saying so. Other bases, and bases
+/// that do not decode (the evaluation names their fault), pass.
+fn refuse_daylight_through_modes_alone(
+    scene: &Path,
+    basis_path: &Path,
+    bytes: &[u8],
+) -> Result<()> {
+    let Ok(basis) = eigenrad_runtime::Basis::from_bytes(bytes) else {
+        return Ok(());
+    };
+    if !basis.has_daylight() || basis.daylight_reflection_rank().is_some() {
+        return Ok(());
+    }
+    Err(render_error(
+        scene,
+        format!(
+            "{} stores no first reflection of its daylight and holds its patches' daylight only through its modes, too coarse for a picture of the surfaces (docs/math.md, \"Daylight's first reflection\"); leave out --basis to draw them from the exact solve",
+            basis_path.display()
+        ),
+    ))
 }
 
 /// The lines under every picture's title: where the readings come from, the channels'

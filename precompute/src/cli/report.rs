@@ -137,6 +137,13 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
                 direct.window_faces, direct.room_occluders, direct.exterior_occluders, direct.bytes
             );
         }
+        if let Some(f) = &d.first_reflection {
+            let _ = writeln!(
+                s,
+                "  first reflection for patch exitance: the sky's at rank {} (relative error {:.1e}, area-weighted, tolerance {:.1e}), the sun nodes' {} patches, {} bytes",
+                f.rank, f.sky_error, f.tolerance, f.sun_entries, f.bytes
+            );
+        }
         let i = &d.sun_interpolation;
         let _ = writeln!(
             s,
@@ -161,7 +168,7 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         }
         let _ = writeln!(
             s,
-            "  through the runtime against the exact solve (CIE overcast sky, zenith 3000 cd/m², E_gh 10000 lux; then with the sun at a node, E_n 50000 lux): sensors, zones and grid points within {:.1e}; patch exitance through the modes {:.1e} overcast, {:.1e} with the sun",
+            "  through the runtime against the exact solve (CIE overcast sky, zenith 3000 cd/m², E_gh 10000 lux; then with the sun at a node, E_n 50000 lux): sensors, zones and grid points within {:.1e}; patch exitance {:.1e} overcast, {:.1e} with the sun (area-weighted RMS)",
             d.check.readings, d.check.patch_error_overcast, d.check.patch_error_sun
         );
     }

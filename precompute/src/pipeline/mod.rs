@@ -95,6 +95,10 @@ pub struct BuildOptions {
     pub sun_step: [f64; 2],
     /// The sky's patches a basis with daylight stores (`--mf`, `--sky-tolerance`).
     pub sky: SkySelection,
+    /// Relative error, in the area-weighted Frobenius norm, to which the sky's first
+    /// reflection is stored for patch exitance under daylight (`--sky-rank-tolerance`;
+    /// docs/math.md, "Daylight's first reflection").
+    pub sky_rank_tolerance: f64,
     /// The flash the basis should fit (`--flash`): a build that would not fit says so before
     /// its form factors, naming the sections and what would bring it under.
     pub flash: FlashBudget,
@@ -114,6 +118,7 @@ impl Default for BuildOptions {
             grids: true,
             sun_step: sources::daylight::nodes::DEFAULT_SUN_STEP,
             sky: SkySelection::Subdivision(1),
+            sky_rank_tolerance: sources::daylight::reflection::DEFAULT_SKY_RANK_TOLERANCE,
             flash: FlashBudget::DEFAULT,
             narration: Narration::Silent,
         }
@@ -400,7 +405,15 @@ pub fn build_tables_and<T>(
                 &daylight_opts,
             );
             let responses = system.light_responses(0, &nodes.lights)?;
-            Ok::<_, Error>((basis::BasisDaylight { nodes, responses }, discretisation))
+            let initial = system.initial_exitances(0, &nodes.lights);
+            Ok::<_, Error>((
+                basis::BasisDaylight {
+                    nodes,
+                    responses,
+                    initial,
+                },
+                discretisation,
+            ))
         })?)
     } else {
         None
@@ -417,7 +430,7 @@ pub fn build_tables_and<T>(
     };
     let (tables, bytes, daylight_bytes) =
         stages.run("serialization", Some(expected.serialization), || {
-            serialize(&scene, &model, p, opts.precision, daylight.as_ref())
+            serialize(&scene, &model, p, opts, daylight.as_ref())
         })?;
     let accuracy = stages.run(
         "verification through the runtime",
@@ -430,8 +443,14 @@ pub fn build_tables_and<T>(
     let daylight = match &daylight {
         None => None,
         Some(d) => Some(stages.run("daylight through the runtime", None, || {
-            DaylightReport::of(d, daylight_bytes, &scene, &occluders, &model, &bytes)
-                .map(|r| r.with_sky_discretisation(sky_discretisation))
+            DaylightReport::of(
+                d,
+                daylight_bytes,
+                opts.sky_rank_tolerance,
+                (&scene, &occluders, &model),
+                &bytes,
+            )
+            .map(|r| r.with_sky_discretisation(sky_discretisation))
         })?),
     };
     let sensor_ratios = stages.run("sensor ratios through the runtime", None, || {
@@ -508,16 +527,16 @@ fn serialize(
     scene: &Scene,
     model: &Model,
     p: usize,
-    precision: Precision,
+    opts: &BuildOptions,
     daylight: Option<&basis::BasisDaylight>,
-) -> std::result::Result<(BasisTables, Vec<u8>, usize), eigenrad_runtime::Error> {
-    let mut tables = basis::basis_tables(scene, model, p, precision);
+) -> Result<(BasisTables, Vec<u8>, usize)> {
+    let mut tables = basis::basis_tables(scene, model, p, opts.precision);
     let Some(d) = daylight else {
         let bytes = tables.to_bytes()?;
         return Ok((tables, bytes, 0));
     };
     let without = tables.to_bytes()?.len();
-    basis::daylight_tables(&mut tables, scene, model, d)?;
+    basis::daylight_tables(&mut tables, scene, model, d, opts.sky_rank_tolerance)?;
     let bytes = tables.to_bytes()?;
     let added = bytes.len() - without;
     Ok((tables, bytes, added))

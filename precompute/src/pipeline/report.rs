@@ -113,6 +113,22 @@ pub struct DirectSunReport {
     pub bytes: usize,
 }
 
+/// What the daylight's first reflection takes (docs/format.md, "First reflection").
+#[derive(Clone, Debug, Serialize)]
+pub struct FirstReflectionReport {
+    /// `r`: the rank of the sky's first reflection.
+    pub rank: usize,
+    /// The tolerance it was chosen by (`--sky-rank-tolerance`).
+    pub tolerance: f64,
+    /// Its relative error in the area-weighted Frobenius norm (at most the tolerance).
+    pub sky_error: f64,
+    /// Patches the sun nodes' lists hold, over all nodes.
+    pub sun_entries: usize,
+    /// Bytes of its six tables (within [`DaylightReport::bytes`]); `daylight_modes` holds
+    /// `p × (r + sun nodes)` values with it instead of `p × D`.
+    pub bytes: usize,
+}
+
 /// What a basis' daylight holds, what it costs in flash and how close it reads.
 #[derive(Clone, Debug, Serialize)]
 pub struct DaylightReport {
@@ -133,6 +149,8 @@ pub struct DaylightReport {
     /// The direct sun's tables (docs/format.md, "Direct sun"): window faces, room and
     /// exterior occluders stored, and the bytes they take (within [`Self::bytes`]).
     pub direct_sun: Option<DirectSunReport>,
+    /// The first reflection stored for patch exitance, `None` when the basis stores none.
+    pub first_reflection: Option<FirstReflectionReport>,
     /// The sun read between the grid's nodes against the exact sun.
     pub sun_interpolation: crate::accuracy::daylight::SunInterpolation,
     /// A sky state read through the runtime against the exact solve.
@@ -148,12 +166,36 @@ impl DaylightReport {
     pub(super) fn of(
         d: &BasisDaylight,
         bytes_added: usize,
-        scene: &Scene,
-        occluders: &Occluders,
-        model: &Model,
+        sky_rank_tolerance: f64,
+        (scene, occluders, model): (&Scene, &Occluders, &Model),
         bytes: &[u8],
     ) -> Result<DaylightReport> {
         let grid = &d.nodes.sun_grid;
+        let payload = eigenrad_runtime::format::decode(bytes)?;
+        let first_reflection = (!payload.reflection_rank.is_empty()).then(|| {
+            let rank = payload.reflection_rank.iter().take(4).enumerate();
+            let rank = rank.fold(0usize, |r, (k, &b)| r | (usize::from(b) << (8 * k)));
+            let tables = [
+                payload.reflection_rank,
+                payload.sky_reflection_weights,
+                payload.sky_reflection.scales,
+                payload.sky_reflection.data,
+                payload.sun_reflection_counts,
+                payload.sun_reflection_patches,
+                payload.sun_reflection,
+            ];
+            FirstReflectionReport {
+                rank,
+                tolerance: sky_rank_tolerance,
+                sky_error: crate::sources::daylight::reflection::sky_truncation_error(
+                    &d.initial[..d.nodes.patches.count() + 1],
+                    model.area(),
+                    rank,
+                ),
+                sun_entries: payload.sun_reflection.len() / 4,
+                bytes: tables.iter().map(|t| t.len()).sum(),
+            }
+        });
         Ok(DaylightReport {
             sky: if d.nodes.patches.subdivision() == 1 {
                 "tregenza".to_owned()
@@ -178,6 +220,7 @@ impl DaylightReport {
                     }
                 })
             },
+            first_reflection,
             sun_interpolation: accuracy::daylight::sun_interpolation(
                 scene, occluders, model, d, bytes,
             )?,

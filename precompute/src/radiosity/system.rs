@@ -258,20 +258,13 @@ impl System {
         lights: &[ChannelLight],
     ) -> Result<Vec<(LightResponse, Vec<f64>)>, EigenError> {
         let n = self.patch_count();
-        let external: Vec<ExternalLight> = lights
-            .iter()
-            .map(|l| l.external(self.operator(), &self.area, &self.output_rows))
-            .collect();
+        let external = self.external_lights(lights);
         let mut m0 = Mat::<f64>::zeros(n, lights.len());
-        for (k, (light, ext)) in lights.iter().zip(&external).enumerate() {
-            let first = initial_exitance(
-                std::slice::from_ref(light),
-                std::slice::from_ref(ext),
-                &self.reflectance[b],
-                b,
-                &[1.0],
-                &[],
-            );
+        for (k, first) in self
+            .initial_exitances_of(b, lights, &external)
+            .iter()
+            .enumerate()
+        {
             for (i, x) in first.iter().enumerate() {
                 m0[(i, k)] = *x;
             }
@@ -289,6 +282,43 @@ impl System {
                 (LightResponse { exitance, readings }, irradiance)
             })
             .collect())
+    }
+
+    /// Each of `lights`' part of its direct light its emission does not carry.
+    fn external_lights(&self, lights: &[ChannelLight]) -> Vec<ExternalLight> {
+        lights
+            .iter()
+            .map(|l| l.external(self.operator(), &self.area, &self.output_rows))
+            .collect()
+    }
+
+    /// `M0` of band `b` for each of `lights` alone at level 1 (W/m² or lux): its emission
+    /// plus the first reflection `ρ ∘ E_ext` of its light from beyond the patches, what
+    /// [`System::light_responses`] solves for.
+    pub fn initial_exitances(&self, b: usize, lights: &[ChannelLight]) -> Vec<Vec<f64>> {
+        self.initial_exitances_of(b, lights, &self.external_lights(lights))
+    }
+
+    fn initial_exitances_of(
+        &self,
+        b: usize,
+        lights: &[ChannelLight],
+        external: &[ExternalLight],
+    ) -> Vec<Vec<f64>> {
+        lights
+            .iter()
+            .zip(external)
+            .map(|(light, ext)| {
+                initial_exitance(
+                    std::slice::from_ref(light),
+                    std::slice::from_ref(ext),
+                    &self.reflectance[b],
+                    b,
+                    &[1.0],
+                    &[],
+                )
+            })
+            .collect()
     }
 
     /// The irradiance (W/m² or lux) in band `b` on each patch of `patches` from `light` alone,

@@ -9,7 +9,8 @@
 //! [`DirectSun::new`](crate::sky::direct::DirectSun::new) and so by every
 //! [`DaylightEvaluator`](crate::DaylightEvaluator)): each table's length, named, the site,
 //! the sun grid and its nodes in range, every node table finite and bounded, then the
-//! direct sun's geometry. A firmware that reads no daylight links the shape alone.
+//! direct sun's geometry and the first reflection ([`super::reflection`]). A firmware that
+//! reads no daylight links the shape alone.
 
 use super::dimensions::field_value;
 use super::tables::{ascending_below, bad_value, check_len, cols, f32_table, matrix, mul, Allowed};
@@ -29,13 +30,15 @@ const SITE_LIMITS: [f32; 5] = [90.0, 180.0, 1.0e4, 360.0, 18.0 * 60.0];
 const SETTINGS_BYTES: usize = 4 * (5 + 2 + 4);
 
 /// The section's shape, at decode, as the sum of its tables' lengths: nothing without a sky
-/// (`sky_subdivision` 0), all fourteen tables empty; with one, a photometric basis of one
-/// band whose site, sun lattice and spacing, `O × D` and `p × D` node tables and `G × D`
-/// grid matrix (with a scale per node in 16 bits) take the bytes the counts give them
-/// together. A wrong total is [`Error::DecodeLength`] for the field `daylight`;
-/// [`check_values`] names the table. (`sky_subdivision` and the length of `sun_nodes` were
-/// checked with the counts, since `D` follows from them; the direct sun's tables, sized by
-/// their own counts, are checked with the values.)
+/// (`sky_subdivision` 0), all twenty-one tables empty; with one, a photometric basis of one
+/// band whose site, sun lattice and spacing, `O × D` output table, `p × D` (or, with a first
+/// reflection, `p × (r + sun nodes)`) mode table and `G × D` grid matrix (with a scale per
+/// node in 16 bits) take the bytes the counts give them together. A wrong total is
+/// [`Error::DecodeLength`] for the field `daylight`; [`check_values`] names the table.
+/// (`sky_subdivision`, the length of `sun_nodes` and `reflection_rank` were checked with the
+/// counts, since `D` and `r` follow from them; the direct sun's tables, sized by their own
+/// counts, are checked with the values; the first reflection's by
+/// [`super::reflection::shape`].)
 pub(super) fn shape(
     raw: &Payload<'_>,
     c: &Counts,
@@ -55,35 +58,39 @@ pub(super) fn shape(
         + raw.sun_glazing.len()
         + raw.sensor_response_rows.len()
         + raw.sensor_response.len();
+    let reflection = super::reflection::sized_bytes(raw);
+    let listed = raw.sun_reflection_patches.len() + raw.sun_reflection.len();
     if raw.sky_subdivision == 0 {
-        return total(0, sized + direct + raw.sun_nodes.len());
+        let all = sized + direct + reflection + listed + raw.reflection_rank.len();
+        return total("daylight", 0, all + raw.sun_nodes.len());
     }
     // Daylight is photopic: its tables are in lux.
     if quantity != Quantity::Photometric {
         return Err(field_value("sky_subdivision", raw.sky_subdivision));
     }
-    // Per node: its value for every output and mode (4 bytes each), its grid column, and its
-    // grid scale in 16 bits.
-    let outputs_and_modes = cols(c.output_count().and_then(|o| o.checked_add(c.mode_count)))?;
+    // Per node: its value for every output (4 bytes each), its grid column, and its grid
+    // scale in 16 bits; per mode, a value per column of `daylight_modes`.
+    let outputs = cols(c.output_count())?;
     let grid = mul(c.grid_point_count, precision.bytes())?;
     let scale = match precision {
         Precision::F32 => 0,
         Precision::F16 | Precision::I16 => 4,
     };
-    let per_node = cols(mul(outputs_and_modes, 4)?.checked_add(grid))?;
+    let per_node = cols(mul(outputs, 4)?.checked_add(grid))?;
     let per_node = cols(per_node.checked_add(scale))?;
+    let modes = mul(mul(c.mode_count, cols(c.daylight_modes_cols())?)?, 4)?;
     let expected = cols(mul(c.daylight_node_count, per_node)?.checked_add(SETTINGS_BYTES))?;
-    total(expected, sized)
+    total("daylight", cols(expected.checked_add(modes))?, sized)?;
+    super::reflection::shape(raw, c, precision, reflection + listed)
 }
 
-/// [`Error::DecodeLength`] for the field `daylight` unless the section's tables hold
-/// `expected` bytes.
-fn total(expected: usize, found: usize) -> Result<()> {
+/// [`Error::DecodeLength`] for `field` unless the tables it names hold `expected` bytes.
+pub(super) fn total(field: &'static str, expected: usize, found: usize) -> Result<()> {
     if expected == found {
         Ok(())
     } else {
         Err(Error::DecodeLength {
-            field: "daylight",
+            field,
             expected,
             found,
         })
@@ -136,7 +143,7 @@ pub(crate) fn check_values(raw: &Payload<'_>, c: &Counts, precision: Precision) 
     f32_table(
         "daylight_modes",
         raw.daylight_modes,
-        mul(cols(c.modes_cols())?, d)?,
+        mul(cols(c.modes_cols())?, cols(c.daylight_modes_cols())?)?,
         Allowed::Bounded,
     )?;
     matrix(
@@ -147,5 +154,6 @@ pub(crate) fn check_values(raw: &Payload<'_>, c: &Counts, precision: Precision) 
         c.grid_point_count,
         cols(c.daylight_grid_cols())?,
     )?;
-    super::direct_sun::check(raw, c)
+    super::direct_sun::check(raw, c)?;
+    super::reflection::check(raw, c, precision)
 }

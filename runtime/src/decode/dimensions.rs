@@ -61,6 +61,8 @@ pub(super) fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
         grid_piece_count: 0,
         grid_point_count: 0,
         daylight_node_count: 0,
+        sun_node_count: 0,
+        reflection_rank: None,
     };
     if counts.surface_count > usize::from(u16::MAX) {
         return Err(Error::DecodeField {
@@ -111,10 +113,24 @@ pub(super) fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
         raw.sky_subdivision,
         raw.sun_nodes.len() / 4,
     ))?;
+    // The rank of the sky's first reflection sizes that table and `daylight_modes`.
+    let reflection_rank = match raw.reflection_rank.len() {
+        0 => None,
+        4 => Some(u32_at(raw.reflection_rank, 0) as usize),
+        found => {
+            return Err(Error::DecodeLength {
+                field: "reflection_rank",
+                expected: 4,
+                found,
+            })
+        }
+    };
     Ok(Counts {
         grid_piece_count: pieces,
         grid_point_count: points,
         daylight_node_count: daylight_nodes,
+        sun_node_count: raw.sun_nodes.len() / 4,
+        reflection_rank,
         ..counts
     })
 }

@@ -16,6 +16,8 @@ mod dimensions;
 mod daylight;
 // The direct sun's geometry, part of the daylight section (format version 6).
 mod direct_sun;
+// The daylight's first reflection, part of the daylight section (format version 7).
+mod reflection;
 // The sections every basis has: names, eigenvalues, patch tables, modes, black patches,
 // channel tables, outputs, grids.
 mod room;

@@ -2,6 +2,7 @@
 //! and the sun, each a node whose exact readings the basis stores (docs/format.md,
 //! "Daylight"; docs/math.md, "Daylight in the basis").
 
+use super::reflection::{self, Drive, SunList};
 use super::{fits, grid_figures, luminance, ChannelEvaluator, Figures, MAX_EXITANCE};
 use crate::basis::{check_index, Basis};
 use crate::error::{Error, Result};
@@ -25,8 +26,9 @@ pub struct Sun {
 
 /// Turns a sky state (the luminance of every sky patch, the global horizontal illuminance,
 /// the sun) into the daylight illuminance of every sensor, zone and grid point, exact to
-/// `f32` for the sky's patches and at the sun grid's nodes, and into patch exitance through
-/// the modes.
+/// `f32` for the sky's patches and at the sun grid's nodes, and into patch exitance: its
+/// first reflection from the basis' own tables when it stores them, what the room reflects
+/// after that through the modes.
 ///
 /// The basis stores, per daylight node (each sky patch per cd/m², the exterior per cd/m² of
 /// `E_gh/π`, each sun node per lux of direct normal illuminance), every output's exact
@@ -34,7 +36,10 @@ pub struct Sun {
 /// A sky update ([`set_sky`](Self::set_sky)) weighs the nodes: the sky's patches by their
 /// luminances, the exterior by `E_gh/π`, the four sun nodes around the sun by their bilinear
 /// weights in declination and hour angle ([`crate::sky::sun_grid`]) times `E_n`; it then
-/// sums every output's row (`O × D` products) and, when `MODES > 0`, every mode's (`p × D`).
+/// sums every output's row (`O × D` products) and, when `EXITANCE > 0`, the state patch
+/// exitance is read from: with a stored first reflection, its `r` coefficients
+/// (`r × (S_k + 1)` products) and the `p` mode amplitudes of what follows it
+/// (`p × (r + 4)`); without, the modes' amplitudes of the whole exitance (`p × D`).
 /// When the basis stores the direct sun's geometry ([`crate::sky::direct`]), the sun nodes
 /// hold only the light the room reflects at sensors and grid points, and the update adds
 /// each sensor's direct sun at the sun's own direction (a ray test per window face and
@@ -43,12 +48,13 @@ pub struct Sun {
 /// direct sun when read.
 ///
 /// Capacities: `SKY` at least the basis' sky patches (145 for Tregenza), `OUTPUTS` at least
-/// its sensors plus zones, and `MODES` either 0 (no patch exitance: updates skip the modes)
-/// or at least its mode count. Daylight adds to the electric light of a
+/// its sensors plus zones, and `EXITANCE` either 0 (no patch exitance: updates skip it) or
+/// at least [`Basis::daylight_exitance_state`], its mode count plus the rank of its first
+/// reflection. Daylight adds to the electric light of a
 /// [`ChannelEvaluator`] or an [`Evaluator`](crate::Evaluator), which it does not hold:
 /// [`zone_figures_with`](Self::zone_figures_with) takes the figures of the two together.
 #[derive(Clone, Debug)]
-pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize> {
+pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize> {
     basis: Basis<'a>,
     /// Each sky patch's luminance, cd/m² (the basis' sky order).
     sky: heapless::Vec<f32, SKY>,
@@ -66,24 +72,28 @@ pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const M
     direct_sun: ([f32; 3], f32),
     /// Every output's daylight illuminance, lux.
     outputs: heapless::Vec<f32, OUTPUTS>,
-    /// The daylight's mode amplitudes (empty when `MODES` is 0).
-    amplitude: heapless::Vec<f32, MODES>,
+    /// The daylight's mode amplitudes, then the coefficients of the sky's first reflection
+    /// (empty when `EXITANCE` is 0).
+    amplitude: heapless::Vec<f32, EXITANCE>,
+    /// Where the four sun nodes' first reflections lie in the basis' lists.
+    sun_lists: [SunList; 4],
 }
 
-impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
-    DaylightEvaluator<'a, SKY, OUTPUTS, MODES>
+impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
+    DaylightEvaluator<'a, SKY, OUTPUTS, EXITANCE>
 {
     /// Bytes of state besides the basis view and the vectors' lengths.
-    pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + MODES)
+    pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + EXITANCE)
         + 4 * 3
         + core::mem::size_of::<[(u32, f32); 4]>()
+        + core::mem::size_of::<[SunList; 4]>()
         + core::mem::size_of::<Option<DirectSunState>>()
         + 4 * 4;
 
     /// An evaluator of `basis`' daylight, dark (no sky, no sun).
     ///
     /// [`Error::NoDaylight`] when the basis carries none; [`Error::Capacity`] when its sky,
-    /// its outputs or (with `MODES > 0`) its modes do not fit; a decoding error naming the
+    /// its outputs or (with `EXITANCE > 0`) its patch exitance's state do not fit; a decoding error naming the
     /// table when a value of the daylight section is out of range (checked here,
     /// [`Basis::check_daylight`], not by [`Basis::from_bytes`]).
     pub fn new(basis: Basis<'a>) -> Result<Self> {
@@ -93,8 +103,9 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
         fits("sky patches", sky_patches.count(), SKY)?;
         let outputs = basis.sensor_count() + basis.zone_count();
         fits("outputs", outputs, OUTPUTS)?;
-        if MODES > 0 {
-            fits("modes", basis.mode_count(), MODES)?;
+        let state = basis.daylight_exitance_state();
+        if EXITANCE > 0 {
+            fits("modes and first reflection", state, EXITANCE)?;
         }
         let capacity = Error::Capacity {
             what: "outputs",
@@ -113,6 +124,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
             direct_sun: ([0.0, 0.0, 1.0], 0.0),
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),
+            sun_lists: [(0, 0); 4],
         };
         evaluator
             .sky
@@ -122,10 +134,10 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
             .outputs
             .resize(outputs, 0.0)
             .map_err(|_| capacity)?;
-        if MODES > 0 {
+        if EXITANCE > 0 {
             evaluator
                 .amplitude
-                .resize(basis.mode_count(), 0.0)
+                .resize(state, 0.0)
                 .map_err(|_| capacity)?;
         }
         Ok(evaluator)
@@ -139,8 +151,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
     /// Sets the sky of a moment: `sky_luminance` (cd/m², one per sky patch of the basis, in
     /// its order: [`Basis::sky_patches`]), the global horizontal illuminance `E_gh` (lux)
     /// that lights the ground and the obstructions outside, and the sun, if any. Then sums
-    /// every output's daylight and, with `MODES > 0`, the modes': `O × D` (and `p × D`)
-    /// products.
+    /// every output's daylight (`O × D` products) and, with `EXITANCE > 0`, the state of
+    /// patch exitance (see the type's documentation).
     ///
     /// An input that is negative, not finite or above [`MAX_EXITANCE`], a wrong number of
     /// luminances, or a sun direction that is not a unit vector is an error and changes
@@ -194,7 +206,23 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
             sun: &self.sun,
         };
         weights.table(tables.daylight_outputs, columns, &mut self.outputs);
-        weights.table(tables.daylight_modes, columns, &mut self.amplitude);
+        match self.basis.counts.reflection_rank {
+            None => weights.table(tables.daylight_modes, columns, &mut self.amplitude),
+            Some(rank) => {
+                let drive = Drive {
+                    sky: &self.sky,
+                    exterior: self.exterior,
+                    sun: &self.sun,
+                };
+                reflection::update(
+                    &self.basis,
+                    rank,
+                    &drive,
+                    &mut self.amplitude,
+                    &mut self.sun_lists,
+                );
+            }
+        }
         self.direct_sun = ([0.0, 0.0, 1.0], 0.0);
         if let (Some(state), Some(s)) = (self.direct, sun) {
             let direct = DirectSun::with(&self.basis, state);
@@ -304,19 +332,35 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const MODES: usize>
         Ok(figures)
     }
 
-    /// Daylight exitance of `patch`, lux (lm/m²), through the modes: `Σ_k v_k · a_k`, exact
-    /// when `p = n`, otherwise the room's exact daylight exitance projected on the `p`
-    /// modes (docs/math.md). O(p). [`Error::Capacity`] when `MODES` is 0.
+    /// Daylight exitance of `patch`, lux (lm/m²): with a stored first reflection, that
+    /// reflection exact (to `f32` and the sky's rank) plus what the room reflects after it
+    /// through the modes, `Σ_k v_k · a_k`; without, the whole exitance through the modes.
+    /// Exact when `p = n`, otherwise the modes' part is its projection on the `p` modes
+    /// (docs/math.md, "Daylight's first reflection"). O(r + p). [`Error::Capacity`] when
+    /// `EXITANCE` is 0.
     pub fn exitance(&self, patch: usize) -> Result<f32> {
         check_index("patch", patch, self.basis.counts.patch_count)?;
-        if MODES == 0 {
+        if EXITANCE == 0 {
             return Err(Error::Capacity {
-                what: "modes",
-                needed: self.basis.mode_count(),
+                what: "modes and first reflection",
+                needed: self.basis.daylight_exitance_state(),
                 capacity: 0,
             });
         }
-        Ok(self.basis.modes().row_dot(patch, 0, &self.amplitude))
+        let p = self.basis.counts.mode_count;
+        let (amplitudes, coefficients) = self.amplitude.split_at(p.min(self.amplitude.len()));
+        let reflected = self.basis.modes().row_dot(patch, 0, amplitudes);
+        if self.basis.counts.reflection_rank.is_none() {
+            return Ok(reflected);
+        }
+        let first = reflection::first_reflection(
+            &self.basis,
+            patch,
+            coefficients,
+            &self.sun,
+            &self.sun_lists,
+        );
+        Ok(first + reflected)
     }
 
     /// Daylight luminance of `patch` as a Lambertian surface, `M/π`, cd/m².

@@ -12,6 +12,7 @@ mod channels;
 mod daylight;
 mod figures;
 mod patches;
+mod reflection;
 mod total;
 
 pub use channels::ChannelEvaluator;

@@ -29,6 +29,11 @@ pub(crate) struct Counts {
     pub grid_point_count: usize,
     /// `D`: daylight nodes (sky patches, the exterior, the sun nodes); 0 without daylight.
     pub daylight_node_count: usize,
+    /// The sun nodes among the daylight nodes (`sun_nodes`).
+    pub sun_node_count: usize,
+    /// `r`, the rank of the sky's stored first reflection; `None` when the basis stores no
+    /// first reflection (patch exitance under daylight through the modes alone).
+    pub reflection_rank: Option<usize>,
 }
 
 impl Counts {
@@ -60,6 +65,21 @@ impl Counts {
     /// Columns of `daylight_grid`: `D`.
     pub fn daylight_grid_cols(&self) -> Option<usize> {
         Some(self.daylight_node_count)
+    }
+
+    /// Columns of `daylight_modes`: `D` without a stored first reflection; with one, the
+    /// `r` coefficients of the sky's and the sun nodes (docs/format.md, "First reflection").
+    pub fn daylight_modes_cols(&self) -> Option<usize> {
+        match self.reflection_rank {
+            None => Some(self.daylight_node_count),
+            Some(r) => r.checked_add(self.sun_node_count),
+        }
+    }
+
+    /// Columns of `sky_reflection_weights`: the sky's patches and the exterior,
+    /// `D − sun nodes`.
+    pub fn sky_reflection_cols(&self) -> Option<usize> {
+        self.daylight_node_count.checked_sub(self.sun_node_count)
     }
 }
 

@@ -192,6 +192,27 @@ pub struct Payload<'a> {
     /// relative sensitivity (`≥ 0`).
     #[serde(borrow)]
     pub sensor_response: &'a [u8],
+    /// Empty (patch exitance under daylight through the modes alone), or 1 `u32`: `r`, the
+    /// rank of the sky's stored first reflection (docs/format.md, "First reflection").
+    #[serde(borrow)]
+    pub reflection_rank: &'a [u8],
+    /// `r × (S_k + 1)` `f32`: the sky's and the exterior's weight in each of the `r`
+    /// coefficients of the first reflection (the right singular vectors).
+    #[serde(borrow)]
+    pub sky_reflection_weights: &'a [u8],
+    /// `n × r` matrix: each patch's first reflection per unit of each coefficient (lux).
+    #[serde(borrow)]
+    pub sky_reflection: MatrixBytes<'a>,
+    /// One `u32` per stored sun node: the patches its first reflection lists.
+    #[serde(borrow)]
+    pub sun_reflection_counts: &'a [u8],
+    /// `u32` patch indices, sun node by sun node, ascending within a node.
+    #[serde(borrow)]
+    pub sun_reflection_patches: &'a [u8],
+    /// `f32`, one per listed patch: its first reflection, lux per lux of direct normal
+    /// illuminance.
+    #[serde(borrow)]
+    pub sun_reflection: &'a [u8],
 }
 
 /// Decodes the postcard payload that fills `body` exactly, borrowing its tables.
@@ -222,7 +243,7 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         *slot = take(&mut rest)?;
     }
     let sky_subdivision: u8 = take(&mut rest)?;
-    let mut daylight: [&[u8]; 14] = [&[]; 14];
+    let mut daylight: [&[u8]; 21] = [&[]; 21];
     for slot in &mut daylight {
         *slot = take(&mut rest)?;
     }
@@ -238,7 +259,7 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     let matrix = |scales, data| MatrixBytes { scales, data };
     let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_pieces, grid_lattice, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
         tables;
-    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data, sun_polygon_counts, sun_polygon_sizes, sun_polygons, sun_glazing, sensor_response_rows, sensor_response] =
+    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data, sun_polygon_counts, sun_polygon_sizes, sun_polygons, sun_glazing, sensor_response_rows, sensor_response, reflection_rank, sky_reflection_weights, sky_reflection_scales, sky_reflection_data, sun_reflection_counts, sun_reflection_patches, sun_reflection] =
         daylight;
     Ok(Payload {
         bands,
@@ -289,6 +310,12 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         sun_glazing,
         sensor_response_rows,
         sensor_response,
+        reflection_rank,
+        sky_reflection_weights,
+        sky_reflection: matrix(sky_reflection_scales, sky_reflection_data),
+        sun_reflection_counts,
+        sun_reflection_patches,
+        sun_reflection,
     })
 }
 
@@ -303,7 +330,7 @@ mod tests {
     /// the three loops take the fields in the struct's order.
     #[test]
     fn decode_payload_reads_what_postcard_derives() {
-        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..42u8)
+        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..49u8)
             .map(|k| {
                 (0..=k)
                     .map(|i| k.wrapping_mul(31).wrapping_add(i))
@@ -364,8 +391,14 @@ mod tests {
             sun_glazing: t(39),
             sensor_response_rows: t(40),
             sensor_response: t(41),
+            reflection_rank: t(42),
+            sky_reflection_weights: t(43),
+            sky_reflection: m(44),
+            sun_reflection_counts: t(46),
+            sun_reflection_patches: t(47),
+            sun_reflection: t(48),
         };
-        let mut buffer = [0u8; 1024];
+        let mut buffer = [0u8; 2048];
         let body = postcard::to_slice(&payload, &mut buffer).unwrap();
         assert_eq!(decode_payload(body).unwrap(), payload);
         assert_eq!(postcard::from_bytes::<Payload<'_>>(body).unwrap(), payload);

@@ -101,6 +101,27 @@ pub fn tiny_daylight() -> BasisTables {
     t
 }
 
+/// `tiny_daylight` with a stored first reflection (format version 7): the sky's at rank 2,
+/// coefficient `j` weighing sky node `d` by `(j + 1) · 10⁻³ · (d + 1)` and giving the floor
+/// (patch 0) `0.4 + 0.1 j` lux and the lamp (patch 1, black) 0 per unit; the sun nodes list
+/// the floor at 0.2 and 0.3 lux per lux (nodes 6 and 8) and nothing at node 7; the modes'
+/// amplitudes of what follows, `0.01 · (c + 1)` for column `c` of the 2 + 3. By hand, so
+/// that the tests can sum what the evaluator must read.
+pub fn tiny_daylight_reflection() -> BasisTables {
+    let mut t = tiny_daylight();
+    let sky = TREGENZA + 1;
+    t.reflection_rank = vec![2];
+    t.sky_reflection_weights = (0..2)
+        .flat_map(|j| (0..sky).map(move |d| (j + 1) as f64 * 1e-3 * (d + 1) as f64))
+        .collect();
+    t.sky_reflection = vec![0.4, 0.5, 0.0, 0.0];
+    t.sun_reflection_counts = vec![1, 0, 1];
+    t.sun_reflection_patches = vec![0, 0];
+    t.sun_reflection = vec![0.2, 0.3];
+    t.daylight_modes = (0..5).map(|c| 0.01 * (c + 1) as f64).collect();
+    t
+}
+
 /// A random basis with consistent dimensions and plausible magnitudes.
 pub fn random(
     seed: u64,

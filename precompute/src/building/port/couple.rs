@@ -296,7 +296,11 @@ pub fn couple(
                 }
             }
         }
-        let t = &part.tables;
+        // The joined rooms' daylight nodes are added here to this room's: its patches'
+        // daylight then comes through the modes alone (its first reflection folded in).
+        let mut folded = part.tables.clone();
+        crate::basis::fold_daylight_reflection(&mut folded);
+        let t = &folded;
         let bands = t.bands;
         let own = t.channel_names.len();
         let outputs = t.sensor_names.len() + t.zone_names.len();

@@ -12,6 +12,7 @@ use crate::pipeline::{self, BuildOptions, ModeSelection, Narration, SkySelection
 use crate::radiosity::eigen::{Formulation, Solver};
 use crate::scene;
 use crate::sources::daylight::nodes::DEFAULT_SUN_STEP;
+use crate::sources::daylight::reflection::DEFAULT_SKY_RANK_TOLERANCE;
 use eigenrad_runtime::Precision;
 
 /// The arguments of `eigenrad build`.
@@ -59,6 +60,12 @@ pub(super) struct BuildArgs {
     /// subdivision (docs/math.md, "Choosing the sky's patches"); the build reports it.
     #[arg(long, value_parser = positive_fraction)]
     sky_tolerance: Option<f64>,
+    /// Relative error to which the sky's first reflection under daylight is stored (its
+    /// rank is the smallest within it, area-weighted RMS over patches and sky nodes): lower
+    /// draws the patches under daylight more closely and takes more flash (the build
+    /// reports both). Default 0.1.
+    #[arg(long, value_name = "FRACTION", value_parser = positive_fraction)]
+    sky_rank_tolerance: Option<f64>,
     /// Flash the basis should fit, in bytes or with KiB, MiB, kB or MB (the build says
     /// before its form factors whether the basis will fit, and what would make it fit).
     #[arg(long, value_name = "SIZE", default_value_t = FlashBudget::DEFAULT)]
@@ -107,6 +114,9 @@ impl BuildArgs {
                 (_, Some(t)) => SkySelection::Tolerance(t),
                 (n, None) => SkySelection::Subdivision(n.unwrap_or(1)),
             },
+            sky_rank_tolerance: self
+                .sky_rank_tolerance
+                .unwrap_or(DEFAULT_SKY_RANK_TOLERANCE),
             modes: match (self.modes, self.tolerance) {
                 (Some(p), _) => ModeSelection::Count(p),
                 (None, Some(t)) => ModeSelection::Tolerance(t),

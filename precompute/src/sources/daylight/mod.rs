@@ -73,6 +73,7 @@ mod cells;
 pub mod direct;
 pub mod nodes;
 mod outside;
+pub mod reflection;
 mod sky;
 mod sun;
 #[cfg(test)]
