@@ -103,8 +103,9 @@ fn the_exitance_state_holds_modes_and_coefficients() {
     assert!(matches!(lean.exitance(0), Err(Error::Capacity { .. })));
 }
 
-/// Where a bad first reflection is refused: its shape by `Basis::from_bytes`, its values
-/// when daylight is used, each with the table named.
+/// Where a bad first reflection is refused: what sizes the daylight section (the rank, the
+/// modes' table) by `Basis::from_bytes`, its own tables and values when daylight is used,
+/// each with the table named.
 #[test]
 fn decoder_refuses_bad_first_reflections() {
     let named = |err: Error| match err {
@@ -129,21 +130,33 @@ fn decoder_refuses_bad_first_reflections() {
         assert_eq!(named(Day::new(basis).unwrap_err()), field);
     };
     at_decode(&|t| t.reflection_rank.push(2), "reflection_rank");
-    at_decode(&|t| t.sky_reflection_weights.push(0.0), "reflection");
-    at_decode(&|t| t.sky_reflection.pop().map(drop).unwrap(), "reflection");
-    at_decode(&|t| t.sun_reflection_counts.push(0), "reflection");
     // The modes' table is `p × (r + sun nodes)` with a rank, `p × D` without.
     at_decode(&|t| t.daylight_modes = vec![0.0; TREGENZA + 4], "daylight");
     at_decode(&|t| t.reflection_rank.clear(), "daylight");
-    // A first reflection without a rank, or without a sky.
-    at_decode(
+    // A first reflection without a sky.
+    at_decode(&|t| t.sky_subdivision = 0, "daylight");
+    // The first reflection's own tables, sized by its rank and counts, at use (a firmware
+    // that reads no daylight links none of their checks).
+    at_use(
+        &|t| t.sky_reflection_weights.push(0.0),
+        "sky_reflection_weights",
+    );
+    at_use(
+        &|t| t.sky_reflection.pop().map(drop).unwrap(),
+        "sky_reflection.data",
+    );
+    at_use(
+        &|t| t.sun_reflection_counts.push(0),
+        "sun_reflection_counts",
+    );
+    // A first reflection without a rank.
+    at_use(
         &|t| {
             *t = tiny_daylight();
             t.sun_reflection_patches.push(0);
         },
         "reflection",
     );
-    at_decode(&|t| t.sky_subdivision = 0, "daylight");
     // Values, at use.
     at_use(
         &|t| {

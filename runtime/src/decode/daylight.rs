@@ -37,8 +37,7 @@ const SETTINGS_BYTES: usize = 4 * (5 + 2 + 4);
 /// [`Error::DecodeLength`] for the field `daylight`; [`check_values`] names the table.
 /// (`sky_subdivision`, the length of `sun_nodes` and `reflection_rank` were checked with the
 /// counts, since `D` and `r` follow from them; the direct sun's tables, sized by their own
-/// counts, are checked with the values; the first reflection's by
-/// [`super::reflection::shape`].)
+/// counts, and the first reflection's are checked with the values.)
 pub(super) fn shape(
     raw: &Payload<'_>,
     c: &Counts,
@@ -80,8 +79,10 @@ pub(super) fn shape(
     let per_node = cols(per_node.checked_add(scale))?;
     let modes = mul(mul(c.mode_count, cols(c.daylight_modes_cols())?)?, 4)?;
     let expected = cols(mul(c.daylight_node_count, per_node)?.checked_add(SETTINGS_BYTES))?;
-    total("daylight", cols(expected.checked_add(modes))?, sized)?;
-    super::reflection::shape(raw, c, precision, reflection + listed)
+    // The first reflection's tables are sized by its rank and its sun lists by their
+    // counts: [`super::reflection::check`] checks them where daylight is used, so that a
+    // firmware reading no daylight links none of it.
+    total("daylight", cols(expected.checked_add(modes))?, sized)
 }
 
 /// [`Error::DecodeLength`] for `field` unless the tables it names hold `expected` bytes.

@@ -1,6 +1,7 @@
 //! The daylight's first reflection (`docs/format.md`, "First reflection"), part of the
-//! daylight section since format version 7: its shape when the basis is decoded, its values
-//! where daylight is used.
+//! daylight section since format version 7: its tables' lengths and values, checked where
+//! daylight is used (every table empty without a rank is checked at decode, with the
+//! daylight section's shape).
 
 use super::daylight::total;
 use super::tables::{bad_value, check_len, cols, f32_table, matrix, mul, u32_sum, Allowed};
@@ -17,39 +18,15 @@ pub(super) fn sized_bytes(raw: &Payload<'_>) -> usize {
         + raw.sun_reflection_counts.len()
 }
 
-/// Without a rank every table of the first reflection is empty (`found`, their bytes, is 0);
-/// with one the sky's weights (`r × (S_k + 1)` `f32`), its `n × r` matrix (with a scale
-/// per coefficient in 16 bits) and a count per sun node take the bytes the counts give
-/// them together, [`Error::DecodeLength`](crate::Error::DecodeLength) for the field
-/// `reflection` otherwise. The lists the counts size are checked with the values.
-pub(super) fn shape(
-    raw: &Payload<'_>,
-    c: &Counts,
-    precision: Precision,
-    found: usize,
-) -> Result<()> {
-    let Some(rank) = c.reflection_rank else {
-        return total("reflection", 0, found);
-    };
-    let weights = mul(mul(rank, cols(c.sky_reflection_cols())?)?, 4)?;
-    let matrix = mul(mul(c.patch_count, rank)?, precision.bytes())?;
-    let scales = match precision {
-        Precision::F32 => 0,
-        Precision::F16 | Precision::I16 => mul(rank, 4)?,
-    };
-    let counts = mul(c.sun_node_count, 4)?;
-    let expected = [matrix, scales, counts]
-        .into_iter()
-        .try_fold(weights, |sum, x| cols(sum.checked_add(x)))?;
-    total("reflection", expected, sized_bytes(raw))
-}
-
-/// The values, where daylight is used: a rank no larger than the matrix it factors
+/// The tables, where daylight is used: each of the length its rank and counts give it
+/// (named), a rank no larger than the matrix it factors
 /// (`min(n, S_k + 1)`), the weights and the sky's matrix finite and bounded, each sun node's
-/// patches ascending below `n` and their values finite and bounded. Nothing without a rank.
+/// patches ascending below `n` and their values finite and bounded. Every table empty
+/// without a rank.
 pub(super) fn check(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Result<()> {
     let Some(rank) = c.reflection_rank else {
-        return Ok(());
+        let found = sized_bytes(raw) + raw.sun_reflection_patches.len() + raw.sun_reflection.len();
+        return total("reflection", 0, found);
     };
     let sky = cols(c.sky_reflection_cols())?;
     if rank > c.patch_count.min(sky) {
