@@ -171,7 +171,7 @@ fn sky_factors(
 }
 
 /// The relative error, in the area-weighted Frobenius norm, of the best rank-`rank`
-/// approximation of the sky nodes' initial exitances `columns` ([`sky_factors`]): what the
+/// approximation of the sky nodes' initial exitances `columns` (as the build factors them): what the
 /// build reports of the rank it stored.
 pub fn sky_truncation_error(columns: &[Vec<f64>], area: &[f64], rank: usize) -> f64 {
     let (n, nodes) = (area.len(), columns.len());
