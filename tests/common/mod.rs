@@ -7,6 +7,7 @@
 #![allow(dead_code)]
 
 pub mod radiance;
+pub mod two_rooms;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -18,7 +18,7 @@ pub mod port;
 mod run;
 
 pub use error::BuildingError;
-pub use manifest::{Controller, Manifest, Port, Room};
+pub use manifest::{Controller, Manifest, Port, PortModel, Room};
 pub use part::Part;
 pub use run::{basis_path, build_rooms, merge, ControllerBasis, Merged, RoomBuilt};
 

@@ -15,6 +15,7 @@ use sha2::{Digest, Sha256};
 
 use super::error::BuildingError;
 use super::manifest::Room;
+use super::port::exact::ExactPorts;
 use super::port::RoomPorts;
 use crate::atomic;
 
@@ -22,8 +23,9 @@ use crate::atomic;
 const MAGIC: &[u8] = b"EIGENRAD PART\n";
 
 /// The layout of [`Part`]: 2 since the ports' responses hold the daylight's flux onto the
-/// port patches, 3 since they are resolved into the ports' direction bins.
-const PART_FORMAT: u32 = 3;
+/// port patches, 3 since they are resolved into the ports' direction bins, 4 since it holds
+/// the responses at the exact ports.
+const PART_FORMAT: u32 = 4;
 
 /// The program that builds parts: a part of another version is refused. The basis format's
 /// version and the part's layout are part of it, since the tables and the part follow them.
@@ -46,8 +48,11 @@ pub struct Part {
     pub scene_hash: [u8; 32],
     /// Every table of the room's basis, in `f64`.
     pub tables: BasisTables,
-    /// The room's exact responses at its ports' openings (empty without ports).
+    /// The room's exact responses at its diffusing ports' openings (empty without).
     pub ports: RoomPorts,
+    /// The room's exact responses at the patches that see its exact ports' openings (empty
+    /// without).
+    pub exact: ExactPorts,
 }
 
 /// SHA-256 of the contents of the scene's files (`scene::inputs`: the scene file, its OBJ and

@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use super::controller::{self, Neighbours};
 use super::error::BuildingError;
-use super::manifest::Manifest;
+use super::manifest::{Manifest, PortModel};
 use super::part::{self, Part};
 use super::port;
 use crate::flash::FlashBudget;
@@ -137,11 +137,23 @@ fn build_room(
     let openings: Vec<port::PortAsked> = manifest
         .ports
         .iter()
+        .filter(|p| p.model == PortModel::Diffusing)
         .filter_map(|p| {
             Some(port::PortAsked {
                 port: p.name.clone(),
                 surface: p.opening_in(r)?.to_string(),
                 directions: p.directions,
+            })
+        })
+        .collect();
+    let exact: Vec<port::exact::ExactOpening> = manifest
+        .ports
+        .iter()
+        .filter(|p| p.model == PortModel::Exact)
+        .filter_map(|p| {
+            Some(port::exact::ExactOpening {
+                port: p.name.clone(),
+                surface: p.opening_in(r)?.to_string(),
             })
         })
         .collect();
@@ -157,16 +169,21 @@ fn build_room(
         options,
         Some("responses at the ports"),
         |scene, occluders, system, daylight| {
-            port::respond(scene, occluders, system, daylight, &openings)
+            Ok((
+                port::respond(scene, occluders, system, daylight, &openings)?,
+                port::exact::respond(scene, system, &exact)?,
+            ))
         },
     )
     .map_err(fail)?;
+    let (ports, exact) = ports;
     let part = Part {
         program: part::program_version(),
         room: room.name.clone(),
         scene_hash,
         tables: built.tables,
         ports,
+        exact,
     };
     part.write(&part::path(parts, &room.name))?;
     Ok(RoomBuilt {

@@ -36,6 +36,7 @@ mod near;
 pub mod operator;
 pub mod outputs;
 mod pair;
+mod pairs;
 mod quadrature;
 mod shadow;
 #[cfg(test)]
@@ -47,6 +48,7 @@ pub use bvh::{Occluders, Solid};
 pub use hierarchical::Hierarchical;
 pub(crate) use kernel::point_to_polygon;
 pub use operator::{DenseF32, FormFactorOperator, OperatorChoice, Storage};
+pub use pairs::pair_exchanges;
 // The patch rules, for the direct light of sources that are not patches (`crate::sources`).
 pub use health::{
     CavityClosure, FormFactorHealth, PairDisagreement, RowMiss, CAVITY_TOLERANCE, CLOSED_TOLERANCE,

@@ -17,8 +17,8 @@ use crate::scene::Location;
 
 mod ports;
 
-pub use ports::Port;
 use ports::{quads, PortDef, Quad};
+pub use ports::{Port, PortModel};
 
 /// `[building]`.
 #[derive(Debug, Deserialize)]

@@ -30,6 +30,21 @@ pub(super) struct PortDef {
     /// that `2.5` is refused naming the field, as `0` is.
     #[serde(default)]
     directions: Option<Spanned<f64>>,
+    /// How the light crossing it is modelled: `"diffuse"` (the default; with `directions`,
+    /// in direction bins) or `"exact"`.
+    #[serde(default)]
+    model: Option<Spanned<String>>,
+}
+
+/// How a port's light is modelled (docs/building.md, "Ports").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PortModel {
+    /// A pass-through surface re-emitting what crosses it, diffusely or within direction
+    /// bins ([`Port::directions`]; docs/math.md, "Rooms coupled through ports").
+    Diffusing,
+    /// The opening a real hole: the rooms' patches that see it exchange light through it as
+    /// in one scene (docs/math.md, "Rooms seen through an exact port").
+    Exact,
 }
 
 /// A port: an opening shared by two rooms (an open door, internal glazing) through which
@@ -51,6 +66,8 @@ pub struct Port {
     /// [`MAX_DIRECTIONS`](crate::building::port::MAX_DIRECTIONS) (docs/math.md, "Directional
     /// ports").
     pub directions: usize,
+    /// How the light crossing it is modelled.
+    pub model: PortModel,
     /// Where the manifest names it.
     pub at: Location,
 }
@@ -282,6 +299,37 @@ pub(super) fn check(
                 }
             }
         };
+        let model = match &p.model {
+            None => PortModel::Diffusing,
+            Some(m) => match m.get_ref().as_str() {
+                "diffuse" => PortModel::Diffusing,
+                "exact" if p.directions.is_none() => PortModel::Exact,
+                "exact" => {
+                    return Err(wrong(
+                        m.span().start,
+                        format!("{item}: model"),
+                        "an exact port has no direction bins: the light crossing it keeps every direction (leave out `directions`)".into(),
+                    ))
+                }
+                other => {
+                    return Err(wrong(
+                        m.span().start,
+                        format!("{item}: model"),
+                        format!("{other:?} is not a port model: \"diffuse\" (the default) or \"exact\""),
+                    ))
+                }
+            },
+        };
+        if let Some(other) = ports.iter().find(|q| q.model != model) {
+            return Err(wrong(
+                offset,
+                item,
+                format!(
+                    "its model differs from port {}'s: a building's ports are all exact or all diffusing",
+                    other.name
+                ),
+            ));
+        }
         for other in &ports {
             for side in 0..2 {
                 let (room, opening) = (joined[side], openings[side].get_ref());
@@ -300,6 +348,7 @@ pub(super) fn check(
             openings: openings.map(|o| o.get_ref().clone()),
             transmittance,
             directions,
+            model,
             at: at(offset),
         });
     }

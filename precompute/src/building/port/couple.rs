@@ -8,7 +8,7 @@ use faer::Mat;
 
 use super::PortOpening;
 use crate::building::error::BuildingError;
-use crate::building::manifest::Manifest;
+use crate::building::manifest::{Manifest, PortModel};
 use crate::building::part::Part;
 use crate::radiosity::model::amplitude_weight;
 
@@ -54,6 +54,10 @@ pub fn couple(
     };
     if manifest.ports.is_empty() {
         return Ok(coupled);
+    }
+    // A building's ports are all exact or all diffusing (the manifest checks it).
+    if manifest.ports[0].model == PortModel::Exact {
+        return super::exact::couple(manifest, parts, dir);
     }
     // Each part must answer for exactly the manifest's ports of its room.
     for (r, part) in parts.iter().enumerate() {

@@ -12,9 +12,13 @@
 //! patch, per channel and daylight node of the building, and adds what they give to each
 //! room's channel responses and daylight rows: the controllers' bases are cut from these
 //! coupled tables, and the runtime reads them as any other.
+//!
+//! An exact port ([`exact`]) is the opening as a real hole: the rooms' responses are kept at
+//! the patches that see it, and the merge couples those through the opening.
 
 mod couple;
 pub mod directions;
+pub mod exact;
 
 pub use couple::{couple, foreign_channel, Coupled};
 pub use directions::{DEFAULT_DIRECTIONS, MAX_DIRECTIONS};

@@ -1,0 +1,416 @@
+//! The merge's side of the exact ports: the cross terms from the rooms' scenes, the coupled
+//! system over every room's seen patches, solved per band with a right-hand side per channel
+//! of the building, and what it adds to each room's tables (docs/math.md, "Rooms seen through
+//! an exact port").
+
+use eigenrad_runtime::writer::BasisTables;
+use faer::linalg::solvers::Solve;
+use faer::Mat;
+
+use super::cross::{cross, Cross, Side};
+use super::{opening_patches, ExactOpening};
+use crate::building::error::BuildingError;
+use crate::building::manifest::{Manifest, PortModel};
+use crate::building::part::{self, Part};
+use crate::building::port::{foreign_channel, Coupled};
+use crate::formfactor::FormFactorOptions;
+use crate::scene::Scene;
+
+/// Couples the rooms' `parts` (in the manifest's order of rooms) through the manifest's
+/// exact ports, meshing the rooms' scenes again for the cross terms. `dir` is the folder of
+/// the parts, for the errors to name them.
+pub fn couple(
+    manifest: &Manifest,
+    parts: &[Part],
+    dir: &std::path::Path,
+) -> Result<Coupled, BuildingError> {
+    let mut coupled = Coupled {
+        tables: parts.iter().map(|p| p.tables.clone()).collect(),
+    };
+    let ports: Vec<usize> = (0..manifest.ports.len())
+        .filter(|&p| manifest.ports[p].model == PortModel::Exact)
+        .collect();
+    if ports.is_empty() {
+        return Ok(coupled);
+    }
+    let rooms = parts.len();
+    let part_error = |r: usize, message: String| BuildingError::Part {
+        path: part::path(dir, &parts[r].room),
+        message,
+    };
+    // Each part must answer for exactly the manifest's exact ports of its room.
+    let wanted = |r: usize| -> Vec<ExactOpening> {
+        ports
+            .iter()
+            .filter_map(|&p| {
+                let port = &manifest.ports[p];
+                Some(ExactOpening {
+                    port: port.name.clone(),
+                    surface: port.opening_in(r)?.to_string(),
+                })
+            })
+            .collect()
+    };
+    let mut scenes: Vec<Option<Scene>> = Vec::with_capacity(rooms);
+    for (r, part) in parts.iter().enumerate() {
+        let want = wanted(r);
+        let held = &part.exact;
+        if want != held.openings {
+            let list = |l: &[ExactOpening]| {
+                if l.is_empty() {
+                    "none".to_string()
+                } else {
+                    l.iter()
+                        .map(|o| format!("{} ({})", o.port, o.surface))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                }
+            };
+            return Err(part_error(
+                r,
+                format!(
+                    "built with the exact ports {}, but the manifest gives room {} the exact ports {}: build room {} again",
+                    list(&held.openings),
+                    part.room,
+                    list(&want),
+                    part.room
+                ),
+            ));
+        }
+        if want.is_empty() {
+            scenes.push(None);
+            continue;
+        }
+        let room = &manifest.rooms[r];
+        let room_error = |reason: crate::Error| BuildingError::Room {
+            at: room.at.clone(),
+            room: room.name.clone(),
+            reason: Box::new(reason),
+        };
+        // The part's scene hash was checked against the file: the same scene, meshed again.
+        let scene = crate::scene::load(&room.scene).map_err(|e| room_error(e.into()))?;
+        let refuse = |what: &str| {
+            BuildingError::Manifest {
+            at: room.at.clone(),
+            item: format!("room {}", room.name),
+            message: format!("{what}: exact ports do not carry it yet; join this room through diffusing ports (leave out `model = \"exact\"`)"),
+        }
+        };
+        if !scene.luminaires.is_empty() {
+            return Err(refuse("it has luminaires with photometry, whose direct light through an exact port's opening is not computed"));
+        }
+        if scene.site.is_some() && !scene.windows.is_empty() {
+            return Err(refuse(
+                "it has daylight, whose nodes an exact port does not couple",
+            ));
+        }
+        check_shapes(&scene, part).map_err(|m| part_error(r, m))?;
+        scenes.push(Some(scene));
+    }
+    let bands = parts[manifest.ports[ports[0]].rooms[0]].tables.bands;
+    for &p in &ports {
+        let port = &manifest.ports[p];
+        for r in port.rooms {
+            if parts[r].tables.bands != bands {
+                return Err(BuildingError::Manifest {
+                    at: port.at.clone(),
+                    item: format!("port {}", port.name),
+                    message: format!(
+                        "joins room {} ({} bands) to rooms of {bands} bands: rooms that share light are solved band by band, so give their scenes the same `bands`",
+                        parts[r].room, parts[r].tables.bands
+                    ),
+                });
+            }
+        }
+    }
+    // The cross terms of each port, from its rooms' scenes.
+    let opts = FormFactorOptions::default();
+    let mut terms: Vec<Cross> = Vec::with_capacity(ports.len());
+    for &p in &ports {
+        let port = &manifest.ports[p];
+        let mut sides = Vec::with_capacity(2);
+        for (side, r) in port.rooms.into_iter().enumerate() {
+            let scene = scenes[r]
+                .as_ref()
+                .ok_or_else(|| part_error(r, "has no exact ports".into()))?;
+            let opening =
+                opening_patches(scene, &port.name, &port.openings[side]).map_err(|e| {
+                    BuildingError::Room {
+                        at: manifest.rooms[r].at.clone(),
+                        room: manifest.rooms[r].name.clone(),
+                        reason: Box::new(e),
+                    }
+                })?;
+            sides.push(Side {
+                scene,
+                opening,
+                seen: &parts[r].exact.seen,
+                outputs: outputs(&parts[r].tables),
+            });
+        }
+        terms.push(cross([&sides[0], &sides[1]], &opts));
+    }
+    // The unknowns: every seen patch's exitance, room by room.
+    let offset: Vec<usize> = parts
+        .iter()
+        .scan(0, |next, part| {
+            let first = *next;
+            *next += part.exact.seen.len();
+            Some(first)
+        })
+        .collect();
+    let unknowns: usize = parts.iter().map(|p| p.exact.seen.len()).sum();
+    let first_channel: Vec<usize> = parts
+        .iter()
+        .scan(0, |next, part| {
+            let first = *next;
+            *next += part.tables.channel_names.len();
+            Some(first)
+        })
+        .collect();
+    let sources: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
+    // `coupling(k, b, r)`: irradiance arriving at room r's seen patch a from the other room
+    // of port k per unit exitance of its seen patch v, `τ G_av / A_a`, as a matrix.
+    let coupling = |k: usize, r: usize| -> Mat<f64> {
+        let port = &manifest.ports[ports[k]];
+        let side = usize::from(port.rooms[1] == r);
+        let other = port.rooms[1 - side];
+        let area = |a: usize| scenes[r].as_ref().map_or(1.0, |s| s.patches[a].area);
+        let seen = &parts[r].exact.seen;
+        let g = &terms[k].exchange;
+        Mat::from_fn(seen.len(), parts[other].exact.seen.len(), |a, v| {
+            let gav = if side == 0 { g[a][v] } else { g[v][a] };
+            port.transmittance * gav / area(seen[a])
+        })
+    };
+    // Per band: the seen patches' exitance `m` (unknowns × sources) and the irradiance each
+    // room's seen patches get from outside, `e[r]` (seen × sources).
+    let mut exitance: Vec<Mat<f64>> = Vec::with_capacity(bands);
+    let mut arriving: Vec<Vec<Mat<f64>>> = Vec::with_capacity(bands);
+    for b in 0..bands {
+        let mut system = Mat::<f64>::identity(unknowns, unknowns);
+        let mut rhs = Mat::<f64>::zeros(unknowns, sources);
+        for (r, part) in parts.iter().enumerate() {
+            let x = &part.exact;
+            for (c, on_seen) in x.channels.get(b).into_iter().flatten().enumerate() {
+                for (v, m) in on_seen.iter().enumerate() {
+                    rhs[(offset[r] + v, first_channel[r] + c)] = *m;
+                }
+            }
+        }
+        for (k, &p) in ports.iter().enumerate() {
+            for r in manifest.ports[p].rooms {
+                let other = manifest.ports[p].rooms[usize::from(manifest.ports[p].rooms[0] == r)];
+                let x = &parts[r].exact;
+                // `m_r − H_rᵀ C m_other = a_r`, `H_r[i][v]` the exitance of v for irradiance at i.
+                let h = Mat::from_fn(x.seen.len(), x.seen.len(), |v, i| x.seen_exitance[b][i][v]);
+                let block = h.as_ref() * coupling(k, r).as_ref();
+                for v in 0..x.seen.len() {
+                    for w in 0..parts[other].exact.seen.len() {
+                        system[(offset[r] + v, offset[other] + w)] -= block[(v, w)];
+                    }
+                }
+            }
+        }
+        let m = system.partial_piv_lu().solve(rhs.as_ref());
+        let mut e: Vec<Mat<f64>> = parts
+            .iter()
+            .map(|p| Mat::zeros(p.exact.seen.len(), sources))
+            .collect();
+        for (k, &p) in ports.iter().enumerate() {
+            for r in manifest.ports[p].rooms {
+                let other = manifest.ports[p].rooms[usize::from(manifest.ports[p].rooms[0] == r)];
+                let rows = offset[other]..offset[other] + parts[other].exact.seen.len();
+                let add = coupling(k, r).as_ref() * m.subrows(rows.start, rows.len());
+                for a in 0..add.nrows() {
+                    for g in 0..sources {
+                        e[r][(a, g)] += add[(a, g)];
+                    }
+                }
+            }
+        }
+        exitance.push(m);
+        arriving.push(e);
+    }
+    // Rooms joined through ports, directly or through others.
+    let mut group: Vec<usize> = (0..rooms).collect();
+    loop {
+        let mut changed = false;
+        for &p in &ports {
+            let [a, b] = manifest.ports[p].rooms;
+            let low = group[a].min(group[b]);
+            for r in [a, b] {
+                if group[r] != low {
+                    group[r] = low;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    for (r, part) in parts.iter().enumerate() {
+        if part.exact.openings.is_empty() {
+            continue;
+        }
+        // The room's channels, then every other joined room's, in the manifest's order.
+        let mut kept: Vec<(usize, String)> = (0..part.tables.channel_names.len())
+            .map(|c| (first_channel[r] + c, part.tables.channel_names[c].clone()))
+            .collect();
+        for (q, other) in parts.iter().enumerate() {
+            if q != r && group[q] == group[r] {
+                for (c, name) in other.tables.channel_names.iter().enumerate() {
+                    let foreign = foreign_channel(&other.room, name);
+                    if part.tables.channel_names.contains(&foreign) {
+                        return Err(BuildingError::Manifest {
+                            at: manifest.rooms[r].at.clone(),
+                            item: format!("room {}: channel {foreign}", part.room),
+                            message: format!(
+                                "is also the name channel {name} of room {}, joined to this room through ports, takes here: rename one of them",
+                                other.room
+                            ),
+                        });
+                    }
+                    kept.push((first_channel[q] + c, foreign));
+                }
+            }
+        }
+        // The other rooms' seen patches this room's outputs see through each of its ports.
+        let views: Vec<(usize, &Vec<Vec<f64>>, f64)> = ports
+            .iter()
+            .enumerate()
+            .filter_map(|(k, &p)| {
+                let port = &manifest.ports[p];
+                let side = port.rooms.iter().position(|&x| x == r)?;
+                let other = port.rooms[1 - side];
+                Some((other, &terms[k].rows[side], port.transmittance))
+            })
+            .collect();
+        let x = &part.exact;
+        // What source `g` adds in band `b` at output `o` (sensors, zones, grid points).
+        let reading = |b: usize, g: usize, o: usize| -> f64 {
+            let reflected: f64 = (0..x.seen.len())
+                .map(|a| x.readings[b][a][o] * arriving[b][r][(a, g)])
+                .sum();
+            let seen_through: f64 = views
+                .iter()
+                .map(|(other, rows, tau)| {
+                    (0..parts[*other].exact.seen.len())
+                        .map(|v| tau * rows[o][v] * exitance[b][(offset[*other] + v, g)])
+                        .sum::<f64>()
+                })
+                .sum();
+            reflected + seen_through
+        };
+        let patch = |b: usize, g: usize, k: usize| -> f64 {
+            (0..x.seen.len())
+                .map(|a| x.exitance[b][a][k] * arriving[b][r][(a, g)])
+                .sum()
+        };
+        coupled.tables[r] = coupled_tables(&part.tables, &kept, &reading, &patch);
+    }
+    Ok(coupled)
+}
+
+/// Rows of outputs of a room's tables: sensors, zones, then grid points.
+fn outputs(t: &BasisTables) -> usize {
+    t.sensor_names.len() + t.zone_names.len() + t.grid_position.len()
+}
+
+/// Whether a part's exact responses fit its scene as meshed again, and its tables: a message
+/// for the part's error if not.
+fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
+    let x = &part.exact;
+    let n = scene.patches.len();
+    let t = &part.tables;
+    let seen_ok = x.seen.windows(2).all(|w| w[0] < w[1]) && x.seen.iter().all(|&k| k < n);
+    let bands_ok = [
+        x.channels.len(),
+        x.seen_exitance.len(),
+        x.readings.len(),
+        x.exitance.len(),
+    ]
+    .iter()
+    .all(|&l| l == t.bands);
+    let s = x.seen.len();
+    let sizes_ok = bands_ok
+        && (0..t.bands).all(|b| {
+            x.channels[b].len() == t.channel_names.len()
+                && x.channels[b].iter().all(|c| c.len() == s)
+                && x.seen_exitance[b].len() == s
+                && x.seen_exitance[b].iter().all(|r| r.len() == s)
+                && x.readings[b].len() == s
+                && x.readings[b].iter().all(|r| r.len() == outputs(t))
+                && x.exitance[b].len() == s
+                && x.exitance[b].iter().all(|r| r.len() == n)
+        });
+    let opening_free = x.openings.iter().all(|o| {
+        scene
+            .surfaces
+            .iter()
+            .find(|f| f.name == o.surface)
+            .is_some_and(|f| !x.seen.iter().any(|k| f.patch_range.contains(k)))
+    });
+    if x.patches != n || !seen_ok || !sizes_ok || !opening_free {
+        return Err(format!(
+            "its responses at its exact ports do not fit its scene as meshed now ({n} patches, the part {}): build room {} again",
+            x.patches, part.room
+        ));
+    }
+    Ok(())
+}
+
+/// A room's tables `t` with the channels `kept` (`(source, name)`, the room's own first),
+/// where source `g` adds `reading(b, g, o)` at output `o` and `patch(b, g, k)` to the
+/// exitance of patch `k` in band `b` to the room's own response (0 for another room's
+/// channel).
+fn coupled_tables(
+    t: &BasisTables,
+    kept: &[(usize, String)],
+    reading: &dyn Fn(usize, usize, usize) -> f64,
+    patch: &dyn Fn(usize, usize, usize) -> f64,
+) -> BasisTables {
+    let bands = t.bands;
+    let own = t.channel_names.len();
+    let outputs = t.sensor_names.len() + t.zone_names.len();
+    let points = t.grid_position.len();
+    let n = t.patch_area.len();
+    let table = |rows: usize, offset: usize, old: &[f64]| -> Vec<f64> {
+        let mut out = Vec::with_capacity(rows * bands * kept.len());
+        for o in 0..rows {
+            for b in 0..bands {
+                for (kc, (g, _)) in kept.iter().enumerate() {
+                    let own_value = if kc < own {
+                        old[(o * bands + b) * own + kc]
+                    } else {
+                        0.0
+                    };
+                    out.push(own_value + reading(b, *g, offset + o));
+                }
+            }
+        }
+        out
+    };
+    let mut tables = t.clone();
+    tables.output_channels = table(outputs, 0, &t.output_channels);
+    tables.grid_channels = table(points, outputs, &t.grid_channels);
+    if !t.channel_response.is_empty() {
+        let mut response = Vec::with_capacity(n * kept.len() * bands);
+        for k in 0..n {
+            for (kc, (g, _)) in kept.iter().enumerate() {
+                for b in 0..bands {
+                    let own_value = if kc < own {
+                        t.channel_response[k * own * bands + kc * bands + b]
+                    } else {
+                        0.0
+                    };
+                    response.push(own_value + patch(b, *g, k));
+                }
+            }
+        }
+        tables.channel_response = response;
+    }
+    tables.channel_names = kept.iter().map(|(_, name)| name.clone()).collect();
+    tables
+}

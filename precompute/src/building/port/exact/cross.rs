@@ -1,0 +1,128 @@
+//! The cross terms of one exact port, from its two rooms' meshed scenes: the exchange areas
+//! between the patches of one room and of the other that see the opening, through it, and
+//! every output's view of the other room's seen patches, occluded by both rooms' surfaces
+//! (docs/math.md, "Rooms seen through an exact port").
+
+use std::ops::Range;
+
+use crate::formfactor::{self, FormFactorOptions, Occluders};
+use crate::geometry::{Face, Patch};
+use crate::scene::receivers::{receivers, Receiver};
+use crate::scene::Scene;
+
+/// One side of an exact port: a room's meshed scene, its opening's patches and its seen
+/// patches (ascending indices into the scene's patches), and its number of outputs.
+pub(super) struct Side<'a> {
+    pub scene: &'a Scene,
+    pub opening: Range<usize>,
+    pub seen: &'a [usize],
+    pub outputs: usize,
+}
+
+/// The cross terms of a port.
+pub(super) struct Cross {
+    /// `exchange[a][b]`: `G_ab` (m²) between seen patch `a` of the first room and seen patch
+    /// `b` of the second, through the opening.
+    pub exchange: Vec<Vec<f64>>,
+    /// `rows[s][o][v]`: room `s`'s output `o` reads `rows[s][o][v] M_v` (dimensionless) of the
+    /// exitance `M_v` of the other room's seen patch `v`.
+    pub rows: [Vec<Vec<f64>>; 2],
+}
+
+/// The cross terms between the two sides of a port, with the accuracy of `opts`.
+pub(super) fn cross(sides: [&Side; 2], opts: &FormFactorOptions) -> Cross {
+    // Both rooms' patches as one scene, the openings left out (a hole blocks nothing);
+    // `index[s][k]`: patch `k` of side `s` in it.
+    let mut patches: Vec<Patch> = Vec::new();
+    let mut index: [Vec<Option<usize>>; 2] = [Vec::new(), Vec::new()];
+    for (s, side) in sides.iter().enumerate() {
+        for (k, p) in side.scene.patches.iter().enumerate() {
+            if side.opening.contains(&k) {
+                index[s].push(None);
+            } else {
+                index[s].push(Some(patches.len()));
+                patches.push(p.clone());
+            }
+        }
+    }
+    let mut faces: Vec<Face> = Vec::new();
+    for (s, side) in sides.iter().enumerate() {
+        for face in &side.scene.faces {
+            let mapped: Vec<usize> = face.patches.clone().filter_map(|k| index[s][k]).collect();
+            // A face is the opening's or none of it: the opening is a surface of its own.
+            if let (Some(&first), true) = (mapped.first(), mapped.len() == face.patches.len()) {
+                faces.push(Face {
+                    polygon: face.polygon.clone(),
+                    patches: first..first + mapped.len(),
+                });
+            }
+        }
+    }
+    let occluders = Occluders::with_faces(&patches, &faces);
+    let at = |s: usize, k: usize| index[s][k].expect("a seen patch is no opening's");
+    let pairs: Vec<(usize, usize)> = sides[0]
+        .seen
+        .iter()
+        .flat_map(|&a| sides[1].seen.iter().map(move |&b| (a, b)))
+        .map(|(a, b)| (at(0, a), at(1, b)))
+        .collect();
+    let g = formfactor::pair_exchanges(&patches, &occluders, opts, &pairs);
+    let width = sides[1].seen.len();
+    let exchange: Vec<Vec<f64>> = if width == 0 {
+        vec![Vec::new(); sides[0].seen.len()]
+    } else {
+        g.chunks(width).map(<[f64]>::to_vec).collect()
+    };
+    let rows = std::array::from_fn(|s| {
+        let (own, other) = (sides[s], sides[1 - s]);
+        let columns: Vec<usize> = other.seen.iter().map(|&v| at(1 - s, v)).collect();
+        // `G` between this side's seen patch `k` and the other's seen patch `v`.
+        let between = |k: usize, v: usize| -> f64 {
+            own.seen.binary_search(&k).map_or(0.0, |a| {
+                if s == 0 {
+                    exchange[a][v]
+                } else {
+                    exchange[v][a]
+                }
+            })
+        };
+        receivers(own.scene)
+            .take(own.outputs)
+            .map(|receiver| match receiver {
+                Receiver::Point {
+                    position,
+                    normal,
+                    field,
+                } => {
+                    let f = formfactor::point_form_factors(
+                        position, normal, field, &patches, &occluders,
+                    );
+                    columns.iter().map(|&u| f[u]).collect()
+                }
+                Receiver::Surfaces(zone) => {
+                    // Σ_k G_kv / Σ_k A_k over the zone's patches, as in one room.
+                    let total: f64 = zone.iter().map(|&k| own.scene.patches[k].area).sum();
+                    (0..columns.len())
+                        .map(|v| zone.iter().map(|&k| between(k, v)).sum::<f64>() / total)
+                        .collect()
+                }
+                Receiver::Plane(cells) => {
+                    let f = formfactor::receiver_form_factors(cells, &patches, &occluders, opts);
+                    let total: f64 = cells.iter().map(|c| c.area).sum();
+                    columns
+                        .iter()
+                        .map(|&u| {
+                            cells
+                                .iter()
+                                .enumerate()
+                                .map(|(r, c)| c.area * f[(r, u)])
+                                .sum::<f64>()
+                                / total
+                        })
+                        .collect()
+                }
+            })
+            .collect()
+    });
+    Cross { exchange, rows }
+}

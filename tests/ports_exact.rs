@@ -1,0 +1,328 @@
+//! An exact port (docs/building.md, "Ports"; docs/math.md, "Rooms seen through an exact
+//! port"): the two rooms of tests/ports.rs joined by their open door with `model = "exact"`,
+//! built apart and merged, against both rooms solved as one scene whose doorway is a real
+//! hole.
+//!
+//! - The one scene is written from the same boxes and quads as the rooms' own scenes, so that
+//!   it is meshed into the same patches (the doorway's two black quads left out of it): the
+//!   comparison measures the port's model, not a different meshing. Its form factors are the
+//!   dense matrix of all its patches, its solve the exact one of the whole system.
+//! - A room whose neighbour returns no light (all black) reads its own channel exactly as
+//!   built alone.
+//! - One machine or two shards give the same bytes; bad port models are errors naming the
+//!   manifest's line and item.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+
+use common::two_rooms::{rooms_in_one_scene, two_rooms, PORT};
+use eigenrad_precompute::building::{self, Manifest, Part};
+use eigenrad_precompute::formfactor::{self, exchange, outputs, FormFactorOptions, Occluders};
+use eigenrad_precompute::pipeline::BuildOptions;
+use eigenrad_precompute::radiosity::System;
+use eigenrad_precompute::scene::{self, Scene};
+use eigenrad_precompute::sources;
+use eigenrad_runtime::{Basis, ChannelEvaluator};
+
+/// Relative agreement of the merge with the one-scene solve of the two rooms with the doorway
+/// a real hole, at every sensor, zone and grid point: the issue's figure. Both are exact
+/// solves of the same pair integrals in f64; the bases store f32 (relative rounding 6e-8).
+const EXACT_TOLERANCE: f64 = 1e-4;
+
+/// The port of the two rooms, exact.
+fn exact_port() -> String {
+    format!("{PORT}model = \"exact\"\n")
+}
+
+/// Builds every room of `manifest` (one call per shard) into `out` and merges.
+fn build(manifest: &Manifest, shards: &[Vec<usize>], out: &Path) {
+    let parts = building::parts_dir(out);
+    std::fs::create_dir_all(&parts).expect("parts folder");
+    for rooms in shards {
+        building::build_rooms(manifest, rooms, &BuildOptions::default(), &parts)
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+    building::merge(manifest, &parts, out, manifest.flash).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// The two rooms joined by the exact port, built on this machine and merged.
+fn exact_door() -> &'static (Manifest, PathBuf) {
+    static BUILT: OnceLock<(Manifest, PathBuf)> = OnceLock::new();
+    BUILT.get_or_init(|| {
+        let dir = common::scratch("ports-exact");
+        let manifest =
+            Manifest::load(&two_rooms(&dir, &exact_port())).unwrap_or_else(|e| panic!("{e}"));
+        let out = dir.join("out");
+        build(&manifest, &[vec![0, 1]], &out);
+        (manifest, out)
+    })
+}
+
+/// Every reading (sensors, zone averages, grid points; by name) of a basis with channel
+/// `channel` (by name) alone at level 1.
+fn readings(basis: &[u8], channel: &str) -> Vec<(String, f64)> {
+    let basis = Basis::from_bytes(basis).unwrap_or_else(|e| panic!("{e}"));
+    let mut eval = ChannelEvaluator::<1, 4>::new(basis).unwrap_or_else(|e| panic!("{e}"));
+    let c = (0..basis.channel_count())
+        .find(|&c| basis.channel_name(c).ok() == Some(channel))
+        .unwrap_or_else(|| panic!("no channel {channel} in the basis"));
+    eval.set_channel_level(c, 1.0).expect("level");
+    let mut out = Vec::new();
+    for s in 0..basis.sensor_count() {
+        let name = basis.sensor_name(s).expect("sensor");
+        let e = eval.sensor_irradiance(s).expect("sensor")[0];
+        out.push((format!("sensor {name}"), f64::from(e)));
+    }
+    for z in 0..basis.zone_count() {
+        let name = basis.zone_name(z).expect("zone");
+        let e = eval.zone_irradiance(z).expect("zone")[0];
+        out.push((format!("zone {name}"), f64::from(e)));
+        for g in 0..basis.grid_points(z).expect("grid") {
+            let e = eval.grid_point_irradiance(z, g).expect("point")[0];
+            out.push((format!("zone {name} point {g}"), f64::from(e)));
+        }
+    }
+    out
+}
+
+/// The two rooms as one scene with the doorway a real hole, meshed as the rooms are
+/// ([`rooms_in_one_scene`] without its two door quads): its exact readings of each channel
+/// alone at level 1, by output name (as [`readings`] names them) and channel name. The form
+/// factors are the dense matrix of every pair of its patches with occlusion by all of them,
+/// the solve the exact one of the whole system (one dense LU).
+fn one_scene_with_the_hole() -> &'static Vec<(String, String, f64)> {
+    static SOLVED: OnceLock<Vec<(String, String, f64)>> = OnceLock::new();
+    SOLVED.get_or_init(|| {
+        let dir = common::scratch("ports-exact-hole");
+        let path = dir.join("both.toml");
+        std::fs::write(&path, rooms_in_one_scene()).expect("scene");
+        let mut scene: Scene = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        // The door quads are the last surfaces, their patches the last patches: cut them off.
+        let surfaces = scene.surfaces.len();
+        let names: Vec<&str> = scene.surfaces[surfaces - 2..]
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect();
+        assert_eq!(names, ["door_left", "door_right"]);
+        let first = scene.surfaces[surfaces - 2].patch_range.start;
+        assert_eq!(
+            scene.surfaces[surfaces - 1].patch_range.end,
+            scene.patches.len()
+        );
+        scene.patches.truncate(first);
+        scene.reflectance.truncate(first);
+        scene.emission.truncate(first);
+        scene.channel_of_patch.truncate(first);
+        scene.surfaces.truncate(surfaces - 2);
+        scene.faces.retain(|f| f.patches.end <= first);
+        let opts = FormFactorOptions::default();
+        let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
+        let ff = formfactor::patch_form_factors_with(&scene.patches, &occluders, &opts);
+        let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
+        let g = exchange::exchange_areas(ff.matrix, &area);
+        let rows = outputs::output_rows(&scene, &g, &area, &occluders, &opts);
+        let lights = sources::surfaces::channel_lights(&scene, &g, &area, &rows);
+        let reflectance = vec![scene.reflectance.iter().map(|r| r[0]).collect()];
+        let system = System::new(Arc::new(g), area, reflectance, rows, lights);
+        let responses = system.channel_responses().unwrap_or_else(|e| panic!("{e}"));
+        let mut names: Vec<String> = scene
+            .sensors
+            .iter()
+            .map(|s| format!("sensor {}", s.name))
+            .chain(scene.zones.iter().map(|z| format!("zone {}", z.name)))
+            .collect();
+        let mut per_zone = vec![0; scene.zones.len()];
+        for (z, _, _) in outputs::grid_points(&scene) {
+            names.push(format!(
+                "zone {} point {}",
+                scene.zones[z].name, per_zone[z]
+            ));
+            per_zone[z] += 1;
+        }
+        let m = system.channel_count();
+        let mut out = Vec::new();
+        for (c, channel) in scene.channels.iter().enumerate() {
+            let levels: Vec<f64> = (0..m).map(|d| if d == c { 1.0 } else { 0.0 }).collect();
+            let read = system.readings(0, &responses[c][0], &levels);
+            assert_eq!(read.len(), names.len());
+            for (name, value) in names.iter().zip(read) {
+                out.push((name.clone(), channel.name.clone(), value));
+            }
+        }
+        out
+    })
+}
+
+/// The one scene's reading `name` of channel `channel` (a neighbour's channel named
+/// `room/channel` in a room's basis is `channel` there).
+fn in_one_scene(name: &str, channel: &str) -> f64 {
+    let bare = channel.rsplit('/').next().unwrap_or(channel);
+    one_scene_with_the_hole()
+        .iter()
+        .find(|(n, c, _)| n == name && c == bare)
+        .map(|(_, _, v)| *v)
+        .unwrap_or_else(|| panic!("no reading {name} of {bare} in the one scene"))
+}
+
+#[test]
+fn built_apart_and_merged_equals_the_two_rooms_as_one_scene_with_the_doorway_open() {
+    let (manifest, out) = exact_door();
+    // The channels as each room's basis names them: its own, then the other's through the door.
+    let names = [["left", "right/right"], ["left/left", "right"]];
+    let mut worst: [f64; 2] = [0.0; 2];
+    let mut count = 0;
+    for side in 0..2 {
+        let controller = &manifest.controllers[side];
+        let basis = std::fs::read(building::basis_path(out, &controller.name)).expect("basis");
+        for (column, channel) in names[side].iter().enumerate() {
+            for (name, got) in readings(&basis, channel) {
+                let want = in_one_scene(&name, channel);
+                assert!(
+                    want > 0.0,
+                    "{}: {name} reads no light of {channel}",
+                    controller.name
+                );
+                let error = (got - want).abs() / want;
+                assert!(
+                    error <= EXACT_TOLERANCE,
+                    "{}: {name} of channel {channel}: merged {got}, one scene {want} (relative {error:.2e})",
+                    controller.name
+                );
+                let own = usize::from(column != side);
+                worst[own] = worst[own].max(error);
+                count += 1;
+            }
+        }
+    }
+    eprintln!(
+        "exact port against the two rooms as one scene with the doorway open, {count} readings: largest relative difference {:.2e} (own channel), {:.2e} (the other room's)",
+        worst[0], worst[1]
+    );
+    let parts = building::parts_dir(out);
+    for room in &manifest.rooms {
+        let path = parts.join(format!("{}.part", room.name));
+        let part = Part::read(&path).unwrap_or_else(|e| panic!("{e}"));
+        let bytes = std::fs::metadata(&path).expect("part").len();
+        eprintln!(
+            "room {}: {} patches, {} seen patches, part {bytes} bytes",
+            room.name,
+            part.exact.patches,
+            part.exact.seen.len()
+        );
+    }
+}
+
+#[test]
+fn a_room_whose_neighbour_returns_no_light_reads_its_own_channel_as_built_alone() {
+    let dir = common::scratch("ports-exact-black");
+    let path = two_rooms(&dir, &exact_port());
+    // The right room black: nothing of the left room's light comes back through the door.
+    let right = std::fs::read_to_string(dir.join("right.toml")).expect("scene");
+    let black = right
+        .replace(
+            "floor = { reflectance = 0.3 }",
+            "floor = { reflectance = 0.0 }",
+        )
+        .replace(
+            "wall = { reflectance = 0.6 }",
+            "wall = { reflectance = 0.0 }",
+        )
+        .replace(
+            "ceiling = { reflectance = 0.8 }",
+            "ceiling = { reflectance = 0.0 }",
+        );
+    assert_ne!(black, right);
+    std::fs::write(dir.join("right.toml"), black).expect("scene");
+    let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let out = dir.join("out");
+    build(&manifest, &[vec![0, 1]], &out);
+    // The left room alone: the same manifest without the port.
+    let apart = dir.join("apart");
+    std::fs::create_dir_all(&apart).expect("folder");
+    for file in ["left.toml", "right.toml"] {
+        std::fs::copy(dir.join(file), apart.join(file)).expect("scene");
+    }
+    let closed = std::fs::read_to_string(&path)
+        .expect("manifest")
+        .replace(&exact_port(), "");
+    std::fs::write(apart.join("building.toml"), closed).expect("manifest");
+    let alone = Manifest::load(&apart.join("building.toml")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(alone.ports.is_empty());
+    build(&alone, &[vec![0, 1]], &apart.join("out"));
+    let read = |out: &Path| {
+        let basis = std::fs::read(building::basis_path(out, "left")).expect("basis");
+        readings(&basis, "left")
+    };
+    let (joined, apart) = (read(&out), read(&apart.join("out")));
+    assert!(joined.len() > 10);
+    assert_eq!(
+        joined, apart,
+        "the left room's own channel, its neighbour black"
+    );
+}
+
+/// Every file under `dir`, sorted.
+fn files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).expect("folder") {
+        let path = entry.expect("entry").path();
+        if path.is_dir() {
+            out.extend(files(&path));
+        } else {
+            out.push(path);
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn one_machine_and_two_shards_give_the_same_bytes() {
+    let (manifest, out) = exact_door();
+    let dir = common::scratch("ports-exact-shards");
+    let sharded = Manifest::load(&two_rooms(&dir, &exact_port())).unwrap_or_else(|e| panic!("{e}"));
+    let out2 = dir.join("out");
+    build(&sharded, &[vec![1], vec![0]], &out2);
+    let ours = files(out);
+    let theirs = files(&out2);
+    assert_eq!(ours.len(), theirs.len());
+    for (a, b) in ours.iter().zip(&theirs) {
+        assert_eq!(a.file_name(), b.file_name());
+        if a.extension().is_some_and(|e| e == "json") {
+            continue; // names its folder
+        }
+        assert!(
+            std::fs::read(a).expect("file") == std::fs::read(b).expect("file"),
+            "{} differs between one machine and two shards",
+            a.display()
+        );
+    }
+    assert_eq!(manifest.ports[0].model, building::PortModel::Exact);
+}
+
+#[test]
+fn bad_port_models_name_the_manifest_line_and_item() {
+    let dir = common::scratch("ports-exact-bad");
+    for (ports, expected) in [
+        (
+            format!("{PORT}model = \"hole\"\n"),
+            vec![
+                "building.toml:",
+                "port door: model",
+                "\"hole\" is not a port model",
+            ],
+        ),
+        (
+            format!("{PORT}model = \"exact\"\ndirections = 5\n"),
+            vec!["port door: model", "no direction bins"],
+        ),
+    ] {
+        let path = two_rooms(&dir, &ports);
+        let e = Manifest::load(&path).expect_err("a bad model").to_string();
+        for x in expected {
+            assert!(e.contains(x), "{x:?} not in: {e}");
+        }
+    }
+}
