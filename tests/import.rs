@@ -303,8 +303,8 @@ glass = {{ reflectance = 0.08, transmittance = 0.6 }}
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// What the import cannot map is listed, each naming the file: a shade, a sensor grid, an
-/// orphaned shade, a modifier of another type.
+/// What the import cannot map is listed, each naming the file: a shade, a view, an orphaned
+/// shade, a modifier of another type.
 #[test]
 fn what_cannot_be_mapped_is_reported() {
     let dir = scratch("warnings");
@@ -315,8 +315,8 @@ fn what_cannot_be_mapped_is_reported() {
     model["rooms"][0]["outdoor_shades"] = serde_json::json!([shade.clone()]);
     model["orphaned_shades"] = serde_json::json!([{"type": "Shade", "identifier": "tree"}]);
     let radiance = &mut model["properties"]["radiance"];
-    radiance["sensor_grids"] = serde_json::json!([{"type": "SensorGrid", "identifier": "desks",
-        "sensors": [{"pos": [1, 1, 0.8], "dir": [0, 0, 1]}]}]);
+    radiance["views"] = serde_json::json!([{"type": "View", "identifier": "camera",
+        "position": [1, 1, 1.5], "direction": [1, 0, 0], "up_vector": [0, 0, 1]}]);
     radiance["modifiers"]
         .as_array_mut()
         .unwrap()
@@ -331,7 +331,7 @@ fn what_cannot_be_mapped_is_reported() {
     }
     for part in [
         "shade `fin`",
-        "sensor grid `desks` (1 sensors)",
+        "view `camera`",
         "orphaned shade `tree`",
         "modifier `curtain` of type `Trans`",
     ] {

@@ -136,6 +136,15 @@ pub fn rows_key(scene: &Scene, opts: &FormFactorOptions) -> [u8; 32] {
                 h.update(height.to_bits().to_le_bytes());
                 hash_patches(&mut h, receivers);
             }
+            ZoneKind::Points { points, area } => {
+                h.update([2]);
+                h.update(area.to_bits().to_le_bytes());
+                hash_usize(&mut h, points.len());
+                for (position, normal) in points {
+                    hash_point(&mut h, position);
+                    hash_point(&mut h, normal);
+                }
+            }
         }
     }
     hash_usize(&mut h, outputs::grid_points(scene).count());

@@ -8,7 +8,8 @@ use crate::formfactor::operator::FormFactorOperator;
 use rayon::prelude::*;
 
 use crate::formfactor::{self, FormFactorOptions, Occluders};
-use crate::scene::receivers::{receivers, Receiver};
+use crate::scene::receivers::{mean_over_points, receivers, Receiver};
+use crate::scene::FieldOfView;
 use crate::scene::{Scene, Zone, ZoneKind};
 
 /// Area of a zone, m².
@@ -16,13 +17,15 @@ pub fn zone_area(scene: &Scene, zone: &Zone) -> f64 {
     match &zone.kind {
         ZoneKind::Surfaces(patches) => patches.iter().map(|&i| scene.patches[i].area).sum(),
         ZoneKind::WorkPlane { receivers, .. } => receivers.iter().map(|r| r.area).sum(),
+        ZoneKind::Points { area, .. } => *area,
     }
 }
 
 pub use crate::scene::receivers::{grid_offset, grid_points};
 
 /// One row per sensor (point form factors with occlusion and field of view), then one per
-/// zone (area-weighted average of its patches' or receivers' form-factor rows), then one per
+/// zone (area-weighted average of its patches' or receivers' form-factor rows, or the mean of
+/// an imported sensor grid's point rows), then one per
 /// grid point (a full-hemisphere point receiver facing its grid's normal, like a sensor).
 ///
 /// `g` is `A F` symmetrised, `area` the patch areas (m²).
@@ -55,6 +58,15 @@ pub fn output_rows(
                 }
                 sum.iter().map(|s| s / total).collect()
             }
+            Receiver::Points(points) => mean_over_points(points, n, |position, normal| {
+                formfactor::point_form_factors(
+                    position,
+                    normal,
+                    FieldOfView::HEMISPHERE,
+                    &scene.patches,
+                    occluders,
+                )
+            }),
             Receiver::Plane(receivers) => {
                 let f =
                     formfactor::receiver_form_factors(receivers, &scene.patches, occluders, opts);

@@ -1,5 +1,5 @@
 //! From the parsed file to a validated, meshed [`Scene`]: units, materials, surfaces, meshing,
-//! channels, sensors and zones.
+//! channels, sensors and zones (the scene's own, then the imported sensor grids).
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -85,7 +85,7 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         extent(raw),
         &enclosures(&geometry.rooms, &meshed.faces),
     )?;
-    let zones = observers::zones(
+    let mut zones = observers::zones(
         &ctx,
         &file.zone,
         &geometry.rooms,
@@ -94,6 +94,25 @@ pub(crate) fn build(file: SceneFile, text: &str, origin: &Path) -> Result<Scene,
         &meshed.patches,
         max_edge,
     )?;
+    // The imported sensor grids follow the scene's own zones, under names of their own.
+    unique(
+        "zone",
+        (file
+            .zone
+            .iter()
+            .map(|z| (z.get_ref().name.as_str(), ctx.at(z))))
+        .chain(
+            geometry
+                .grids
+                .iter()
+                .map(|g| (g.name.as_str(), g.at.clone())),
+        ),
+    )?;
+    zones.extend(observers::imported_grids(
+        &geometry.grids,
+        &geometry.rooms,
+        &inside,
+    )?);
 
     let layout = Layout::of(&geometry.rooms, &inside, &claimed);
     let solids = inside_solids(&file, &geometry);
@@ -357,6 +376,8 @@ struct Geometry {
     imported_openings: Vec<(Vec<String>, super::error::Location)>,
     /// The imported rooms' faces shared with other spaces of their models.
     adjacency: Vec<Adjacency>,
+    /// The imports' sensor grids.
+    grids: Vec<import::ImportedGrid>,
     /// What the imports could not map.
     warnings: Vec<String>,
     /// Each block's name and corners (m).
@@ -385,6 +406,7 @@ fn geometry(
     let mut imported_openings = Vec::new();
     let mut adjacency = Vec::new();
     let mut warnings = Vec::new();
+    let mut grids = Vec::new();
     for i in &file.import {
         let imported = import::read(ctx, i, &file.surfaces, materials)?;
         for r in imported.rooms {
@@ -397,6 +419,7 @@ fn geometry(
             adjacency.extend(r.adjacency);
         }
         warnings.extend(imported.warnings);
+        grids.extend(imported.grids);
     }
     let mut blocks: Vec<(String, Vec3, Vec3)> = Vec::new();
     for b in &file.block {
@@ -433,6 +456,7 @@ fn geometry(
         room_faces,
         imported_openings,
         adjacency,
+        grids,
         warnings,
         blocks,
         obj_surfaces,

@@ -344,6 +344,18 @@ pub(crate) struct ImportDef {
     /// model gives none (by kind: `Floor`, `Wall`, `RoofCeiling`, `Aperture`, `Door`).
     #[serde(default)]
     pub materials: BTreeMap<String, Spanned<String>>,
+    /// The model's sensor grids to import as zones: `true` (the default) for all of them,
+    /// `false` for none, or a list of names (identifier or display name).
+    #[serde(default)]
+    pub sensor_grids: Option<Spanned<SensorGridsDef>>,
+}
+
+/// `[[import]].sensor_grids`: all, none, or those named.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(crate) enum SensorGridsDef {
+    All(bool),
+    Names(Vec<String>),
 }
 
 /// `[[block]]`: axis-aligned box seen from outside.

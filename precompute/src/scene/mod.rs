@@ -179,7 +179,8 @@ pub struct Zone {
     pub name: String,
     /// What the zone is made of.
     pub kind: ZoneKind,
-    /// Its calculation grid: always for a work plane, when asked for a surface zone.
+    /// Its calculation grid: always for a work plane and a sensor grid, when asked for a
+    /// surface zone.
     pub grid: Option<Grid>,
 }
 
@@ -195,6 +196,16 @@ pub enum ZoneKind {
         /// Receiving patches covering the room's footprint (less the margin) at that height.
         /// Their `surface` is the index of the room's floor surface they lie above.
         receivers: Vec<Patch>,
+    },
+    /// A sensor grid imported from a building model: points each facing its own direction
+    /// (also the zone's grid, which `--no-grids` drops), and the zone reads their mean
+    /// (docs/scene.md, "Importing a building model").
+    Points {
+        /// Position (m) and unit normal of each point, in the grid's order.
+        points: Vec<(Vec3, Vec3)>,
+        /// The area the grid stands for, m²: a square cell of the grid's spacing per point
+        /// (the model gives sensors, not the area they sample).
+        area: f64,
     },
 }
 
@@ -292,7 +303,8 @@ pub struct Scene {
     /// The faces of imported rooms shared with another space of their model.
     pub adjacency: Vec<Adjacency>,
     /// What the `[[import]]`s' models hold and could not be mapped (shades, air boundaries,
-    /// unknown face types, sensor grids), each naming its file: reported, not guessed.
+    /// unknown face types, sensor grids of rooms not imported), each naming its file:
+    /// reported, not guessed.
     pub warnings: Vec<String>,
 }
 

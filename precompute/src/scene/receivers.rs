@@ -4,6 +4,8 @@
 //! the order, and what a sensor sees, are decided here.
 
 use super::response::Response;
+use rayon::prelude::*;
+
 use super::{Scene, ZoneKind};
 use crate::geometry::{Patch, Vec3};
 
@@ -102,6 +104,10 @@ pub enum Receiver<'s> {
     Surfaces(&'s [usize]),
     /// A work plane: the area-weighted mean over its receiving patches, which block no light.
     Plane(&'s [Patch]),
+    /// An imported sensor grid's zone: the mean over these points (position in m, unit
+    /// normal), each a point receiver over the front hemisphere of its normal, as its grid
+    /// points are read ([`grid_points`]).
+    Points(&'s [(Vec3, Vec3)]),
 }
 
 /// Every receiver of `scene` in output order: the sensors, the zones, then every zone's grid
@@ -118,6 +124,7 @@ pub fn receivers(scene: &Scene) -> impl Iterator<Item = Receiver<'_>> + '_ {
     let zones = scene.zones.iter().map(|z| match &z.kind {
         ZoneKind::Surfaces(list) => Receiver::Surfaces(list),
         ZoneKind::WorkPlane { receivers, .. } => Receiver::Plane(receivers),
+        ZoneKind::Points { points, .. } => Receiver::Points(points),
     });
     let points = grid_points(scene).map(|(_, position, normal)| Receiver::Point {
         position,
@@ -125,6 +132,28 @@ pub fn receivers(scene: &Scene) -> impl Iterator<Item = Receiver<'_>> + '_ {
         field: FieldOfView::HEMISPHERE,
     });
     sensors.chain(zones).chain(points)
+}
+
+/// The mean over `points` (position, normal) of `read(position, normal)` (`len` values
+/// each), what a [`Receiver::Points`] reads; zeros without points. The points are read in
+/// parallel and summed in order, so that the same scene gives the same bytes.
+pub fn mean_over_points(
+    points: &[(Vec3, Vec3)],
+    len: usize,
+    read: impl Fn(Vec3, Vec3) -> Vec<f64> + Sync,
+) -> Vec<f64> {
+    let values: Vec<Vec<f64>> = points.par_iter().map(|&(x, n)| read(x, n)).collect();
+    let mut mean = vec![0.0; len];
+    for v in &values {
+        for (m, x) in mean.iter_mut().zip(v) {
+            *m += x;
+        }
+    }
+    if !values.is_empty() {
+        let count = values.len() as f64;
+        mean.iter_mut().for_each(|m| *m /= count);
+    }
+    mean
 }
 
 /// Every zone's grid points in output order: (zone index, position in m, unit normal).

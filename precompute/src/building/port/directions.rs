@@ -119,6 +119,35 @@ pub fn shares(
     leaving: bool,
 ) -> Vec<f64> {
     let mut mass = vec![0.0; bins.count()];
+    accumulate(&mut mass, bins, port, receiver, leaving);
+    normalised(mass, bins, port.0, receiver.0, leaving)
+}
+
+/// [`shares`] for a receiver of many points each facing its own unit normal (an imported
+/// sensor grid's zone): every point's pairs with the port's samples weighted by the same
+/// kernel, together.
+pub fn shares_at_points(
+    bins: &Bins,
+    port: (&[(Vec3, f64)], Vec3),
+    points: &[(Vec3, Vec3)],
+    leaving: bool,
+) -> Vec<f64> {
+    let mut mass = vec![0.0; bins.count()];
+    for &(x, n) in points {
+        accumulate(&mut mass, bins, port, (&[(x, 1.0)], Some(n)), leaving);
+    }
+    let centres: Vec<(Vec3, f64)> = points.iter().map(|&(x, _)| (x, 1.0)).collect();
+    normalised(mass, bins, port.0, &centres, leaving)
+}
+
+/// Adds the kernel of every pair of port and receiver samples to the bin of its direction.
+fn accumulate(
+    mass: &mut [f64],
+    bins: &Bins,
+    port: (&[(Vec3, f64)], Vec3),
+    receiver: (&[(Vec3, f64)], Option<Vec3>),
+    leaving: bool,
+) {
     let (port_points, port_normal) = port;
     let (receiver_points, receiver_normal) = receiver;
     for &(x, wx) in port_points {
@@ -137,6 +166,17 @@ pub fn shares(
             }
         }
     }
+}
+
+/// The masses as shares summing to 1; all zero, the bin of the direction between the
+/// centroids of the port's and the receiver's samples.
+fn normalised(
+    mass: Vec<f64>,
+    bins: &Bins,
+    port_points: &[(Vec3, f64)],
+    receiver_points: &[(Vec3, f64)],
+    leaving: bool,
+) -> Vec<f64> {
     let total: f64 = mass.iter().sum();
     if total > 0.0 {
         mass.iter().map(|m| m / total).collect()

@@ -34,7 +34,7 @@ use crate::scene::receivers::{receivers, Receiver};
 use crate::scene::Scene;
 use crate::sources::luminaires::{LuminaireOptions, Source};
 use crate::sources::ChannelLight;
-use directions::{samples, shares, Bins};
+use directions::{samples, shares, shares_at_points, Bins};
 
 /// One of a room's port openings, as the room's build meshed it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -405,6 +405,10 @@ fn entering_lights(
                     }
                     split
                 }
+                Receiver::Points(points) => shares_at_points(bins, (own, normal), points, false)
+                    .into_iter()
+                    .map(|s| r_oi * s)
+                    .collect(),
                 Receiver::Plane(cells) => {
                     // The cells of a work plane face one way: their samples together, each
                     // pair weighted by its kernel as the cells' form factors weigh them.

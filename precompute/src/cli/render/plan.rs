@@ -20,7 +20,9 @@ pub(super) fn plan_zones<'s>(
     path: &Path,
     asked: &[String],
 ) -> Result<Vec<&'s scene::Zone>> {
-    let grids: Vec<&scene::Zone> = scene.zones.iter().filter(|z| z.grid.is_some()).collect();
+    // An imported sensor grid's points face their own ways, in no lattice: not a plan's.
+    let planar = |z: &scene::Zone| z.grid.is_some() && !matches!(z.kind, ZoneKind::Points { .. });
+    let grids: Vec<&scene::Zone> = scene.zones.iter().filter(|z| planar(z)).collect();
     let names = || {
         grids
             .iter()
@@ -44,7 +46,14 @@ pub(super) fn plan_zones<'s>(
     let mut zones: Vec<&scene::Zone> = Vec::new();
     for name in asked {
         let zone = match scene.zones.iter().find(|z| &z.name == name) {
-            Some(z) if z.grid.is_some() => z,
+            Some(z) if planar(z) => z,
+            Some(z) if z.grid.is_some() => return Err(render_error(
+                path,
+                format!(
+                    "--zone {name}: zone `{name}` is an imported sensor grid, its points in no lattice; a plan needs a work-plane zone ({})",
+                    if grids.is_empty() { "the scene has none".into() } else { names() }
+                ),
+            )),
             Some(_) => return Err(render_error(
                 path,
                 format!(

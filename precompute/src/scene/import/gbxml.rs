@@ -243,6 +243,7 @@ pub(crate) fn read(text: &str) -> Result<Model, ImportError> {
         spaces,
         materials,
         tolerance: TOLERANCE,
+        grids: Vec::new(),
         warnings,
     })
 }

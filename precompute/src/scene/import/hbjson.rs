@@ -5,8 +5,9 @@
 //! What is read: `units`, `tolerance`, `rooms[].faces[]` (`geometry.boundary`, `face_type`,
 //! `boundary_condition`, `apertures[]`, `doors[]`, `properties.radiance.modifier`), the
 //! rooms' `modifier_set`s, and `properties.radiance.modifiers` of type `Plastic`, `Metal` and
-//! `Glass`. Shades, air boundaries, orphaned objects, holes in faces, other modifier types
-//! and sensor grids are listed as warnings.
+//! `Glass`, and `properties.radiance.sensor_grids` ([`super::sensor_grids`]). Shades, air
+//! boundaries, orphaned objects, holes in faces, other modifier types and views are listed as
+//! warnings.
 
 use std::collections::{BTreeMap, HashMap};
 
@@ -63,6 +64,8 @@ struct HbModelRadiance {
     modifier_sets: Vec<Value>,
     #[serde(default)]
     sensor_grids: Vec<Value>,
+    #[serde(default)]
+    views: Vec<Value>,
 }
 
 #[derive(Deserialize)]
@@ -193,15 +196,11 @@ pub(crate) fn read(text: &str) -> Result<Model, ImportError> {
         .unwrap_or_default();
     let materials = modifiers(&radiance.modifiers, &mut warnings);
     let sets = modifier_sets(&radiance.modifier_sets);
-    for g in &radiance.sensor_grids {
-        let id = g.get("identifier").and_then(Value::as_str).unwrap_or("?");
-        let count = g
-            .get("sensors")
-            .and_then(Value::as_array)
-            .map_or(0, Vec::len);
+    let grids = super::sensor_grids::read(&radiance.sensor_grids, unit, &line)?;
+    for v in &radiance.views {
+        let id = v.get("identifier").and_then(Value::as_str).unwrap_or("?");
         warnings.push(format!(
-            "sensor grid `{id}` ({count} sensors) is not imported: give the scene a [[zone]] \
-             work plane or [[sensor]]s"
+            "view `{id}` is not imported (a camera for pictures: eigenrad reads no views)"
         ));
     }
     for (what, list) in [
@@ -387,6 +386,7 @@ pub(crate) fn read(text: &str) -> Result<Model, ImportError> {
         spaces,
         materials,
         tolerance: tolerance * unit,
+        grids,
         warnings,
     })
 }

@@ -5,12 +5,14 @@
 //! out as a typed [`Room`], exactly as a `[[room]]` with that plan would be, its windows and
 //! doors becoming openings cut out of its faces. Faces take their material from the scene
 //! when the model names one the scene defines, else from the model's own values, else from the
-//! import's `materials` map; a face without any is an error, never a guess.
+//! import's `materials` map; a face without any is an error, never a guess. The model's sensor
+//! grids ([`sensor_grids`]) become zones of the scene.
 
 mod gbxml;
 mod hbjson;
 mod model;
 mod prism;
+mod sensor_grids;
 #[cfg(test)]
 mod tests;
 
@@ -26,6 +28,7 @@ use super::room::{Ends, FaceKind, Room};
 use super::Adjacency;
 use crate::geometry::{Polygon, Vec3};
 use model::{Model, ModelMaterial, ModelOpening};
+pub(crate) use sensor_grids::ImportedGrid;
 
 /// What went wrong in a model file: the element and, when known, its line.
 #[derive(Debug)]
@@ -40,6 +43,8 @@ pub(crate) struct ImportError {
 /// The rooms of one `[[import]]`.
 pub(crate) struct Imported {
     pub rooms: Vec<ImportedRoom>,
+    /// The sensor grids it asks for ([`sensor_grids::chosen`]).
+    pub grids: Vec<ImportedGrid>,
     /// What the file holds and the import could not map, each naming the file.
     pub warnings: Vec<String>,
 }
@@ -130,15 +135,27 @@ pub(crate) fn read(
         model: &model,
     };
     let mut rooms = Vec::with_capacity(chosen.len());
-    for space in chosen {
+    for &space in &chosen {
         rooms.push(importer.room(space, &at).map_err(located)?);
     }
-    let warnings = model
+    let mut warnings: Vec<String> = model
         .warnings
         .iter()
         .map(|w| format!("{}: {w}", path.display()))
         .collect();
-    Ok(Imported { rooms, warnings })
+    let grids = sensor_grids::chosen(
+        ctx,
+        d.sensor_grids.as_ref(),
+        &model,
+        &chosen,
+        &path,
+        &mut warnings,
+    )?;
+    Ok(Imported {
+        rooms,
+        grids,
+        warnings,
+    })
 }
 
 /// The model file an `[[import]]` names, relative to the scene file's folder.

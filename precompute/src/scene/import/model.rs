@@ -16,9 +16,26 @@ pub(crate) struct Model {
     /// How far apart two points may be and still count as one, metres (the file's own
     /// tolerance where it states one).
     pub tolerance: f64,
+    /// Its sensor grids (Honeybee `sensor_grids`), in file order.
+    pub grids: Vec<ModelGrid>,
     /// What the reader met and could not map (shades, air boundaries, unknown face types):
     /// reported, never guessed.
     pub warnings: Vec<String>,
+}
+
+/// A grid of sensors the model defines (a Honeybee `SensorGrid`): points where illuminance
+/// is read, each on the plane facing its own direction.
+#[derive(Clone, Debug)]
+pub(crate) struct ModelGrid {
+    /// Its identifier in the file.
+    pub id: String,
+    /// The zone name it is given in the scene (its display name, else its identifier).
+    pub name: String,
+    pub line: Option<usize>,
+    /// The identifier of the space it lies in, when the file says.
+    pub space: Option<String>,
+    /// Its sensors in file order: position (m) and unit direction each faces.
+    pub sensors: Vec<(Vec3, Vec3)>,
 }
 
 /// A material the model defines, with what the file says of it.

@@ -44,6 +44,7 @@ fn the_shipped_models_read_and_lay_out() {
         ("l-office.hbjson", 1),
         ("l-office.xml", 1),
         ("honeybee/model_complete_multiroom_radiance.hbjson", 3),
+        ("honeybee/model_radiance_grid_views.hbjson", 2),
         ("openstudio/3997_WindowScaling_bug.xml", 1),
     ] {
         let text = String::from_utf8(sample(file)).unwrap();
@@ -73,6 +74,15 @@ proptest! {
         read_all(&mutated(&sample("l-office.hbjson"), &edits, cut));
     }
 
+    /// The sample with sensor grids: most of its bytes are sensors.
+    #[test]
+    fn a_changed_model_with_grids_never_panics(
+        edits in proptest::collection::vec((any::<usize>(), any::<u8>()), 0..8),
+        cut in proptest::option::of(0.0..1.0f64),
+    ) {
+        read_all(&mutated(&sample("honeybee/model_radiance_grid_views.hbjson"), &edits, cut));
+    }
+
     #[test]
     fn a_changed_gbxml_never_panics(
         edits in proptest::collection::vec((any::<usize>(), any::<u8>()), 0..8),
@@ -86,7 +96,7 @@ proptest! {
     fn changed_coordinates_never_panic(
         edits in proptest::collection::vec((any::<usize>(), 0u8..10), 1..12),
     ) {
-        for file in ["l-office.hbjson", "l-office.xml"] {
+        for file in ["l-office.hbjson", "l-office.xml", "honeybee/model_radiance_grid_views.hbjson"] {
             let base = sample(file);
             let digits: Vec<usize> = (0..base.len()).filter(|&k| base[k].is_ascii_digit()).collect();
             let edits: Vec<(usize, u8)> = edits

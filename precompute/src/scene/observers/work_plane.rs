@@ -15,6 +15,16 @@ use crate::scene::openings::CONTACT_TOLERANCE;
 use crate::scene::room::Room;
 use crate::scene::{Surface, ZoneKind};
 
+/// Whether the grid point `x` (m) lies strictly inside one of `obstacles` (name, min, max in
+/// metres), by more than [`CONTACT_TOLERANCE`] of its diagonal: such points are left out of a
+/// grid and counted.
+pub(super) fn inside_obstacle(x: Vec3, obstacles: &[(String, Vec3, Vec3)]) -> bool {
+    obstacles.iter().any(|(_, lo, hi)| {
+        let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
+        (0..3).all(|k| x.axis(k) > lo.axis(k) + tol && x.axis(k) < hi.axis(k) - tol)
+    })
+}
+
 /// Default band left out at the walls, m (EN 12464-1:2021, 4.4: 0.5 m).
 pub(crate) const DEFAULT_MARGIN: f64 = 0.5;
 
@@ -60,12 +70,7 @@ pub(super) fn work_plane(
             || (room.plan.holds([x.x, x.y], tol)
                 && room.plan.distance_to_boundary([x.x, x.y]) >= border - tol)
     };
-    let obstructed = |x: Vec3| {
-        obstacles.iter().any(|(_, lo, hi)| {
-            let tol = CONTACT_TOLERANCE * (*hi - *lo).length();
-            (0..3).all(|k| x.axis(k) > lo.axis(k) + tol && x.axis(k) < hi.axis(k) - tol)
-        })
-    };
+    let obstructed = |x: Vec3| inside_obstacle(x, obstacles);
     let mut left_out = 0;
     let mut pieces = Vec::new();
     for &[x0, y0, x1, y1] in &rects {

@@ -66,7 +66,7 @@ use rayon::prelude::*;
 use super::ChannelLight;
 use crate::formfactor::{gauss_legendre, Occluders};
 use crate::geometry::{Patch, Vec3};
-use crate::scene::receivers::{receivers, Receiver};
+use crate::scene::receivers::{mean_over_points, receivers, Receiver};
 use crate::scene::{FieldOfView, Scene};
 
 mod cells;
@@ -484,6 +484,9 @@ impl<'a> Ctx<'a> {
                         .collect(),
                     list.iter().map(|&i| scene.patches[i].area).sum(),
                 ),
+                Receiver::Points(points) => mean_over_points(points, bins, |position, normal| {
+                    on_point(position, normal, FieldOfView::HEMISPHERE)
+                }),
                 // Receivers do not block light: nothing to ignore.
                 Receiver::Plane(receivers) => mean(
                     receivers

@@ -55,7 +55,7 @@ use super::ChannelLight;
 use crate::formfactor::{for_each_on_cell, gauss_legendre, split_cell, Occluders, Shaft};
 use crate::geometry::{Patch, Vec3};
 use crate::scene::photometry::OpeningShape;
-use crate::scene::receivers::{receivers, Receiver};
+use crate::scene::receivers::{mean_over_points, receivers, Receiver};
 use crate::scene::{FieldOfView, Luminaire, Scene};
 
 mod flux;
@@ -171,6 +171,9 @@ pub fn lights_and_flux(
                     let lumens: f64 = lit.iter().sum();
                     lumens / receivers.iter().map(|r| r.area).sum::<f64>()
                 }
+                Receiver::Points(points) => mean_over_points(points, 1, |position, normal| {
+                    vec![source.point(position, normal, FieldOfView::HEMISPHERE, &[])]
+                })[0],
                 Receiver::Surfaces(_) => 0.0,
             })
             .collect();
