@@ -9,8 +9,8 @@
 
 mod gbxml;
 mod hbjson;
-mod model;
-mod prism;
+pub(crate) mod model;
+pub(crate) mod prism;
 #[cfg(test)]
 mod tests;
 
