@@ -585,3 +585,164 @@ fn openings_without_a_room_are_refused() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The patches of two scenes, compared corner by corner within `tol` (m), with their
+/// surfaces' names.
+fn same_patches(a: &Scene, b: &Scene, tol: f64) {
+    let names = |s: &Scene| -> Vec<String> { s.surfaces.iter().map(|x| x.name.clone()).collect() };
+    assert_eq!(names(a), names(b));
+    assert_eq!(a.patches.len(), b.patches.len());
+    for (p, q) in a.patches.iter().zip(&b.patches) {
+        assert_eq!(p.surface, q.surface);
+        assert_eq!(p.polygon.vertices.len(), q.polygon.vertices.len());
+        for (u, v) in p.polygon.vertices.iter().zip(&q.polygon.vertices) {
+            assert!((*u - *v).length() <= tol, "{u:?} vs {v:?}");
+        }
+    }
+}
+
+#[test]
+fn a_triangulated_obj_l_room_is_the_plan_room() {
+    // Every quad of the L cut along a diagonal, as many exporters write it.
+    let triangles: Vec<ObjFace> = l_faces()
+        .into_iter()
+        .flat_map(|(group, material, c)| {
+            [
+                (group, material, vec![c[0], c[1], c[2]]),
+                (group, material, vec![c[0], c[2], c[3]]),
+            ]
+        })
+        .collect();
+    let dir = scratch("triangles");
+    let a = loaded(&obj_scene(&dir, 0.5, &triangles, true));
+    let b = loaded(&plan_scene(&dir, 0.5, true));
+    same_patches(&a, &b, 0.0);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_gabled_obj_room_is_the_room_with_those_ceiling_planes() {
+    // 6 m × 4 m, eaves at 2.5 m along y = 0 and y = 4, the ridge at 3.7 m along y = 2.
+    let (e, r) = (2.5, 3.7);
+    let faces: Vec<ObjFace> = vec![
+        (
+            "floor",
+            "floor",
+            vec![
+                [0.0, 0.0, 0.0],
+                [6.0, 0.0, 0.0],
+                [6.0, 4.0, 0.0],
+                [0.0, 4.0, 0.0],
+            ],
+        ),
+        (
+            "roof",
+            "ceiling",
+            vec![[0.0, 0.0, e], [0.0, 2.0, r], [6.0, 2.0, r], [6.0, 0.0, e]],
+        ),
+        (
+            "roof",
+            "ceiling",
+            vec![[0.0, 2.0, r], [0.0, 4.0, e], [6.0, 4.0, e], [6.0, 2.0, r]],
+        ),
+        (
+            "south",
+            "wall",
+            vec![
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, e],
+                [6.0, 0.0, e],
+                [6.0, 0.0, 0.0],
+            ],
+        ),
+        (
+            "east",
+            "wall",
+            vec![
+                [6.0, 0.0, 0.0],
+                [6.0, 0.0, e],
+                [6.0, 2.0, r],
+                [6.0, 4.0, e],
+                [6.0, 4.0, 0.0],
+            ],
+        ),
+        (
+            "north",
+            "wall",
+            vec![
+                [6.0, 4.0, 0.0],
+                [6.0, 4.0, e],
+                [0.0, 4.0, e],
+                [0.0, 4.0, 0.0],
+            ],
+        ),
+        (
+            "west",
+            "wall",
+            vec![
+                [0.0, 4.0, 0.0],
+                [0.0, 4.0, e],
+                [0.0, 2.0, r],
+                [0.0, 0.0, e],
+                [0.0, 0.0, 0.0],
+            ],
+        ),
+    ];
+    let dir = scratch("gable");
+    write(&dir, "room.mtl", MTL);
+    write(&dir, "room.obj", &obj(&faces));
+    let common = "\n[[zone]]\nname = \"all\"\nsurfaces = [\"attic*\"]\n";
+    let from_obj = write(
+        &dir,
+        "obj.toml",
+        &format!(
+            "{}\n[[obj]]\nfile = \"room.obj\"\nroom = \"attic\"\n{common}",
+            header(0.5)
+        ),
+    );
+    let from_plan = write(
+        &dir,
+        "plan.toml",
+        &format!(
+            "{}\n[[room]]\nname = \"attic\"\nplan = [[0, 0], [6, 0], [6, 4], [0, 4]]\n\
+             ceiling_planes = [\n  {{ through = [[0, 0, 2.5], [6, 0, 2.5], [0, 2, 3.7]] }},\n  \
+             {{ through = [[0, 4, 2.5], [0, 2, 3.7], [6, 4, 2.5]] }},\n]\n\
+             wall_names = [\"south\", \"east\", \"north\", \"west\"]\n\
+             material = \"wall\"\nfloor = \"floor\"\nceiling = \"ceiling\"\n{common}",
+            header(0.5)
+        ),
+    );
+    let (a, b) = (loaded(&from_obj), loaded(&from_plan));
+    // The planes come from three points in one file and a face's normal in the other: the
+    // same within rounding, which may turn a tie in how a gable end's pentagon is cut, so the
+    // patches are compared as sets, each surface's by its centroids (within 1e-9 m).
+    let names = |s: &Scene| -> Vec<String> { s.surfaces.iter().map(|x| x.name.clone()).collect() };
+    assert_eq!(names(&a), names(&b));
+    for (x, y) in a.surfaces.iter().zip(&b.surfaces) {
+        let (pa, pb) = (
+            &a.patches[x.patch_range.clone()],
+            &b.patches[y.patch_range.clone()],
+        );
+        assert_eq!(pa.len(), pb.len(), "{}", x.name);
+        for p in pa {
+            assert!(
+                pb.iter()
+                    .any(|q| (p.centroid - q.centroid).length() < 1e-9
+                        && (p.area - q.area).abs() < 1e-9),
+                "{}: no patch at {:?} in the plan room",
+                x.name,
+                p.centroid
+            );
+        }
+    }
+    let area: f64 = a.patches.iter().map(|p| p.area).sum();
+    // Floor 24, two slopes 6 × √(2² + 1.2²) each, the long walls 6 × 2.5 each, the gable
+    // ends 4 × 2.5 + 4 × 1.2 / 2 each.
+    let slope = 6.0 * (4.0f64 + 1.44).sqrt();
+    let surface = 24.0 + 2.0 * slope + 2.0 * 15.0 + 2.0 * (10.0 + 2.4);
+    assert!(
+        (area - surface).abs() < 1e-9 * surface,
+        "area {area} vs {surface}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
