@@ -15,7 +15,8 @@ use super::mesh::{mesh_surfaces, Meshed};
 use super::openings::CONTACT_TOLERANCE;
 use super::room::Room;
 use super::{
-    channels, daylight, import, limits, luminaires, obj, observers, openings, primitives, winding,
+    channels, daylight, import, limits, luminaires, obj, obj_room, observers, openings, primitives,
+    winding,
 };
 use super::{Adjacency, Bands, Luminaire, Scene, Window};
 use crate::formfactor::Solid;
@@ -197,15 +198,16 @@ fn cut_openings(
             },
         )?;
     }
-    // The imported rooms follow the scene's own, in `rooms` and `room_faces`.
+    // The imported rooms and the OBJ rooms follow the scene's own, in `rooms` and
+    // `room_faces`.
     let first = file.room.len();
-    for (k, (names, at)) in geometry.imported_openings.iter().enumerate() {
+    for (k, (names, at, kind)) in geometry.more_openings.iter().enumerate() {
         let room = &geometry.rooms[first + k];
         openings::cut(
             &openings::OpeningList {
                 names,
                 at: at.clone(),
-                field: format!("imported room `{}`.openings", room.name),
+                field: format!("{kind} room `{}`.openings", room.name),
             },
             room,
             geometry.room_faces[first + k].clone(),
@@ -365,15 +367,17 @@ fn scene_materials(
 
 /// Every surface of the file before meshing, with the boxes the later checks need.
 struct Geometry {
-    /// Rooms, imported rooms (each followed by its openings), blocks, quads and OBJ groups,
-    /// in that order.
+    /// Rooms, imported rooms (each followed by its openings), OBJ rooms, blocks, quads and
+    /// the other OBJ files' groups, in that order.
     raw: Vec<RawSurface>,
-    /// The rooms: the scene's `[[room]]`s in file order, then the imported ones.
+    /// The rooms: the scene's `[[room]]`s in file order, then the imported ones, then the
+    /// OBJ rooms.
     rooms: Vec<Room>,
     /// Each room's faces in `raw`.
     room_faces: Vec<Range<usize>>,
-    /// Each imported room's openings (surface names) and where its `[[import]]` was written.
-    imported_openings: Vec<(Vec<String>, super::error::Location)>,
+    /// Each imported or OBJ room's openings (surface names), where the list (or its
+    /// `[[import]]`) was written, and what made the room (`imported`, `OBJ`).
+    more_openings: Vec<(Vec<String>, super::error::Location, &'static str)>,
     /// The imported rooms' faces shared with other spaces of their models.
     adjacency: Vec<Adjacency>,
     /// The imports' sensor grids.
@@ -403,7 +407,7 @@ fn geometry(
         room_faces.push(start..raw.len());
         rooms.push(room);
     }
-    let mut imported_openings = Vec::new();
+    let mut more_openings = Vec::new();
     let mut adjacency = Vec::new();
     let mut warnings = Vec::new();
     let mut grids = Vec::new();
@@ -414,12 +418,43 @@ fn geometry(
             raw.extend(r.room.surfaces());
             room_faces.push(start..raw.len());
             rooms.push(r.room);
-            imported_openings.push((r.openings.iter().map(|o| o.name.clone()).collect(), r.at));
+            more_openings.push((
+                r.openings.iter().map(|o| o.name.clone()).collect(),
+                r.at,
+                "imported",
+            ));
             raw.extend(r.openings);
             adjacency.extend(r.adjacency);
         }
         warnings.extend(imported.warnings);
         grids.extend(imported.grids);
+    }
+    // OBJ rooms before the blocks, which must stand inside a room.
+    let mut obj_rooms = vec![false; file.obj.len()];
+    for (k, o) in file.obj.iter().enumerate() {
+        let Some(name) = &o.get_ref().room else {
+            if let Some(list) = &o.get_ref().openings {
+                return Err(SceneError::Invalid {
+                    at: ctx.at(list),
+                    field: "obj.openings".into(),
+                    message: "openings are cut out of a room's faces: name the room the OBJ \
+                              file's faces form with `room = \"...\"`"
+                        .into(),
+                });
+            }
+            continue;
+        };
+        obj_rooms[k] = true;
+        let content = obj::load(ctx, o)?;
+        for (name, info) in content.materials.iter().cloned() {
+            materials.entry(name).or_insert(info);
+        }
+        let r = obj_room::read(ctx, o, name, &content)?;
+        let start = raw.len();
+        raw.extend(r.room.surfaces());
+        room_faces.push(start..raw.len());
+        rooms.push(r.room);
+        more_openings.push((r.openings, r.at, "OBJ"));
     }
     let mut blocks: Vec<(String, Vec3, Vec3)> = Vec::new();
     for b in &file.block {
@@ -437,7 +472,13 @@ fn geometry(
         raw.push(primitives::polygon(ctx, p)?);
     }
     let mut obj_surfaces = Vec::new();
-    for o in &file.obj {
+    for o in file
+        .obj
+        .iter()
+        .zip(&obj_rooms)
+        .filter(|(_, &r)| !r)
+        .map(|(o, _)| o)
+    {
         let content = obj::load(ctx, o)?;
         let start = raw.len();
         raw.extend(content.surfaces);
@@ -454,7 +495,7 @@ fn geometry(
         raw,
         rooms,
         room_faces,
-        imported_openings,
+        more_openings,
         adjacency,
         grids,
         warnings,

@@ -412,6 +412,13 @@ pub(crate) struct ObjDef {
     /// not meshed into patches.
     #[serde(default)]
     pub exterior: bool,
+    /// The file's faces are one closed room of this name (the room's shell, seen from
+    /// inside), laid out as a `[[room]]` with that plan would be.
+    #[serde(default)]
+    pub room: Option<Spanned<String>>,
+    /// The surfaces set flush into the room's faces (an OBJ room only).
+    #[serde(default)]
+    pub openings: Option<Spanned<Vec<String>>>,
 }
 
 /// `obj.ke`: what an MTL file's `Ke` gives.

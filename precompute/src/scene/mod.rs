@@ -20,6 +20,7 @@ mod limits;
 mod luminaires;
 mod mesh;
 mod obj;
+mod obj_room;
 mod observers;
 mod openings;
 pub mod photometry;

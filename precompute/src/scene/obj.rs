@@ -18,6 +18,9 @@ use crate::geometry::Vec3;
 pub(crate) struct ObjContent {
     /// Its surfaces, in the order they first appear in the file.
     pub surfaces: Vec<RawSurface>,
+    /// The 1-based line of each surface's faces' `f` statements, as `surfaces[k].faces`
+    /// (`None` if the faces could not be matched to the lines).
+    pub lines: Vec<Vec<Option<usize>>>,
     /// Its MTL materials (name, values), in MTL order.
     pub materials: Vec<(String, MaterialInfo)>,
 }
@@ -36,6 +39,7 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         models,
         materials,
         mtls,
+        face_lines,
     } = read(o, &at, &path, &transform)?;
     // Materials are located in their MTL file when there is one; tobj does not say which
     // file a material came from when there are several.
@@ -52,8 +56,10 @@ pub(crate) fn load(ctx: &Ctx, def: &Spanned<ObjDef>) -> Result<ObjContent, Scene
         material_at: at,
         at: obj_at,
     };
+    let (surfaces, lines) = surfaces(o, &models, &materials, &placed, &face_lines);
     Ok(ObjContent {
-        surfaces: surfaces(o, &models, &materials, &placed),
+        surfaces,
+        lines,
         materials: infos,
     })
 }
@@ -64,6 +70,9 @@ struct Loaded {
     materials: Vec<tobj::Material>,
     /// Its MTL files.
     mtls: Vec<PathBuf>,
+    /// The 1-based line of every `f` statement, in file order: the faces of `models` in
+    /// order (tobj starts a model at each group or material change and keeps the faces' order).
+    face_lines: Vec<usize>,
 }
 
 /// The OBJ file at `path` (named by `o`, written at `at`, placed by `transform`) and its MTL
@@ -168,10 +177,17 @@ fn read(
     })
     .map_err(|e| obj_error("OBJ", e))?;
     let materials = materials.map_err(|e| obj_error("MTL", e))?;
+    let face_lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.split_whitespace().next() == Some("f"))
+        .map(|(n, _)| n + 1)
+        .collect();
     Ok(Loaded {
         models,
         materials,
         mtls,
+        face_lines,
     })
 }
 
@@ -226,13 +242,19 @@ struct Placement {
 
 /// The surfaces of the models, in the order they first appear: one per group (or material,
 /// with `name_by = "material"`); a group holding several materials gets one surface per
-/// material, named `<group>.<material>`.
+/// material, named `<group>.<material>`; with each surface, the line of each of its faces
+/// (`face_lines`: every face's, in file order).
 fn surfaces(
     o: &ObjDef,
     models: &[tobj::Model],
     materials: &[tobj::Material],
     placed: &Placement,
-) -> Vec<RawSurface> {
+    face_lines: &[usize],
+) -> (Vec<RawSurface>, Vec<Vec<Option<usize>>>) {
+    let total: usize = models.iter().map(|m| face_count(&m.mesh)).sum();
+    let mut line_of = face_lines
+        .iter()
+        .map(|&l| Some(l).filter(|_| total == face_lines.len()));
     let material_name =
         |id: Option<usize>| id.and_then(|i| materials.get(i)).map(|m| m.name.clone());
     // (key, material) per model.
@@ -248,6 +270,7 @@ fn surfaces(
         })
         .collect();
     let mut surfaces: Vec<RawSurface> = Vec::new();
+    let mut lines: Vec<Vec<Option<usize>>> = Vec::new();
     let mut seen: Vec<HashSet<Vec<[u64; 3]>>> = Vec::new();
     for (model, (key, mat)) in models.iter().zip(&keys) {
         let mixed = keys.iter().any(|(k, m)| k == key && m != mat);
@@ -271,10 +294,12 @@ fn surfaces(
                     exterior: o.exterior,
                 });
                 seen.push(HashSet::new());
+                lines.push(Vec::new());
                 surfaces.len() - 1
             }
         };
         for corners in faces(&model.mesh, &placed.transform) {
+            let line = line_of.next().flatten();
             if o.drop_duplicate_faces {
                 let mut key: Vec<[u64; 3]> = corners
                     .iter()
@@ -286,9 +311,19 @@ fn surfaces(
                 }
             }
             surfaces[index].faces.push(corners);
+            lines[index].push(line);
         }
     }
-    surfaces
+    (surfaces, lines)
+}
+
+/// The number of faces of one mesh.
+fn face_count(mesh: &tobj::Mesh) -> usize {
+    if mesh.face_arities.is_empty() {
+        mesh.indices.len() / 3
+    } else {
+        mesh.face_arities.len()
+    }
 }
 
 /// The faces of one mesh, corners in scene coordinates (metres).

@@ -10,8 +10,8 @@
 
 mod gbxml;
 mod hbjson;
-mod model;
-mod prism;
+pub(crate) mod model;
+pub(crate) mod prism;
 mod sensor_grids;
 #[cfg(test)]
 mod tests;
