@@ -2,16 +2,13 @@
 //! and the sun, each a node whose exact readings the basis stores (docs/format.md,
 //! "Daylight"; docs/math.md, "Daylight in the basis").
 
-use super::reflection::{self, Drive, SunList};
+use super::reflection::{self, SunLists};
+use super::weights::{SunWeight, Weights, NO_COLUMN, NO_SUN};
 use super::{fits, grid_figures, luminance, ChannelEvaluator, Figures, MAX_EXITANCE};
 use crate::basis::{check_index, Basis};
 use crate::error::{Error, Result};
 use crate::sky::direct::{DirectSun, DirectSunState};
 use crate::sky::sun_grid::NodeWeight;
-use crate::storage::{dot_f32, f32_at, f32_row};
-
-/// A sun node's column among the daylight nodes when it has none (it lights nothing).
-const NO_COLUMN: u32 = u32::MAX;
 
 /// The sun of a moment, as a [`DaylightEvaluator`] takes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,7 +61,7 @@ pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const E
     latitude_sin_cos: [f32; 2],
     /// The four sun nodes around the sun (their columns among the daylight nodes, or none
     /// where the node lights nothing) with their weight times `E_n`, lux.
-    sun: [(u32, f32); 4],
+    sun: [SunWeight; 4],
     /// The direct sun's geometry, when the basis stores it: sensors and grid points then
     /// add the sun they see through the windows themselves.
     direct: Option<DirectSunState>,
@@ -75,8 +72,8 @@ pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const E
     /// The daylight's mode amplitudes, then the coefficients of the sky's first reflection
     /// (empty when `EXITANCE` is 0).
     amplitude: heapless::Vec<f32, EXITANCE>,
-    /// Where the four sun nodes' first reflections lie in the basis' lists.
-    sun_lists: [SunList; 4],
+    /// Where the sun nodes' first reflections lie in the basis' lists.
+    sun_lists: SunLists,
 }
 
 impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
@@ -85,8 +82,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
     /// Bytes of state besides the basis view and the vectors' lengths.
     pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + EXITANCE)
         + 4 * 3
-        + core::mem::size_of::<[(u32, f32); 4]>()
-        + core::mem::size_of::<[SunList; 4]>()
+        + core::mem::size_of::<[SunWeight; 4]>()
+        + core::mem::size_of::<SunLists>()
         + core::mem::size_of::<Option<DirectSunState>>()
         + 4 * 4;
 
@@ -119,12 +116,12 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
             latitude_sin_cos: basis
                 .sun_grid()
                 .map_or([0.0, 1.0], |g| g.latitude_sin_cos()),
-            sun: [(NO_COLUMN, 0.0); 4],
+            sun: NO_SUN,
             direct,
             direct_sun: ([0.0, 0.0, 1.0], 0.0),
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),
-            sun_lists: [(0, 0); 4],
+            sun_lists: SunLists::new(&basis),
         };
         evaluator
             .sky
@@ -183,7 +180,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
             });
         }
         let sun_nodes = match sun {
-            None => [(NO_COLUMN, 0.0); 4],
+            None => NO_SUN,
             Some(s) => {
                 if !valid(s.direct_normal) {
                     return Err(Error::InvalidInput {
@@ -209,15 +206,10 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         match self.basis.counts.reflection_rank {
             None => weights.table(tables.daylight_modes, columns, &mut self.amplitude),
             Some(rank) => {
-                let drive = Drive {
-                    sky: &self.sky,
-                    exterior: self.exterior,
-                    sun: &self.sun,
-                };
                 reflection::update(
                     &self.basis,
                     rank,
-                    &drive,
+                    &weights,
                     &mut self.amplitude,
                     &mut self.sun_lists,
                 );
@@ -241,10 +233,10 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
     /// The four sun nodes around `sun` as columns among the daylight nodes, each with its
     /// bilinear weight times the direct normal illuminance (lux); nodes that light nothing
     /// (absent from `sun_nodes`) have no column, and a sun below the horizon none at all.
-    fn sun_columns(&self, sun: Sun) -> Result<[(u32, f32); 4]> {
+    fn sun_columns(&self, sun: Sun) -> Result<[SunWeight; 4]> {
         let grid = self.basis.sun_grid().ok_or(Error::NoDaylight)?;
         let weights: [NodeWeight; 4] = grid.weights_at(sun.direction, self.latitude_sin_cos)?;
-        let mut out = [(NO_COLUMN, 0.0); 4];
+        let mut out = NO_SUN;
         if sun.direction[2] < 0.0 {
             return Ok(out);
         }
@@ -367,131 +359,5 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
     pub fn luminance(&self, patch: usize) -> Result<f32> {
         let [l] = luminance([self.exitance(patch)?]);
         Ok(l)
-    }
-}
-
-/// What a row of a daylight table (one value per node) is weighed by: the sky's luminances,
-/// the exterior's and the sun nodes' weights.
-struct Weights<'s> {
-    sky: &'s [f32],
-    exterior: f32,
-    sun: &'s [(u32, f32); 4],
-}
-
-impl Weights<'_> {
-    /// Row `row` weighed: `Σ_j row_j sky_j` in order, then the exterior's and the sun's
-    /// terms.
-    fn row(&self, row: &[u8]) -> f32 {
-        self.finish(row, dot_f32(row, self.sky))
-    }
-
-    /// The exterior's and the sun's terms added to `sky`, the sky part of row `row`.
-    fn finish(&self, row: &[u8], sky: f32) -> f32 {
-        let mut sum = sky + f32_at(row, self.sky.len()) * self.exterior;
-        for &(column, weight) in self.sun {
-            if column != NO_COLUMN {
-                sum += f32_at(row, column as usize) * weight;
-            }
-        }
-        sum
-    }
-
-    /// Every row of `table` (rows of `columns` values) weighed into `out` (one slot per
-    /// row). Four rows at a time share each sky luminance they read; each row's sum runs
-    /// in the order of [`Self::row`], so the results are the same to the bit.
-    fn table(&self, table: &[u8], columns: usize, out: &mut [f32]) {
-        let mut groups = out.chunks_exact_mut(4);
-        let mut first = 0;
-        for group in &mut groups {
-            let rows = [0, 1, 2, 3].map(|k| f32_row(table, first + k, columns));
-            match self.four(rows) {
-                Some(sums) => {
-                    for ((slot, row), sky) in group.iter_mut().zip(rows).zip(sums) {
-                        *slot = self.finish(row, sky);
-                    }
-                }
-                None => {
-                    for (slot, row) in group.iter_mut().zip(rows) {
-                        *slot = self.row(row);
-                    }
-                }
-            }
-            first += 4;
-        }
-        for (k, slot) in groups.into_remainder().iter_mut().enumerate() {
-            *slot = self.row(f32_row(table, first + k, columns));
-        }
-    }
-
-    /// The sky parts of four rows, each summed in order from −0 (as `Iterator::sum`), or
-    /// `None` when a row is shorter than the sky (never, in a basis that decoded).
-    fn four(&self, rows: [&[u8]; 4]) -> Option<[f32; 4]> {
-        let n = self.sky.len() * 4;
-        let [a, b, c, d] = rows.map(|r| r.get(..n).map(|r| r.as_chunks::<4>().0));
-        let (a, b, c, d) = (a?, b?, c?, d?);
-        let (mut s0, mut s1, mut s2, mut s3) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
-        for ((((&l, x0), x1), x2), x3) in self.sky.iter().zip(a).zip(b).zip(c).zip(d) {
-            s0 += f32::from_le_bytes(*x0) * l;
-            s1 += f32::from_le_bytes(*x1) * l;
-            s2 += f32::from_le_bytes(*x2) * l;
-            s3 += f32::from_le_bytes(*x3) * l;
-        }
-        Some([s0, s1, s2, s3])
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    #![allow(clippy::indexing_slicing)]
-    use super::*;
-
-    /// A table of `rows` rows of `columns` little-endian `f32` values from a simple
-    /// generator: mixed signs, magnitudes and exact zeros, and a row of zeros (the sign of a
-    /// zero sum).
-    fn table(rows: usize, columns: usize, seed: u32) -> ([u8; 4 * 9 * 12], usize) {
-        let mut bytes = [0u8; 4 * 9 * 12];
-        let mut x = seed.wrapping_mul(2_654_435_761) | 1;
-        for r in 0..rows {
-            for c in 0..columns {
-                x ^= x << 13;
-                x ^= x >> 17;
-                x ^= x << 5;
-                let v = if r == 2 || x.is_multiple_of(7) {
-                    0.0
-                } else {
-                    (x % 20_001) as f32 / 997.0 - 10.0
-                };
-                let i = 4 * (r * columns + c);
-                bytes[i..i + 4].copy_from_slice(&v.to_le_bytes());
-            }
-        }
-        (bytes, rows * columns * 4)
-    }
-
-    /// Four rows at a time give what row by row gives, to the bit, for every row count
-    /// (whole groups and remainders) and with a sun node or none.
-    #[test]
-    fn grouped_rows_match_row_by_row() {
-        let sky = [3.5f32, 0.0, 1.0e3, 2.25e-3, 7.0, 11.0, 0.5];
-        let columns = sky.len() + 1 + 4;
-        for rows in 0..=9 {
-            for (seed, sun) in [
-                (1u32, [(NO_COLUMN, 0.0f32); 4]),
-                (2, [(8, 0.25), (9, 0.75), (NO_COLUMN, 0.0), (11, 1.5e4)]),
-            ] {
-                let (bytes, len) = table(rows, columns, seed + rows as u32);
-                let weights = Weights {
-                    sky: &sky,
-                    exterior: 1.25e3,
-                    sun: &sun,
-                };
-                let mut grouped = [f32::NAN; 9];
-                weights.table(&bytes[..len], columns, &mut grouped[..rows]);
-                for (r, g) in grouped[..rows].iter().enumerate() {
-                    let one = weights.row(f32_row(&bytes[..len], r, columns));
-                    assert_eq!(g.to_bits(), one.to_bits(), "{rows} rows, row {r}");
-                }
-            }
-        }
     }
 }

@@ -14,6 +14,7 @@ mod figures;
 mod patches;
 mod reflection;
 mod total;
+mod weights;
 
 pub use channels::ChannelEvaluator;
 pub use daylight::{DaylightEvaluator, Sun};

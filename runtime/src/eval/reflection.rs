@@ -4,28 +4,74 @@
 //! light reflected after that through the modes.
 //!
 //! A sky update forms the `r` coefficients of the sky's first reflection (`r × (S_k + 1)`
-//! products) and the `p` mode amplitudes from them and the four sun nodes (`p × (r + 4)`);
-//! a patch read is its row of the sky's matrix (`r`), the four nodes' entries for it (a
+//! products) and the `p` mode amplitudes from them and the four sun nodes (`p × (r + 4)`),
+//! both four rows at a time ([`super::weights`]), and finds the four nodes' runs of the
+//! lists from first entries kept when the evaluator is made ([`SunLists`]); a patch read is its row of the sky's matrix (`r`), the four nodes' entries for it (a
 //! bisection each) and its mode row (`p`).
 
+use super::weights::{dots, rows, SunWeight, Weights, NO_SUN};
 use crate::basis::Basis;
-use crate::storage::{dot_f32, f32_at, f32_row, u32_at};
+use crate::storage::{f32_at, u32_at};
 
-/// A sun node's weight in the sky state: its column among the daylight nodes (or `u32::MAX`
-/// when it lights nothing) and its bilinear weight times `E_n`, lux.
-pub(super) type SunWeight = (u32, f32);
+/// First entries an evaluator keeps of the sun nodes' lists: of every `stride`-th node, so
+/// that finding a node's place sums at most `stride − 1` counts, where summing from the
+/// first node would sum up to all of them (164 for the daylight office) four times a sky
+/// update.
+const CHECKPOINTS: usize = 16;
 
-/// Where a sun node's first reflection lies in the lists: its first entry and its count.
-pub(super) type SunList = (u32, u32);
+/// Where the sun nodes' first reflections lie in the basis' lists (docs/format.md, "First
+/// reflection": each node's patches follow the previous node's, `sun_reflection_counts`
+/// giving how many): a node's first entry every `stride` nodes, found once when the
+/// evaluator is made, and the four nodes of the current sun's runs.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SunLists {
+    /// The first entry of nodes `0, stride, 2·stride, …`.
+    checkpoints: [u32; CHECKPOINTS],
+    /// Nodes from one checkpoint to the next (at least 1).
+    stride: u32,
+    /// The four sun nodes' runs of the lists: first entry and count (none: `(0, 0)`).
+    runs: [(u32, u32); 4],
+}
 
-/// The sky's and the sun's state of a moment, as the update reads it.
-pub(super) struct Drive<'s> {
-    /// Each sky patch's luminance, cd/m².
-    pub sky: &'s [f32],
-    /// `E_gh / π`, cd/m².
-    pub exterior: f32,
-    /// The four sun nodes around the sun.
-    pub sun: &'s [SunWeight; 4],
+impl SunLists {
+    /// The checkpoints of `basis`' lists (none without a first reflection), no sun.
+    pub(super) fn new(basis: &Basis<'_>) -> Self {
+        let counts = basis.tables.sun_reflection_counts;
+        let nodes = basis.counts.sun_node_count;
+        let stride = nodes.div_ceil(CHECKPOINTS).max(1);
+        let mut checkpoints = [0u32; CHECKPOINTS];
+        let mut first = 0u32;
+        // At most `CHECKPOINTS` chunks of `stride` nodes; the counts' sum fits in `u32`
+        // (checked with the daylight section: at most the payload's length over 4).
+        for (slot, chunk) in checkpoints.iter_mut().zip(counts.chunks(4 * stride)) {
+            *slot = first;
+            first = first.saturating_add(sum_u32(chunk));
+        }
+        SunLists {
+            checkpoints,
+            stride: u32::try_from(stride).unwrap_or(u32::MAX),
+            runs: [(0, 0); 4],
+        }
+    }
+
+    /// The first entry of stored sun node `node`'s list, and its count.
+    fn run(&self, counts: &[u8], node: usize) -> (u32, u32) {
+        let stride = self.stride as usize;
+        let checkpoint = node / stride;
+        let from = checkpoint * stride;
+        let before = counts.get(4 * from..4 * node).map_or(0, sum_u32);
+        let start = self.checkpoints.get(checkpoint).copied().unwrap_or(0);
+        (start.saturating_add(before), u32_at(counts, node))
+    }
+}
+
+/// The sum of the little-endian `u32` values of `bytes`, saturating.
+fn sum_u32(bytes: &[u8]) -> u32 {
+    bytes
+        .as_chunks::<4>()
+        .0
+        .iter()
+        .fold(0u32, |sum, &c| sum.saturating_add(u32::from_le_bytes(c)))
 }
 
 /// Fills `state` (`p` mode amplitudes, then the `r` coefficients of the sky's first
@@ -35,9 +81,9 @@ pub(super) struct Drive<'s> {
 pub(super) fn update(
     basis: &Basis<'_>,
     rank: usize,
-    drive: &Drive<'_>,
+    drive: &Weights<'_>,
     state: &mut [f32],
-    lists: &mut [SunList; 4],
+    lists: &mut SunLists,
 ) {
     if state.is_empty() {
         return;
@@ -45,47 +91,37 @@ pub(super) fn update(
     let p = basis.counts.mode_count;
     let (amplitudes, coefficients) = state.split_at_mut(p.min(state.len()));
     let sky = drive.sky.len();
-    let weights = basis.tables.sky_reflection_weights;
-    for (j, z) in coefficients.iter_mut().enumerate() {
-        let row = f32_row(weights, j, sky + 1);
-        *z = dot_f32(row, drive.sky) + f32_at(row, sky) * drive.exterior;
-    }
-    let first_sun = sky + 1;
-    // A node's place among the stored sun nodes; none for a node that lights nothing.
-    let sun_nodes = basis.counts.sun_node_count;
-    let sun_column = |column: u32| {
-        (column as usize)
-            .checked_sub(first_sun)
-            .filter(|&node| node < sun_nodes)
+    // The coefficients' rows are the outputs' without the sun: the sky, then the exterior.
+    let sky_weights = Weights {
+        sun: &NO_SUN,
+        ..*drive
     };
+    sky_weights.table(basis.tables.sky_reflection_weights, sky + 1, coefficients);
+    let first_sun = sky + 1;
+    // The four nodes' places among the stored sun nodes; none for a node that lights
+    // nothing.
+    let sun_nodes = basis.counts.sun_node_count;
+    let nodes = drive.sun.map(|(column, weight)| {
+        let node = (column as usize)
+            .checked_sub(first_sun)
+            .filter(|&node| node < sun_nodes);
+        (node, weight)
+    });
     let modes = basis.tables.daylight_modes;
     let columns = rank + sun_nodes;
-    for (k, a) in amplitudes.iter_mut().enumerate() {
-        let row = f32_row(modes, k, columns);
-        let mut sum = dot_f32(row, coefficients);
-        for &(column, weight) in drive.sun {
-            if let Some(node) = sun_column(column) {
-                sum += f32_at(row, rank + node) * weight;
+    dots(modes, columns, coefficients, amplitudes);
+    // Node by node down the rows: each amplitude still adds its nodes' terms in their order.
+    for &(node, weight) in &nodes {
+        let Some(node) = node else { continue };
+        let at = 4 * (rank + node);
+        for (a, row) in amplitudes.iter_mut().zip(rows(modes, columns)) {
+            if let Some(&[b0, b1, b2, b3]) = row.get(at..at + 4) {
+                *a += f32::from_le_bytes([b0, b1, b2, b3]) * weight;
             }
         }
-        *a = sum;
     }
     let counts = basis.tables.sun_reflection_counts;
-    for (list, &(column, _)) in lists.iter_mut().zip(drive.sun) {
-        *list = match sun_column(column) {
-            Some(node) => {
-                // At most the payload's length over 4: a sum that fits in `u32`.
-                let start = (0..node).fold(0usize, |sum, i| {
-                    sum.saturating_add(u32_at(counts, i) as usize)
-                });
-                (
-                    u32::try_from(start).unwrap_or(u32::MAX),
-                    u32_at(counts, node),
-                )
-            }
-            None => (0, 0),
-        };
-    }
+    lists.runs = nodes.map(|(node, _)| node.map_or((0, 0), |node| lists.run(counts, node)));
 }
 
 /// The first reflection of `patch` (lux) for the coefficients `coefficients` and the four
@@ -95,11 +131,11 @@ pub(super) fn first_reflection(
     patch: usize,
     coefficients: &[f32],
     sun: &[SunWeight; 4],
-    lists: &[SunList; 4],
+    lists: &SunLists,
 ) -> f32 {
     let mut sum = basis.sky_reflection().row_dot(patch, 0, coefficients);
     let patches = basis.tables.sun_reflection_patches;
-    for (&(_, weight), &(start, count)) in sun.iter().zip(lists) {
+    for (&(_, weight), &(start, count)) in sun.iter().zip(&lists.runs) {
         let (start, count) = (start as usize, count as usize);
         let (mut lo, mut hi) = (start, start.saturating_add(count));
         while lo < hi {
