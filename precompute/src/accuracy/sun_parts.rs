@@ -61,10 +61,14 @@ pub struct KindParts {
     pub rest_per_power: ErrorSpread,
     /// The reading and cell of the largest error under the present rule.
     pub worst: Option<WorstCell>,
+    /// The reading and cell of the largest error under the rule that interpolates the rest
+    /// per unit of the first reflection's power ([`Self::rest_per_power`]).
+    pub worst_per_power: Option<WorstCell>,
 }
 
 /// The reading and cell with the largest error between nodes of one kind, and its parts
-/// (signed: interpolated less exact; they add up to `error`).
+/// (signed: interpolated less exact; under the present rule they add up to `error`, under
+/// the rule per unit of power `error` is `rest_per_power`).
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct WorstCell {
     /// The sensor's or zone's name, or the grid point's number among all grid points.
@@ -171,6 +175,7 @@ pub(crate) fn measure(
     // Per kind: each part's absolute contributions and the worst case.
     let mut shares: [[Vec<f64>; 4]; 3] = Default::default();
     let mut worst: [Option<WorstCell>; 3] = Default::default();
+    let mut worst_per_power: [Option<WorstCell>; 3] = Default::default();
     for (cell, exact) in cells.iter().zip(exact) {
         let direct = cell
             .light
@@ -229,12 +234,13 @@ pub(crate) fn measure(
             for (share, x) in shares[k].iter_mut().zip([d, f, q, n]) {
                 share.push(x.abs());
             }
-            if worst[k]
-                .as_ref()
-                .is_none_or(|w| error.abs() > w.error.abs())
-            {
+            let larger = |w: &Option<WorstCell>, x: f64| {
+                w.as_ref()
+                    .is_none_or(|w: &WorstCell| x.abs() > w.error.abs())
+            };
+            if larger(&worst[k], error) || larger(&worst_per_power[k], n) {
                 let (declination, hour) = grid.angles(cell.corners[0]).unwrap_or_default();
-                worst[k] = Some(WorstCell {
+                let case = WorstCell {
                     reading: match k {
                         0 => scene.zones[o - zones_start].name.clone(),
                         1 => scene.sensors[o].name.clone(),
@@ -251,7 +257,16 @@ pub(crate) fn measure(
                     rest: q,
                     rest_per_power: n,
                     power_ratio: centre.power / mean(&|p| p.power).max(f64::MIN_POSITIVE),
-                });
+                };
+                if larger(&worst_per_power[k], n) {
+                    worst_per_power[k] = Some(WorstCell {
+                        error: n,
+                        ..case.clone()
+                    });
+                }
+                if larger(&worst[k], error) {
+                    worst[k] = Some(case);
+                }
             }
         }
     }
@@ -264,8 +279,9 @@ pub(crate) fn measure(
         kinds: shares
             .into_iter()
             .zip(worst)
+            .zip(worst_per_power)
             .zip(names)
-            .map(|((s, worst), kind)| {
+            .map(|(((s, worst), worst_per_power), kind)| {
                 let [direct, first, rest, rest_per_power] = s.map(ErrorSpread::of);
                 KindParts {
                     kind,
@@ -274,6 +290,7 @@ pub(crate) fn measure(
                     rest,
                     rest_per_power,
                     worst,
+                    worst_per_power,
                 }
             })
             .collect(),

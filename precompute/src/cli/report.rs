@@ -287,5 +287,16 @@ fn sun_parts(parts: &crate::accuracy::sun_parts::SunParts) -> String {
             k.kind, q.mean, q.p95, q.max, n.mean, n.p95, n.max
         );
     }
+    for w in parts
+        .kinds
+        .iter()
+        .filter_map(|k| k.worst_per_power.as_ref())
+    {
+        let _ = writeln!(
+            s,
+            "    largest per unit of power: {} at δ {:.1}° h {:.1}°: {:+.1e} of {:.3} lux per lux (the first reflection's power {:.2} times the corners' mean)",
+            w.reading, w.declination_hour[0], w.declination_hour[1], w.error, w.peak, w.power_ratio
+        );
+    }
     s
 }
