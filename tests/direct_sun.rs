@@ -109,6 +109,26 @@ fn sensors_and_grid_points_read_the_sun_between_nodes() {
     );
     // The zone's whole sun, still interpolated, misses its sun patch's edges by far more.
     assert!(sun.zones.max > 0.2, "zones: {:?}", sun.zones);
+    // Where the error comes from: each kind's worst case is the largest error the rule above
+    // measured, computed again as the sum of its three interpolated parts (direct sun, the
+    // sun patch's first reflection, the rest) from the host's exact parts at the nodes.
+    for (kind, whole) in sun
+        .parts
+        .kinds
+        .iter()
+        .zip([&sun.zones, &sun.sensors, &sun.grid_points])
+    {
+        let worst = kind.worst.as_ref().expect("a worst case per kind");
+        assert!(
+            (worst.error.abs() - whole.max).abs() <= 1e-9 * whole.max.max(1.0),
+            "{}: {worst:?} against {whole:?}",
+            kind.kind
+        );
+        assert!((worst.direct + worst.first + worst.rest - worst.error).abs() <= 1e-12);
+        assert_eq!(kind.rest.count, whole.count);
+        let per_power = kind.worst_per_power.as_ref().expect("a worst case per kind");
+        assert_eq!(per_power.error.abs(), kind.rest_per_power.max);
+    }
 
     // By hand, the sun due south (site frame: x east, y north; north = 0) at the desk
     // sensor (2, 1.5, 0.8): at 35° it passes the window at z = 1.85 (inside 0.9 to 2.2),

@@ -47,6 +47,9 @@ pub struct SunInterpolation {
     /// `f32` alone, without the interpolation of the reflected part. Empty without the
     /// direct sun's geometry.
     pub direct: ErrorSpread,
+    /// Where the error between nodes comes from, and what it would be with the sun patch's
+    /// first reflection computed at the sun's own direction.
+    pub parts: super::sun_parts::SunParts,
 }
 
 /// How a set of relative differences spreads: its mean, its 95th percentile and its
@@ -64,7 +67,8 @@ pub struct ErrorSpread {
 }
 
 impl ErrorSpread {
-    fn of(mut errors: Vec<f64>) -> ErrorSpread {
+    /// The spread of `errors`.
+    pub(crate) fn of(mut errors: Vec<f64>) -> ErrorSpread {
         if errors.is_empty() {
             return ErrorSpread::default();
         }
@@ -107,50 +111,9 @@ pub fn sun_interpolation(
             .ok()
             .map(|i| &daylight.responses[first_sun + i].readings)
     };
-    let outputs = daylight.responses.first().map_or(0, |r| r.readings.len());
-    let mut peak = vec![0.0f64; outputs];
-    for r in &daylight.responses[first_sun..] {
-        for (p, x) in peak.iter_mut().zip(&r.readings) {
-            *p = p.max(x.abs());
-        }
-    }
-    // The cells whose centre sees the sun above the horizon, with their four corners.
-    let mut cells = Vec::new();
-    let mut centres = Vec::new();
-    let mut lights = Vec::new();
-    for row in 0..grid.rows.saturating_sub(1) {
-        for column in 0..grid.columns.saturating_sub(1) {
-            let corners = [
-                row * grid.columns + column,
-                row * grid.columns + column + 1,
-                (row + 1) * grid.columns + column,
-                (row + 1) * grid.columns + column + 1,
-            ];
-            let Some((declination, hour)) = grid.angles(corners[0]) else {
-                continue;
-            };
-            let centre = direction_of(
-                grid.latitude,
-                declination + 0.5 * grid.declination_step,
-                hour + 0.5 * grid.hour_step,
-            );
-            let Some(sun) = room_sun(site, centre) else {
-                continue;
-            };
-            let light = sun_light(scene, occluders, sun, &DaylightOptions::default());
-            let lit = light
-                .output_irradiance
-                .iter()
-                .flatten()
-                .chain(light.patch_irradiance.iter().flatten())
-                .any(|&x| x != 0.0);
-            if lit || corners.iter().any(|&c| response(c).is_some()) {
-                cells.push(corners);
-                centres.push(centre);
-                lights.push(light);
-            }
-        }
-    }
+    let peak = sun_peaks(daylight);
+    let cells = lit_cells(scene, occluders, daylight, site);
+    let lights: Vec<_> = cells.iter().map(|c| c.light.clone()).collect();
     let exact = model.system.light_responses(0, &lights)?;
     let zones_start = scene.sensors.len();
     let grid_start = crate::formfactor::outputs::grid_offset(scene);
@@ -167,9 +130,8 @@ pub fn sun_interpolation(
         })
     };
     let mut direct_errors = Vec::new();
-    for ((corners, exact), (&centre, light)) in
-        cells.iter().zip(&exact).zip(centres.iter().zip(&lights))
-    {
+    for (cell, exact) in cells.iter().zip(&exact) {
+        let (corners, centre, light) = (&cell.corners, cell.centre, &cell.light);
         if direct.is_some() {
             let host = light.output_irradiance.first().map_or(&[][..], |v| &v[..]);
             for (o, h) in host.iter().enumerate() {
@@ -202,7 +164,87 @@ pub fn sun_interpolation(
         sensors: ErrorSpread::of(sensors),
         grid_points: ErrorSpread::of(points),
         direct: ErrorSpread::of(direct_errors),
+        parts: super::sun_parts::measure(
+            scene,
+            occluders,
+            model,
+            daylight,
+            (&cells, &exact),
+            &direct_at,
+        ),
     })
+}
+
+/// A cell of the sun grid measured between its nodes: its four corners (node indices), the
+/// sun's direction at its centre (site frame) and the exact light of that sun.
+pub(crate) struct Cell {
+    pub(crate) corners: [usize; 4],
+    pub(crate) centre: [f32; 3],
+    pub(crate) light: crate::sources::ChannelLight,
+}
+
+/// The cells of `daylight`'s grid whose centre sees the sun above the horizon and either
+/// lights the room there or has a stored node among its corners.
+pub(crate) fn lit_cells(
+    scene: &Scene,
+    occluders: &Occluders,
+    daylight: &BasisDaylight,
+    site: &crate::scene::Site,
+) -> Vec<Cell> {
+    let nodes = &daylight.nodes;
+    let grid = nodes.sun_grid;
+    let stored = |node: usize| nodes.sun_nodes.binary_search(&(node as u32)).is_ok();
+    let mut cells = Vec::new();
+    for row in 0..grid.rows.saturating_sub(1) {
+        for column in 0..grid.columns.saturating_sub(1) {
+            let corners = [
+                row * grid.columns + column,
+                row * grid.columns + column + 1,
+                (row + 1) * grid.columns + column,
+                (row + 1) * grid.columns + column + 1,
+            ];
+            let Some((declination, hour)) = grid.angles(corners[0]) else {
+                continue;
+            };
+            let centre = direction_of(
+                grid.latitude,
+                declination + 0.5 * grid.declination_step,
+                hour + 0.5 * grid.hour_step,
+            );
+            let Some(sun) = room_sun(site, centre) else {
+                continue;
+            };
+            let light = sun_light(scene, occluders, sun, &DaylightOptions::default());
+            let lit = light
+                .output_irradiance
+                .iter()
+                .flatten()
+                .chain(light.patch_irradiance.iter().flatten())
+                .any(|&x| x != 0.0);
+            if lit || corners.iter().any(|&c| stored(c)) {
+                cells.push(Cell {
+                    corners,
+                    centre,
+                    light,
+                });
+            }
+        }
+    }
+    cells
+}
+
+/// Each output's largest response to the sun over the stored nodes (lux per lux of direct
+/// normal illuminance): the scale of the between-nodes errors.
+pub(crate) fn sun_peaks(daylight: &BasisDaylight) -> Vec<f64> {
+    let first_sun = daylight.nodes.patches.count() + 1;
+    let outputs = daylight.responses.first().map_or(0, |r| r.readings.len());
+    let mut peak = vec![0.0f64; outputs];
+    for r in &daylight.responses[first_sun..] {
+        for (p, x) in peak.iter_mut().zip(&r.readings) {
+            *p = p.max(x.abs());
+        }
+    }
+    peak
 }
 
 /// A sky state the runtime reads against the exact solve: the CIE overcast sky at a zenith

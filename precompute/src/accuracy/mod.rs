@@ -9,6 +9,7 @@ pub mod metric;
 pub mod rng;
 pub mod runtime_eval;
 pub mod sky;
+pub mod sun_parts;
 
 use crate::radiosity::eigen::EigenError;
 use crate::radiosity::model::Model;

@@ -166,6 +166,7 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
                 e.mean, e.p95, e.max
             );
         }
+        s += &sun_parts(&i.parts);
         let _ = writeln!(
             s,
             "  through the runtime against the exact solve (CIE overcast sky, zenith 3000 cd/m², E_gh 10000 lux; then with the sun at a node, E_n 50000 lux): sensors, zones and grid points within {:.1e}; patch exitance {:.1e} overcast, {:.1e} with the sun (area-weighted RMS)",
@@ -236,4 +237,66 @@ fn write_luminaires(s: &mut String, r: &BuildReport) {
     for w in r.luminaires.iter().filter_map(|l| l.warning.as_ref()) {
         let _ = writeln!(s, "warning: {w}");
     }
+}
+
+/// The build report's lines on where the error between nodes comes from
+/// ([`crate::accuracy::sun_parts`]).
+fn sun_parts(parts: &crate::accuracy::sun_parts::SunParts) -> String {
+    let mut s = String::new();
+    let kinds: Vec<_> = parts.kinds.iter().filter(|k| k.rest.count > 0).collect();
+    if kinds.is_empty() {
+        return s;
+    }
+    let _ = writeln!(
+        s,
+        "  its parts (direct sun, the sun patch's first reflection, the rest; largest each) and the reading with the largest error:"
+    );
+    for k in kinds {
+        let _ = write!(
+            s,
+            "    {:<12} {:.1e}  {:.1e}  {:.1e}",
+            k.kind, k.direct.max, k.first.max, k.rest.max
+        );
+        if let Some(w) = &k.worst {
+            let _ = write!(
+                s,
+                "; {} at δ {:.1}° h {:.1}°: {:+.1e} = {:+.1e} {:+.1e} {:+.1e} of {:.3} lux per lux (the first reflection's power {:.2} times the corners' mean)",
+                w.reading,
+                w.declination_hour[0],
+                w.declination_hour[1],
+                w.error,
+                w.direct,
+                w.first,
+                w.rest,
+                w.peak,
+                w.power_ratio
+            );
+        }
+        s.push('\n');
+    }
+    let _ = writeln!(
+        s,
+        "  with the direct sun and the first reflection of the {} patches the sun nodes light at the sun's direction, the rest interpolated, then the rest per unit of the first reflection's power (mean, 95th percentile, largest):",
+        parts.sunlit_patches
+    );
+    for k in parts.kinds.iter().filter(|k| k.rest.count > 0) {
+        let (q, n) = (&k.rest, &k.rest_per_power);
+        let _ = writeln!(
+            s,
+            "    {:<12} {:.1e}  {:.1e}  {:.1e};  {:.1e}  {:.1e}  {:.1e}",
+            k.kind, q.mean, q.p95, q.max, n.mean, n.p95, n.max
+        );
+    }
+    for w in parts
+        .kinds
+        .iter()
+        .filter_map(|k| k.worst_per_power.as_ref())
+    {
+        let _ = writeln!(
+            s,
+            "    largest per unit of power: {} at δ {:.1}° h {:.1}°: {:+.1e} of {:.3} lux per lux (the first reflection's power {:.2} times the corners' mean)",
+            w.reading, w.declination_hour[0], w.declination_hour[1], w.error, w.peak, w.power_ratio
+        );
+    }
+    s
 }
