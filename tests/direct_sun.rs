@@ -126,7 +126,10 @@ fn sensors_and_grid_points_read_the_sun_between_nodes() {
         );
         assert!((worst.direct + worst.first + worst.rest - worst.error).abs() <= 1e-12);
         assert_eq!(kind.rest.count, whole.count);
-        let per_power = kind.worst_per_power.as_ref().expect("a worst case per kind");
+        let per_power = kind
+            .worst_per_power
+            .as_ref()
+            .expect("a worst case per kind");
         assert_eq!(per_power.error.abs(), kind.rest_per_power.max);
     }
 

@@ -7,7 +7,8 @@ use std::ops::Range;
 
 use crate::formfactor::{self, FormFactorOptions, Occluders};
 use crate::geometry::{Face, Patch};
-use crate::scene::receivers::{receivers, Receiver};
+use crate::scene::receivers::{mean_over_points, receivers, Receiver};
+use crate::scene::FieldOfView;
 use crate::scene::Scene;
 
 /// One side of an exact port: a room's meshed scene, its opening's patches and its seen
@@ -105,6 +106,19 @@ pub(super) fn cross(sides: [&Side; 2], opts: &FormFactorOptions) -> Cross {
                     (0..columns.len())
                         .map(|v| zone.iter().map(|&k| between(k, v)).sum::<f64>() / total)
                         .collect()
+                }
+                Receiver::Points(points) => {
+                    // The mean over the points of each one's row, as in one room.
+                    let mean = mean_over_points(points, patches.len(), |position, normal| {
+                        formfactor::point_form_factors(
+                            position,
+                            normal,
+                            FieldOfView::HEMISPHERE,
+                            &patches,
+                            &occluders,
+                        )
+                    });
+                    columns.iter().map(|&u| mean[u]).collect()
                 }
                 Receiver::Plane(cells) => {
                     let f = formfactor::receiver_form_factors(cells, &patches, &occluders, opts);
