@@ -61,7 +61,7 @@ use crate::scene::FieldOfView;
 use faer::Mat;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use kernel::Cone;
-use pair::{gauss_rules, max_order, Context, Prepared, Viewer};
+use pair::{max_order, Context, Prepared, Viewer};
 use rayon::prelude::*;
 
 /// Options; `Default` gives the accurate defaults.
@@ -259,13 +259,7 @@ pub fn patch_form_factors_hierarchical(
     settings: &hierarchical::Settings,
 ) -> Result<FormFactors<Hierarchical>, hierarchical::NonFiniteEntry> {
     let prepared = Prepared::new(patches, max_order(opts));
-    let ctx = Context {
-        targets: &prepared,
-        gauss: gauss_rules(max_order(opts)),
-        occluders,
-        opts,
-        refine_gaps: true,
-    };
+    let ctx = Context::new(&prepared, occluders, opts, true);
     let areas: Vec<f64> = patches.iter().map(|p| p.area).collect();
     let scaled = |i: usize, j: usize, stats: &mut PairStats| -> f64 {
         let (a, b) = (i.min(j), i.max(j));
@@ -364,13 +358,7 @@ where
 {
     let n = patches.len();
     let prepared = Prepared::new(patches, max_order(opts));
-    let ctx = Context {
-        targets: &prepared,
-        gauss: gauss_rules(max_order(opts)),
-        occluders,
-        opts,
-        refine_gaps: true,
-    };
+    let ctx = Context::new(&prepared, occluders, opts, true);
     let bar = progress_bar(n, opts.progress, "form factors", "rows");
     let mut m = Mat::<T>::zeros(n, n);
     m.par_col_iter_mut().enumerate().for_each(|(i, mut col)| {
@@ -479,13 +467,7 @@ pub fn point_form_factors(
 ) -> Vec<f64> {
     let opts = FormFactorOptions::default();
     let targets = Prepared::new(patches, max_order(&opts));
-    let ctx = Context {
-        targets: &targets,
-        gauss: gauss_rules(max_order(&opts)),
-        occluders,
-        opts: &opts,
-        refine_gaps: false,
-    };
+    let ctx = Context::new(&targets, occluders, &opts, false);
     let normal = normal.normalized();
     let in_cone = |half_angle: Option<f64>| {
         let cone = half_angle.and_then(|a| Cone::new(normal, a));
@@ -539,13 +521,7 @@ pub fn receiver_form_factors(
 ) -> Mat<f64> {
     let targets = Prepared::new(patches, max_order(opts));
     let sources = Prepared::new(receivers, opts.gauss_order);
-    let ctx = Context {
-        targets: &targets,
-        gauss: gauss_rules(max_order(opts)),
-        occluders,
-        opts,
-        refine_gaps: false,
-    };
+    let ctx = Context::new(&targets, occluders, opts, false);
     let bar = progress_bar(receivers.len(), opts.progress, "receivers", "rows");
     let rows: Vec<Vec<f64>> = (0..receivers.len())
         .into_par_iter()

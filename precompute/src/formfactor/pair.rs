@@ -125,6 +125,24 @@ pub(super) struct Viewer<'c> {
     pub(super) cone: Option<&'c Cone>,
 }
 
+impl<'a> Context<'a> {
+    /// A context looking at `targets`, with the Gauss rules up to the order `opts` needs.
+    pub(super) fn new(
+        targets: &'a Prepared<'a>,
+        occluders: &'a Occluders,
+        opts: &'a FormFactorOptions,
+        refine_gaps: bool,
+    ) -> Self {
+        Context {
+            targets,
+            gauss: gauss_rules(max_order(opts)),
+            occluders,
+            opts,
+            refine_gaps,
+        }
+    }
+}
+
 impl Context<'_> {
     /// Does source patch `src` touch target `j` (share an edge, part of one, or a corner)?
     fn touches(&self, src: &Patch, bound: Bound, j: usize) -> bool {

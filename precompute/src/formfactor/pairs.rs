@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use super::pair::{gauss_rules, max_order, Context, Prepared};
+use super::pair::{max_order, Context, Prepared};
 use super::{FormFactorOptions, Occluders};
 use crate::geometry::Patch;
 
@@ -18,13 +18,7 @@ pub fn pair_exchanges(
     pairs: &[(usize, usize)],
 ) -> Vec<f64> {
     let prepared = Prepared::new(patches, max_order(opts));
-    let ctx = Context {
-        targets: &prepared,
-        gauss: gauss_rules(max_order(opts)),
-        occluders,
-        opts,
-        refine_gaps: true,
-    };
+    let ctx = Context::new(&prepared, occluders, opts, true);
     pairs
         .par_iter()
         .map(|&(a, b)| {
