@@ -1,6 +1,7 @@
 //! From a [`Model`] to the runtime's [`BasisTables`]: what the basis stores, table by table.
 
 use eigenrad_runtime::sky::direct::DirectSun;
+use eigenrad_runtime::sky::sun_first::SunFirst;
 use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Precision, Quantity};
 
@@ -11,6 +12,7 @@ use crate::scene::{Bands, Scene};
 use crate::sources::daylight::direct::direct_sun_tables;
 use crate::sources::daylight::nodes::DaylightNodes;
 use crate::sources::daylight::reflection::first_reflection;
+use crate::sources::daylight::sun_first::{culling_suns, sun_first_tables};
 
 /// Fills every table of the basis for the first `p` modes of `model`, section by section of
 /// `docs/format.md`.
@@ -258,11 +260,12 @@ pub fn daylight_tables(
         .iter()
         .map(|r| r.exitance.clone())
         .collect();
+    let first_sun = nodes.patches.count() + 1;
     let first = first_reflection(
         model,
         &daylight.initial,
         &exact,
-        nodes.patches.count() + 1,
+        first_sun,
         t.mode_count,
         sky_rank_tolerance,
     )?;
@@ -274,14 +277,118 @@ pub fn daylight_tables(
     t.sun_reflection = first.sun_values;
     t.daylight_modes = first.modes;
     debug_assert_eq!(t.daylight_outputs.len(), outputs * d);
-    let direct = direct_sun_tables(scene, site);
+    // The patches some stored sun node lights directly and that reflect: the candidates of
+    // the sun's first reflection on the controller.
+    let bands = t.bands.max(1);
+    let lit = |i: usize| {
+        t.patch_reflectance.get(i * bands).is_some_and(|&r| r > 0.0)
+            && daylight.initial[first_sun..].iter().any(|m0| m0[i] > 0.0)
+    };
+    let first_tables = sun_first_tables(&scene.patches, lit);
+    let patch_suns = culling_suns(site, grid, &nodes.sun_nodes);
+    let direct = direct_sun_tables(scene, site, &first_tables.sample_points, &patch_suns);
     t.sun_polygon_counts = direct.counts.to_vec();
     t.sun_polygon_sizes = direct.sizes;
     t.sun_polygons = direct.polygons;
     t.sun_glazing = direct.glazing;
     t.sensor_response_rows = direct.sensor_rows;
     t.sensor_response = direct.sensor_response;
-    Ok(split_direct_sun(t, nodes)?)
+    if t.sun_polygon_counts.is_empty() || nodes.sun_nodes.is_empty() {
+        return Ok(split_direct_sun(t, nodes)?);
+    }
+    t.sun_first_patches = first_tables.patches;
+    t.sun_first_sizes = first_tables.sizes;
+    t.sun_first_points = first_tables.points;
+    t.sun_node_power = vec![0.0; nodes.sun_nodes.len()];
+    split_direct_sun(t, nodes)?;
+    Ok(split_first_reflection(t, nodes)?)
+}
+
+/// Takes out of every sun node's readings (sensors, zones, grid points) the first reflection
+/// of the sun's candidate patches as the controller computes it
+/// (`eigenrad_runtime::sky::sun_first`, on the stored tables), and stores each node's
+/// first-reflection power `P_c` as it computes it: the node's column then holds the rest
+/// `Q`, which the controller interpolates per unit of power and adds to its own first
+/// reflection at the sun's direction. At a node `P(s) = P_c` to the bit, so the reading is
+/// the exact one to `f32`.
+fn split_first_reflection(
+    t: &mut BasisTables,
+    nodes: &DaylightNodes,
+) -> std::result::Result<(), eigenrad_runtime::Error> {
+    let bytes = t.to_bytes()?;
+    let basis = eigenrad_runtime::Basis::from_bytes(&bytes)?;
+    let Some(direct) = DirectSun::new(&basis)? else {
+        return Ok(());
+    };
+    let Some(first) = SunFirst::new(&basis, direct) else {
+        return Ok(());
+    };
+    let d = nodes.len();
+    let first_sun = nodes.patches.count() + 1;
+    let outputs = basis.sensor_count() + basis.zone_count();
+    let points = t.grid_position.len();
+    let mut power = Vec::with_capacity(nodes.sun_nodes.len());
+    for (i, &node) in nodes.sun_nodes.iter().enumerate() {
+        let Some(site) = nodes.sun_grid.direction(node as usize) else {
+            power.push(0.0);
+            continue;
+        };
+        let sun = direct.room_direction(site);
+        let column = first_sun + i;
+        let mut reflected = vec![0.0f32; outputs];
+        power.push(f64::from(first.add_outputs(sun, 1.0, &mut reflected)));
+        for (o, r) in reflected.iter().enumerate() {
+            t.daylight_outputs[o * d + column] -= f64::from(*r);
+        }
+        for g in 0..points {
+            t.daylight_grid[g * d + column] -= f64::from(first.at_grid_point(g, sun));
+        }
+    }
+    t.sun_node_power = power;
+    Ok(())
+}
+
+/// `t` with the sun's first reflection folded back into its sun nodes' readings: each
+/// node's column its reading less the direct sun alone again (format version 7's), and the
+/// candidates' tables emptied. For bases whose patches or daylight nodes change (a
+/// controller without the room's patches, rooms joined through ports): their sun is then
+/// interpolated whole between nodes. Nothing to do without the candidates.
+pub fn fold_sun_first(t: &mut BasisTables) -> std::result::Result<(), eigenrad_runtime::Error> {
+    if t.sun_node_power.is_empty() {
+        return Ok(());
+    }
+    let bytes = t.to_bytes()?;
+    let basis = eigenrad_runtime::Basis::from_bytes(&bytes)?;
+    let (Some(direct), Some(grid)) = (DirectSun::new(&basis)?, basis.sun_grid()) else {
+        return Ok(());
+    };
+    let Some(first) = SunFirst::new(&basis, direct) else {
+        return Ok(());
+    };
+    let d = basis.daylight_node_count();
+    let first_sun = d - basis.sun_node_count();
+    let outputs = basis.sensor_count() + basis.zone_count();
+    let points = t.grid_position.len();
+    for (i, &node) in t.sun_nodes.clone().iter().enumerate() {
+        let Some(site) = grid.direction(node as usize) else {
+            continue;
+        };
+        let sun = direct.room_direction(site);
+        let column = first_sun + i;
+        let mut reflected = vec![0.0f32; outputs];
+        first.add_outputs(sun, 1.0, &mut reflected);
+        for (o, r) in reflected.iter().enumerate() {
+            t.daylight_outputs[o * d + column] += f64::from(*r);
+        }
+        for g in 0..points {
+            t.daylight_grid[g * d + column] += f64::from(first.at_grid_point(g, sun));
+        }
+    }
+    t.sun_first_patches.clear();
+    t.sun_first_sizes.clear();
+    t.sun_first_points.clear();
+    t.sun_node_power.clear();
+    Ok(())
 }
 
 /// `t` with its daylight's first reflection folded into the modes: `daylight_modes` made

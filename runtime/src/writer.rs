@@ -135,6 +135,14 @@ pub struct BasisTables {
     pub sun_reflection_patches: Vec<u32>,
     /// Each listed patch's first reflection, lux per lux of direct normal illuminance.
     pub sun_reflection: Vec<f64>,
+    /// Empty, or the patches the sun can light directly, ascending.
+    pub sun_first_patches: Vec<u32>,
+    /// Each such patch's sample points.
+    pub sun_first_sizes: Vec<u8>,
+    /// Per such patch: unit normal, then each sample point's position (m) and weight.
+    pub sun_first_points: Vec<f64>,
+    /// Empty, or per sun node the controller's first-reflection power, lm per lux.
+    pub sun_node_power: Vec<f64>,
 }
 
 /// `values` rounded to `f32`, little-endian.
@@ -294,6 +302,10 @@ impl BasisTables {
             sun_reflection_counts: Vec::new(),
             sun_reflection_patches: Vec::new(),
             sun_reflection: Vec::new(),
+            sun_first_patches: Vec::new(),
+            sun_first_sizes: Vec::new(),
+            sun_first_points: Vec::new(),
+            sun_node_power: Vec::new(),
         }
     }
 
@@ -425,6 +437,10 @@ impl BasisTables {
             sun_reflection_counts: &u32_bytes(&self.sun_reflection_counts),
             sun_reflection_patches: &u32_bytes(&self.sun_reflection_patches),
             sun_reflection: &f32_bytes(&self.sun_reflection),
+            sun_first_patches: &u32_bytes(&self.sun_first_patches),
+            sun_first_sizes: &self.sun_first_sizes,
+            sun_first_points: &f32_bytes(&self.sun_first_points),
+            sun_node_power: &f32_bytes(&self.sun_node_power),
         })
     }
 }

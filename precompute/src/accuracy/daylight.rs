@@ -9,7 +9,7 @@ use eigenrad_runtime::Sun;
 use serde::Serialize;
 
 use super::metric::{patch_error, worst_reading};
-use super::runtime_eval::{evaluate_daylight, SkyState};
+use super::runtime_eval::{evaluate_daylight, sun_readings, SkyState};
 use crate::basis::BasisDaylight;
 use crate::error::Result;
 use crate::formfactor::Occluders;
@@ -84,11 +84,10 @@ impl ErrorSpread {
 }
 
 /// Measures [`SunInterpolation`] for `daylight`'s grid: one exact sun per cell centre, read
-/// as the controller reads the basis `bytes`: at the sensors and grid points, when the basis
-/// stores the direct sun's geometry, the four nodes' reflected parts (each node's reading
-/// less the controller's direct sun there) interpolated plus the controller's direct sun at
-/// the cell's centre (`eigenrad_runtime::sky::direct`); at the zones, and without that
-/// geometry, the four nodes' whole readings.
+/// as the controller reads the basis `bytes`, by the runtime's own evaluator
+/// ([`sun_readings`]): the four nodes' stored readings interpolated, with the direct sun
+/// (sensors and grid points) and the sun's first reflection (every reading, per unit of its
+/// power) computed at the sun's direction when the basis stores their tables.
 pub fn sun_interpolation(
     scene: &Scene,
     occluders: &Occluders,
@@ -100,16 +99,6 @@ pub fn sun_interpolation(
     let direct = DirectSun::new(&basis)?;
     let Some(site) = &scene.site else {
         return Ok(SunInterpolation::default());
-    };
-    let nodes = &daylight.nodes;
-    let grid = nodes.sun_grid;
-    let first_sun = nodes.patches.count() + 1;
-    let response = |node: usize| {
-        nodes
-            .sun_nodes
-            .binary_search(&(node as u32))
-            .ok()
-            .map(|i| &daylight.responses[first_sun + i].readings)
     };
     let peak = sun_peaks(daylight);
     let cells = lit_cells(scene, occluders, daylight, site);
@@ -130,8 +119,11 @@ pub fn sun_interpolation(
         })
     };
     let mut direct_errors = Vec::new();
-    for (cell, exact) in cells.iter().zip(&exact) {
-        let (corners, centre, light) = (&cell.corners, cell.centre, &cell.light);
+    // What the controller reads at each centre: the runtime itself on the basis.
+    let centres: Vec<[f32; 3]> = cells.iter().map(|c| c.centre).collect();
+    let devices = sun_readings(bytes, &centres)?;
+    for ((cell, exact), device) in cells.iter().zip(&exact).zip(&devices) {
+        let (centre, light) = (cell.centre, &cell.light);
         if direct.is_some() {
             let host = light.output_irradiance.first().map_or(&[][..], |v| &v[..]);
             for (o, h) in host.iter().enumerate() {
@@ -142,15 +134,8 @@ pub fn sun_interpolation(
             }
         }
         for (o, e) in exact.readings.iter().enumerate() {
-            let reflected: f64 = corners
-                .iter()
-                .filter_map(|&c| {
-                    let node = grid.direction(c)?;
-                    response(c).map(|r| 0.25 * (r[o] - direct_at(o, node)))
-                })
-                .sum();
-            let mean = reflected + direct_at(o, centre);
-            let error = (mean - e).abs() / peak[o].max(f64::MIN_POSITIVE);
+            let read = device.get(o).copied().unwrap_or(0.0);
+            let error = (read - e).abs() / peak[o].max(f64::MIN_POSITIVE);
             match o {
                 o if o >= grid_start => points.push(error),
                 o if o >= zones_start => zones.push(error),

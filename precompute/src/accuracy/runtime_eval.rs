@@ -209,3 +209,44 @@ fn run_daylight(
     }
     Ok(out)
 }
+
+/// Every output's reading (sensors, zones, then grid points; lux per lux of direct normal
+/// illuminance) of the sun alone in each of the site-frame directions `suns`, as the
+/// runtime's [`DaylightEvaluator`] reads `bytes` (no sky, no exterior): what a controller
+/// reads between the sun grid's nodes.
+pub fn sun_readings(bytes: &[u8], suns: &[[f32; 3]]) -> Result<Vec<Vec<f64>>> {
+    let basis = Basis::from_bytes(bytes)?;
+    std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(64 << 20)
+            .spawn_scoped(s, || {
+                let mut day = Box::new(HostDaylight::new(basis)?);
+                let dark = vec![0.0; basis.sky_patches().map_or(0, |p| p.count())];
+                let mut all = Vec::with_capacity(suns.len());
+                for &direction in suns {
+                    let sun = Sun {
+                        direction,
+                        direct_normal: 1.0,
+                    };
+                    day.set_sky(&dark, 0.0, Some(sun))?;
+                    let mut readings = Vec::new();
+                    for s in 0..basis.sensor_count() {
+                        readings.push(f64::from(day.sensor_illuminance(s)?));
+                    }
+                    for z in 0..basis.zone_count() {
+                        readings.push(f64::from(day.zone_illuminance(z)?));
+                    }
+                    for z in 0..basis.zone_count() {
+                        for point in 0..basis.grid_points(z)? {
+                            readings.push(f64::from(day.grid_point_illuminance(z, point)?));
+                        }
+                    }
+                    all.push(readings);
+                }
+                Ok(all)
+            })
+            .map_err(|e| Error::Thread(format!("cannot start: {e}")))?
+            .join()
+            .unwrap_or_else(|_| Err(Error::Thread("panicked".into())))
+    })
+}

@@ -299,6 +299,12 @@ pub fn cut(room: &BasisTables, selection: &Selection) -> BasisTables {
         sun_reflection_counts: when_rows(&room.sun_reflection_counts),
         sun_reflection_patches: when_rows(&room.sun_reflection_patches),
         sun_reflection: when_modes(&room.sun_reflection),
+        // Folded into the readings before a controller's basis is cut
+        // (`basis::fold_sun_first`).
+        sun_first_patches: Vec::new(),
+        sun_first_sizes: Vec::new(),
+        sun_first_points: Vec::new(),
+        sun_node_power: Vec::new(),
     };
     if room.grid_pieces.is_empty() {
         // The room has no grid at all: written as it writes it.
@@ -394,6 +400,10 @@ pub fn section_bytes(
                 t.sun_glazing.clear();
                 t.sensor_response_rows.clear();
                 t.sensor_response.clear();
+                t.sun_first_patches.clear();
+                t.sun_first_sizes.clear();
+                t.sun_first_points.clear();
+                t.sun_node_power.clear();
             })?,
         ),
     ];

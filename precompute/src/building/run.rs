@@ -257,14 +257,18 @@ pub fn merge(
         controllers: Vec::new(),
     };
     for c in &manifest.controllers {
-        let room = &coupled.tables[c.room];
-        let (selection, neighbours) = controller::select(room, c);
-        let tables = controller::cut(room, &selection);
         let write_error = |e: eigenrad_runtime::Error| BuildingError::Manifest {
             at: c.at.clone(),
             item: format!("controller {}", c.name),
             message: format!("its basis cannot be written: {e}"),
         };
+        // A controller's basis reads its sun between nodes from the readings alone: it may
+        // leave out the patches the sun's first reflection is computed on.
+        let mut room = coupled.tables[c.room].clone();
+        crate::basis::fold_sun_first(&mut room).map_err(write_error)?;
+        let room = &room;
+        let (selection, neighbours) = controller::select(room, c);
+        let tables = controller::cut(room, &selection);
         let bytes = tables.to_bytes().map_err(write_error)?;
         let sections = controller::section_bytes(&tables).map_err(write_error)?;
         if !flash.fits(bytes.len() as u64) {

@@ -9,7 +9,8 @@
 //! [`DirectSun::new`](crate::sky::direct::DirectSun::new) and so by every
 //! [`DaylightEvaluator`](crate::DaylightEvaluator)): each table's length, named, the site,
 //! the sun grid and its nodes in range, every node table finite and bounded, then the
-//! direct sun's geometry and the first reflection ([`super::reflection`]). A firmware that
+//! direct sun's geometry, the first reflection ([`super::reflection`]) and the sun's
+//! ([`super::sun_first`]). A firmware that
 //! reads no daylight links the shape alone.
 
 use super::dimensions::field_value;
@@ -30,7 +31,7 @@ const SITE_LIMITS: [f32; 5] = [90.0, 180.0, 1.0e4, 360.0, 18.0 * 60.0];
 const SETTINGS_BYTES: usize = 4 * (5 + 2 + 4);
 
 /// The section's shape, at decode, as the sum of its tables' lengths: nothing without a sky
-/// (`sky_subdivision` 0), all twenty-one tables empty; with one, a photometric basis of one
+/// (`sky_subdivision` 0), all twenty-five tables empty; with one, a photometric basis of one
 /// band whose site, sun lattice and spacing, `O × D` output table, `p × D` (or, with a first
 /// reflection, `p × (r + sun nodes)`) mode table and `G × D` grid matrix (with a scale per
 /// node in 16 bits) take the bytes the counts give them together. A wrong total is
@@ -61,6 +62,7 @@ pub(super) fn shape(
     let listed = raw.sun_reflection_patches.len() + raw.sun_reflection.len();
     if raw.sky_subdivision == 0 {
         let all = sized + direct + reflection + listed + raw.reflection_rank.len();
+        let all = all + super::sun_first::bytes(raw);
         return total("daylight", 0, all + raw.sun_nodes.len());
     }
     // Daylight is photopic: its tables are in lux.
@@ -156,5 +158,6 @@ pub(crate) fn check_values(raw: &Payload<'_>, c: &Counts, precision: Precision) 
         cols(c.daylight_grid_cols())?,
     )?;
     super::direct_sun::check(raw, c)?;
-    super::reflection::check(raw, c, precision)
+    super::reflection::check(raw, c, precision)?;
+    super::sun_first::check(raw, c)
 }

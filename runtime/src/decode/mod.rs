@@ -18,6 +18,8 @@ mod daylight;
 mod direct_sun;
 // The daylight's first reflection, part of the daylight section (format version 7).
 mod reflection;
+// The sun's first reflection, part of the daylight section (format version 8).
+mod sun_first;
 // The sections every basis has: names, eigenvalues, patch tables, modes, black patches,
 // channel tables, outputs, grids.
 mod room;

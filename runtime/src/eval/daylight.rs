@@ -8,6 +8,7 @@ use super::{fits, grid_figures, luminance, ChannelEvaluator, Figures, MAX_EXITAN
 use crate::basis::{check_index, Basis};
 use crate::error::{Error, Result};
 use crate::sky::direct::{DirectSun, DirectSunState};
+use crate::sky::sun_first::SunFirst;
 use crate::sky::sun_grid::NodeWeight;
 
 /// The sun of a moment, as a [`DaylightEvaluator`] takes it.
@@ -67,6 +68,13 @@ pub struct DaylightEvaluator<'a, const SKY: usize, const OUTPUTS: usize, const E
     direct: Option<DirectSunState>,
     /// The sun in the room's frame and its direct normal illuminance (lux; 0 without sun).
     direct_sun: ([f32; 3], f32),
+    /// Whether the basis stores the sun's first reflection ([`crate::sky::sun_first`]):
+    /// readings then add it at the sun's direction and read the rest per unit of its power.
+    first: bool,
+    /// The four sun nodes as the readings weigh them: [`Self::sun`], or with a stored first
+    /// reflection each lit node's weight times `P(s) / (P_c Σ_lit w)`, so that the rest its
+    /// column holds is interpolated per unit of power.
+    reading_sun: [SunWeight; 4],
     /// Every output's daylight illuminance, lux.
     outputs: heapless::Vec<f32, OUTPUTS>,
     /// The daylight's mode amplitudes, then the coefficients of the sky's first reflection
@@ -82,10 +90,11 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
     /// Bytes of state besides the basis view and the vectors' lengths.
     pub const RAM_BYTES: usize = 4 * (SKY + OUTPUTS + EXITANCE)
         + 4 * 3
-        + core::mem::size_of::<[SunWeight; 4]>()
+        + 2 * core::mem::size_of::<[SunWeight; 4]>()
         + core::mem::size_of::<SunLists>()
         + core::mem::size_of::<Option<DirectSunState>>()
-        + 4 * 4;
+        + 4 * 4
+        + 4;
 
     /// An evaluator of `basis`' daylight, dark (no sky, no sun).
     ///
@@ -119,6 +128,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
             sun: NO_SUN,
             direct,
             direct_sun: ([0.0, 0.0, 1.0], 0.0),
+            first: direct.is_some() && SunFirst::stored(&basis),
+            reading_sun: NO_SUN,
             outputs: heapless::Vec::new(),
             amplitude: heapless::Vec::new(),
             sun_lists: SunLists::new(&basis),
@@ -195,19 +206,29 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         }
         self.exterior = global_horizontal / core::f32::consts::PI;
         self.sun = sun_nodes;
-        let columns = self.basis.counts.daylight_node_count;
-        let tables = self.basis.tables;
+        self.reading_sun = sun_nodes;
+        let basis = self.basis;
+        let columns = basis.counts.daylight_node_count;
+        let tables = basis.tables;
+        let first = self.first_reflection(&basis);
+        // With the sun's first reflection the sun columns are weighed after it, per unit of
+        // its power: the table's sum takes the sky and the exterior alone.
+        let table_sun = if first.is_some() { &NO_SUN } else { &self.sun };
         let weights = Weights {
             sky: &self.sky,
             exterior: self.exterior,
-            sun: &self.sun,
+            sun: table_sun,
         };
         weights.table(tables.daylight_outputs, columns, &mut self.outputs);
-        match self.basis.counts.reflection_rank {
+        let weights = Weights {
+            sun: &self.sun,
+            ..weights
+        };
+        match basis.counts.reflection_rank {
             None => weights.table(tables.daylight_modes, columns, &mut self.amplitude),
             Some(rank) => {
                 reflection::update(
-                    &self.basis,
+                    &basis,
                     rank,
                     &weights,
                     &mut self.amplitude,
@@ -217,17 +238,38 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         }
         self.direct_sun = ([0.0, 0.0, 1.0], 0.0);
         if let (Some(state), Some(s)) = (self.direct, sun) {
-            let direct = DirectSun::with(&self.basis, state);
+            let direct = DirectSun::with(&basis, state);
             let room = direct.room_direction(s.direction);
             self.direct_sun = (room, s.direct_normal);
             for (sensor, reading) in self.outputs.iter_mut().enumerate() {
-                if sensor >= self.basis.counts.sensor_count {
+                if sensor >= basis.counts.sensor_count {
                     break;
                 }
                 *reading += s.direct_normal * direct.at_sensor(sensor, room);
             }
         }
+        if let (Some(first), Some(s)) = (first, sun) {
+            let (room, direct_normal) = self.direct_sun;
+            let power = first.add_outputs(room, direct_normal, &mut self.outputs);
+            self.reading_sun = per_power(&first, self.sky.len() + 1, self.sun, power, s);
+            for (o, reading) in self.outputs.iter_mut().enumerate() {
+                for &(column, weight) in &self.reading_sun {
+                    if column != NO_COLUMN {
+                        let at = o.saturating_mul(columns).saturating_add(column as usize);
+                        *reading += weight * crate::storage::f32_at(tables.daylight_outputs, at);
+                    }
+                }
+            }
+        }
         Ok(())
+    }
+
+    /// The sun's first reflection, when the basis stores it.
+    fn first_reflection<'b>(&self, basis: &'b Basis<'a>) -> Option<SunFirst<'b, 'a>> {
+        match self.direct {
+            Some(state) if self.first => SunFirst::new(basis, DirectSun::with(basis, state)),
+            _ => None,
+        }
     }
 
     /// The four sun nodes around `sun` as columns among the daylight nodes, each with its
@@ -279,12 +321,18 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
             view.for_each_compact(g, column, 1, |_, v| sum += v * weight);
         };
         add(exterior, self.exterior);
-        for &(column, weight) in &self.sun {
+        for &(column, weight) in &self.reading_sun {
             if column != NO_COLUMN {
                 add(column as usize, weight);
             }
         }
         let (sun, direct_normal) = self.direct_sun;
+        if direct_normal > 0.0 {
+            if let Some(first) = self.first_reflection(&self.basis) {
+                let seen = first.at_grid_point(g, sun);
+                sum += direct_normal * seen;
+            }
+        }
         match self.direct {
             Some(state) if direct_normal > 0.0 => {
                 sum + direct_normal * DirectSun::with(&self.basis, state).at_grid_point(g, sun)
@@ -360,4 +408,38 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         let [l] = luminance([self.exitance(patch)?]);
         Ok(l)
     }
+}
+
+/// The sun nodes `sun` (columns from `first_sun` on, each weight its bilinear weight times
+/// `E_n`) weighed for a rest per unit of the first reflection's power: a node whose stored
+/// power `P_c` is positive takes `w_c P(s) / (P_c Σ_lit w / E_n)`, the bilinear mean of the
+/// lit nodes' `Q_c / P_c` times `P(s)` (docs/math.md, "The sun between the grid's nodes, part
+/// by part"); a node lighting no candidate keeps its weight, its column the rest itself.
+fn per_power(
+    first: &SunFirst<'_, '_>,
+    first_sun: usize,
+    sun: [SunWeight; 4],
+    power: f32,
+    s: Sun,
+) -> [SunWeight; 4] {
+    let node_power = |column: u32| {
+        if column == NO_COLUMN {
+            0.0
+        } else {
+            first.node_power((column as usize).saturating_sub(first_sun))
+        }
+    };
+    let lit: f32 = sun
+        .iter()
+        .filter(|&&(column, _)| node_power(column) > 0.0)
+        .map(|&(_, weight)| weight)
+        .sum();
+    sun.map(|(column, weight)| {
+        let p = node_power(column);
+        if p > 0.0 && lit > 0.0 {
+            (column, weight * power * s.direct_normal / (p * lit))
+        } else {
+            (column, weight)
+        }
+    })
 }

@@ -213,6 +213,21 @@ pub struct Payload<'a> {
     /// illuminance.
     #[serde(borrow)]
     pub sun_reflection: &'a [u8],
+    /// Empty (each sun node's whole reflected sun interpolated), or `C` `u32`: the patches
+    /// the sun can light directly, ascending (docs/format.md, "The sun's first reflection").
+    #[serde(borrow)]
+    pub sun_first_patches: &'a [u8],
+    /// `C` `u8`: each such patch's sample points, 1 to 16.
+    #[serde(borrow)]
+    pub sun_first_sizes: &'a [u8],
+    /// `f32`, patch by patch: its unit normal, then each sample point's position (m) and
+    /// weight (its share of the patch's area).
+    #[serde(borrow)]
+    pub sun_first_points: &'a [u8],
+    /// One `f32` per stored sun node: the power of its first reflection as the controller
+    /// computes it, `P = Σ_j A_j ρ_j E_j` (lm per lux of direct normal illuminance).
+    #[serde(borrow)]
+    pub sun_node_power: &'a [u8],
 }
 
 /// Decodes the postcard payload that fills `body` exactly, borrowing its tables.
@@ -243,7 +258,7 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         *slot = take(&mut rest)?;
     }
     let sky_subdivision: u8 = take(&mut rest)?;
-    let mut daylight: [&[u8]; 21] = [&[]; 21];
+    let mut daylight: [&[u8]; 25] = [&[]; 25];
     for slot in &mut daylight {
         *slot = take(&mut rest)?;
     }
@@ -259,7 +274,7 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     let matrix = |scales, data| MatrixBytes { scales, data };
     let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_pieces, grid_lattice, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
         tables;
-    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data, sun_polygon_counts, sun_polygon_sizes, sun_polygons, sun_glazing, sensor_response_rows, sensor_response, reflection_rank, sky_reflection_weights, sky_reflection_scales, sky_reflection_data, sun_reflection_counts, sun_reflection_patches, sun_reflection] =
+    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data, sun_polygon_counts, sun_polygon_sizes, sun_polygons, sun_glazing, sensor_response_rows, sensor_response, reflection_rank, sky_reflection_weights, sky_reflection_scales, sky_reflection_data, sun_reflection_counts, sun_reflection_patches, sun_reflection, sun_first_patches, sun_first_sizes, sun_first_points, sun_node_power] =
         daylight;
     Ok(Payload {
         bands,
@@ -316,6 +331,10 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         sun_reflection_counts,
         sun_reflection_patches,
         sun_reflection,
+        sun_first_patches,
+        sun_first_sizes,
+        sun_first_points,
+        sun_node_power,
     })
 }
 
@@ -330,7 +349,7 @@ mod tests {
     /// the three loops take the fields in the struct's order.
     #[test]
     fn decode_payload_reads_what_postcard_derives() {
-        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..49u8)
+        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..53u8)
             .map(|k| {
                 (0..=k)
                     .map(|i| k.wrapping_mul(31).wrapping_add(i))
@@ -397,6 +416,10 @@ mod tests {
             sun_reflection_counts: t(46),
             sun_reflection_patches: t(47),
             sun_reflection: t(48),
+            sun_first_patches: t(49),
+            sun_first_sizes: t(50),
+            sun_first_points: t(51),
+            sun_node_power: t(52),
         };
         let mut buffer = [0u8; 2048];
         let body = postcard::to_slice(&payload, &mut buffer).unwrap();

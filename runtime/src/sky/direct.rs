@@ -159,10 +159,17 @@ impl<'b, 'a> DirectSun<'b, 'a> {
         let Some((position, normal)) = self.basis.grid_point_placement(g) else {
             return 0.0;
         };
+        self.at_surface(position, normal, sun)
+    }
+
+    /// Direct irradiance at a point `x` of a surface facing `normal` (a patch's sample
+    /// point, [`crate::sky::sun_first`]) per lux of direct normal illuminance from the sun
+    /// in the room-frame direction `sun`: the rule of a grid point.
+    pub fn at_surface(&self, x: [f32; 3], normal: [f32; 3], sun: [f32; 3]) -> f32 {
         let hemisphere = Weighting::Cone {
             cos_half_angle: -1.0,
         };
-        self.at(position, normal, hemisphere, sun)
+        self.at(x, normal, hemisphere, sun)
     }
 
     /// The rule of the module documentation at `x` facing `normal`.

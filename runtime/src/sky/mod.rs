@@ -49,6 +49,7 @@ pub mod glazing;
 pub mod patches;
 pub mod perez;
 pub mod sun;
+pub mod sun_first;
 pub mod sun_grid;
 
 use crate::error::{Error, Result};

@@ -304,6 +304,12 @@ pub fn couple(
         // daylight then comes through the modes alone (its first reflection folded in).
         let mut folded = part.tables.clone();
         crate::basis::fold_daylight_reflection(&mut folded);
+        // Its sun nodes' readings whole again: the neighbours' nodes have no candidates.
+        crate::basis::fold_sun_first(&mut folded).map_err(|e| BuildingError::Manifest {
+            at: manifest.rooms[r].at.clone(),
+            item: format!("room {}", part.room),
+            message: format!("its sun's first reflection cannot be folded: {e}"),
+        })?;
         let t = &folded;
         let bands = t.bands;
         let own = t.channel_names.len();

@@ -51,8 +51,15 @@ struct Polygon {
 
 /// The direct sun's tables of `scene` at `site`: its clear windows' faces, and the room and
 /// exterior faces that cut the ray from some sensor or grid point towards some sun
-/// direction of the year through a window (sampled every [`CULLING_STEP_DEG`]).
-pub fn direct_sun_tables(scene: &Scene, site: &Site) -> DirectSunTables {
+/// direction of the year through a window (sampled every [`CULLING_STEP_DEG`]), or from
+/// some of `patch_points` (the sample points of the sun's first reflection,
+/// [`super::sun_first`]) towards some of `patch_suns`.
+pub fn direct_sun_tables(
+    scene: &Scene,
+    site: &Site,
+    patch_points: &[Vec3],
+    patch_suns: &[Vec3],
+) -> DirectSunTables {
     let window_surfaces: Vec<usize> = scene.windows.iter().map(|w| w.surface).collect();
     let mut windows = Vec::new();
     let mut glazing = Vec::new();
@@ -103,7 +110,17 @@ pub fn direct_sun_tables(scene: &Scene, site: &Site) -> DirectSunTables {
         })
         .collect();
     let suns = year_of_suns(site);
-    let (room_used, exterior_used) = culled(&points, &suns, &windows, &room, &exterior);
+    let (mut room_used, mut exterior_used) = culled(&points, &suns, &windows, &room, &exterior);
+    let (room_patches, exterior_patches) =
+        culled(patch_points, patch_suns, &windows, &room, &exterior);
+    for (used, more) in [
+        (&mut room_used, room_patches),
+        (&mut exterior_used, exterior_patches),
+    ] {
+        used.extend(more);
+        used.sort_unstable();
+        used.dedup();
+    }
     let mut t = DirectSunTables {
         counts: [
             windows.len() as u32,

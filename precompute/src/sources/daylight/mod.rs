@@ -74,6 +74,7 @@ pub mod direct;
 pub mod nodes;
 mod outside;
 pub mod reflection;
+pub mod sun_first;
 mod sky;
 mod sun;
 #[cfg(test)]
