@@ -98,6 +98,7 @@ fn sensors_and_grid_points_read_the_sun_between_nodes() {
             cache: None,
             ..FormFactorOptions::default()
         },
+        sun_first: true,
         ..BuildOptions::default()
     };
     let (bytes, report) = pipeline::build(&scene, &opts).unwrap();

@@ -218,13 +218,14 @@ pub struct BasisDaylight {
 /// The daylight section (docs/format.md, "Daylight") of a basis whose other tables `t` holds:
 /// the site, the sky and the sun grid, then per node every output's and grid point's exact
 /// reading, the first reflection (the sky's to `sky_rank_tolerance`) and the mode amplitudes
-/// of what the room reflects after it. Daylight is photopic: one band.
+/// of what the room reflects after it; with `sun_first`, the patches the sun can light for
+/// the controller's first reflection at the sun. Daylight is photopic: one band.
 pub fn daylight_tables(
     t: &mut BasisTables,
     scene: &Scene,
     model: &Model,
     daylight: &BasisDaylight,
-    sky_rank_tolerance: f64,
+    (sky_rank_tolerance, sun_first): (f64, bool),
 ) -> crate::error::Result<()> {
     let Some(site) = &scene.site else {
         return Ok(());
@@ -284,7 +285,11 @@ pub fn daylight_tables(
         t.patch_reflectance.get(i * bands).is_some_and(|&r| r > 0.0)
             && daylight.initial[first_sun..].iter().any(|m0| m0[i] > 0.0)
     };
-    let first_tables = sun_first_tables(&scene.patches, lit);
+    let first_tables = if sun_first {
+        sun_first_tables(&scene.patches, lit)
+    } else {
+        Default::default()
+    };
     let patch_suns = culling_suns(site, grid, &nodes.sun_nodes);
     let direct = direct_sun_tables(scene, site, &first_tables.sample_points, &patch_suns);
     t.sun_polygon_counts = direct.counts.to_vec();
@@ -293,7 +298,7 @@ pub fn daylight_tables(
     t.sun_glazing = direct.glazing;
     t.sensor_response_rows = direct.sensor_rows;
     t.sensor_response = direct.sensor_response;
-    if t.sun_polygon_counts.is_empty() || nodes.sun_nodes.is_empty() {
+    if !sun_first || t.sun_polygon_counts.is_empty() || nodes.sun_nodes.is_empty() {
         return Ok(split_direct_sun(t, nodes)?);
     }
     t.sun_first_patches = first_tables.patches;

@@ -99,6 +99,12 @@ pub struct BuildOptions {
     /// reflection is stored for patch exitance under daylight (`--sky-rank-tolerance`;
     /// docs/math.md, "Daylight's first reflection").
     pub sky_rank_tolerance: f64,
+    /// Store the patches the sun can light, so that the controller computes the sun
+    /// patch's first reflection at the sun and reads the rest per unit of its power
+    /// (`--sun-first`; docs/format.md, "The sun's first reflection"). Off by default: it
+    /// costs 38 KB on the example daylight office, more than the firmware's flash holds
+    /// beside its f16 basis, and does not yet meet the 2 % target (docs/accuracy.md).
+    pub sun_first: bool,
     /// The flash the basis should fit (`--flash`): a build that would not fit says so before
     /// its form factors, naming the sections and what would bring it under.
     pub flash: FlashBudget,
@@ -119,6 +125,7 @@ impl Default for BuildOptions {
             sun_step: sources::daylight::nodes::DEFAULT_SUN_STEP,
             sky: SkySelection::Subdivision(1),
             sky_rank_tolerance: sources::daylight::reflection::DEFAULT_SKY_RANK_TOLERANCE,
+            sun_first: false,
             flash: FlashBudget::DEFAULT,
             narration: Narration::Silent,
         }
@@ -536,7 +543,13 @@ fn serialize(
         return Ok((tables, bytes, 0));
     };
     let without = tables.to_bytes()?.len();
-    basis::daylight_tables(&mut tables, scene, model, d, opts.sky_rank_tolerance)?;
+    basis::daylight_tables(
+        &mut tables,
+        scene,
+        model,
+        d,
+        (opts.sky_rank_tolerance, opts.sun_first),
+    )?;
     let bytes = tables.to_bytes()?;
     let added = bytes.len() - without;
     Ok((tables, bytes, added))

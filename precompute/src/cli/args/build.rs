@@ -66,6 +66,12 @@ pub(super) struct BuildArgs {
     /// reports both). Default 0.1.
     #[arg(long, value_name = "FRACTION", value_parser = positive_fraction)]
     sky_rank_tolerance: Option<f64>,
+    /// Store the patches the sun can light, so that the controller computes the sun patch's
+    /// first reflection at the sun's own direction and reads the rest of the sun per unit
+    /// of its power (docs/accuracy.md, "Daylight in the basis"): about 38 KB more on the
+    /// example daylight office.
+    #[arg(long)]
+    sun_first: bool,
     /// Flash the basis should fit, in bytes or with KiB, MiB, kB or MB (the build says
     /// before its form factors whether the basis will fit, and what would make it fit).
     #[arg(long, value_name = "SIZE", default_value_t = FlashBudget::DEFAULT)]
@@ -117,6 +123,7 @@ impl BuildArgs {
             sky_rank_tolerance: self
                 .sky_rank_tolerance
                 .unwrap_or(DEFAULT_SKY_RANK_TOLERANCE),
+            sun_first: self.sun_first,
             modes: match (self.modes, self.tolerance) {
                 (Some(p), _) => ModeSelection::Count(p),
                 (None, Some(t)) => ModeSelection::Tolerance(t),
