@@ -27,6 +27,13 @@ fn write_seed_corpus() {
     )
     .unwrap();
     std::fs::write(
+        format!("{dir}/tiny-daylight-sun-first.basis"),
+        common::tiny_daylight_sun_first([0.3, 0.2, 0.1])
+            .to_bytes()
+            .unwrap(),
+    )
+    .unwrap();
+    std::fs::write(
         format!("{dir}/tiny-daylight-reflection.basis"),
         common::tiny_daylight_reflection().to_bytes().unwrap(),
     )
