@@ -51,7 +51,8 @@ fn a_node_reads_its_rest_its_direct_sun_and_its_first_reflection() {
         let bytes = with_first([1.0, stored, 1.0]).to_bytes().unwrap();
         let basis = Basis::from_bytes(&bytes).unwrap();
         let mut day = Day::new(basis).unwrap();
-        day.set_sky(&[0.0; 145], 0.0, Some(noon(e_n as f32))).unwrap();
+        day.set_sky(&[0.0; 145], 0.0, Some(noon(e_n as f32)))
+            .unwrap();
         let want = |rest: f64, direct: f64, view: f64| e_n * (share * rest + direct + view * m0);
         let cases = [
             (day.sensor_illuminance(0).unwrap(), want(148.0, direct, 0.2)),
@@ -102,12 +103,15 @@ fn a_hidden_sun_patch_takes_the_rest_with_it() {
     assert_eq!(day.grid_point_illuminance(0, 1).unwrap(), 0.0);
 }
 
+/// A malformed table: what it is, the edit that makes it, the error that names it.
+type Case = (&'static str, fn(&mut BasisTables), Error);
+
 /// Each malformed table of the sun's first reflection is refused by name when daylight is
 /// used; without a sky they must be empty at decode.
 #[test]
 fn malformed_tables_are_refused_naming_them() {
     let value = |field: &'static str, index: usize| Error::DecodeValue { field, index };
-    let cases: [(&str, fn(&mut BasisTables), Error); 8] = [
+    let cases: [Case; 8] = [
         (
             "a power per sun node",
             |t| t.sun_node_power.pop().map(drop).unwrap_or(()),
@@ -117,7 +121,11 @@ fn malformed_tables_are_refused_naming_them() {
                 found: 8,
             },
         ),
-        ("a negative power", |t| t.sun_node_power[1] = -1.0, value("sun_node_power", 1)),
+        (
+            "a negative power",
+            |t| t.sun_node_power[1] = -1.0,
+            value("sun_node_power", 1),
+        ),
         (
             "a black candidate",
             |t| {
@@ -125,7 +133,11 @@ fn malformed_tables_are_refused_naming_them() {
             },
             value("sun_first_sizes", 0),
         ),
-        ("no sample point", |t| t.sun_first_sizes = vec![0], value("sun_first_sizes", 0)),
+        (
+            "no sample point",
+            |t| t.sun_first_sizes = vec![0],
+            value("sun_first_sizes", 0),
+        ),
         (
             "a patch out of range",
             |t| t.sun_first_patches = vec![2],
@@ -136,7 +148,11 @@ fn malformed_tables_are_refused_naming_them() {
             |t| t.sun_first_points[2] = 0.5,
             value("sun_first_points", 0),
         ),
-        ("a weight above 1", |t| t.sun_first_points[6] = 1.5, value("sun_first_points", 6)),
+        (
+            "a weight above 1",
+            |t| t.sun_first_points[6] = 1.5,
+            value("sun_first_points", 6),
+        ),
         (
             "candidates without the direct sun's geometry",
             |t| t.sun_polygon_counts.clear(),

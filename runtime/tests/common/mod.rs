@@ -266,4 +266,3 @@ pub fn tiny_daylight_sun_first(power: [f64; 3]) -> BasisTables {
     t.sun_node_power = power.to_vec();
     t
 }
-

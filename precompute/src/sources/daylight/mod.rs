@@ -74,9 +74,9 @@ pub mod direct;
 pub mod nodes;
 mod outside;
 pub mod reflection;
-pub mod sun_first;
 mod sky;
 mod sun;
+pub mod sun_first;
 #[cfg(test)]
 mod tests;
 

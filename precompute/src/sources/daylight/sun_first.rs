@@ -42,12 +42,11 @@ pub fn sun_first_tables(patches: &[Patch], lit: impl Fn(usize) -> bool) -> SunFi
             })
             .collect();
         let total: f64 = fan.iter().map(|f| f.1).sum();
-        let samples: Vec<(Vec3, f64)> =
-            if n > usize::from(MAX_SAMPLES) || !(total > 0.0) || n < 3 {
-                vec![(p.centroid, 1.0)]
-            } else {
-                fan.iter().map(|&(x, a)| (x, a / total)).collect()
-            };
+        let samples: Vec<(Vec3, f64)> = if n > usize::from(MAX_SAMPLES) || !(total > 0.0) || n < 3 {
+            vec![(p.centroid, 1.0)]
+        } else {
+            fan.iter().map(|&(x, a)| (x, a / total)).collect()
+        };
         t.patches.push(i as u32);
         t.sizes.push(samples.len() as u8);
         t.points.extend(p.normal.to_array());
@@ -70,7 +69,13 @@ pub fn culling_suns(site: &Site, grid: &SunGrid, stored: &[u32]) -> Vec<Vec3> {
         let Some((declination, hour)) = grid.angles(node) else {
             continue;
         };
-        for (dd, dh) in [(0.0, 0.0), (0.5, 0.5), (-0.5, 0.5), (0.5, -0.5), (-0.5, -0.5)] {
+        for (dd, dh) in [
+            (0.0, 0.0),
+            (0.5, 0.5),
+            (-0.5, 0.5),
+            (0.5, -0.5),
+            (-0.5, -0.5),
+        ] {
             let d = direction_of(
                 grid.latitude,
                 declination + dd * grid.declination_step,
