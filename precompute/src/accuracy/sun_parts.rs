@@ -9,10 +9,12 @@
 //!
 //! Read between nodes, each part the controller interpolates contributes its own error, and
 //! the signed contributions add up to the reading's error. This module measures each part's
-//! share under the controller's present rule (sensors and grid points interpolate `F + Q`
-//! and add their direct sun at the sun's direction, zones interpolate all three), and what
-//! the error would be if `D` and `F` were both taken at the sun's own direction and only `Q`
-//! interpolated.
+//! share under format 7's rule (sensors and grid points interpolate `F + Q` and add their
+//! direct sun at the sun's direction, zones interpolate all three), and what the error would
+//! be if `D` and `F` were both taken exactly at the sun's own direction and only `Q`
+//! interpolated. Format 8's controller (`eigenrad build --sun-first`) computes `F` from a
+//! few sample points a patch; what it reads is measured apart
+//! ([`super::daylight::SunInterpolation`]).
 
 use std::collections::HashMap;
 
