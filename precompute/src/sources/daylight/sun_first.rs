@@ -42,11 +42,12 @@ pub fn sun_first_tables(patches: &[Patch], lit: impl Fn(usize) -> bool) -> SunFi
             })
             .collect();
         let total: f64 = fan.iter().map(|f| f.1).sum();
-        let samples: Vec<(Vec3, f64)> = if n > usize::from(MAX_SAMPLES) || !(total > 0.0) || n < 3 {
-            vec![(p.centroid, 1.0)]
-        } else {
-            fan.iter().map(|&(x, a)| (x, a / total)).collect()
-        };
+        let samples: Vec<(Vec3, f64)> =
+            if n > usize::from(MAX_SAMPLES) || total.is_nan() || total <= 0.0 || n < 3 {
+                vec![(p.centroid, 1.0)]
+            } else {
+                fan.iter().map(|&(x, a)| (x, a / total)).collect()
+            };
         t.patches.push(i as u32);
         t.sizes.push(samples.len() as u8);
         t.points.extend(p.normal.to_array());
