@@ -64,10 +64,21 @@ fn build(scene: &Path, modes: ModeSelection) -> (PathBuf, Vec<u8>) {
 
 /// [`build`] in the given formulation.
 fn build_in(scene: &Path, modes: ModeSelection, formulation: Formulation) -> (PathBuf, Vec<u8>) {
+    build_with(scene, modes, formulation, false)
+}
+
+/// [`build_in`], storing the sun's first reflection for the controller when `sun_first`.
+fn build_with(
+    scene: &Path,
+    modes: ModeSelection,
+    formulation: Formulation,
+    sun_first: bool,
+) -> (PathBuf, Vec<u8>) {
     let opts = BuildOptions {
         modes,
         formulation,
         form_factors: no_cache(),
+        sun_first,
         ..BuildOptions::default()
     };
     let (bytes, report) = pipeline::build(scene, &opts).expect("build");
@@ -230,14 +241,31 @@ fn at_a_sun_node_the_runtime_is_exact_in_the_seed_formulation() {
     sun_node_exact(Formulation::Seed);
 }
 
+/// The same with the sun's first reflection computed by the runtime (`--sun-first`): each
+/// node stores its rest after the controller's own direct sun and first reflection and its
+/// power as the controller computes it, so at a node the reading is exact again.
+#[test]
+fn at_a_sun_node_the_runtime_with_the_suns_first_reflection_is_exact() {
+    sun_node_exact_with(Formulation::Split, true);
+}
+
 fn sun_node_exact(formulation: Formulation) {
-    let (_dir, scene) = scene_file(&format!("sun-node-{formulation:?}"));
+    sun_node_exact_with(formulation, false);
+}
+
+fn sun_node_exact_with(formulation: Formulation, sun_first: bool) {
+    let (_dir, scene) = scene_file(&format!("sun-node-{formulation:?}-{sun_first}"));
     let loaded = eigenrad_precompute::scene::load(&scene).unwrap();
     let n = loaded.patches.len();
     // The window and the lamp reflect nothing: the modes span the other patches.
     let reflecting = loaded.reflectance.iter().filter(|r| r[0] > 0.0).count();
-    let (_basis, bytes) = build_in(&scene, ModeSelection::Count(n), formulation);
+    let (_basis, bytes) = build_with(&scene, ModeSelection::Count(n), formulation, sun_first);
     let basis = Basis::from_bytes(&bytes).unwrap();
+    assert_eq!(
+        eigenrad_runtime::sky::sun_first::SunFirst::stored(&basis),
+        sun_first,
+        "the sun's candidates stored as asked"
+    );
     let grid = basis.sun_grid().unwrap();
     assert_eq!(basis.mode_count(), reflecting, "all the modes");
     // A stored node: the sun at noon in spring, or the first that lights the room.
