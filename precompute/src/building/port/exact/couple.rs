@@ -96,9 +96,6 @@ pub fn couple(
             message: format!("{what}: exact ports do not carry it yet; join this room through diffusing ports (leave out `model = \"exact\"`)"),
         }
         };
-        if !scene.luminaires.is_empty() {
-            return Err(refuse("it has luminaires with photometry, whose direct light through an exact port's opening is not computed"));
-        }
         if scene.site.is_some() && !scene.windows.is_empty() {
             return Err(refuse(
                 "it has daylight, whose nodes an exact port does not couple",
@@ -169,6 +166,32 @@ pub fn couple(
         })
         .collect();
     let sources: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
+    // The direct light of the luminaires with photometry of each room in the rooms its ports
+    // join it to, through the openings: `lit[r]` on room r's seen patches (seen × sources)
+    // and at its outputs (outputs × sources), `None` where no luminaire reaches it.
+    let mut lit: Vec<Option<(Mat<f64>, Mat<f64>)>> = vec![None; rooms];
+    for (k, &p) in ports.iter().enumerate() {
+        let port = &manifest.ports[p];
+        for (side, direct) in terms[k].direct.iter().enumerate() {
+            let Some(direct) = direct else { continue };
+            let (from, r) = (port.rooms[side], port.rooms[1 - side]);
+            let (seen, read) = lit[r].get_or_insert_with(|| {
+                (
+                    Mat::zeros(parts[r].exact.seen.len(), sources),
+                    Mat::zeros(outputs(&parts[r].tables), sources),
+                )
+            });
+            for (c, (on_seen, at_outputs)) in direct.seen.iter().zip(&direct.outputs).enumerate() {
+                let g = first_channel[from] + c;
+                for (a, e) in on_seen.iter().enumerate() {
+                    seen[(a, g)] += port.transmittance * e;
+                }
+                for (o, e) in at_outputs.iter().enumerate() {
+                    read[(o, g)] += port.transmittance * e;
+                }
+            }
+        }
+    }
     // `coupling(k, b, r)`: irradiance arriving at room r's seen patch a from the other room
     // of port k per unit exitance of its seen patch v, `τ G_av / A_a`, as a matrix.
     let coupling = |k: usize, r: usize| -> Mat<f64> {
@@ -198,12 +221,28 @@ pub fn couple(
                 }
             }
         }
+        // `H_r[v][i]`: the exitance of room r's seen patch v for irradiance 1 at its seen patch i.
+        let response = |r: usize| -> Mat<f64> {
+            let x = &parts[r].exact;
+            Mat::from_fn(x.seen.len(), x.seen.len(), |v, i| x.seen_exitance[b][i][v])
+        };
+        // Light arriving straight from another room's luminaires: `H_r E_d` more in `a_r`.
+        for (r, lit) in lit.iter().enumerate() {
+            if let Some((on_seen, _)) = lit {
+                let add = response(r) * on_seen;
+                for v in 0..add.nrows() {
+                    for g in 0..sources {
+                        rhs[(offset[r] + v, g)] += add[(v, g)];
+                    }
+                }
+            }
+        }
         for (k, &p) in ports.iter().enumerate() {
             for r in manifest.ports[p].rooms {
                 let other = manifest.ports[p].rooms[usize::from(manifest.ports[p].rooms[0] == r)];
                 let x = &parts[r].exact;
-                // `m_r − H_rᵀ C m_other = a_r`, `H_r[i][v]` the exitance of v for irradiance at i.
-                let h = Mat::from_fn(x.seen.len(), x.seen.len(), |v, i| x.seen_exitance[b][i][v]);
+                // `m_r − H_r C m_other = a_r`.
+                let h = response(r);
                 let block = h.as_ref() * coupling(k, r).as_ref();
                 for v in 0..x.seen.len() {
                     for w in 0..parts[other].exact.seen.len() {
@@ -215,7 +254,11 @@ pub fn couple(
         let m = system.partial_piv_lu().solve(rhs.as_ref());
         let mut e: Vec<Mat<f64>> = parts
             .iter()
-            .map(|p| Mat::zeros(p.exact.seen.len(), sources))
+            .zip(&lit)
+            .map(|(p, lit)| match lit {
+                Some((on_seen, _)) => on_seen.clone(),
+                None => Mat::zeros(p.exact.seen.len(), sources),
+            })
             .collect();
         for (k, &p) in ports.iter().enumerate() {
             for r in manifest.ports[p].rooms {
@@ -301,7 +344,10 @@ pub fn couple(
                         .sum::<f64>()
                 })
                 .sum();
-            reflected + seen_through
+            match &lit[r] {
+                Some((_, direct)) => reflected + seen_through + direct[(o, g)],
+                None => reflected + seen_through,
+            }
         };
         let patch = |b: usize, g: usize, k: usize| -> f64 {
             (0..x.seen.len())

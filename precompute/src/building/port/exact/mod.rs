@@ -7,11 +7,13 @@
 //! irradiance arriving at each of them from outside, the exitance it then gives them, every
 //! output's reading and every patch's exitance. The merge ([`couple`]) computes the cross
 //! terms from the rooms' scenes (the pair integrals through the opening, the receivers' view
-//! of the other room's seen patches) and solves the coupled system over the seen patches of
-//! every room.
+//! of the other room's seen patches, the direct light of each room's luminaires with
+//! photometry in the other) and solves the coupled system over the seen patches of every
+//! room.
 
 mod couple;
 mod cross;
+mod direct;
 
 pub use couple::couple;
 
