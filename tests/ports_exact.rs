@@ -10,8 +10,10 @@
 //! - A room whose neighbour returns no light (all black) reads its own channel exactly as
 //!   built alone.
 //! - The diffuse port misses the same one scene by far more.
-//! - One machine or two shards give the same bytes; bad port models are errors naming the
-//!   manifest's line and item.
+//! - A luminaire with photometry lights the other room through the doorway as in the one
+//!   scene.
+//! - One machine or two shards give the same bytes; bad port models, and rooms built with
+//!   other form-factor rules, are errors naming the manifest's line and item.
 
 mod common;
 
@@ -404,6 +406,38 @@ fn one_machine_and_two_shards_give_the_same_bytes() {
         );
     }
     assert_eq!(manifest.ports[0].model, building::PortModel::Exact);
+}
+
+#[test]
+fn rooms_built_with_other_form_factor_rules_are_refused_naming_the_port() {
+    let dir = common::scratch("ports-exact-rules");
+    let manifest =
+        Manifest::load(&two_rooms(&dir, &exact_port())).unwrap_or_else(|e| panic!("{e}"));
+    let parts = building::parts_dir(&dir.join("out"));
+    std::fs::create_dir_all(&parts).expect("parts folder");
+    let coarse = BuildOptions {
+        form_factors: FormFactorOptions {
+            gauss_order: 3,
+            ..FormFactorOptions::default()
+        },
+        ..BuildOptions::default()
+    };
+    for (room, options) in [(0, BuildOptions::default()), (1, coarse)] {
+        building::build_rooms(&manifest, &[room], &options, &parts)
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+    let e = building::merge(&manifest, &parts, &dir.join("out"), manifest.flash)
+        .expect_err("rooms built by other rules")
+        .to_string();
+    for x in [
+        "building.toml:",
+        "port door",
+        "gauss_order: 3",
+        "same form-factor options",
+    ] {
+        assert!(e.contains(x), "{x:?} not in: {e}");
+    }
+    assert!(!dir.join("out").join("building.json").exists());
 }
 
 #[test]

@@ -171,7 +171,7 @@ fn build_room(
         |scene, occluders, system, daylight| {
             Ok((
                 port::respond(scene, occluders, system, daylight, &openings)?,
-                port::exact::respond(scene, system, &exact)?,
+                port::exact::respond(scene, system, &exact, &options.form_factors)?,
             ))
         },
     )

@@ -13,7 +13,6 @@ use crate::building::error::BuildingError;
 use crate::building::manifest::{Manifest, PortModel};
 use crate::building::part::{self, Part};
 use crate::building::port::{foreign_channel, Coupled};
-use crate::formfactor::FormFactorOptions;
 use crate::scene::Scene;
 
 /// Couples the rooms' `parts` (in the manifest's order of rooms) through the manifest's
@@ -120,11 +119,23 @@ pub fn couple(
             }
         }
     }
-    // The cross terms of each port, from its rooms' scenes.
-    let opts = FormFactorOptions::default();
+    // The cross terms of each port, from its rooms' scenes, by its rooms' rules.
     let mut terms: Vec<Cross> = Vec::with_capacity(ports.len());
     for &p in &ports {
         let port = &manifest.ports[p];
+        let [a, b] = port.rooms;
+        let rules = &parts[a].exact.rules;
+        if *rules != parts[b].exact.rules {
+            return Err(BuildingError::Manifest {
+                at: port.at.clone(),
+                item: format!("port {}", port.name),
+                message: format!(
+                    "joins room {} (its form factors by {rules:?}) to room {} (by {:?}): the light crossing an exact port is integrated as in one room, so build both rooms with the same form-factor options",
+                    parts[a].room, parts[b].room, parts[b].exact.rules
+                ),
+            });
+        }
+        let opts = rules.options();
         let mut sides = Vec::with_capacity(2);
         for (side, r) in port.rooms.into_iter().enumerate() {
             let scene = scenes[r]

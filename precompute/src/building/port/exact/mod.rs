@@ -19,8 +19,61 @@ pub use couple::couple;
 
 use serde::{Deserialize, Serialize};
 
+use crate::formfactor::FormFactorOptions;
 use crate::radiosity::System;
 use crate::scene::Scene;
+
+/// The rules of the pair integrals a room was built with: the fields of [`FormFactorOptions`]
+/// that enter them (progress, cache and the operator's storage do not). The merge computes an
+/// exact port's cross terms with its rooms' rules, and refuses rooms built with different ones.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PairRules {
+    /// [`FormFactorOptions::gauss_order`].
+    pub gauss_order: usize,
+    /// [`FormFactorOptions::touching_order`].
+    pub touching_order: usize,
+    /// [`FormFactorOptions::quadrature_tolerance`].
+    pub quadrature_tolerance: f64,
+    /// [`FormFactorOptions::visibility_depth`].
+    pub visibility_depth: u32,
+    /// [`FormFactorOptions::visibility_cell_share`].
+    pub visibility_cell_share: f64,
+    /// [`FormFactorOptions::occluded_order`].
+    pub occluded_order: usize,
+}
+
+impl PairRules {
+    /// The rules of `opts`.
+    pub fn of(opts: &FormFactorOptions) -> Self {
+        PairRules {
+            gauss_order: opts.gauss_order,
+            touching_order: opts.touching_order,
+            quadrature_tolerance: opts.quadrature_tolerance,
+            visibility_depth: opts.visibility_depth,
+            visibility_cell_share: opts.visibility_cell_share,
+            occluded_order: opts.occluded_order,
+        }
+    }
+
+    /// Options computing the pair integrals by these rules (the others at their defaults).
+    pub fn options(&self) -> FormFactorOptions {
+        FormFactorOptions {
+            gauss_order: self.gauss_order,
+            touching_order: self.touching_order,
+            quadrature_tolerance: self.quadrature_tolerance,
+            visibility_depth: self.visibility_depth,
+            visibility_cell_share: self.visibility_cell_share,
+            occluded_order: self.occluded_order,
+            ..FormFactorOptions::default()
+        }
+    }
+}
+
+impl Default for PairRules {
+    fn default() -> Self {
+        PairRules::of(&FormFactorOptions::default())
+    }
+}
 
 /// One of a room's exact ports, as its build found it: the port and its opening's surface.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -40,6 +93,8 @@ pub struct ExactPorts {
     pub openings: Vec<ExactOpening>,
     /// The room's number of patches (the merge meshes its scene again and checks it).
     pub patches: usize,
+    /// The rules of the room's pair integrals, for the merge's cross terms.
+    pub rules: PairRules,
     /// The seen patches `V`: every patch (not an opening's) that exchanges light with a patch
     /// of an opening, ascending.
     pub seen: Vec<usize>,
@@ -56,13 +111,14 @@ pub struct ExactPorts {
 }
 
 /// The exact responses of a built room at the openings `openings` (`(port, surface)` in the
-/// manifest's order of ports), from its meshed scene and its radiosity system: one exact
-/// solve per band with a right-hand side per seen patch (`M0 = ρ_i` on patch `i`, the first
-/// reflection of unit irradiance), as for the channels.
+/// manifest's order of ports), from its meshed scene and its radiosity system, whose form
+/// factors `opts` computed: one exact solve per band with a right-hand side per seen patch
+/// (`M0 = ρ_i` on patch `i`, the first reflection of unit irradiance), as for the channels.
 pub fn respond(
     scene: &Scene,
     system: &System,
     openings: &[ExactOpening],
+    opts: &FormFactorOptions,
 ) -> Result<ExactPorts, crate::Error> {
     if openings.is_empty() {
         return Ok(ExactPorts::default());
@@ -91,6 +147,7 @@ pub fn respond(
     let mut ports = ExactPorts {
         openings: openings.to_vec(),
         patches: n,
+        rules: PairRules::of(opts),
         seen: seen.clone(),
         ..ExactPorts::default()
     };
