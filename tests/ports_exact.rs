@@ -441,6 +441,38 @@ fn rooms_built_with_other_form_factor_rules_are_refused_naming_the_port() {
 }
 
 #[test]
+fn a_part_built_without_the_exitance_the_modes_need_is_refused_naming_it() {
+    let dir = common::scratch("ports-exact-modes");
+    let path = two_rooms(&dir, &exact_port());
+    let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(manifest.controllers.iter().all(|c| !c.modes));
+    let parts = building::parts_dir(&dir.join("out"));
+    std::fs::create_dir_all(&parts).expect("parts folder");
+    building::build_rooms(&manifest, &[0, 1], &BuildOptions::default(), &parts)
+        .unwrap_or_else(|e| panic!("{e}"));
+    // Without modes the parts keep no patch's exitance: the left controller now asks for them.
+    let text = std::fs::read_to_string(&path).expect("manifest");
+    let drives = "drives = [\"left\"]";
+    assert!(text.contains(drives));
+    std::fs::write(
+        &path,
+        text.replace(drives, &format!("{drives}\nmodes = true")),
+    )
+    .expect("manifest");
+    let with_modes = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let e = building::merge(&with_modes, &parts, &dir.join("out"), with_modes.flash)
+        .expect_err("a part without the patches' exitance")
+        .to_string();
+    for x in [
+        "left.part",
+        "modes of controller left",
+        "build room left again",
+    ] {
+        assert!(e.contains(x), "{x:?} not in: {e}");
+    }
+}
+
+#[test]
 fn bad_port_models_name_the_manifest_line_and_item() {
     let dir = common::scratch("ports-exact-bad");
     for (ports, expected) in [

@@ -101,6 +101,20 @@ pub fn couple(
             ));
         }
         check_shapes(&scene, part).map_err(|m| part_error(r, m))?;
+        if let Some(c) = manifest
+            .controllers
+            .iter()
+            .find(|c| c.room == r && c.modes)
+            .filter(|_| part.exact.exitance.is_empty())
+        {
+            return Err(part_error(
+                r,
+                format!(
+                    "built without the patches' exitance for light entering through its exact ports, which the modes of controller {} need: build room {} again",
+                    c.name, part.room
+                ),
+            ));
+        }
         scenes.push(Some(scene));
     }
     let bands = parts[manifest.ports[ports[0]].rooms[0]].tables.bands;
@@ -365,7 +379,9 @@ pub fn couple(
                 .map(|a| x.exitance[b][a][k] * arriving[b][r][(a, g)])
                 .sum()
         };
-        coupled.tables[r] = coupled_tables(&part.tables, &kept, &reading, &patch);
+        let patch: Option<&dyn Fn(usize, usize, usize) -> f64> =
+            (!x.exitance.is_empty()).then_some(&patch);
+        coupled.tables[r] = coupled_tables(&part.tables, &kept, &reading, patch);
     }
     Ok(coupled)
 }
@@ -382,14 +398,10 @@ fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
     let n = scene.patches.len();
     let t = &part.tables;
     let seen_ok = x.seen.windows(2).all(|w| w[0] < w[1]) && x.seen.iter().all(|&k| k < n);
-    let bands_ok = [
-        x.channels.len(),
-        x.seen_exitance.len(),
-        x.readings.len(),
-        x.exitance.len(),
-    ]
-    .iter()
-    .all(|&l| l == t.bands);
+    let bands_ok = [x.channels.len(), x.seen_exitance.len(), x.readings.len()]
+        .iter()
+        .all(|&l| l == t.bands)
+        && (x.exitance.is_empty() || x.exitance.len() == t.bands);
     let s = x.seen.len();
     let sizes_ok = bands_ok
         && (0..t.bands).all(|b| {
@@ -399,8 +411,9 @@ fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
                 && x.seen_exitance[b].iter().all(|r| r.len() == s)
                 && x.readings[b].len() == s
                 && x.readings[b].iter().all(|r| r.len() == outputs(t))
-                && x.exitance[b].len() == s
-                && x.exitance[b].iter().all(|r| r.len() == n)
+                && x.exitance
+                    .get(b)
+                    .is_none_or(|e| e.len() == s && e.iter().all(|r| r.len() == n))
         });
     let opening_free = x.openings.iter().all(|o| {
         scene
@@ -421,12 +434,13 @@ fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
 /// A room's tables `t` with the channels `kept` (`(source, name)`, the room's own first),
 /// where source `g` adds `reading(b, g, o)` at output `o` and `patch(b, g, k)` to the
 /// exitance of patch `k` in band `b` to the room's own response (0 for another room's
-/// channel).
+/// channel). Without `patch` (no controller of the room keeps the modes) the tables hold no
+/// patch response.
 fn coupled_tables(
     t: &BasisTables,
     kept: &[(usize, String)],
     reading: &dyn Fn(usize, usize, usize) -> f64,
-    patch: &dyn Fn(usize, usize, usize) -> f64,
+    patch: Option<&dyn Fn(usize, usize, usize) -> f64>,
 ) -> BasisTables {
     let bands = t.bands;
     let own = t.channel_names.len();
@@ -452,7 +466,7 @@ fn coupled_tables(
     let mut tables = t.clone();
     tables.output_channels = table(outputs, 0, &t.output_channels);
     tables.grid_channels = table(points, outputs, &t.grid_channels);
-    if !t.channel_response.is_empty() {
+    if let Some(patch) = patch.filter(|_| !t.channel_response.is_empty()) {
         let mut response = Vec::with_capacity(n * kept.len() * bands);
         for k in 0..n {
             for (kc, (g, _)) in kept.iter().enumerate() {
@@ -467,6 +481,9 @@ fn coupled_tables(
             }
         }
         tables.channel_response = response;
+    } else {
+        // No controller reads it: without the modes, a basis keeps no patch.
+        tables.channel_response = Vec::new();
     }
     tables.channel_names = kept.iter().map(|(_, name)| name.clone()).collect();
     tables

@@ -106,7 +106,9 @@ pub struct ExactPorts {
     /// `readings[b][i][o]`: reading of output `o` (sensors, zones, then grid points) for the
     /// same irradiance.
     pub readings: Vec<Vec<Vec<f64>>>,
-    /// `exitance[b][i][k]`: exitance of every patch `k` for the same irradiance.
+    /// `exitance[b][i][k]`: exitance of every patch `k` for the same irradiance. Only the
+    /// modes read it (exitance set patch by patch): empty when no controller of the room
+    /// keeps them.
     pub exitance: Vec<Vec<Vec<f64>>>,
 }
 
@@ -114,11 +116,13 @@ pub struct ExactPorts {
 /// manifest's order of ports), from its meshed scene and its radiosity system, whose form
 /// factors `opts` computed: one exact solve per band with a right-hand side per seen patch
 /// (`M0 = ρ_i` on patch `i`, the first reflection of unit irradiance), as for the channels.
+/// Every patch's exitance is kept only with `modes` (a controller of the room keeps them).
 pub fn respond(
     scene: &Scene,
     system: &System,
     openings: &[ExactOpening],
     opts: &FormFactorOptions,
+    modes: bool,
 ) -> Result<ExactPorts, crate::Error> {
     if openings.is_empty() {
         return Ok(ExactPorts::default());
@@ -180,7 +184,9 @@ pub fn respond(
         ports
             .readings
             .push(exitance.iter().map(|x| system.outputs(x)).collect());
-        ports.exitance.push(exitance);
+        if modes {
+            ports.exitance.push(exitance);
+        }
     }
     Ok(ports)
 }
