@@ -13,7 +13,8 @@
 //! - A luminaire with photometry lights the other room through the doorway as in the one
 //!   scene.
 //! - One machine or two shards give the same bytes; bad port models, and rooms built with
-//!   other form-factor rules, are errors naming the manifest's line and item.
+//!   other form-factor rules, are errors naming the manifest's line and item; a room with
+//!   daylight is refused naming it (exact ports do not carry daylight).
 
 mod common;
 
@@ -21,7 +22,8 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
 use common::two_rooms::{
-    left_luminaire, rooms_in_one_scene, two_rooms, two_rooms_with_luminaire, PORT,
+    daylit_left_scene, left_luminaire, rooms_in_one_scene, two_rooms, two_rooms_with_luminaire,
+    PORT,
 };
 use eigenrad_precompute::building::{self, Manifest, Part};
 use eigenrad_precompute::formfactor::{self, exchange, outputs, FormFactorOptions, Occluders};
@@ -470,6 +472,25 @@ fn a_part_built_without_the_exitance_the_modes_need_is_refused_naming_it() {
     ] {
         assert!(e.contains(x), "{x:?} not in: {e}");
     }
+}
+
+#[test]
+fn a_room_with_daylight_is_refused_naming_it() {
+    let dir = common::scratch("ports-exact-daylit");
+    let path = two_rooms(&dir, &exact_port());
+    std::fs::write(dir.join("left.toml"), daylit_left_scene()).expect("scene");
+    let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let parts = building::parts_dir(&dir.join("out"));
+    std::fs::create_dir_all(&parts).expect("parts folder");
+    building::build_rooms(&manifest, &[0, 1], &BuildOptions::default(), &parts)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let e = building::merge(&manifest, &parts, &dir.join("out"), manifest.flash)
+        .expect_err("daylight through an exact port")
+        .to_string();
+    for x in ["building.toml:", "room left", "daylight", "diffusing ports"] {
+        assert!(e.contains(x), "{x:?} not in: {e}");
+    }
+    assert!(!dir.join("out").join("building.json").exists());
 }
 
 #[test]

@@ -204,3 +204,19 @@ pub fn two_rooms_with_luminaire(dir: &Path, ports: &str) -> PathBuf {
     .expect("manifest");
     path
 }
+
+/// The left room's scene with a glazed window in its south wall (y = 0) and a site: the
+/// room has daylight, the right room none of its own.
+pub fn daylit_left_scene() -> String {
+    left_scene(&DOOR)
+        .replacen(
+            "[materials]\n",
+            &format!("{}\n\n[materials]\nglass = {{ reflectance = 0.0, transmittance = 0.7 }}\n", super::VIENNA),
+            1,
+        )
+        .replace(
+            "openings = [\"lamp_left\", \"door\"]",
+            "openings = [\"lamp_left\", \"door\", \"window\"]",
+        )
+        + "\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n"
+}
