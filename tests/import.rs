@@ -11,7 +11,11 @@
 //!
 //! Run with `cargo test --test import -- --nocapture` to see the figures.
 
+mod common;
+
 use std::path::{Path, PathBuf};
+
+use common::l_office::{self, root};
 
 use eigenrad_precompute::cli::{self, DaylightArgs, LevelArgs, SkyInput};
 use eigenrad_precompute::formfactor::FormFactorOptions;
@@ -20,39 +24,10 @@ use eigenrad_precompute::scene::{load, Scene};
 /// The same mesh in another surface order: the solve sums in another order, nothing else.
 const SAME_ROOM: f64 = 1e-9;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("eigenrad-import-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-/// The L-shaped office's scene at a coarse mesh and grid (2 m), its files found from anywhere, with
-/// its `[[room]]` and window quads replaced by `room` when given.
-fn l_office(room: Option<&str>) -> String {
-    let text = std::fs::read_to_string(root().join("examples/l-office/scene.toml")).unwrap();
-    // Daylight is gathered through every window at each receiver: a 2 m grid keeps it cheap.
-    let text = text
-        .replace("max_edge = 0.6", "max_edge = 2.0")
-        .replace(
-            "max_edge = 2.0 }",
-            "max_edge = 2.0, grid = { spacing = 2.0 } }",
-        )
-        .replace(
-            "\"../photometry/",
-            &format!("\"{}/examples/photometry/", root().display()),
-        );
-    match room {
-        None => text,
-        Some(room) => {
-            let start = text.find("[[room]]").unwrap();
-            let end = text.find("# Two 0.4 m square columns").unwrap();
-            format!("{}{room}\n{}", &text[..start], &text[end..])
-        }
-    }
 }
 
 fn import_of(model: &Path) -> String {
@@ -132,9 +107,9 @@ fn mesh(scene: &Scene) -> Vec<Vec<[u64; 3]>> {
 /// readings; its imported windows pass daylight.
 fn same_room_as_toml(model: &Path, dir: &Path) {
     let toml = dir.join("toml.toml");
-    std::fs::write(&toml, l_office(None)).unwrap();
+    std::fs::write(&toml, l_office::scene(None)).unwrap();
     let imported = dir.join("imported.toml");
-    std::fs::write(&imported, l_office(Some(&import_of(model)))).unwrap();
+    std::fs::write(&imported, l_office::scene(Some(&import_of(model)))).unwrap();
     let (a, b) = (load(&toml).unwrap(), load(&imported).unwrap());
     assert_eq!(a.patches.len(), b.patches.len());
     assert!(mesh(&a) == mesh(&b), "the meshes differ");
@@ -324,7 +299,7 @@ fn what_cannot_be_mapped_is_reported() {
     let path = dir.join("model.hbjson");
     std::fs::write(&path, serde_json::to_string_pretty(&model).unwrap()).unwrap();
     let scene = dir.join("scene.toml");
-    std::fs::write(&scene, l_office(Some(&import_of(&path)))).unwrap();
+    std::fs::write(&scene, l_office::scene(Some(&import_of(&path)))).unwrap();
     let warnings = load(&scene).unwrap().warnings;
     for w in &warnings {
         println!("warning: {w}");

@@ -15,7 +15,11 @@
 //!
 //! Run with `cargo test --test import_grids -- --nocapture` to see the figures.
 
+mod common;
+
 use std::path::{Path, PathBuf};
+
+use common::l_office::{self, root};
 
 use eigenrad_precompute::cli::{self, DaylightArgs, LevelArgs, Readout, SkyInput};
 use eigenrad_precompute::formfactor::FormFactorOptions;
@@ -29,10 +33,6 @@ const SAME_POINTS: f64 = 1e-9;
 /// Through the runtime with every mode kept: f32 storage and arithmetic (tests/grids.rs).
 const RUNTIME_RTOL: f64 = 2e-5;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(
         "eigenrad-import-grids-{}-{name}",
@@ -40,31 +40,6 @@ fn scratch(name: &str) -> PathBuf {
     ));
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-/// The L-shaped office's scene at a coarse mesh and a 2 m work-plane grid, its files found
-/// from anywhere, with its `[[room]]` and window quads replaced by `room` when given (as in
-/// tests/import.rs).
-fn l_office(room: Option<&str>) -> String {
-    let text = std::fs::read_to_string(root().join("examples/l-office/scene.toml")).unwrap();
-    let text = text
-        .replace("max_edge = 0.6", "max_edge = 2.0")
-        .replace(
-            "max_edge = 2.0 }",
-            "max_edge = 2.0, grid = { spacing = 2.0 } }",
-        )
-        .replace(
-            "\"../photometry/",
-            &format!("\"{}/examples/photometry/", root().display()),
-        );
-    match room {
-        None => text,
-        Some(room) => {
-            let start = text.find("[[room]]").unwrap();
-            let end = text.find("# Two 0.4 m square columns").unwrap();
-            format!("{}{room}\n{}", &text[..start], &text[end..])
-        }
-    }
 }
 
 /// The L-office's Honeybee model with `grids` as its sensor grids.
@@ -151,7 +126,7 @@ fn facade() -> Vec<([f64; 3], [f64; 3])> {
 fn an_imported_grid_reads_as_the_toml_grid_and_sensors() {
     let dir = scratch("same");
     let toml = dir.join("toml.toml");
-    std::fs::write(&toml, l_office(None)).unwrap();
+    std::fs::write(&toml, l_office::scene(None)).unwrap();
     let plane: Vec<([f64; 3], [f64; 3])> = load(&toml).unwrap().zones[0]
         .grid
         .as_ref()
@@ -165,7 +140,7 @@ fn an_imported_grid_reads_as_the_toml_grid_and_sensors() {
         {"type": "SensorGrid", "identifier": "facade", "sensors": sensors_json(&facade())},
     ]));
     let path = write_model(&dir, &model);
-    let mut text = l_office(Some(&format!(
+    let mut text = l_office::scene(Some(&format!(
         "[[import]]\nfile = {:?}\n",
         path.display().to_string()
     )));

@@ -93,22 +93,6 @@ fn door_open() -> &'static (Manifest, PathBuf) {
     })
 }
 
-/// The left room's scene with a glazed window in its south wall (y = 0) and a site: the
-/// room has daylight, the right room none of its own.
-fn daylit_left_scene() -> String {
-    left_scene(&DOOR)
-        .replacen(
-            "[materials]\n",
-            &format!("{}\n\n[materials]\nglass = {{ reflectance = 0.0, transmittance = 0.7 }}\n", common::VIENNA),
-            1,
-        )
-        .replace(
-            "openings = [\"lamp_left\", \"door\"]",
-            "openings = [\"lamp_left\", \"door\", \"window\"]",
-        )
-        + "\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n"
-}
-
 /// The two rooms with their door open and daylight through the left room's window, built
 /// with every mode (so that the daylight's patch exitance through the modes is exact too),
 /// both controllers keeping them, and merged.

@@ -10,15 +10,21 @@
 //! - A room whose neighbour returns no light (all black) reads its own channel exactly as
 //!   built alone.
 //! - The diffuse port misses the same one scene by far more.
-//! - One machine or two shards give the same bytes; bad port models are errors naming the
-//!   manifest's line and item.
+//! - A luminaire with photometry lights the other room through the doorway as in the one
+//!   scene.
+//! - One machine or two shards give the same bytes; bad port models, and rooms built with
+//!   other form-factor rules, are errors naming the manifest's line and item; a room with
+//!   daylight is refused naming it (exact ports do not carry daylight).
 
 mod common;
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-use common::two_rooms::{rooms_in_one_scene, two_rooms, PORT};
+use common::two_rooms::{
+    daylit_left_scene, left_luminaire, rooms_in_one_scene, two_rooms, two_rooms_with_luminaire,
+    PORT,
+};
 use eigenrad_precompute::building::{self, Manifest, Part};
 use eigenrad_precompute::formfactor::{self, exchange, outputs, FormFactorOptions, Occluders};
 use eigenrad_precompute::pipeline::BuildOptions;
@@ -95,10 +101,17 @@ fn readings(basis: &[u8], channel: &str) -> Vec<(String, f64)> {
 /// the solve the exact one of the whole system (one dense LU).
 fn one_scene_with_the_hole() -> &'static Vec<(String, String, f64)> {
     static SOLVED: OnceLock<Vec<(String, String, f64)>> = OnceLock::new();
-    SOLVED.get_or_init(|| {
-        let dir = common::scratch("ports-exact-hole");
+    SOLVED.get_or_init(|| solve_with_the_hole("ports-exact-hole", &rooms_in_one_scene()))
+}
+
+/// The readings of the one scene `text` ([`rooms_in_one_scene`] with more in it) solved in
+/// `scratch` as [`one_scene_with_the_hole`] solves it, luminaires with photometry lighting it
+/// with the build's rules (`sources::luminaires`).
+fn solve_with_the_hole(scratch: &str, text: &str) -> Vec<(String, String, f64)> {
+    {
+        let dir = common::scratch(scratch);
         let path = dir.join("both.toml");
-        std::fs::write(&path, rooms_in_one_scene()).expect("scene");
+        std::fs::write(&path, text).expect("scene");
         let mut scene: Scene = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
         // The door quads are the last surfaces, their patches the last patches: cut them off.
         let surfaces = scene.surfaces.len();
@@ -124,7 +137,19 @@ fn one_scene_with_the_hole() -> &'static Vec<(String, String, f64)> {
         let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
         let g = exchange::exchange_areas(ff.matrix, &area);
         let rows = outputs::output_rows(&scene, &g, &area, &occluders, &opts);
-        let lights = sources::surfaces::channel_lights(&scene, &g, &area, &rows);
+        let mut lights = sources::surfaces::channel_lights(&scene, &g, &area, &rows);
+        // The luminaires' direct light alone, by output, as the channel `direct <channel>`.
+        let mut direct_part = Vec::new();
+        if !scene.luminaires.is_empty() {
+            let options = sources::luminaires::LuminaireOptions::default();
+            let direct = sources::luminaires::channel_lights(&scene, &occluders, &options);
+            for (channel, light) in scene.channels.iter().zip(&direct) {
+                for (o, e) in light.output_irradiance[0].iter().enumerate() {
+                    direct_part.push((o, format!("direct {}", channel.name), *e));
+                }
+            }
+            lights = lights.iter().zip(&direct).map(|(s, l)| s.plus(l)).collect();
+        }
         let reflectance = vec![scene.reflectance.iter().map(|r| r[0]).collect()];
         let system = System::new(Arc::new(g), area, reflectance, rows, lights);
         let responses = system.channel_responses().unwrap_or_else(|e| panic!("{e}"));
@@ -152,15 +177,23 @@ fn one_scene_with_the_hole() -> &'static Vec<(String, String, f64)> {
                 out.push((name.clone(), channel.name.clone(), value));
             }
         }
+        for (o, channel, e) in direct_part {
+            out.push((names[o].clone(), channel, e));
+        }
         out
-    })
+    }
 }
 
 /// The one scene's reading `name` of channel `channel` (a neighbour's channel named
 /// `room/channel` in a room's basis is `channel` there).
 fn in_one_scene(name: &str, channel: &str) -> f64 {
+    read_in(one_scene_with_the_hole(), name, channel)
+}
+
+/// The reading `name` of channel `channel` among `solved` (as [`in_one_scene`]).
+fn read_in(solved: &[(String, String, f64)], name: &str, channel: &str) -> f64 {
     let bare = channel.rsplit('/').next().unwrap_or(channel);
-    one_scene_with_the_hole()
+    solved
         .iter()
         .find(|(n, c, _)| n == name && c == bare)
         .map(|(_, _, v)| *v)
@@ -213,6 +246,58 @@ fn built_apart_and_merged_equals_the_two_rooms_as_one_scene_with_the_doorway_ope
             part.exact.seen.len()
         );
     }
+}
+
+/// The light of the left room's luminaire with photometry, straight through the door and
+/// reflected on both sides, merged against the two rooms as one scene with the doorway open
+/// and the same luminaire, whose direct light the build's luminaire code computes over the
+/// whole scene.
+#[test]
+fn a_luminaire_with_photometry_lights_the_other_room_through_the_doorway_as_in_one_scene() {
+    let dir = common::scratch("ports-exact-luminaire");
+    let manifest = Manifest::load(&two_rooms_with_luminaire(&dir, &exact_port()))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let out = dir.join("out");
+    build(&manifest, &[vec![0, 1]], &out);
+    let one = solve_with_the_hole(
+        "ports-exact-luminaire-hole",
+        &(rooms_in_one_scene() + &left_luminaire()),
+    );
+    let mut worst: [f64; 2] = [0.0; 2];
+    let mut direct_share: f64 = 0.0;
+    let mut count = 0;
+    for (side, channel) in [(0, "lum_left"), (1, "left/lum_left")] {
+        let controller = &manifest.controllers[side];
+        let basis = std::fs::read(building::basis_path(&out, &controller.name)).expect("basis");
+        for (name, got) in readings(&basis, channel) {
+            let want = read_in(&one, &name, channel);
+            assert!(
+                want > 0.0,
+                "{}: {name} reads no light of {channel}",
+                controller.name
+            );
+            let error = (got - want).abs() / want;
+            assert!(
+                error <= EXACT_TOLERANCE,
+                "{}: {name} of channel {channel}: merged {got}, one scene {want} (relative {error:.2e})",
+                controller.name
+            );
+            worst[side] = worst[side].max(error);
+            count += 1;
+            if side == 1 {
+                direct_share = direct_share.max(read_in(&one, &name, "direct lum_left") / want);
+            }
+        }
+    }
+    eprintln!(
+        "exact port with a luminaire with photometry against the one scene, {count} readings: largest relative difference {:.2e} (its own room), {:.2e} (through the door); its direct light is up to {:.0} % of a reading in the other room",
+        worst[0],
+        worst[1],
+        100.0 * direct_share
+    );
+    // Light straight from the luminaire through the door is much of what the other room
+    // reads: a merge without it misses the one scene by far more than the tolerance.
+    assert!(direct_share > 0.5, "{direct_share}");
 }
 
 /// The diffuse port's error against the same one scene: the doorway as a diffusing surface
@@ -323,6 +408,89 @@ fn one_machine_and_two_shards_give_the_same_bytes() {
         );
     }
     assert_eq!(manifest.ports[0].model, building::PortModel::Exact);
+}
+
+#[test]
+fn rooms_built_with_other_form_factor_rules_are_refused_naming_the_port() {
+    let dir = common::scratch("ports-exact-rules");
+    let manifest =
+        Manifest::load(&two_rooms(&dir, &exact_port())).unwrap_or_else(|e| panic!("{e}"));
+    let parts = building::parts_dir(&dir.join("out"));
+    std::fs::create_dir_all(&parts).expect("parts folder");
+    let coarse = BuildOptions {
+        form_factors: FormFactorOptions {
+            gauss_order: 3,
+            ..FormFactorOptions::default()
+        },
+        ..BuildOptions::default()
+    };
+    for (room, options) in [(0, BuildOptions::default()), (1, coarse)] {
+        building::build_rooms(&manifest, &[room], &options, &parts)
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+    let e = building::merge(&manifest, &parts, &dir.join("out"), manifest.flash)
+        .expect_err("rooms built by other rules")
+        .to_string();
+    for x in [
+        "building.toml:",
+        "port door",
+        "gauss_order: 3",
+        "same form-factor options",
+    ] {
+        assert!(e.contains(x), "{x:?} not in: {e}");
+    }
+    assert!(!dir.join("out").join("building.json").exists());
+}
+
+#[test]
+fn a_part_built_without_the_exitance_the_modes_need_is_refused_naming_it() {
+    let dir = common::scratch("ports-exact-modes");
+    let path = two_rooms(&dir, &exact_port());
+    let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(manifest.controllers.iter().all(|c| !c.modes));
+    let parts = building::parts_dir(&dir.join("out"));
+    std::fs::create_dir_all(&parts).expect("parts folder");
+    building::build_rooms(&manifest, &[0, 1], &BuildOptions::default(), &parts)
+        .unwrap_or_else(|e| panic!("{e}"));
+    // Without modes the parts keep no patch's exitance: the left controller now asks for them.
+    let text = std::fs::read_to_string(&path).expect("manifest");
+    let drives = "drives = [\"left\"]";
+    assert!(text.contains(drives));
+    std::fs::write(
+        &path,
+        text.replace(drives, &format!("{drives}\nmodes = true")),
+    )
+    .expect("manifest");
+    let with_modes = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let e = building::merge(&with_modes, &parts, &dir.join("out"), with_modes.flash)
+        .expect_err("a part without the patches' exitance")
+        .to_string();
+    for x in [
+        "left.part",
+        "modes of controller left",
+        "build room left again",
+    ] {
+        assert!(e.contains(x), "{x:?} not in: {e}");
+    }
+}
+
+#[test]
+fn a_room_with_daylight_is_refused_naming_it() {
+    let dir = common::scratch("ports-exact-daylit");
+    let path = two_rooms(&dir, &exact_port());
+    std::fs::write(dir.join("left.toml"), daylit_left_scene()).expect("scene");
+    let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let parts = building::parts_dir(&dir.join("out"));
+    std::fs::create_dir_all(&parts).expect("parts folder");
+    building::build_rooms(&manifest, &[0, 1], &BuildOptions::default(), &parts)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let e = building::merge(&manifest, &parts, &dir.join("out"), manifest.flash)
+        .expect_err("daylight through an exact port")
+        .to_string();
+    for x in ["building.toml:", "room left", "daylight", "diffusing ports"] {
+        assert!(e.contains(x), "{x:?} not in: {e}");
+    }
+    assert!(!dir.join("out").join("building.json").exists());
 }
 
 #[test]

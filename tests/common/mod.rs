@@ -6,6 +6,7 @@
 // Each test crate uses its own part of these.
 #![allow(dead_code)]
 
+pub mod l_office;
 pub mod radiance;
 pub mod two_rooms;
 

@@ -177,3 +177,46 @@ pub fn rooms_in_one_scene() -> String {
         corners(&DOOR, false)
     )
 }
+
+/// A downlight with photometry in the left room near the door, aimed down at 45° towards it
+/// (+x), on a channel of its own (`lum_left`): much of its light goes straight through the
+/// door into the right room.
+pub fn left_luminaire() -> String {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/photometry/downlight.ies");
+    format!(
+        "\n[[channel]]\nname = \"lum_left\"\n\n[[luminaire]]\nname = \"downlight\"\nfile = {:?}\nposition = [2.4, 1.5, 2.4]\naim = [1, 0, -1]\nchannel = \"lum_left\"\nmaintenance_factor = 0.8\n",
+        file.to_str().expect("utf-8 path")
+    )
+}
+
+/// [`two_rooms`] with [`left_luminaire`] in the left room, driven by the left controller.
+pub fn two_rooms_with_luminaire(dir: &Path, ports: &str) -> PathBuf {
+    let path = two_rooms(dir, ports);
+    let left = left_scene(&DOOR) + &left_luminaire();
+    std::fs::write(dir.join("left.toml"), left).expect("scene");
+    let text = std::fs::read_to_string(&path).expect("manifest");
+    let drives = "drives = [\"left\"]";
+    assert!(text.contains(drives));
+    std::fs::write(
+        &path,
+        text.replace(drives, "drives = [\"left\", \"lum_left\"]"),
+    )
+    .expect("manifest");
+    path
+}
+
+/// The left room's scene with a glazed window in its south wall (y = 0) and a site: the
+/// room has daylight, the right room none of its own.
+pub fn daylit_left_scene() -> String {
+    left_scene(&DOOR)
+        .replacen(
+            "[materials]\n",
+            &format!("{}\n\n[materials]\nglass = {{ reflectance = 0.0, transmittance = 0.7 }}\n", super::VIENNA),
+            1,
+        )
+        .replace(
+            "openings = [\"lamp_left\", \"door\"]",
+            "openings = [\"lamp_left\", \"door\", \"window\"]",
+        )
+        + "\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n"
+}

@@ -9,14 +9,20 @@ use crate::sun::{sky_state, Moment, SkyError, SkyInput, SkyState};
 
 /// Channels the page drives (the solver controls at most 16 of them).
 pub const CHANNELS: usize = 64;
-/// Sky patches, outputs and modes of the daylight evaluator: Reinhart MF:8 (9217 patches),
-/// 256 sensors and zones, 256 modes (patch exitance).
+/// Sky patches and outputs of the daylight evaluator: Reinhart MF:8 (9217 patches), 256
+/// sensors and zones.
 pub const SKY: usize = 9217;
 pub const OUTPUTS: usize = 256;
-pub const MODES: usize = 256;
+/// Modes of daylight patch exitance: as many as `eigenrad build --tolerance` may keep.
+pub const MODES: usize = 512;
+/// The daylight evaluator's patch-exitance state: the modes' amplitudes and the coefficients
+/// of the sky's first reflection (format 7), whose rank is at most the sky's patches plus the
+/// exterior. A basis that needs more (more than [`MODES`] modes) is refused when opened with
+/// the runtime's capacity error, which the page shows.
+pub const EXITANCE: usize = MODES + SKY + 1;
 
 pub type Channels = ChannelEvaluator<'static, 1, CHANNELS>;
-pub type Daylight = DaylightEvaluator<'static, SKY, OUTPUTS, MODES>;
+pub type Daylight = DaylightEvaluator<'static, SKY, OUTPUTS, EXITANCE>;
 
 /// An opened basis and its evaluators.
 pub struct Session {
@@ -230,5 +236,38 @@ impl Session {
         }
         let power = problem.power(&levels)?;
         Ok((power, verdict.map(|_| ())))
+    }
+}
+
+/// The runtime's hand-built test bases.
+#[cfg(test)]
+#[path = "../../../runtime/tests/common/mod.rs"]
+mod common;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A basis with a first reflection (format 7) opens with its patch exitance, its state
+    /// (modes plus the sky's rank) within [`EXITANCE`]; an evaluator with less room than that
+    /// state is refused with the capacity error naming it, not truncated.
+    #[test]
+    fn daylight_exitance_fits_or_is_refused() {
+        let bytes = common::tiny_daylight_reflection().to_bytes().unwrap();
+        let session = Session::open(Vec::leak(bytes)).unwrap();
+        let basis = session.basis;
+        let state = basis.daylight_exitance_state();
+        assert_eq!(state, basis.mode_count() + 2, "1 mode and rank 2");
+        assert!(state <= EXITANCE);
+        let daylight = session.daylight.as_ref().expect("daylight");
+        assert!(daylight.exitance(0).is_ok());
+        assert_eq!(
+            DaylightEvaluator::<SKY, OUTPUTS, 2>::new(basis).err(),
+            Some(Error::Capacity {
+                what: "modes and first reflection",
+                needed: state,
+                capacity: 2,
+            })
+        );
     }
 }

@@ -157,6 +157,8 @@ fn build_room(
             })
         })
         .collect();
+    // Every patch's exitance for light entering through an exact port serves the modes only.
+    let modes = manifest.controllers.iter().any(|c| c.room == r && c.modes);
     // The merge folds a room's first reflection into its modes (its daylight nodes become
     // its neighbours' too, `basis::fold_daylight_reflection`): kept at full rank, the fold
     // loses nothing of the sky's.
@@ -171,7 +173,7 @@ fn build_room(
         |scene, occluders, system, daylight| {
             Ok((
                 port::respond(scene, occluders, system, daylight, &openings)?,
-                port::exact::respond(scene, system, &exact)?,
+                port::exact::respond(scene, system, &exact, &options.form_factors, modes)?,
             ))
         },
     )

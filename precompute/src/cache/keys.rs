@@ -43,6 +43,7 @@ pub fn key(patches: &[Patch], faces: &[Face], opts: &FormFactorOptions) -> [u8; 
         visibility_depth,
         visibility_cell_share,
         occluded_order,
+        visibility,
         operator: _,
     } = opts;
     let mut h = Sha256::new();
@@ -57,6 +58,11 @@ pub fn key(patches: &[Patch], faces: &[Face], opts: &FormFactorOptions) -> [u8; 
     h.update(u64::from(*visibility_depth).to_le_bytes());
     h.update(quadrature_tolerance.to_bits().to_le_bytes());
     h.update(visibility_cell_share.to_bits().to_le_bytes());
+    // Hashed only when sampled, so that the keys of exact form factors are unchanged.
+    if let formfactor::Visibility::Sampled { per_side } = visibility {
+        h.update(b"sampled visibility\0");
+        h.update(per_side.to_le_bytes());
+    }
     hash_patches(&mut h, patches);
     hash_usize(&mut h, faces.len());
     for f in faces {

@@ -21,7 +21,9 @@
 //!   out of j, and the contour integral runs over the visible pieces (module `shadow`). Only when
 //!   a shaft holds more blockers, or the visible part more pieces, than fixed capacities does it
 //!   fall back to a visible fraction estimated by rays refined at silhouettes (module
-//!   `visibility`). Pairs that no blocker can cut cost no visibility work at all.
+//!   `visibility`). Pairs that no blocker can cut cost no visibility work at all. On request
+//!   ([`Visibility::Sampled`], module `sampled`) a pair of patches that do not come close takes
+//!   its unoccluded form factor times a visible fraction from a fixed grid of rays instead.
 //!
 //! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `docs/math.md`).
 
@@ -38,6 +40,7 @@ pub mod outputs;
 mod pair;
 mod pairs;
 mod quadrature;
+mod sampled;
 mod shadow;
 #[cfg(test)]
 mod tests;
@@ -49,6 +52,7 @@ pub use hierarchical::Hierarchical;
 pub(crate) use kernel::point_to_polygon;
 pub use operator::{DenseF32, FormFactorOperator, OperatorChoice, Storage};
 pub use pairs::pair_exchanges;
+pub use sampled::{Visibility, MAX_PER_SIDE};
 // The patch rules, for the direct light of sources that are not patches (`crate::sources`).
 pub use health::{
     CavityClosure, FormFactorHealth, PairDisagreement, RowMiss, CAVITY_TOLERANCE, CLOSED_TOLERANCE,
@@ -100,6 +104,12 @@ pub struct FormFactorOptions {
     /// visibility is smooth over the source even where each term jumps at a shadow edge, so the
     /// row still sums to 1. Default 5.
     pub occluded_order: usize,
+    /// How the visibility of a pair of patches that a blocker may cut is found
+    /// (`--visibility`): exact shadows (the default) or a fixed grid of rays between the two
+    /// patches ([`Visibility::Sampled`]; faster on scenes with many blockers, less accurate:
+    /// `docs/performance.md`, "Sampled visibility"). Point sensors and grid points keep exact
+    /// visibility.
+    pub visibility: Visibility,
     /// How the patch form factors are stored while the room is solved (`--operator`):
     /// f64, f32, or by size (the default). It does not enter the pair integrals.
     pub operator: OperatorChoice,
@@ -116,6 +126,7 @@ impl Default for FormFactorOptions {
             visibility_depth: 4,
             visibility_cell_share: 1e-3,
             occluded_order: 5,
+            visibility: Visibility::Exact,
             operator: OperatorChoice::Auto,
         }
     }

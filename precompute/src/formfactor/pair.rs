@@ -4,7 +4,7 @@
 use super::bvh::Shaft;
 use super::kernel::{self, Cone};
 use super::quadrature::{self, SampleTable};
-use super::{near, shadow, visibility, FormFactorOptions, Occluders};
+use super::{near, sampled, shadow, visibility, FormFactorOptions, Occluders, Visibility};
 use crate::geometry::{Patch, Vec3};
 
 /// Scale in the error model of the outer quadrature (see
@@ -262,25 +262,6 @@ impl Context<'_> {
             return 0.0;
         }
         let touches = self.touches(src, sources.bounds[i], j);
-        let mut order = self.source_order(sources.bounds[i], j, touches);
-        if occluded && order <= self.opts.gauss_order {
-            // One rule for every pair a blocker may cut (touching pairs keep their own).
-            order = self.opts.occluded_order;
-        }
-        let mut sum = 0.0;
-        let mut add = |point: Vec3, weight: f64| {
-            let viewer = Viewer {
-                point,
-                normal: src.normal,
-                cone: None,
-            };
-            sum += weight
-                * if occluded {
-                    self.visible_kernel(viewer, j, &shaft, ignore)
-                } else {
-                    self.kernel(viewer, j)
-                };
-        };
         let cut = any_in_front(sv, -tgt.normal, t0, tol) && src.area > 0.0;
         // The target's plane cuts the source: only the part in front sees the target, and the
         // integrand has a kink on the cut, so integrate over that part alone.
@@ -303,6 +284,37 @@ impl Context<'_> {
                     < 2.0 * GAP_RATIO * sources.bounds[i].radius
                 && near::outline_distance(region, seen.corners())
                     < GAP_RATIO * near::diameter(region);
+        // Sampled visibility: the unoccluded integral times one visible fraction for the pair
+        // (module `sampled`); close pairs keep the shadows, whose edges they resolve.
+        let fraction = match self.opts.visibility {
+            Visibility::Sampled { per_side } if occluded && !close => {
+                sampled::visible_fraction(self.occluders, &shaft, src, tgt, per_side, ignore)
+            }
+            _ => None,
+        };
+        if fraction == Some(0.0) {
+            return 0.0;
+        }
+        let shadows = occluded && fraction.is_none();
+        let mut order = self.source_order(sources.bounds[i], j, touches);
+        if shadows && order <= self.opts.gauss_order {
+            // One rule for every pair a blocker may cut (touching pairs keep their own).
+            order = self.opts.occluded_order;
+        }
+        let mut sum = 0.0;
+        let mut add = |point: Vec3, weight: f64| {
+            let viewer = Viewer {
+                point,
+                normal: src.normal,
+                cone: None,
+            };
+            sum += weight
+                * if shadows {
+                    self.visible_kernel(viewer, j, &shaft, ignore)
+                } else {
+                    self.kernel(viewer, j)
+                };
+        };
         if src.area > 0.0 && close {
             // A target's width: twice its area over its diameter (√2 × the side of a square).
             let width = 2.0 * tgt.area / near::diameter(tv).max(f64::MIN_POSITIVE);
@@ -321,7 +333,7 @@ impl Context<'_> {
                 add(s.point, s.weight);
             }
         }
-        sum
+        sum * fraction.unwrap_or(1.0)
     }
 
     /// The Gauss–Legendre rule of `order` on [0, 1] (clamped to the orders prepared).

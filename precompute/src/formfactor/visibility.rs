@@ -31,7 +31,7 @@ impl Param {
     }
 
     /// Point at parameters (u, v), metres.
-    fn point(&self, u: f64, v: f64) -> Vec3 {
+    pub(super) fn point(&self, u: f64, v: f64) -> Vec3 {
         match *self {
             Param::Quad(c) => {
                 c[0] * ((1.0 - u) * (1.0 - v))
@@ -44,7 +44,7 @@ impl Param {
     }
 
     /// Area density |∂p/∂u × ∂p/∂v| at (u, v), m².
-    fn jacobian(&self, u: f64, v: f64) -> f64 {
+    pub(super) fn jacobian(&self, u: f64, v: f64) -> f64 {
         match *self {
             Param::Quad(c) => {
                 let du = (c[1] - c[0]) * (1.0 - v) + (c[2] - c[3]) * v;

@@ -11,6 +11,14 @@ use crate::sky::direct::{DirectSun, DirectSunState};
 use crate::sky::sun_first::SunFirst;
 use crate::sky::sun_grid::NodeWeight;
 
+/// `(0.0..=MAX_EXITANCE).contains(&x)` on the bits, for the sky's luminances of every
+/// update: a non-negative `f32` (NaN and +∞ included) orders as its bits do, and a negative
+/// one has the sign bit, so larger bits than any of them, −0 aside (valid, as `0.0 <= -0.0`).
+#[inline]
+fn valid_bits(x: f32) -> bool {
+    x.to_bits() <= MAX_EXITANCE.to_bits() || x == 0.0
+}
+
 /// The sun of a moment, as a [`DaylightEvaluator`] takes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sun {
@@ -180,7 +188,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         }
         // NaN and the infinities fall outside the (finite) range: one test covers them.
         let valid = |x: f32| (0.0..=MAX_EXITANCE).contains(&x);
-        if !sky_luminance.iter().all(|&x| valid(x)) {
+        if !sky_luminance.iter().all(|&x| valid_bits(x)) {
             return Err(Error::InvalidInput {
                 what: "sky_luminance",
             });
@@ -442,4 +450,40 @@ fn per_power(
             (column, weight)
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The test on the bits agrees with the range's on zeros of either sign, the bounds and
+    /// their neighbours, subnormals, the infinities and NaNs of either sign.
+    #[test]
+    fn luminance_test_on_bits_matches_the_range() {
+        let max = MAX_EXITANCE;
+        let above = f32::from_bits(max.to_bits() + 1);
+        let below = f32::from_bits(max.to_bits() - 1);
+        let values = [
+            0.0,
+            -0.0,
+            f32::from_bits(1),
+            -f32::from_bits(1),
+            f32::MIN_POSITIVE,
+            1.0,
+            -1.0,
+            below,
+            max,
+            above,
+            -max,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+        ];
+        for x in values {
+            let range = (0.0..=max).contains(&x);
+            assert_eq!(valid_bits(x), range, "{x:e} ({:#010x})", x.to_bits());
+        }
+    }
 }

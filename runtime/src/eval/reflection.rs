@@ -5,7 +5,7 @@
 //!
 //! A sky update forms the `r` coefficients of the sky's first reflection (`r × (S_k + 1)`
 //! products) and the `p` mode amplitudes from them and the four sun nodes (`p × (r + 4)`),
-//! both four rows at a time ([`super::weights`]), and finds the four nodes' runs of the
+//! both eight rows at a time ([`super::weights`]), and finds the four nodes' runs of the
 //! lists from first entries kept when the evaluator is made ([`SunLists`]); a patch read is its row of the sky's matrix (`r`), the four nodes' entries for it (a
 //! bisection each) and its mode row (`p`).
 
@@ -110,14 +110,20 @@ pub(super) fn update(
     let modes = basis.tables.daylight_modes;
     let columns = rank + sun_nodes;
     dots(modes, columns, coefficients, amplitudes);
-    // Node by node down the rows: each amplitude still adds its nodes' terms in their order.
+    // Row by row, each amplitude adds its nodes' terms in their order (the nodes that light
+    // nothing left out first).
+    let mut sun = [(0usize, 0.0f32); 4];
+    let mut lit = 0;
     for &(node, weight) in &nodes {
-        let Some(node) = node else { continue };
-        let at = 4 * (rank + node);
-        for (a, row) in amplitudes.iter_mut().zip(rows(modes, columns)) {
-            if let Some(&[b0, b1, b2, b3]) = row.get(at..at + 4) {
-                *a += f32::from_le_bytes([b0, b1, b2, b3]) * weight;
-            }
+        if let (Some(node), Some(slot)) = (node, sun.get_mut(lit)) {
+            *slot = (rank + node, weight);
+            lit += 1;
+        }
+    }
+    let sun = sun.get(..lit).unwrap_or(&[]);
+    for (a, row) in amplitudes.iter_mut().zip(rows(modes, columns)) {
+        for &(column, weight) in sun {
+            *a += f32_at(row, column) * weight;
         }
     }
     let counts = basis.tables.sun_reflection_counts;

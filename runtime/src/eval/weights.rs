@@ -1,13 +1,24 @@
 //! The sky state of a moment as the daylight tables are weighed by it, and the one loop every
-//! such table is summed with: rows of little-endian `f32` values dotted with a vector four
-//! rows at a time, so that each of the vector's values is loaded once for four products.
+//! such table is summed with: rows of little-endian `f32` values dotted with a vector eight
+//! rows at a time (then four, two and one), so that each of the vector's values is loaded
+//! once for up to eight products.
 //!
 //! The loop serves every product of a sky update: the outputs' rows (`O × D`), the sky's
 //! first-reflection coefficients (`r × (S_k + 1)`) and the modes' amplitudes (`p × r`).
 //! Each row's sum runs in the order of a plain dot product (`Iterator::sum`, from −0), so
-//! that four rows at a time and one at a time agree to the bit.
+//! that any number of rows at a time and one at a time agree to the bit.
+//!
+//! The kernels that sum several rows are functions of their own, never inlined: inlined,
+//! the optimiser sees that the rows lie a stride apart in one table and addresses them all
+//! from one pointer, an add a row more in the inner loop (38 instructions per eight
+//! products on the Cortex-M4F against 29). Taken as separate slices, each row is read
+//! through its own post-incremented pointer: a word load (the basis is read in place,
+//! unaligned, so not one `VLDR`), a move to the FPU and a multiply-add a product, the
+//! vector's load and the loop's count shared by the rows.
 
-use crate::storage::{dot_f32, f32_at};
+#[cfg(test)]
+use crate::storage::dot_f32;
+use crate::storage::f32_at;
 
 /// A sun node's column among the daylight nodes when it has none (it lights nothing).
 pub(super) const NO_COLUMN: u32 = u32::MAX;
@@ -31,7 +42,9 @@ pub(super) struct Weights<'s> {
 }
 
 impl Weights<'_> {
-    /// The exterior's and the sun's terms added to `sky`, the sky part of row `row`.
+    /// The exterior's and the sun's terms added to `sky`, the sky part of row `row`: what
+    /// [`table`](Self::table) adds, one term at a time.
+    #[cfg(test)]
     fn finish(&self, row: &[u8], sky: f32) -> f32 {
         let mut sum = sky + f32_at(row, self.sky.len()) * self.exterior;
         for &(column, weight) in self.sun {
@@ -46,60 +59,142 @@ impl Weights<'_> {
     /// row): `Σ_j row_j sky_j` in order, then the exterior's and the sun's terms.
     pub(super) fn table(&self, table: &[u8], columns: usize, out: &mut [f32]) {
         dots(table, columns, self.sky, out);
+        let sun = lit(self.sun, 0);
+        let exterior = self.sky.len();
         for (slot, row) in out.iter_mut().zip(rows(table, columns)) {
-            *slot = self.finish(row, *slot);
+            let mut sum = *slot + f32_at(row, exterior) * self.exterior;
+            for &(column, weight) in sun.as_slice() {
+                sum += f32_at(row, column) * weight;
+            }
+            *slot = sum;
         }
     }
 }
 
-/// The rows of `table`, each of `columns` little-endian `f32` values, then empty rows: a
-/// table shorter than its rows (never, in a basis that decoded) reads as zeros.
-pub(super) fn rows(table: &[u8], columns: usize) -> impl Iterator<Item = &[u8]> {
+/// The nodes of `sun` that have a column, in their order, each column plus `offset`: the
+/// others add nothing, so that the rows' loops need not test them.
+pub(super) fn lit(sun: &[SunWeight; 4], offset: usize) -> heapless::Vec<(usize, f32), 4> {
+    let mut out = heapless::Vec::new();
+    for &(column, weight) in sun.iter().filter(|s| s.0 != NO_COLUMN) {
+        // At most four, as many as `sun` holds.
+        let _ = out.push((column as usize + offset, weight));
+    }
+    out
+}
+
+/// The rows of `table`, each of `columns` little-endian `f32` values (none for a table
+/// without columns).
+pub(super) fn rows(table: &[u8], columns: usize) -> core::slice::ChunksExact<'_, u8> {
     // `chunks_exact` needs a positive size; a table without columns has no bytes.
-    let stride = (4 * columns).max(1);
-    table
-        .chunks_exact(stride)
-        .chain(core::iter::repeat(&[][..]))
+    table.chunks_exact((4 * columns).max(1))
 }
 
 /// `Σ_j row_j x_j` of every row of `table` (rows of `columns` little-endian `f32` values, at
 /// least `x.len()` of them) into `out` (one slot per row), each summed in order from −0 as
-/// [`dot_f32`] sums it: four rows at a time share each value of `x` they read.
+/// `dot_f32` sums it: eight rows at a time share each value of `x` they read. A table
+/// shorter than `out` reads as empty rows past its own (never, in a basis that decoded).
 pub(super) fn dots(table: &[u8], columns: usize, x: &[f32], out: &mut [f32]) {
     let mut rows = rows(table, columns);
-    let mut next = || rows.next().unwrap_or(&[]);
-    let mut groups = out.chunks_exact_mut(4);
-    for group in &mut groups {
-        let four_rows = [next(), next(), next(), next()];
-        match four(four_rows, x) {
-            Some(sums) => group.copy_from_slice(&sums),
-            None => {
-                for (slot, row) in group.iter_mut().zip(four_rows) {
-                    *slot = dot_f32(row, x);
-                }
-            }
+    let n = 4 * x.len();
+    // Every row holds `x.len()` values (always, in a basis that decoded): each row's first
+    // `n` bytes are then cut without a test per row that the kernels would need.
+    if columns < x.len() || rows.len() < out.len() {
+        for slot in out.iter_mut() {
+            let row = rows.next().and_then(|row| row.get(..n)).unwrap_or(&[]);
+            *slot = one(row.as_chunks::<4>().0, x);
         }
+        return;
     }
-    for slot in groups.into_remainder() {
-        *slot = dot_f32(next(), x);
+    let mut next = || {
+        let row = rows.next().and_then(|row| row.get(..n)).unwrap_or(&[]);
+        row.as_chunks::<4>().0
+    };
+    let mut eights = out.chunks_exact_mut(8);
+    for group in &mut eights {
+        let first = [next(), next(), next(), next()];
+        let second = [next(), next(), next(), next()];
+        group.copy_from_slice(&eight(first, second, x));
+    }
+    let rest = eights.into_remainder();
+    let mut fours = rest.chunks_exact_mut(4);
+    for group in &mut fours {
+        group.copy_from_slice(&four([next(), next(), next(), next()], x));
+    }
+    let rest = fours.into_remainder();
+    let mut twos = rest.chunks_exact_mut(2);
+    for group in &mut twos {
+        group.copy_from_slice(&two(next(), next(), x));
+    }
+    for slot in twos.into_remainder() {
+        *slot = one(next(), x);
     }
 }
 
-/// The dot products of four rows with `x`, each summed in order from −0 (as
-/// `Iterator::sum`), or `None` when a row is shorter than `x` (never, in a basis that
-/// decoded).
-fn four(rows: [&[u8]; 4], x: &[f32]) -> Option<[f32; 4]> {
-    let n = x.len() * 4;
-    let [a, b, c, d] = rows.map(|r| r.get(..n).map(|r| r.as_chunks::<4>().0));
-    let (a, b, c, d) = (a?, b?, c?, d?);
-    let (mut s0, mut s1, mut s2, mut s3) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
-    for ((((&l, x0), x1), x2), x3) in x.iter().zip(a).zip(b).zip(c).zip(d) {
-        s0 += f32::from_le_bytes(*x0) * l;
-        s1 += f32::from_le_bytes(*x1) * l;
-        s2 += f32::from_le_bytes(*x2) * l;
-        s3 += f32::from_le_bytes(*x3) * l;
+/// As [`eight`], one row.
+fn one(row: &[[u8; 4]], x: &[f32]) -> f32 {
+    row.iter()
+        .zip(x)
+        .fold(-0.0f32, |s, (v, &l)| s + value(v) * l)
+}
+
+/// The value of a 4-byte chunk.
+#[inline]
+fn value(bytes: &[u8; 4]) -> f32 {
+    f32::from_le_bytes(*bytes)
+}
+
+/// The dot products of eight rows (each at least `x.len()` values) with `x`, each summed in
+/// order from −0 (as `Iterator::sum`).
+#[inline(never)]
+fn eight(first: [&[[u8; 4]]; 4], second: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 8] {
+    let ([a, b, c, d], [e, f, g, h]) = (first, second);
+    let mut s = [-0.0f32; 8];
+    let [s0, s1, s2, s3, s4, s5, s6, s7] = &mut s;
+    let columns = x
+        .iter()
+        .zip(a)
+        .zip(b)
+        .zip(c)
+        .zip(d)
+        .zip(e)
+        .zip(f)
+        .zip(g)
+        .zip(h);
+    for ((((((((&l, va), vb), vc), vd), ve), vf), vg), vh) in columns {
+        *s0 += value(va) * l;
+        *s1 += value(vb) * l;
+        *s2 += value(vc) * l;
+        *s3 += value(vd) * l;
+        *s4 += value(ve) * l;
+        *s5 += value(vf) * l;
+        *s6 += value(vg) * l;
+        *s7 += value(vh) * l;
     }
-    Some([s0, s1, s2, s3])
+    s
+}
+
+/// As [`eight`], four rows.
+#[inline(never)]
+fn four([a, b, c, d]: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 4] {
+    let (mut s0, mut s1, mut s2, mut s3) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
+    for ((((&l, va), vb), vc), vd) in x.iter().zip(a).zip(b).zip(c).zip(d) {
+        s0 += value(va) * l;
+        s1 += value(vb) * l;
+        s2 += value(vc) * l;
+        s3 += value(vd) * l;
+    }
+    [s0, s1, s2, s3]
+}
+
+/// As [`eight`], two rows.
+#[inline(never)]
+fn two(a: &[[u8; 4]], b: &[[u8; 4]], x: &[f32]) -> [f32; 2] {
+    let (mut s0, mut s1) = (-0.0f32, -0.0f32);
+    for ((&l, va), vb) in x.iter().zip(a).zip(b) {
+        s0 += value(va) * l;
+        s1 += value(vb) * l;
+    }
+    [s0, s1]
 }
 
 #[cfg(test)]
@@ -108,11 +203,14 @@ mod tests {
     use super::*;
     use crate::storage::f32_row;
 
+    /// The most rows a test table has: two groups of eight, then four, two and one.
+    const ROWS: usize = 23;
+
     /// A table of `rows` rows of `columns` little-endian `f32` values from a simple
     /// generator: mixed signs, magnitudes and exact zeros, and a row of zeros (the sign of a
     /// zero sum).
-    fn table(rows: usize, columns: usize, seed: u32) -> ([u8; 4 * 9 * 12], usize) {
-        let mut bytes = [0u8; 4 * 9 * 12];
+    fn table(rows: usize, columns: usize, seed: u32) -> ([u8; 4 * ROWS * 12], usize) {
+        let mut bytes = [0u8; 4 * ROWS * 12];
         let mut x = seed.wrapping_mul(2_654_435_761) | 1;
         for r in 0..rows {
             for c in 0..columns {
@@ -131,13 +229,14 @@ mod tests {
         (bytes, rows * columns * 4)
     }
 
-    /// Four rows at a time give what a plain dot product of each row gives, to the bit, for every row count
-    /// (whole groups and remainders) and with a sun node or none.
+    /// Eight, four and two rows at a time give what a plain dot product of each row and its
+    /// terms one after the other give, to the bit, for every row count (whole groups and
+    /// every remainder) and with a sun node or none.
     #[test]
     fn grouped_rows_match_row_by_row() {
         let sky = [3.5f32, 0.0, 1.0e3, 2.25e-3, 7.0, 11.0, 0.5];
         let columns = sky.len() + 1 + 4;
-        for rows in 0..=9 {
+        for rows in 0..=ROWS {
             for (seed, sun) in [
                 (1u32, NO_SUN),
                 (2, [(8, 0.25), (9, 0.75), (NO_COLUMN, 0.0), (11, 1.5e4)]),
@@ -148,7 +247,7 @@ mod tests {
                     exterior: 1.25e3,
                     sun: &sun,
                 };
-                let mut grouped = [f32::NAN; 9];
+                let mut grouped = [f32::NAN; ROWS];
                 weights.table(&bytes[..len], columns, &mut grouped[..rows]);
                 for (r, g) in grouped[..rows].iter().enumerate() {
                     let row = f32_row(&bytes[..len], r, columns);
@@ -165,9 +264,9 @@ mod tests {
     fn grouped_dots_over_a_prefix_match_dot_f32() {
         let x = [0.5f32, -2.0, 1.0e-3, 6.0];
         let columns = 11;
-        for rows in 0..=9 {
+        for rows in 0..=ROWS {
             let (bytes, len) = table(rows, columns, 7 + rows as u32);
-            let mut grouped = [f32::NAN; 9];
+            let mut grouped = [f32::NAN; ROWS];
             dots(&bytes[..len], columns, &x, &mut grouped[..rows]);
             for (r, g) in grouped[..rows].iter().enumerate() {
                 let one = dot_f32(f32_row(&bytes[..len], r, columns), &x);

@@ -11,6 +11,8 @@
 //! - `eigenrad-bench eigen SCENE...`: dense against partial eigensolve on the same matrix.
 //! - `eigenrad-bench compress SCENE...`: the hierarchical form-factor operator against a dense
 //!   one: memory, form-factor time, every channel's readings, the strongest eigenvalues.
+//! - `eigenrad-bench rays SCENE... [--points 2,3,4]`: sampled visibility against the exact
+//!   shadows: CPU time, and how far row sums, products and every channel's readings move.
 //! - `eigenrad-bench sight SCENE...`: the hierarchical form factors without and with the
 //!   scene's blocks as solids: CPU time, entries read, blocks, and how far the products move.
 //! - `eigenrad-bench daylight SCENE...`: the room's response to the sky (Tregenza, Reinhart
@@ -24,6 +26,7 @@ mod building;
 mod compress;
 mod daylight;
 mod eigen;
+mod rays;
 mod scale;
 mod sight;
 mod update;
@@ -94,6 +97,18 @@ enum Command {
         /// Scene files.
         scenes: Vec<PathBuf>,
     },
+    /// Sampled visibility against the exact shadows on each scene: CPU time, and how far the
+    /// row sums, products and every channel's readings move.
+    Rays {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+        /// How the form-factor operator is stored.
+        #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
+        operator: OperatorChoice,
+        /// Points per side of the sampled grids, one run each (comma-separated).
+        #[arg(long, value_delimiter = ',', default_value = "2,3,4")]
+        points: Vec<u32>,
+    },
     /// A building's rooms built one after the other, then all at once: wall times, the
     /// speed-up, and each controller's basis size.
     Building {
@@ -132,6 +147,14 @@ fn main() -> Result<()> {
         Command::Sight { scenes } => {
             machine();
             sight::run(&scenes)?;
+        }
+        Command::Rays {
+            scenes,
+            operator,
+            points,
+        } => {
+            machine();
+            rays::run(&scenes, operator, &points)?;
         }
         Command::Building { manifest } => {
             machine();

@@ -45,7 +45,8 @@ pub fn grids_csv(r: &Readout) -> String {
     s
 }
 
-/// Two lines per grid: its layout, then its figures (`unit`: lux or W/m²).
+/// Two lines per grid: its layout (the standard's for a work plane or task area, the file's
+/// for an imported grid, so not labelled), then its EN 12464-1 figures (`unit`: lux or W/m²).
 pub(in crate::cli) fn write_grids(s: &mut String, grids: &[GridReadout], unit: &str) {
     let fmt = |v: &[f64]| v.iter().map(|&x| fixed(x, 4)).collect::<Vec<_>>().join(" ");
     let layout = |p: &PieceLayout| {
@@ -62,12 +63,12 @@ pub(in crate::cli) fn write_grids(s: &mut String, grids: &[GridReadout], unit: &
     for g in grids {
         match &g.pieces[..] {
             [one] => {
-                let _ = writeln!(s, "grid   {:<20} {} (EN 12464-1)", g.zone, layout(one));
+                let _ = writeln!(s, "grid   {:<20} {}", g.zone, layout(one));
             }
             pieces => {
                 let _ = writeln!(
                     s,
-                    "grid   {:<20} {} points in {} pieces (EN 12464-1)",
+                    "grid   {:<20} {} points in {} pieces",
                     g.zone,
                     g.points.len(),
                     pieces.len()
@@ -86,7 +87,7 @@ pub(in crate::cli) fn write_grids(s: &mut String, grids: &[GridReadout], unit: &
         }
         let _ = writeln!(
             s,
-            "       E_avg {} {unit}, E_min {} {unit}, E_max {} {unit}, U_o {}",
+            "       E_avg {} {unit}, E_min {} {unit}, E_max {} {unit}, U_o {} (EN 12464-1)",
             fmt(&g.average),
             fmt(&g.minimum),
             fmt(&g.maximum),

@@ -18,7 +18,7 @@
 mod aca;
 mod stored;
 #[cfg(test)]
-mod tests;
+pub(in crate::formfactor) mod tests;
 mod tree;
 
 use std::ops::Range;

@@ -82,7 +82,7 @@ fn compressed_matches_dense_in_a_furnished_room() {
 /// columns from floor to ceiling, about 0.9 m a patch, so that most pairs have several
 /// blockers between them (as on `examples/scaling/open-plan-*.toml`).
 /// Its desks and columns are closed boxes, returned as solids too.
-fn open_plan_in_small() -> (Vec<Patch>, Vec<Solid>) {
+pub(in crate::formfactor) fn open_plan_in_small() -> (Vec<Patch>, Vec<Solid>) {
     let mut patches = meshed_box(v(0.0, 0.0, 0.0), v(12.0, 6.0, 2.7), 0.9, true, 0);
     let mut solids = Vec::new();
     for row in 0..2 {

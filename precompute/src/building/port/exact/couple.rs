@@ -13,7 +13,6 @@ use crate::building::error::BuildingError;
 use crate::building::manifest::{Manifest, PortModel};
 use crate::building::part::{self, Part};
 use crate::building::port::{foreign_channel, Coupled};
-use crate::formfactor::FormFactorOptions;
 use crate::scene::Scene;
 
 /// Couples the rooms' `parts` (in the manifest's order of rooms) through the manifest's
@@ -96,15 +95,26 @@ pub fn couple(
             message: format!("{what}: exact ports do not carry it yet; join this room through diffusing ports (leave out `model = \"exact\"`)"),
         }
         };
-        if !scene.luminaires.is_empty() {
-            return Err(refuse("it has luminaires with photometry, whose direct light through an exact port's opening is not computed"));
-        }
         if scene.site.is_some() && !scene.windows.is_empty() {
             return Err(refuse(
                 "it has daylight, whose nodes an exact port does not couple",
             ));
         }
         check_shapes(&scene, part).map_err(|m| part_error(r, m))?;
+        if let Some(c) = manifest
+            .controllers
+            .iter()
+            .find(|c| c.room == r && c.modes)
+            .filter(|_| part.exact.exitance.is_empty())
+        {
+            return Err(part_error(
+                r,
+                format!(
+                    "built without the patches' exitance for light entering through its exact ports, which the modes of controller {} need: build room {} again",
+                    c.name, part.room
+                ),
+            ));
+        }
         scenes.push(Some(scene));
     }
     let bands = parts[manifest.ports[ports[0]].rooms[0]].tables.bands;
@@ -123,11 +133,23 @@ pub fn couple(
             }
         }
     }
-    // The cross terms of each port, from its rooms' scenes.
-    let opts = FormFactorOptions::default();
+    // The cross terms of each port, from its rooms' scenes, by its rooms' rules.
     let mut terms: Vec<Cross> = Vec::with_capacity(ports.len());
     for &p in &ports {
         let port = &manifest.ports[p];
+        let [a, b] = port.rooms;
+        let rules = &parts[a].exact.rules;
+        if *rules != parts[b].exact.rules {
+            return Err(BuildingError::Manifest {
+                at: port.at.clone(),
+                item: format!("port {}", port.name),
+                message: format!(
+                    "joins room {} (its form factors by {rules:?}) to room {} (by {:?}): the light crossing an exact port is integrated as in one room, so build both rooms with the same form-factor options",
+                    parts[a].room, parts[b].room, parts[b].exact.rules
+                ),
+            });
+        }
+        let opts = rules.options();
         let mut sides = Vec::with_capacity(2);
         for (side, r) in port.rooms.into_iter().enumerate() {
             let scene = scenes[r]
@@ -169,6 +191,32 @@ pub fn couple(
         })
         .collect();
     let sources: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
+    // The direct light of the luminaires with photometry of each room in the rooms its ports
+    // join it to, through the openings: `lit[r]` on room r's seen patches (seen × sources)
+    // and at its outputs (outputs × sources), `None` where no luminaire reaches it.
+    let mut lit: Vec<Option<(Mat<f64>, Mat<f64>)>> = vec![None; rooms];
+    for (k, &p) in ports.iter().enumerate() {
+        let port = &manifest.ports[p];
+        for (side, direct) in terms[k].direct.iter().enumerate() {
+            let Some(direct) = direct else { continue };
+            let (from, r) = (port.rooms[side], port.rooms[1 - side]);
+            let (seen, read) = lit[r].get_or_insert_with(|| {
+                (
+                    Mat::zeros(parts[r].exact.seen.len(), sources),
+                    Mat::zeros(outputs(&parts[r].tables), sources),
+                )
+            });
+            for (c, (on_seen, at_outputs)) in direct.seen.iter().zip(&direct.outputs).enumerate() {
+                let g = first_channel[from] + c;
+                for (a, e) in on_seen.iter().enumerate() {
+                    seen[(a, g)] += port.transmittance * e;
+                }
+                for (o, e) in at_outputs.iter().enumerate() {
+                    read[(o, g)] += port.transmittance * e;
+                }
+            }
+        }
+    }
     // `coupling(k, b, r)`: irradiance arriving at room r's seen patch a from the other room
     // of port k per unit exitance of its seen patch v, `τ G_av / A_a`, as a matrix.
     let coupling = |k: usize, r: usize| -> Mat<f64> {
@@ -198,12 +246,28 @@ pub fn couple(
                 }
             }
         }
+        // `H_r[v][i]`: the exitance of room r's seen patch v for irradiance 1 at its seen patch i.
+        let response = |r: usize| -> Mat<f64> {
+            let x = &parts[r].exact;
+            Mat::from_fn(x.seen.len(), x.seen.len(), |v, i| x.seen_exitance[b][i][v])
+        };
+        // Light arriving straight from another room's luminaires: `H_r E_d` more in `a_r`.
+        for (r, lit) in lit.iter().enumerate() {
+            if let Some((on_seen, _)) = lit {
+                let add = response(r) * on_seen;
+                for v in 0..add.nrows() {
+                    for g in 0..sources {
+                        rhs[(offset[r] + v, g)] += add[(v, g)];
+                    }
+                }
+            }
+        }
         for (k, &p) in ports.iter().enumerate() {
             for r in manifest.ports[p].rooms {
                 let other = manifest.ports[p].rooms[usize::from(manifest.ports[p].rooms[0] == r)];
                 let x = &parts[r].exact;
-                // `m_r − H_rᵀ C m_other = a_r`, `H_r[i][v]` the exitance of v for irradiance at i.
-                let h = Mat::from_fn(x.seen.len(), x.seen.len(), |v, i| x.seen_exitance[b][i][v]);
+                // `m_r − H_r C m_other = a_r`.
+                let h = response(r);
                 let block = h.as_ref() * coupling(k, r).as_ref();
                 for v in 0..x.seen.len() {
                     for w in 0..parts[other].exact.seen.len() {
@@ -215,7 +279,11 @@ pub fn couple(
         let m = system.partial_piv_lu().solve(rhs.as_ref());
         let mut e: Vec<Mat<f64>> = parts
             .iter()
-            .map(|p| Mat::zeros(p.exact.seen.len(), sources))
+            .zip(&lit)
+            .map(|(p, lit)| match lit {
+                Some((on_seen, _)) => on_seen.clone(),
+                None => Mat::zeros(p.exact.seen.len(), sources),
+            })
             .collect();
         for (k, &p) in ports.iter().enumerate() {
             for r in manifest.ports[p].rooms {
@@ -301,14 +369,19 @@ pub fn couple(
                         .sum::<f64>()
                 })
                 .sum();
-            reflected + seen_through
+            match &lit[r] {
+                Some((_, direct)) => reflected + seen_through + direct[(o, g)],
+                None => reflected + seen_through,
+            }
         };
         let patch = |b: usize, g: usize, k: usize| -> f64 {
             (0..x.seen.len())
                 .map(|a| x.exitance[b][a][k] * arriving[b][r][(a, g)])
                 .sum()
         };
-        coupled.tables[r] = coupled_tables(&part.tables, &kept, &reading, &patch);
+        let patch: Option<&dyn Fn(usize, usize, usize) -> f64> =
+            (!x.exitance.is_empty()).then_some(&patch);
+        coupled.tables[r] = coupled_tables(&part.tables, &kept, &reading, patch);
     }
     Ok(coupled)
 }
@@ -325,14 +398,10 @@ fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
     let n = scene.patches.len();
     let t = &part.tables;
     let seen_ok = x.seen.windows(2).all(|w| w[0] < w[1]) && x.seen.iter().all(|&k| k < n);
-    let bands_ok = [
-        x.channels.len(),
-        x.seen_exitance.len(),
-        x.readings.len(),
-        x.exitance.len(),
-    ]
-    .iter()
-    .all(|&l| l == t.bands);
+    let bands_ok = [x.channels.len(), x.seen_exitance.len(), x.readings.len()]
+        .iter()
+        .all(|&l| l == t.bands)
+        && (x.exitance.is_empty() || x.exitance.len() == t.bands);
     let s = x.seen.len();
     let sizes_ok = bands_ok
         && (0..t.bands).all(|b| {
@@ -342,8 +411,9 @@ fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
                 && x.seen_exitance[b].iter().all(|r| r.len() == s)
                 && x.readings[b].len() == s
                 && x.readings[b].iter().all(|r| r.len() == outputs(t))
-                && x.exitance[b].len() == s
-                && x.exitance[b].iter().all(|r| r.len() == n)
+                && x.exitance
+                    .get(b)
+                    .is_none_or(|e| e.len() == s && e.iter().all(|r| r.len() == n))
         });
     let opening_free = x.openings.iter().all(|o| {
         scene
@@ -364,12 +434,13 @@ fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
 /// A room's tables `t` with the channels `kept` (`(source, name)`, the room's own first),
 /// where source `g` adds `reading(b, g, o)` at output `o` and `patch(b, g, k)` to the
 /// exitance of patch `k` in band `b` to the room's own response (0 for another room's
-/// channel).
+/// channel). Without `patch` (no controller of the room keeps the modes) the tables hold no
+/// patch response.
 fn coupled_tables(
     t: &BasisTables,
     kept: &[(usize, String)],
     reading: &dyn Fn(usize, usize, usize) -> f64,
-    patch: &dyn Fn(usize, usize, usize) -> f64,
+    patch: Option<&dyn Fn(usize, usize, usize) -> f64>,
 ) -> BasisTables {
     let bands = t.bands;
     let own = t.channel_names.len();
@@ -395,7 +466,7 @@ fn coupled_tables(
     let mut tables = t.clone();
     tables.output_channels = table(outputs, 0, &t.output_channels);
     tables.grid_channels = table(points, outputs, &t.grid_channels);
-    if !t.channel_response.is_empty() {
+    if let Some(patch) = patch.filter(|_| !t.channel_response.is_empty()) {
         let mut response = Vec::with_capacity(n * kept.len() * bands);
         for k in 0..n {
             for (kc, (g, _)) in kept.iter().enumerate() {
@@ -410,6 +481,9 @@ fn coupled_tables(
             }
         }
         tables.channel_response = response;
+    } else {
+        // No controller reads it: without the modes, a basis keeps no patch.
+        tables.channel_response = Vec::new();
     }
     tables.channel_names = kept.iter().map(|(_, name)| name.clone()).collect();
     tables

@@ -1,10 +1,12 @@
 //! The cross terms of one exact port, from its two rooms' meshed scenes: the exchange areas
 //! between the patches of one room and of the other that see the opening, through it, and
-//! every output's view of the other room's seen patches, occluded by both rooms' surfaces
-//! (docs/math.md, "Rooms seen through an exact port").
+//! every output's view of the other room's seen patches, occluded by both rooms' surfaces,
+//! and the direct light of each room's luminaires in the other (docs/math.md, "Rooms seen
+//! through an exact port").
 
 use std::ops::Range;
 
+use super::direct::{self, Direct};
 use crate::formfactor::{self, FormFactorOptions, Occluders};
 use crate::geometry::{Face, Patch};
 use crate::scene::receivers::{mean_over_points, receivers, Receiver};
@@ -28,6 +30,9 @@ pub(super) struct Cross {
     /// `rows[s][o][v]`: room `s`'s output `o` reads `rows[s][o][v] M_v` (dimensionless) of the
     /// exitance `M_v` of the other room's seen patch `v`.
     pub rows: [Vec<Vec<f64>>; 2],
+    /// `direct[s]`: the direct light of side `s`'s luminaires with photometry on the other
+    /// side, through the opening (`None` without luminaires).
+    pub direct: [Option<Direct>; 2],
 }
 
 /// The cross terms between the two sides of a port, with the accuracy of `opts`.
@@ -138,5 +143,18 @@ pub(super) fn cross(sides: [&Side; 2], opts: &FormFactorOptions) -> Cross {
             })
             .collect()
     });
-    Cross { exchange, rows }
+    let direct = std::array::from_fn(|s| {
+        direct::through(
+            sides[s].scene,
+            sides[1 - s],
+            &index[1 - s],
+            &patches,
+            &occluders,
+        )
+    });
+    Cross {
+        exchange,
+        rows,
+        direct,
+    }
 }

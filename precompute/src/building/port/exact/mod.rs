@@ -7,18 +7,73 @@
 //! irradiance arriving at each of them from outside, the exitance it then gives them, every
 //! output's reading and every patch's exitance. The merge ([`couple`]) computes the cross
 //! terms from the rooms' scenes (the pair integrals through the opening, the receivers' view
-//! of the other room's seen patches) and solves the coupled system over the seen patches of
-//! every room.
+//! of the other room's seen patches, the direct light of each room's luminaires with
+//! photometry in the other) and solves the coupled system over the seen patches of every
+//! room.
 
 mod couple;
 mod cross;
+mod direct;
 
 pub use couple::couple;
 
 use serde::{Deserialize, Serialize};
 
+use crate::formfactor::FormFactorOptions;
 use crate::radiosity::System;
 use crate::scene::Scene;
+
+/// The rules of the pair integrals a room was built with: the fields of [`FormFactorOptions`]
+/// that enter them (progress, cache and the operator's storage do not). The merge computes an
+/// exact port's cross terms with its rooms' rules, and refuses rooms built with different ones.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PairRules {
+    /// [`FormFactorOptions::gauss_order`].
+    pub gauss_order: usize,
+    /// [`FormFactorOptions::touching_order`].
+    pub touching_order: usize,
+    /// [`FormFactorOptions::quadrature_tolerance`].
+    pub quadrature_tolerance: f64,
+    /// [`FormFactorOptions::visibility_depth`].
+    pub visibility_depth: u32,
+    /// [`FormFactorOptions::visibility_cell_share`].
+    pub visibility_cell_share: f64,
+    /// [`FormFactorOptions::occluded_order`].
+    pub occluded_order: usize,
+}
+
+impl PairRules {
+    /// The rules of `opts`.
+    pub fn of(opts: &FormFactorOptions) -> Self {
+        PairRules {
+            gauss_order: opts.gauss_order,
+            touching_order: opts.touching_order,
+            quadrature_tolerance: opts.quadrature_tolerance,
+            visibility_depth: opts.visibility_depth,
+            visibility_cell_share: opts.visibility_cell_share,
+            occluded_order: opts.occluded_order,
+        }
+    }
+
+    /// Options computing the pair integrals by these rules (the others at their defaults).
+    pub fn options(&self) -> FormFactorOptions {
+        FormFactorOptions {
+            gauss_order: self.gauss_order,
+            touching_order: self.touching_order,
+            quadrature_tolerance: self.quadrature_tolerance,
+            visibility_depth: self.visibility_depth,
+            visibility_cell_share: self.visibility_cell_share,
+            occluded_order: self.occluded_order,
+            ..FormFactorOptions::default()
+        }
+    }
+}
+
+impl Default for PairRules {
+    fn default() -> Self {
+        PairRules::of(&FormFactorOptions::default())
+    }
+}
 
 /// One of a room's exact ports, as its build found it: the port and its opening's surface.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -38,6 +93,8 @@ pub struct ExactPorts {
     pub openings: Vec<ExactOpening>,
     /// The room's number of patches (the merge meshes its scene again and checks it).
     pub patches: usize,
+    /// The rules of the room's pair integrals, for the merge's cross terms.
+    pub rules: PairRules,
     /// The seen patches `V`: every patch (not an opening's) that exchanges light with a patch
     /// of an opening, ascending.
     pub seen: Vec<usize>,
@@ -49,18 +106,23 @@ pub struct ExactPorts {
     /// `readings[b][i][o]`: reading of output `o` (sensors, zones, then grid points) for the
     /// same irradiance.
     pub readings: Vec<Vec<Vec<f64>>>,
-    /// `exitance[b][i][k]`: exitance of every patch `k` for the same irradiance.
+    /// `exitance[b][i][k]`: exitance of every patch `k` for the same irradiance. Only the
+    /// modes read it (exitance set patch by patch): empty when no controller of the room
+    /// keeps them.
     pub exitance: Vec<Vec<Vec<f64>>>,
 }
 
 /// The exact responses of a built room at the openings `openings` (`(port, surface)` in the
-/// manifest's order of ports), from its meshed scene and its radiosity system: one exact
-/// solve per band with a right-hand side per seen patch (`M0 = ρ_i` on patch `i`, the first
-/// reflection of unit irradiance), as for the channels.
+/// manifest's order of ports), from its meshed scene and its radiosity system, whose form
+/// factors `opts` computed: one exact solve per band with a right-hand side per seen patch
+/// (`M0 = ρ_i` on patch `i`, the first reflection of unit irradiance), as for the channels.
+/// Every patch's exitance is kept only with `modes` (a controller of the room keeps them).
 pub fn respond(
     scene: &Scene,
     system: &System,
     openings: &[ExactOpening],
+    opts: &FormFactorOptions,
+    modes: bool,
 ) -> Result<ExactPorts, crate::Error> {
     if openings.is_empty() {
         return Ok(ExactPorts::default());
@@ -89,6 +151,7 @@ pub fn respond(
     let mut ports = ExactPorts {
         openings: openings.to_vec(),
         patches: n,
+        rules: PairRules::of(opts),
         seen: seen.clone(),
         ..ExactPorts::default()
     };
@@ -121,7 +184,9 @@ pub fn respond(
         ports
             .readings
             .push(exitance.iter().map(|x| system.outputs(x)).collect());
-        ports.exitance.push(exitance);
+        if modes {
+            ports.exitance.push(exitance);
+        }
     }
     Ok(ports)
 }
