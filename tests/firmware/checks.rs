@@ -207,20 +207,26 @@ const BUDGET_CHANNEL_UPDATE: u64 = 300;
 /// Flash the runtime's own code may take (`.text`, bytes), as the code-size probes of the
 /// firmware example measure it (`scripts/firmware.sh`, docs/embedded.md, "The runtime's own
 /// code"), each a little above its figure so that growth shows here: decoding plus every
-/// operation of the `ChannelEvaluator`, grids included (11 460 bytes, the channel-only
+/// operation of the `ChannelEvaluator`, grids included (11 604 bytes, the channel-only
 /// controller; budget 11.5 KiB, within the 12 KiB target), decoding plus every operation
-/// of the full `Evaluator` but the grids' (13 796), a channel-only controller that also
-/// solves its levels for a target (15 696), and decoding plus every `DaylightEvaluator`
-/// operation with the runtime's sun and sky (26 468 with its update's tables summed eight
-/// rows at a time by kernels of their own; format 8's sun's first reflection, its
-/// candidates' loop, their view rows and the per-power weights, added 3 696 bytes before
-/// those kernels, 25 444 to 29 140: a controller reading daylight pays for it whether its
-/// basis stores candidates or not). Decoding checks the daylight
+/// of the full `Evaluator` but the grids' (14 208; format 8's four decoded tables added 412
+/// to both), a channel-only controller that also solves its levels for a target (15 860),
+/// and decoding plus every `DaylightEvaluator` operation with the runtime's sun and sky
+/// (30 156: its update's tables summed eight rows at a time by kernels of their own, and
+/// format 8's sun's first reflection, its candidates' loop, their view rows and the
+/// per-power weights, which a controller reading daylight pays for whether its basis
+/// stores candidates or not). Decoding checks the daylight
 /// section's shape only, and the names' framing but not their UTF-8; those are checked,
 /// and linked, where daylight or a name is read.
+/// RAM an evaluator takes on the target beyond its `RAM_BYTES`, bytes: the basis view it
+/// holds (a pointer and a length per table of the payload, 8 bytes each, and the counts)
+/// and its vectors' lengths. 520 bytes measured for the channel evaluator with format 8's
+/// tables, 528 for the daylight evaluator; bounded a little above so that growth shows.
+const BASIS_VIEW_BYTES_MAX: usize = 576;
+
 const BUDGET_RUNTIME_TEXT: [(&str, usize); 4] = [
     ("runtime_channels", 11 * 1024 + 512),
-    ("runtime_patches", 13 * 1024 + 768),
+    ("runtime_patches", 14 * 1024),
     ("runtime_levels", 15 * 1024 + 768),
     ("runtime_daylight", 30 * 1024 + 512),
 ];
@@ -345,7 +351,7 @@ fn evaluator_ram_does_not_grow_with_basis() {
     assert_eq!(small_run.channel_ram_bytes, FwChannels::RAM_BYTES);
     // On the target the channel evaluator is its levels and the basis view: a few hundred
     // bytes against the full evaluator's kilobytes of per-patch state.
-    assert!(small_run.channel_size_of < FwChannels::RAM_BYTES + 512);
+    assert!(small_run.channel_size_of <= FwChannels::RAM_BYTES + BASIS_VIEW_BYTES_MAX);
     // Flash is where the basis goes: .rodata grows by the basis' size, give or take the
     // alignment padding around it (seen: 4 bytes less than the size difference).
     const PADDING: usize = 64;
@@ -738,7 +744,10 @@ fn firmware_daylight_office() {
     );
     for &(size_of, ram, _) in &day.evaluators {
         // RAM_BYTES plus the basis view and the vectors' lengths, on the 32-bit target.
-        assert!(ram <= size_of && size_of < ram + 512, "{size_of} {ram}");
+        assert!(
+            ram <= size_of && size_of <= ram + BASIS_VIEW_BYTES_MAX,
+            "{size_of} {ram}"
+        );
     }
 
     // The steps: every DAYLIGHT_STEP_MINUTES of each date while the sun is up.

@@ -215,10 +215,11 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         self.exterior = global_horizontal / core::f32::consts::PI;
         self.sun = sun_nodes;
         self.reading_sun = sun_nodes;
-        let basis = self.basis;
+        // By reference: the basis view is over a hundred words, too many to copy per update.
+        let basis = &self.basis;
         let columns = basis.counts.daylight_node_count;
-        let tables = basis.tables;
-        let first = self.first_reflection(&basis);
+        let tables = &basis.tables;
+        let first = self.first_reflection(basis);
         // With the sun's first reflection the sun columns are weighed after it, per unit of
         // its power: the table's sum takes the sky and the exterior alone.
         let table_sun = if first.is_some() { &NO_SUN } else { &self.sun };
@@ -236,7 +237,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
             None => weights.table(tables.daylight_modes, columns, &mut self.amplitude),
             Some(rank) => {
                 reflection::update(
-                    &basis,
+                    basis,
                     rank,
                     &weights,
                     &mut self.amplitude,
@@ -246,7 +247,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         }
         self.direct_sun = ([0.0, 0.0, 1.0], 0.0);
         if let (Some(state), Some(s)) = (self.direct, sun) {
-            let direct = DirectSun::with(&basis, state);
+            let direct = DirectSun::with(basis, state);
             let room = direct.room_direction(s.direction);
             self.direct_sun = (room, s.direct_normal);
             for (sensor, reading) in self.outputs.iter_mut().enumerate() {
