@@ -188,7 +188,11 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         }
         // NaN and the infinities fall outside the (finite) range: one test covers them.
         let valid = |x: f32| (0.0..=MAX_EXITANCE).contains(&x);
-        if !sky_luminance.iter().all(|&x| valid_bits(x)) {
+        // The luminances' largest bits, without a branch a value: within range when it is
+        // (a non-negative `f32` orders as its bits do). Above it, a −0 (valid) or a value
+        // out of range: each is then tested alone.
+        let largest = sky_luminance.iter().fold(0u32, |m, &x| m.max(x.to_bits()));
+        if largest > MAX_EXITANCE.to_bits() && !sky_luminance.iter().all(|&x| valid_bits(x)) {
             return Err(Error::InvalidInput {
                 what: "sky_luminance",
             });
@@ -198,20 +202,17 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
                 what: "global_horizontal",
             });
         }
-        let sun_nodes = match sun {
-            None => NO_SUN,
-            Some(s) => {
-                if !valid(s.direct_normal) {
-                    return Err(Error::InvalidInput {
-                        what: "direct_normal",
-                    });
-                }
-                self.sun_columns(s)?
+        let mut sun_nodes = NO_SUN;
+        if let Some(s) = sun {
+            if !valid(s.direct_normal) {
+                return Err(Error::InvalidInput {
+                    what: "direct_normal",
+                });
             }
-        };
-        for (slot, &l) in self.sky.iter_mut().zip(sky_luminance) {
-            *slot = l;
+            self.sun_columns(s, &mut sun_nodes)?;
         }
+        // One copy of the whole (the lengths are equal, checked above), not value by value.
+        self.sky.copy_from_slice(sky_luminance);
         self.exterior = global_horizontal / core::f32::consts::PI;
         self.sun = sun_nodes;
         self.reading_sun = sun_nodes;
@@ -281,15 +282,18 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         }
     }
 
-    /// The four sun nodes around `sun` as columns among the daylight nodes, each with its
-    /// bilinear weight times the direct normal illuminance (lux); nodes that light nothing
-    /// (absent from `sun_nodes`) have no column, and a sun below the horizon none at all.
-    fn sun_columns(&self, sun: Sun) -> Result<[SunWeight; 4]> {
+    /// The four sun nodes around `sun` into `out` (left as it is on an error) as columns
+    /// among the daylight nodes, each with its bilinear weight times the direct normal
+    /// illuminance (lux); nodes that light nothing (absent from `sun_nodes`) have no column,
+    /// and a sun below the horizon none at all. Written in place: a returned `Result` of the
+    /// array was copied through `memcpy`, byte by byte, twice an update.
+    fn sun_columns(&self, sun: Sun, out: &mut [SunWeight; 4]) -> Result<()> {
         let grid = self.basis.sun_grid().ok_or(Error::NoDaylight)?;
-        let weights: [NodeWeight; 4] = grid.weights_at(sun.direction, self.latitude_sin_cos)?;
-        let mut out = NO_SUN;
+        let mut weights = [NodeWeight::default(); 4];
+        grid.weights_into(sun.direction, self.latitude_sin_cos, &mut weights)?;
+        *out = NO_SUN;
         if sun.direction[2] < 0.0 {
-            return Ok(out);
+            return Ok(());
         }
         let first_sun = self.sky.len() + 1;
         for (slot, w) in out.iter_mut().zip(weights) {
@@ -303,7 +307,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
                 );
             }
         }
-        Ok(out)
+        Ok(())
     }
 
     /// Daylight illuminance at sensor `sensor`, lux. O(1).
