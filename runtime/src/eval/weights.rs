@@ -95,37 +95,33 @@ pub(super) fn rows(table: &[u8], columns: usize) -> core::slice::ChunksExact<'_,
 /// shorter than `out` reads as empty rows past its own (never, in a basis that decoded).
 pub(super) fn dots(table: &[u8], columns: usize, x: &[f32], out: &mut [f32]) {
     let mut rows = rows(table, columns);
-    let n = 4 * x.len();
-    // Every row holds `x.len()` values (always, in a basis that decoded): each row's first
-    // `n` bytes are then cut without a test per row that the kernels would need.
+    // Every row holds `x.len()` values (always, in a basis that decoded): the kernels are
+    // then given whole rows, each summed over its first `x.len()` values (the kernels' sums
+    // stop at the shortest of `x` and the rows), with no cut or test a row.
     if columns < x.len() || rows.len() < out.len() {
+        let n = 4 * x.len();
         for slot in out.iter_mut() {
             let row = rows.next().and_then(|row| row.get(..n)).unwrap_or(&[]);
             *slot = one(row.as_chunks::<4>().0, x);
         }
         return;
     }
-    let mut next = || {
-        let row = rows.next().and_then(|row| row.get(..n)).unwrap_or(&[]);
-        row.as_chunks::<4>().0
-    };
-    let mut eights = out.chunks_exact_mut(8);
-    for group in &mut eights {
+    let mut next = || rows.next().unwrap_or(&[]).as_chunks::<4>().0;
+    let (eights, rest) = out.as_chunks_mut::<8>();
+    for group in eights {
         let first = [next(), next(), next(), next()];
         let second = [next(), next(), next(), next()];
-        group.copy_from_slice(&eight(first, second, x));
+        eight(first, second, x, group);
     }
-    let rest = eights.into_remainder();
-    let mut fours = rest.chunks_exact_mut(4);
-    for group in &mut fours {
-        group.copy_from_slice(&four([next(), next(), next(), next()], x));
+    let (fours, rest) = rest.as_chunks_mut::<4>();
+    for group in fours {
+        four([next(), next(), next(), next()], x, group);
     }
-    let rest = fours.into_remainder();
-    let mut twos = rest.chunks_exact_mut(2);
-    for group in &mut twos {
-        group.copy_from_slice(&two(next(), next(), x));
+    let (twos, rest) = rest.as_chunks_mut::<2>();
+    for group in twos {
+        two(next(), next(), x, group);
     }
-    for slot in twos.into_remainder() {
+    for slot in rest {
         *slot = one(next(), x);
     }
 }
@@ -143,13 +139,14 @@ fn value(bytes: &[u8; 4]) -> f32 {
     f32::from_le_bytes(*bytes)
 }
 
-/// The dot products of eight rows (each at least `x.len()` values) with `x`, each summed in
-/// order from −0 (as `Iterator::sum`).
+/// The dot products of eight rows with `x` into `out`, over as many values as the shortest
+/// of them holds, each summed in order from −0 (as `Iterator::sum`). The sums are locals,
+/// not an array: an array was set to −0 and read back through the stack on every call.
 #[inline(never)]
-fn eight(first: [&[[u8; 4]]; 4], second: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 8] {
+fn eight(first: [&[[u8; 4]]; 4], second: [&[[u8; 4]]; 4], x: &[f32], out: &mut [f32; 8]) {
     let ([a, b, c, d], [e, f, g, h]) = (first, second);
-    let mut s = [-0.0f32; 8];
-    let [s0, s1, s2, s3, s4, s5, s6, s7] = &mut s;
+    let (mut s0, mut s1, mut s2, mut s3) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
+    let (mut s4, mut s5, mut s6, mut s7) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
     let columns = x
         .iter()
         .zip(a)
@@ -161,21 +158,21 @@ fn eight(first: [&[[u8; 4]]; 4], second: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 8]
         .zip(g)
         .zip(h);
     for ((((((((&l, va), vb), vc), vd), ve), vf), vg), vh) in columns {
-        *s0 += value(va) * l;
-        *s1 += value(vb) * l;
-        *s2 += value(vc) * l;
-        *s3 += value(vd) * l;
-        *s4 += value(ve) * l;
-        *s5 += value(vf) * l;
-        *s6 += value(vg) * l;
-        *s7 += value(vh) * l;
+        s0 += value(va) * l;
+        s1 += value(vb) * l;
+        s2 += value(vc) * l;
+        s3 += value(vd) * l;
+        s4 += value(ve) * l;
+        s5 += value(vf) * l;
+        s6 += value(vg) * l;
+        s7 += value(vh) * l;
     }
-    s
+    *out = [s0, s1, s2, s3, s4, s5, s6, s7];
 }
 
 /// As [`eight`], four rows.
 #[inline(never)]
-fn four([a, b, c, d]: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 4] {
+fn four([a, b, c, d]: [&[[u8; 4]]; 4], x: &[f32], out: &mut [f32; 4]) {
     let (mut s0, mut s1, mut s2, mut s3) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
     for ((((&l, va), vb), vc), vd) in x.iter().zip(a).zip(b).zip(c).zip(d) {
         s0 += value(va) * l;
@@ -183,18 +180,18 @@ fn four([a, b, c, d]: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 4] {
         s2 += value(vc) * l;
         s3 += value(vd) * l;
     }
-    [s0, s1, s2, s3]
+    *out = [s0, s1, s2, s3];
 }
 
 /// As [`eight`], two rows.
 #[inline(never)]
-fn two(a: &[[u8; 4]], b: &[[u8; 4]], x: &[f32]) -> [f32; 2] {
+fn two(a: &[[u8; 4]], b: &[[u8; 4]], x: &[f32], out: &mut [f32; 2]) {
     let (mut s0, mut s1) = (-0.0f32, -0.0f32);
     for ((&l, va), vb) in x.iter().zip(a).zip(b) {
         s0 += value(va) * l;
         s1 += value(vb) * l;
     }
-    [s0, s1]
+    *out = [s0, s1];
 }
 
 #[cfg(test)]
