@@ -19,6 +19,15 @@ fn valid_bits(x: f32) -> bool {
     x.to_bits() <= MAX_EXITANCE.to_bits() || x == 0.0
 }
 
+/// The OR of the bits of every value of `values`.
+fn or_bits(values: &[f32]) -> u32 {
+    let (fours, rest) = values.as_chunks::<4>();
+    let or = fours.iter().fold(0u32, |or, &[a, b, c, d]| {
+        or | a.to_bits() | b.to_bits() | c.to_bits() | d.to_bits()
+    });
+    rest.iter().fold(or, |or, x| or | x.to_bits())
+}
+
 /// The sun of a moment, as a [`DaylightEvaluator`] takes it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sun {
@@ -188,11 +197,14 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         }
         // NaN and the infinities fall outside the (finite) range: one test covers them.
         let valid = |x: f32| (0.0..=MAX_EXITANCE).contains(&x);
-        // The luminances' largest bits, without a branch a value: within range when it is
-        // (a non-negative `f32` orders as its bits do). Above it, a −0 (valid) or a value
-        // out of range: each is then tested alone.
-        let largest = sky_luminance.iter().fold(0u32, |m, &x| m.max(x.to_bits()));
-        if largest > MAX_EXITANCE.to_bits() && !sky_luminance.iter().all(|&x| valid_bits(x)) {
+        // Every luminance is in range when the OR of their bits is: a non-negative `f32`
+        // orders as its bits do, and no value's bits exceed their OR. Above it, a −0 (valid),
+        // a value out of range or values whose OR is larger than each: each is then tested
+        // alone. An OR a value, four values a load, where a test a value took six
+        // instructions.
+        if or_bits(sky_luminance) > MAX_EXITANCE.to_bits()
+            && !sky_luminance.iter().all(|&x| valid_bits(x))
+        {
             return Err(Error::InvalidInput {
                 what: "sky_luminance",
             });
