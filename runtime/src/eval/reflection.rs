@@ -5,7 +5,7 @@
 //!
 //! A sky update forms the `r` coefficients of the sky's first reflection (`r × (S_k + 1)`
 //! products) and the `p` mode amplitudes from them and the four sun nodes (`p × (r + 4)`),
-//! both eight rows at a time ([`super::weights`]), and finds the four nodes' runs of the
+//! both eight or six rows at a time ([`super::weights`]), and finds the four nodes' runs of the
 //! lists from first entries kept when the evaluator is made ([`SunLists`]); a patch read is its row of the sky's matrix (`r`), the four nodes' entries for it (a
 //! bisection each) and its mode row (`p`).
 

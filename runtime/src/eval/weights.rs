@@ -120,7 +120,7 @@ pub(super) fn rows(table: &[u8], columns: usize) -> core::slice::ChunksExact<'_,
 
 /// `Σ_j row_j x_j` of every row of `table` (rows of `columns` little-endian `f32` values, at
 /// least `x.len()` of them) into `out` (one slot per row), each summed in order from −0 as
-/// `dot_f32` sums it: eight rows at a time share each value of `x` they read. A table
+/// `dot_f32` sums it: eight or six rows at a time share each value of `x` they read. A table
 /// shorter than `out` reads as empty rows past its own (never, in a basis that decoded).
 pub(super) fn dots(table: &[u8], columns: usize, x: &[f32], out: &mut [f32]) {
     let mut rows = rows(table, columns);
