@@ -141,7 +141,7 @@ pub(super) fn dots(table: &[u8], columns: usize, x: &[f32], out: &mut [f32]) {
     // Six rows at a time take 21 instructions a column, 3.5 a row, eight 29: a table of a
     // multiple of eight rows is summed eight at a time (fewer calls), any other six at a
     // time (18 rows: three sixes, 63 a column, where two eights and a two took 67).
-    let rest = if out.len() % 8 == 0 {
+    let rest = if out.len().is_multiple_of(8) {
         let (eights, rest) = out.as_chunks_mut::<8>();
         for group in eights {
             let (Some(a), Some(b), Some(c), Some(d)) = (next(), next(), next(), next()) else {
