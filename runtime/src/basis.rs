@@ -415,6 +415,9 @@ impl<'a> Basis<'a> {
     /// The grid of sun directions the basis' daylight stores the sun at, `None` without
     /// daylight: as stored, within the ranges of docs/format.md once
     /// [`check_daylight`](Self::check_daylight) has passed.
+    // Inlined: a sky update reads the grid on every call, and a returned `Option` of it
+    // was copied through `memcpy`.
+    #[inline]
     pub fn sun_grid(&self) -> Option<crate::sky::sun_grid::SunGrid> {
         let site = self.site()?;
         let t = &self.tables;

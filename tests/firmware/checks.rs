@@ -212,7 +212,7 @@ const BUDGET_CHANNEL_UPDATE: u64 = 300;
 /// of the full `Evaluator` but the grids' (14 208; format 8's four decoded tables added 412
 /// to both), a channel-only controller that also solves its levels for a target (15 860),
 /// and decoding plus every `DaylightEvaluator` operation with the runtime's sun and sky
-/// (30 156: its update's tables summed eight rows at a time by kernels of their own, and
+/// (30 092: its update's tables summed eight or six rows at a time by kernels of their own, and
 /// format 8's sun's first reflection, its candidates' loop, their view rows and the
 /// per-power weights, which a controller reading daylight pays for whether its basis
 /// stores candidates or not). Decoding checks the daylight
@@ -633,11 +633,12 @@ const RUNTIME_SUN_BOUND: f64 = 0.05;
 /// Instruction budget of a sky update plus the read of every sensor and zone on the daylight
 /// office at 32 modes, by a `DaylightEvaluator` without modes (issue 14, docs/embedded.md).
 const BUDGET_DAYLIGHT_UPDATE_READ_OUTPUTS: u64 = 20_000;
-/// The same with patch exitance (format 7: the 32 modes' amplitudes and the 18 coefficients
-/// of the sky's first reflection). It is above the 20 000 of the target: `18 × 146 + 32 × 18`
-/// = 3 204 multiply-adds, each at least 3 instructions on the Cortex-M4F when the table is
-/// read from bytes (22 998 measured, docs/embedded.md). Held here so that it does not grow.
-const BUDGET_DAYLIGHT_UPDATE_READ_OUTPUTS_MODES: u64 = 23_500;
+/// The same with patch exitance (format 7's first reflection: the 32 modes' amplitudes and
+/// the 18 coefficients of the sky's first reflection), held to the same 20 000 of the target
+/// (issue 30): 19 521 measured (docs/embedded.md), of it about 13 900 in the
+/// `4 × 146 + 18 × 146 + 32 × 18` = 3 788 multiply-adds, each at least 3 instructions on the
+/// Cortex-M4F when the table is read from bytes.
+const BUDGET_DAYLIGHT_UPDATE_READ_OUTPUTS_MODES: u64 = 20_000;
 
 /// `eigenrad eval BASIS --json --time TIME` under the firmware's sky: the JSON, or what eval
 /// said when it refused (the sun below the horizon).

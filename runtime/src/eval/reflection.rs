@@ -5,11 +5,11 @@
 //!
 //! A sky update forms the `r` coefficients of the sky's first reflection (`r × (S_k + 1)`
 //! products) and the `p` mode amplitudes from them and the four sun nodes (`p × (r + 4)`),
-//! both eight rows at a time ([`super::weights`]), and finds the four nodes' runs of the
+//! both eight or six rows at a time ([`super::weights`]), and finds the four nodes' runs of the
 //! lists from first entries kept when the evaluator is made ([`SunLists`]); a patch read is its row of the sky's matrix (`r`), the four nodes' entries for it (a
 //! bisection each) and its mode row (`p`).
 
-use super::weights::{dots, rows, SunWeight, Weights, NO_SUN};
+use super::weights::{add_column, dots, SunWeight, Weights, NO_SUN};
 use crate::basis::Basis;
 use crate::storage::{f32_at, u32_at};
 
@@ -110,8 +110,8 @@ pub(super) fn update(
     let modes = basis.tables.daylight_modes;
     let columns = rank + sun_nodes;
     dots(modes, columns, coefficients, amplitudes);
-    // Row by row, each amplitude adds its nodes' terms in their order (the nodes that light
-    // nothing left out first).
+    // Each amplitude adds its nodes' terms in their order (the nodes that light nothing left
+    // out first), a node at a time down the amplitudes.
     let mut sun = [(0usize, 0.0f32); 4];
     let mut lit = 0;
     for &(node, weight) in &nodes {
@@ -120,11 +120,8 @@ pub(super) fn update(
             lit += 1;
         }
     }
-    let sun = sun.get(..lit).unwrap_or(&[]);
-    for (a, row) in amplitudes.iter_mut().zip(rows(modes, columns)) {
-        for &(column, weight) in sun {
-            *a += f32_at(row, column) * weight;
-        }
+    for &(column, weight) in sun.get(..lit).unwrap_or(&[]) {
+        add_column(modes, columns, column, weight, amplitudes);
     }
     let counts = basis.tables.sun_reflection_counts;
     lists.runs = nodes.map(|(node, _)| node.map_or((0, 0), |node| lists.run(counts, node)));

@@ -1,7 +1,8 @@
 //! The sky state of a moment as the daylight tables are weighed by it, and the one loop every
 //! such table is summed with: rows of little-endian `f32` values dotted with a vector eight
-//! rows at a time (then four, two and one), so that each of the vector's values is loaded
-//! once for up to eight products.
+//! or six rows at a time (then four, two and one), so that each of the vector's values is
+//! loaded once for up to eight products; then the terms every row adds (the exterior, the
+//! sun nodes) a column at a time.
 //!
 //! The loop serves every product of a sky update: the outputs' rows (`O × D`), the sky's
 //! first-reflection coefficients (`r × (S_k + 1)`) and the modes' amplitudes (`p × r`).
@@ -17,8 +18,7 @@
 //! vector's load and the loop's count shared by the rows.
 
 #[cfg(test)]
-use crate::storage::dot_f32;
-use crate::storage::f32_at;
+use crate::storage::{dot_f32, f32_at};
 
 /// A sun node's column among the daylight nodes when it has none (it lights nothing).
 pub(super) const NO_COLUMN: u32 = u32::MAX;
@@ -59,15 +59,44 @@ impl Weights<'_> {
     /// row): `Σ_j row_j sky_j` in order, then the exterior's and the sun's terms.
     pub(super) fn table(&self, table: &[u8], columns: usize, out: &mut [f32]) {
         dots(table, columns, self.sky, out);
-        let sun = lit(self.sun, 0);
-        let exterior = self.sky.len();
-        for (slot, row) in out.iter_mut().zip(rows(table, columns)) {
-            let mut sum = *slot + f32_at(row, exterior) * self.exterior;
-            for &(column, weight) in sun.as_slice() {
-                sum += f32_at(row, column) * weight;
-            }
-            *slot = sum;
+        add_column(table, columns, self.sky.len(), self.exterior, out);
+        for (column, weight) in lit(self.sun, 0) {
+            add_column(table, columns, column, weight, out);
         }
+    }
+}
+
+/// Adds `weight` times the value in column `column` of every row of `table` (rows of
+/// `columns` values; 0 past a row's end, as `f32_at` reads it) to the row's slot of `out`.
+/// A column at a time, down the rows a stride apart, so that a term added to every row
+/// costs a load, a multiply-add and the slot's load and store: row by row, each term cost
+/// the row's cut and checks (about 37 instructions a row for the modes' one sun term).
+/// Each slot still adds its terms in the order of the calls.
+pub(super) fn add_column(
+    table: &[u8],
+    columns: usize,
+    column: usize,
+    weight: f32,
+    out: &mut [f32],
+) {
+    let whole = rows(table, columns).len();
+    let whole = whole.min(out.len());
+    let out = out.get_mut(..whole).unwrap_or(&mut []);
+    if column >= columns {
+        for slot in out {
+            *slot += 0.0 * weight;
+        }
+        return;
+    }
+    let values = table.as_chunks::<4>().0;
+    // The value's index runs down the column: a test a row, where `step_by` took five
+    // instructions more.
+    let mut at = column;
+    for slot in out {
+        if let Some(v) = values.get(at) {
+            *slot += value(v) * weight;
+        }
+        at = at.saturating_add(columns);
     }
 }
 
@@ -91,42 +120,68 @@ pub(super) fn rows(table: &[u8], columns: usize) -> core::slice::ChunksExact<'_,
 
 /// `Σ_j row_j x_j` of every row of `table` (rows of `columns` little-endian `f32` values, at
 /// least `x.len()` of them) into `out` (one slot per row), each summed in order from −0 as
-/// `dot_f32` sums it: eight rows at a time share each value of `x` they read. A table
+/// `dot_f32` sums it: eight or six rows at a time share each value of `x` they read. A table
 /// shorter than `out` reads as empty rows past its own (never, in a basis that decoded).
 pub(super) fn dots(table: &[u8], columns: usize, x: &[f32], out: &mut [f32]) {
     let mut rows = rows(table, columns);
-    let n = 4 * x.len();
-    // Every row holds `x.len()` values (always, in a basis that decoded): each row's first
-    // `n` bytes are then cut without a test per row that the kernels would need.
+    // Every row holds `x.len()` values (always, in a basis that decoded): the kernels are
+    // then given whole rows, each summed over its first `x.len()` values (the kernels' sums
+    // stop at the shortest of `x` and the rows), with no cut or test a row.
     if columns < x.len() || rows.len() < out.len() {
+        let n = 4 * x.len();
         for slot in out.iter_mut() {
             let row = rows.next().and_then(|row| row.get(..n)).unwrap_or(&[]);
             *slot = one(row.as_chunks::<4>().0, x);
         }
         return;
     }
-    let mut next = || {
-        let row = rows.next().and_then(|row| row.get(..n)).unwrap_or(&[]);
-        row.as_chunks::<4>().0
+    // A missing row ends the sums (never: the table holds every row, checked above). A
+    // branch a row, where an empty row in its place took a dozen instructions a row.
+    let mut next = || rows.next().map(|row| row.as_chunks::<4>().0);
+    // Six rows at a time take 21 instructions a column, 3.5 a row, eight 29: a table of a
+    // multiple of eight rows is summed eight at a time (fewer calls), any other six at a
+    // time (18 rows: three sixes, 63 a column, where two eights and a two took 67).
+    let rest = if out.len().is_multiple_of(8) {
+        let (eights, rest) = out.as_chunks_mut::<8>();
+        for group in eights {
+            let (Some(a), Some(b), Some(c), Some(d)) = (next(), next(), next(), next()) else {
+                return;
+            };
+            let (Some(e), Some(f), Some(g), Some(h)) = (next(), next(), next(), next()) else {
+                return;
+            };
+            eight([a, b, c, d], [e, f, g, h], x, group);
+        }
+        rest
+    } else {
+        let (sixes, rest) = out.as_chunks_mut::<6>();
+        for group in sixes {
+            let (Some(a), Some(b), Some(c)) = (next(), next(), next()) else {
+                return;
+            };
+            let (Some(d), Some(e), Some(f)) = (next(), next(), next()) else {
+                return;
+            };
+            six([a, b, c], [d, e, f], x, group);
+        }
+        rest
     };
-    let mut eights = out.chunks_exact_mut(8);
-    for group in &mut eights {
-        let first = [next(), next(), next(), next()];
-        let second = [next(), next(), next(), next()];
-        group.copy_from_slice(&eight(first, second, x));
+    let (fours, rest) = rest.as_chunks_mut::<4>();
+    for group in fours {
+        let (Some(a), Some(b), Some(c), Some(d)) = (next(), next(), next(), next()) else {
+            return;
+        };
+        four([a, b, c, d], x, group);
     }
-    let rest = eights.into_remainder();
-    let mut fours = rest.chunks_exact_mut(4);
-    for group in &mut fours {
-        group.copy_from_slice(&four([next(), next(), next(), next()], x));
+    let (twos, rest) = rest.as_chunks_mut::<2>();
+    for group in twos {
+        let (Some(a), Some(b)) = (next(), next()) else {
+            return;
+        };
+        two(a, b, x, group);
     }
-    let rest = fours.into_remainder();
-    let mut twos = rest.chunks_exact_mut(2);
-    for group in &mut twos {
-        group.copy_from_slice(&two(next(), next(), x));
-    }
-    for slot in twos.into_remainder() {
-        *slot = one(next(), x);
+    for slot in rest {
+        *slot = next().map_or(0.0, |row| one(row, x));
     }
 }
 
@@ -143,13 +198,14 @@ fn value(bytes: &[u8; 4]) -> f32 {
     f32::from_le_bytes(*bytes)
 }
 
-/// The dot products of eight rows (each at least `x.len()` values) with `x`, each summed in
-/// order from −0 (as `Iterator::sum`).
+/// The dot products of eight rows with `x` into `out`, over as many values as the shortest
+/// of them holds, each summed in order from −0 (as `Iterator::sum`). The sums are locals,
+/// not an array: an array was set to −0 and read back through the stack on every call.
 #[inline(never)]
-fn eight(first: [&[[u8; 4]]; 4], second: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 8] {
+fn eight(first: [&[[u8; 4]]; 4], second: [&[[u8; 4]]; 4], x: &[f32], out: &mut [f32; 8]) {
     let ([a, b, c, d], [e, f, g, h]) = (first, second);
-    let mut s = [-0.0f32; 8];
-    let [s0, s1, s2, s3, s4, s5, s6, s7] = &mut s;
+    let (mut s0, mut s1, mut s2, mut s3) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
+    let (mut s4, mut s5, mut s6, mut s7) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
     let columns = x
         .iter()
         .zip(a)
@@ -161,21 +217,39 @@ fn eight(first: [&[[u8; 4]]; 4], second: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 8]
         .zip(g)
         .zip(h);
     for ((((((((&l, va), vb), vc), vd), ve), vf), vg), vh) in columns {
-        *s0 += value(va) * l;
-        *s1 += value(vb) * l;
-        *s2 += value(vc) * l;
-        *s3 += value(vd) * l;
-        *s4 += value(ve) * l;
-        *s5 += value(vf) * l;
-        *s6 += value(vg) * l;
-        *s7 += value(vh) * l;
+        s0 += value(va) * l;
+        s1 += value(vb) * l;
+        s2 += value(vc) * l;
+        s3 += value(vd) * l;
+        s4 += value(ve) * l;
+        s5 += value(vf) * l;
+        s6 += value(vg) * l;
+        s7 += value(vh) * l;
     }
-    s
+    *out = [s0, s1, s2, s3, s4, s5, s6, s7];
+}
+
+/// As [`eight`], six rows.
+#[inline(never)]
+fn six(first: [&[[u8; 4]]; 3], second: [&[[u8; 4]]; 3], x: &[f32], out: &mut [f32; 6]) {
+    let ([a, b, c], [d, e, f]) = (first, second);
+    let (mut s0, mut s1, mut s2) = (-0.0f32, -0.0f32, -0.0f32);
+    let (mut s3, mut s4, mut s5) = (-0.0f32, -0.0f32, -0.0f32);
+    let columns = x.iter().zip(a).zip(b).zip(c).zip(d).zip(e).zip(f);
+    for ((((((&l, va), vb), vc), vd), ve), vf) in columns {
+        s0 += value(va) * l;
+        s1 += value(vb) * l;
+        s2 += value(vc) * l;
+        s3 += value(vd) * l;
+        s4 += value(ve) * l;
+        s5 += value(vf) * l;
+    }
+    *out = [s0, s1, s2, s3, s4, s5];
 }
 
 /// As [`eight`], four rows.
 #[inline(never)]
-fn four([a, b, c, d]: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 4] {
+fn four([a, b, c, d]: [&[[u8; 4]]; 4], x: &[f32], out: &mut [f32; 4]) {
     let (mut s0, mut s1, mut s2, mut s3) = (-0.0f32, -0.0f32, -0.0f32, -0.0f32);
     for ((((&l, va), vb), vc), vd) in x.iter().zip(a).zip(b).zip(c).zip(d) {
         s0 += value(va) * l;
@@ -183,18 +257,18 @@ fn four([a, b, c, d]: [&[[u8; 4]]; 4], x: &[f32]) -> [f32; 4] {
         s2 += value(vc) * l;
         s3 += value(vd) * l;
     }
-    [s0, s1, s2, s3]
+    *out = [s0, s1, s2, s3];
 }
 
 /// As [`eight`], two rows.
 #[inline(never)]
-fn two(a: &[[u8; 4]], b: &[[u8; 4]], x: &[f32]) -> [f32; 2] {
+fn two(a: &[[u8; 4]], b: &[[u8; 4]], x: &[f32], out: &mut [f32; 2]) {
     let (mut s0, mut s1) = (-0.0f32, -0.0f32);
     for ((&l, va), vb) in x.iter().zip(a).zip(b) {
         s0 += value(va) * l;
         s1 += value(vb) * l;
     }
-    [s0, s1]
+    *out = [s0, s1];
 }
 
 #[cfg(test)]
@@ -203,7 +277,8 @@ mod tests {
     use super::*;
     use crate::storage::f32_row;
 
-    /// The most rows a test table has: two groups of eight, then four, two and one.
+    /// The most rows a test table has: three groups of six, then four and one (a multiple
+    /// of eight, 8 or 16, is summed eight at a time; the others six at a time).
     const ROWS: usize = 23;
 
     /// A table of `rows` rows of `columns` little-endian `f32` values from a simple
@@ -229,9 +304,9 @@ mod tests {
         (bytes, rows * columns * 4)
     }
 
-    /// Eight, four and two rows at a time give what a plain dot product of each row and its
-    /// terms one after the other give, to the bit, for every row count (whole groups and
-    /// every remainder) and with a sun node or none.
+    /// Eight, six, four and two rows at a time give what a plain dot product of each row
+    /// and its terms one after the other give, to the bit, for every row count (whole
+    /// groups and every remainder) and with a sun node or none.
     #[test]
     fn grouped_rows_match_row_by_row() {
         let sky = [3.5f32, 0.0, 1.0e3, 2.25e-3, 7.0, 11.0, 0.5];

@@ -107,6 +107,19 @@ impl SunGrid {
         direction: [f32; 3],
         latitude_sin_cos: [f32; 2],
     ) -> Result<[NodeWeight; 4]> {
+        let mut out = [NodeWeight::default(); 4];
+        self.weights_into(direction, latitude_sin_cos, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`SunGrid::weights_at`] into `out` (left as it is on an error): a sky update writes
+    /// the nodes in place rather than copying a returned `Result` of them.
+    pub(crate) fn weights_into(
+        &self,
+        direction: [f32; 3],
+        latitude_sin_cos: [f32; 2],
+        out: &mut [NodeWeight; 4],
+    ) -> Result<()> {
         let [x, y, z] = direction;
         let norm2 = x * x + y * y + z * z;
         if !(norm2.is_finite() && (norm2 - 1.0).abs() <= 2.0e-3) {
@@ -129,12 +142,13 @@ impl SunGrid {
             node: r * self.columns + c,
             weight,
         };
-        Ok([
+        *out = [
             at(row, column, (1.0 - s) * (1.0 - t)),
             at(row, next_column, (1.0 - s) * t),
             at(next_row, column, s * (1.0 - t)),
             at(next_row, next_column, s * t),
-        ])
+        ];
+        Ok(())
     }
 }
 
