@@ -12,7 +12,6 @@
 mod common;
 
 use common::{tiny_daylight, tiny_daylight_reflection, TREGENZA};
-use eigenrad_runtime::format::{crc32, HEADER_LEN};
 use eigenrad_runtime::sky::sun_grid::direction_of;
 use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Basis, DaylightEvaluator, Error, Sun};
@@ -196,17 +195,6 @@ fn decoder_refuses_bad_first_reflections() {
     Basis::from_bytes(&bytes).unwrap().check_daylight().unwrap();
 }
 
-/// Recomputes the checksum after a mutation, so that the mutation reaches the decoder's
-/// later checks instead of failing the checksum.
-fn reseal(bytes: &mut [u8]) {
-    if bytes.len() >= HEADER_LEN {
-        let len = bytes.len() - HEADER_LEN;
-        bytes[12..16].copy_from_slice(&(len as u32).to_le_bytes());
-        let crc = crc32(&bytes[HEADER_LEN..]);
-        bytes[16..20].copy_from_slice(&crc.to_le_bytes());
-    }
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
@@ -225,7 +213,7 @@ proptest! {
             let at = if at % 2 == 0 { n - 1 - at % 200.min(n - 1) } else { at % n };
             bytes[at] = value;
         }
-        reseal(&mut bytes);
+        common::reseal_length_and_checksum(&mut bytes);
         let Ok(basis) = Basis::from_bytes(&bytes) else { return Ok(()) };
         let Ok(mut day) = DaylightEvaluator::<145, 4, 16>::new(basis) else { return Ok(()) };
         let sun = Sun { direction: direction_of(48.21, 0.0, hour), direct_normal: 50_000.0 };

@@ -10,7 +10,7 @@
 
 mod common;
 
-use eigenrad_runtime::format::{crc32, FORMAT_VERSION, HEADER_LEN};
+use eigenrad_runtime::format::{FORMAT_VERSION, HEADER_LEN};
 use eigenrad_runtime::{Basis, ChannelEvaluator, Error, Evaluator, Formulation, Precision};
 use proptest::prelude::*;
 
@@ -66,17 +66,6 @@ fn apply(bytes: &mut Vec<u8>, m: &Mutation) {
                 bytes.remove(at % bytes.len());
             }
         }
-    }
-}
-
-/// Makes the header's length and checksum agree with the (mutated) payload, so that the
-/// mutation reaches the payload decoder instead of stopping at the checksum.
-fn reseal(bytes: &mut [u8]) {
-    if bytes.len() >= HEADER_LEN {
-        let len = (bytes.len() - HEADER_LEN) as u32;
-        bytes[12..16].copy_from_slice(&len.to_le_bytes());
-        let crc = crc32(&bytes[HEADER_LEN..]);
-        bytes[16..20].copy_from_slice(&crc.to_le_bytes());
     }
 }
 
@@ -208,7 +197,7 @@ proptest! {
             apply(&mut bytes, m);
         }
         if resealed {
-            reseal(&mut bytes);
+            common::reseal_length_and_checksum(&mut bytes);
         }
         exercise(&bytes, &levels, exitance);
     }
@@ -222,7 +211,7 @@ proptest! {
                 bytes[8..10].copy_from_slice(&FORMAT_VERSION.to_le_bytes());
                 bytes[10..12].copy_from_slice(&[0, 0]);
             }
-            reseal(&mut bytes);
+            common::reseal_length_and_checksum(&mut bytes);
         }
         exercise(&bytes, &[1.0], 1.0);
     }

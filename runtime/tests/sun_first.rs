@@ -12,7 +12,6 @@
 mod common;
 
 use common::tiny_daylight_sun_first as with_first;
-use eigenrad_runtime::format::{crc32, HEADER_LEN};
 use eigenrad_runtime::sky::sun_grid::direction_of;
 use eigenrad_runtime::writer::BasisTables;
 use eigenrad_runtime::{Basis, DaylightEvaluator, Error, Sun};
@@ -186,17 +185,6 @@ fn malformed_tables_are_refused_naming_them() {
     ));
 }
 
-/// Recomputes the checksum after a mutation, so that the mutation reaches the decoder's
-/// later checks instead of failing the checksum.
-fn reseal(bytes: &mut [u8]) {
-    if bytes.len() >= HEADER_LEN {
-        let len = bytes.len() - HEADER_LEN;
-        bytes[12..16].copy_from_slice(&(len as u32).to_le_bytes());
-        let crc = crc32(&bytes[HEADER_LEN..]);
-        bytes[16..20].copy_from_slice(&crc.to_le_bytes());
-    }
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
@@ -216,7 +204,7 @@ proptest! {
             let at = if at % 2 == 0 { n - 1 - at % 120.min(n - 1) } else { at % n };
             bytes[at] = value;
         }
-        reseal(&mut bytes);
+        common::reseal_length_and_checksum(&mut bytes);
         let Ok(basis) = Basis::from_bytes(&bytes) else { return Ok(()) };
         let Ok(mut day) = Day::new(basis) else { return Ok(()) };
         let sun = Sun {

@@ -234,6 +234,19 @@ pub fn random(
     t
 }
 
+/// Makes the header's length and checksum agree with the (mutated, perhaps truncated or
+/// grown) payload, so that a mutation reaches the payload decoder instead of stopping at the
+/// checksum. Bytes shorter than a header are left as they are.
+pub fn reseal_length_and_checksum(bytes: &mut [u8]) {
+    use eigenrad_runtime::format::{crc32, HEADER_LEN};
+    if bytes.len() >= HEADER_LEN {
+        let len = (bytes.len() - HEADER_LEN) as u32;
+        bytes[12..16].copy_from_slice(&len.to_le_bytes());
+        let crc = crc32(&bytes[HEADER_LEN..]);
+        bytes[16..20].copy_from_slice(&crc.to_le_bytes());
+    }
+}
+
 /// Recomputes the header checksum after a payload edit, so that a test reaches the check
 /// it is about rather than stopping at the checksum.
 pub fn reseal(bytes: &mut [u8]) {

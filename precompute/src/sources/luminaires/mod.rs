@@ -152,31 +152,7 @@ pub fn lights_and_flux(
         for (sum, e) in patches[c].iter_mut().zip(on_patches) {
             *sum += e;
         }
-        let direct: Vec<f64> = all
-            .par_iter()
-            .map(|receiver| match *receiver {
-                Receiver::Point {
-                    position,
-                    normal,
-                    field,
-                } => source.point(position, normal, field, &[]),
-                Receiver::Plane(receivers) => {
-                    // Receivers do not block light: nothing to ignore. Summed in order once
-                    // computed: a parallel sum's order, and its last bits, would follow the
-                    // threads' work stealing, and the same scene must give the same bytes.
-                    let lit: Vec<f64> = receivers
-                        .par_iter()
-                        .map(|r| r.area * source.patch(r, &[]))
-                        .collect();
-                    let lumens: f64 = lit.iter().sum();
-                    lumens / receivers.iter().map(|r| r.area).sum::<f64>()
-                }
-                Receiver::Points(points) => mean_over_points(points, 1, |position, normal| {
-                    vec![source.point(position, normal, FieldOfView::HEMISPHERE, &[])]
-                })[0],
-                Receiver::Surfaces(_) => 0.0,
-            })
-            .collect();
+        let direct = direct_at_receivers(&source, &all);
         for (sum, e) in outputs[c].iter_mut().zip(direct) {
             *sum += e;
         }
@@ -473,6 +449,36 @@ impl Default for Received {
 
 /// FNV-1a's offset basis and prime: the signature of a [`Received`].
 const SIGNATURE_SEED: u64 = 0xcbf2_9ce4_8422_2325;
+
+/// The direct illuminance `source` puts at every receiver of `all`, lux: at a sensor's point
+/// within its field of view, the mean over a work plane's cells and over an imported grid's
+/// points; 0 for a surface zone, whose mean the caller takes from its patches' light.
+/// Receivers do not block light: nothing to ignore. Summed in order once computed: a
+/// parallel sum's order, and its last bits, would follow the threads' work stealing, and
+/// the same scene must give the same bytes.
+pub(crate) fn direct_at_receivers(source: &Source, all: &[Receiver]) -> Vec<f64> {
+    all.par_iter()
+        .map(|receiver| match *receiver {
+            Receiver::Point {
+                position,
+                normal,
+                field,
+            } => source.point(position, normal, field, &[]),
+            Receiver::Plane(receivers) => {
+                let lit: Vec<f64> = receivers
+                    .par_iter()
+                    .map(|r| r.area * source.patch(r, &[]))
+                    .collect();
+                let lumens: f64 = lit.iter().sum();
+                lumens / receivers.iter().map(|r| r.area).sum::<f64>()
+            }
+            Receiver::Points(points) => mean_over_points(points, 1, |position, normal| {
+                vec![source.point(position, normal, FieldOfView::HEMISPHERE, &[])]
+            })[0],
+            Receiver::Surfaces(_) => 0.0,
+        })
+        .collect()
+}
 
 fn mix(hash: u64, value: u64) -> u64 {
     (hash ^ value).wrapping_mul(0x0000_0100_0000_01b3)

@@ -11,9 +11,9 @@ use rayon::prelude::*;
 use super::cross::Side;
 use crate::formfactor::{gauss_legendre, Occluders};
 use crate::geometry::Patch;
-use crate::scene::receivers::{mean_over_points, receivers, Receiver};
-use crate::scene::{FieldOfView, Scene};
-use crate::sources::luminaires::{LuminaireOptions, Source};
+use crate::scene::receivers::{receivers, Receiver};
+use crate::scene::Scene;
+use crate::sources::luminaires::{direct_at_receivers, LuminaireOptions, Source};
 
 /// What the luminaires of one room put directly on the other room of a port, per channel of
 /// the lit-from room at level 1, lux.
@@ -70,28 +70,7 @@ pub(super) fn through(
         for (sum, e) in on_patches[c].iter_mut().zip(lit) {
             *sum += e;
         }
-        let direct: Vec<f64> = all
-            .par_iter()
-            .map(|receiver| match *receiver {
-                Receiver::Point {
-                    position,
-                    normal,
-                    field,
-                } => source.point(position, normal, field, &[]),
-                Receiver::Plane(cells) => {
-                    // Summed in order, as the build does: the same bytes on every run.
-                    let lit: Vec<f64> = cells
-                        .par_iter()
-                        .map(|r| r.area * source.patch(r, &[]))
-                        .collect();
-                    lit.iter().sum::<f64>() / cells.iter().map(|r| r.area).sum::<f64>()
-                }
-                Receiver::Points(points) => mean_over_points(points, 1, |position, normal| {
-                    vec![source.point(position, normal, FieldOfView::HEMISPHERE, &[])]
-                })[0],
-                Receiver::Surfaces(_) => 0.0,
-            })
-            .collect();
+        let direct = direct_at_receivers(&source, &all);
         for (sum, e) in outputs[c].iter_mut().zip(direct) {
             *sum += e;
         }
