@@ -200,6 +200,22 @@ fn read_in(solved: &[(String, String, f64)], name: &str, channel: &str) -> f64 {
         .unwrap_or_else(|| panic!("no reading {name} of {bare} in the one scene"))
 }
 
+/// The relative error of `got`, what controller `controller`'s merged basis reads at output
+/// `name` for `channel`, against `want`, the one scene's reading; fails unless the output
+/// reads some light and the error is within [`EXACT_TOLERANCE`].
+fn merged_error(controller: &str, name: &str, channel: &str, got: f64, want: f64) -> f64 {
+    assert!(
+        want > 0.0,
+        "{controller}: {name} reads no light of {channel}"
+    );
+    let error = (got - want).abs() / want;
+    assert!(
+        error <= EXACT_TOLERANCE,
+        "{controller}: {name} of channel {channel}: merged {got}, one scene {want} (relative {error:.2e})"
+    );
+    error
+}
+
 #[test]
 fn built_apart_and_merged_equals_the_two_rooms_as_one_scene_with_the_doorway_open() {
     let (manifest, out) = exact_door();
@@ -213,17 +229,7 @@ fn built_apart_and_merged_equals_the_two_rooms_as_one_scene_with_the_doorway_ope
         for (column, channel) in names[side].iter().enumerate() {
             for (name, got) in readings(&basis, channel) {
                 let want = in_one_scene(&name, channel);
-                assert!(
-                    want > 0.0,
-                    "{}: {name} reads no light of {channel}",
-                    controller.name
-                );
-                let error = (got - want).abs() / want;
-                assert!(
-                    error <= EXACT_TOLERANCE,
-                    "{}: {name} of channel {channel}: merged {got}, one scene {want} (relative {error:.2e})",
-                    controller.name
-                );
+                let error = merged_error(&controller.name, &name, channel, got, want);
                 let own = usize::from(column != side);
                 worst[own] = worst[own].max(error);
                 count += 1;
@@ -271,17 +277,7 @@ fn a_luminaire_with_photometry_lights_the_other_room_through_the_doorway_as_in_o
         let basis = std::fs::read(building::basis_path(&out, &controller.name)).expect("basis");
         for (name, got) in readings(&basis, channel) {
             let want = read_in(&one, &name, channel);
-            assert!(
-                want > 0.0,
-                "{}: {name} reads no light of {channel}",
-                controller.name
-            );
-            let error = (got - want).abs() / want;
-            assert!(
-                error <= EXACT_TOLERANCE,
-                "{}: {name} of channel {channel}: merged {got}, one scene {want} (relative {error:.2e})",
-                controller.name
-            );
+            let error = merged_error(&controller.name, &name, channel, got, want);
             worst[side] = worst[side].max(error);
             count += 1;
             if side == 1 {
