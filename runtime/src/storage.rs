@@ -55,6 +55,23 @@ pub(crate) fn dot_f32(bytes: &[u8], x: &[f32]) -> f32 {
     f32s(bytes).zip(x).map(|(a, &b)| a * b).sum()
 }
 
+/// Bytes `tables` take in a payload as postcard writes byte strings: each its length as a
+/// varint (7 bits a byte) and its bytes.
+pub(crate) fn serialized_len(tables: &[&[u8]]) -> usize {
+    let varint_len = |mut n: usize| {
+        let mut bytes = 1;
+        while n >= 0x80 {
+            n >>= 7;
+            bytes += 1;
+        }
+        bytes
+    };
+    tables
+        .iter()
+        .map(|table| table.len() + varint_len(table.len()))
+        .sum()
+}
+
 /// A row-major matrix in the basis' storage precision with a scale per column.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Matrix<'a> {

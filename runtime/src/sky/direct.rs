@@ -108,17 +108,14 @@ impl<'b, 'a> DirectSun<'b, 'a> {
     /// 128 bytes, as postcard writes them): what the direct sun adds to the basis.
     pub fn stored_bytes(&self) -> usize {
         let t = &self.basis.tables;
-        [
+        crate::storage::serialized_len(&[
             t.sun_polygon_counts,
             t.sun_polygon_sizes,
             t.sun_polygons,
             t.sun_glazing,
             t.sensor_response_rows,
             t.sensor_response,
-        ]
-        .iter()
-        .map(|table| table.len() + varint_len(table.len()))
-        .sum()
+        ])
     }
 
     /// The sun's unit direction `site` (x east, y north, z up) in the room's frame: turned
@@ -330,16 +327,6 @@ impl<'b, 'a> DirectSun<'b, 'a> {
             }
         }
     }
-}
-
-/// Bytes of postcard's varint of `n`: 7 bits a byte.
-fn varint_len(mut n: usize) -> usize {
-    let mut bytes = 1;
-    while n >= 0x80 {
-        n >>= 7;
-        bytes += 1;
-    }
-    bytes
 }
 
 fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {

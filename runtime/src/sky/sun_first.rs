@@ -60,15 +60,12 @@ impl<'b, 'a> SunFirst<'b, 'a> {
     /// adds to the basis.
     pub fn stored_bytes(&self) -> usize {
         let t = &self.basis.tables;
-        [
+        crate::storage::serialized_len(&[
             t.sun_first_patches,
             t.sun_first_sizes,
             t.sun_first_points,
             t.sun_node_power,
-        ]
-        .iter()
-        .map(|table| table.len() + varint_len(table.len()))
-        .sum()
+        ])
     }
 
     /// Calls `lit(patch, m0)` for every candidate the sun in the room-frame direction `sun`
@@ -140,14 +137,4 @@ impl SunFirst<'_, '_> {
         });
         seen
     }
-}
-
-/// Bytes of postcard's varint of `n`: 7 bits a byte.
-fn varint_len(mut n: usize) -> usize {
-    let mut bytes = 1;
-    while n >= 0x80 {
-        n >>= 7;
-        bytes += 1;
-    }
-    bytes
 }
