@@ -236,10 +236,10 @@ pub struct Payload<'a> {
 /// byte, each `u32` as a varint, each table as a varint length and its bytes. They are read
 /// here in three loops (settings, counts, tables) rather than through `Payload`'s derived
 /// `Deserialize`, whose code per field is several times larger in flash; the bytes read are
-/// the same (`decode_payload_reads_what_postcard_derives` in the tests). Each loop writes
-/// through references to the fields of the payload returned, so that no table is moved
-/// after it is read: gathering the tables in arrays and then moving them into the fields
-/// took about 800 bytes of loads and stores. Not inlined, so that the payload is built once,
+/// the same (`decode_payload_reads_what_postcard_derives` in the tests). The tables' loops
+/// write through references to their fields of the payload returned, so that no table is
+/// moved after it is read: gathering the tables in arrays and then moving them into the
+/// fields took about 800 bytes of loads and stores. Not inlined, so that the payload is built once,
 /// in place, and moved whole.
 #[inline(never)]
 pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
@@ -249,26 +249,32 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         *rest = tail;
         Ok(value)
     }
-    let mut p = Payload::default();
     let mut rest = body;
-    for slot in [
-        &mut p.bands,
-        &mut p.quantity,
-        &mut p.formulation,
-        &mut p.precision,
-    ] {
+    let mut settings = [0u8; 4];
+    for slot in &mut settings {
         *slot = take(&mut rest)?;
     }
-    for slot in [
-        &mut p.patch_count,
-        &mut p.mode_count,
-        &mut p.surface_count,
-        &mut p.channel_count,
-        &mut p.sensor_count,
-        &mut p.zone_count,
-    ] {
+    let mut counts = [0u32; 6];
+    for slot in &mut counts {
         *slot = take(&mut rest)?;
     }
+    let [bands, quantity, formulation, precision] = settings;
+    let [patch_count, mode_count, surface_count, channel_count, sensor_count, zone_count] = counts;
+    // The settings and counts first and the tables' defaults then: no default is written
+    // twice.
+    let mut p = Payload {
+        bands,
+        quantity,
+        formulation,
+        precision,
+        patch_count,
+        mode_count,
+        surface_count,
+        channel_count,
+        sensor_count,
+        zone_count,
+        ..Payload::default()
+    };
     for slot in [
         &mut p.names,
         &mut p.eigenvalues,
