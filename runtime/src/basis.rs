@@ -187,7 +187,7 @@ impl<'a> Basis<'a> {
         let mut rest = self.tables.names;
         for i in 0..base + count {
             let (s, tail) = postcard::take_from_bytes::<&[u8]>(rest).ok()?;
-            if i >= base && s == name.as_bytes() {
+            if i >= base && same_bytes(s, name.as_bytes()) {
                 return Some(i - base);
             }
             rest = tail;
@@ -510,6 +510,12 @@ impl<'a> Basis<'a> {
             data: raw.data,
         }
     }
+}
+
+/// Whether `a` and `b` hold the same bytes, compared one by one: `==` on slices calls
+/// `memcmp`, which a controller finding names would link for this alone.
+fn same_bytes(a: &[u8], b: &[u8]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x == y)
 }
 
 /// Position of `value` in an ascending table of little-endian `u32`, by bisection.

@@ -131,7 +131,8 @@ pub(crate) fn check_header(bytes: &[u8]) -> Result<&[u8]> {
         needed: HEADER_LEN,
         found: bytes.len(),
     })?;
-    if header.get(..8) != Some(&MAGIC[..]) {
+    // Byte by byte: a slice comparison calls `memcmp`.
+    if !MAGIC.iter().enumerate().all(|(k, &m)| byte(header, k) == m) {
         return Err(Error::DecodeBadMagic);
     }
     let version = u16::from_le_bytes([byte(header, 8), byte(header, 9)]);

@@ -87,12 +87,11 @@ pub(super) fn counts(raw: &Payload<'_>, bands: usize) -> Result<Counts> {
     let pieces = u32_sum("grid_pieces", raw.grid_pieces, counts.zone_count)?;
     check_len("grid_lattice", raw.grid_lattice, mul(pieces, 3)?, 4)?;
     let mut points = 0usize;
-    for q in 0..pieces {
-        let cells = mul(
-            u32_at(raw.grid_lattice, 3 * q) as usize,
-            u32_at(raw.grid_lattice, 3 * q + 1) as usize,
-        )?;
-        let kept = u32_at(raw.grid_lattice, 3 * q + 2) as usize;
+    // Piece by piece, each piece's three numbers read once.
+    for (q, piece) in raw.grid_lattice.chunks_exact(3 * 4).enumerate() {
+        let at = |k: usize| u32_at(piece, k) as usize;
+        let cells = mul(at(0), at(1))?;
+        let kept = at(2);
         if kept == 0 || kept > cells {
             return Err(bad_value("grid_lattice", 3 * q + 2));
         }

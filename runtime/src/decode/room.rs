@@ -4,7 +4,7 @@
 use super::tables::{bad_value, cols, f32_table, matrix, mul, u16_table, Allowed};
 use crate::error::{Error, Result};
 use crate::format::{Counts, Formulation, Payload, Precision, NO_CHANNEL};
-use crate::storage::{f32_at, u16_at, u32_at};
+use crate::storage::{f32_at, f32s, u16_at, u32_at};
 
 /// Names: the surfaces', channels', sensors' and zones' as consecutive postcard strings,
 /// nothing after them. Each is stepped over as bytes (a varint length and that many bytes);
@@ -190,13 +190,18 @@ pub(super) fn grids(raw: &Payload<'_>, c: &Counts, precision: Precision) -> Resu
         mul(c.grid_piece_count, 7)?,
         Allowed::NotBelowMinusOne,
     )?;
-    for q in 0..c.grid_piece_count {
-        let at = |k: usize| f32_at(raw.grid_layout, 7 * q + k);
-        let norm = at(4) * at(4) + at(5) * at(5) + at(6) * at(6);
-        let ok = at(0) > 0.0
-            && at(1) > 0.0
-            && at(2) > 0.0
-            && at(3) >= 0.0
+    // Piece by piece (the length is checked above), each piece's seven values read once.
+    for (q, piece) in raw.grid_layout.chunks_exact(7 * 4).enumerate() {
+        let mut at = [0.0f32; 7];
+        at.iter_mut()
+            .zip(f32s(piece))
+            .for_each(|(slot, v)| *slot = v);
+        let [spacing, cell_first, cell_second, border, nx, ny, nz] = at;
+        let norm = nx * nx + ny * ny + nz * nz;
+        let ok = spacing > 0.0
+            && cell_first > 0.0
+            && cell_second > 0.0
+            && border >= 0.0
             && (norm - 1.0).abs() <= 1.0e-3;
         if !ok {
             return Err(bad_value("grid_layout", 7 * q));

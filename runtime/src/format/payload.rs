@@ -236,7 +236,12 @@ pub struct Payload<'a> {
 /// byte, each `u32` as a varint, each table as a varint length and its bytes. They are read
 /// here in three loops (settings, counts, tables) rather than through `Payload`'s derived
 /// `Deserialize`, whose code per field is several times larger in flash; the bytes read are
-/// the same (`decode_payload_reads_what_postcard_derives` in the tests).
+/// the same (`decode_payload_reads_what_postcard_derives` in the tests). The tables' loops
+/// write through references to their fields of the payload returned, so that no table is
+/// moved after it is read: gathering the tables in arrays and then moving them into the
+/// fields took about 800 bytes of loads and stores. Not inlined, so that the payload is built once,
+/// in place, and moved whole.
+#[inline(never)]
 pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     fn take<'a, T: Deserialize<'a>>(rest: &mut &'a [u8]) -> Result<T> {
         let (value, tail) =
@@ -253,30 +258,11 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
     for slot in &mut counts {
         *slot = take(&mut rest)?;
     }
-    let mut tables: [&[u8]; 28] = [&[]; 28];
-    for slot in &mut tables {
-        *slot = take(&mut rest)?;
-    }
-    let sky_subdivision: u8 = take(&mut rest)?;
-    let mut daylight: [&[u8]; 25] = [&[]; 25];
-    for slot in &mut daylight {
-        *slot = take(&mut rest)?;
-    }
-    if !rest.is_empty() {
-        return Err(Error::DecodeLength {
-            field: "payload length",
-            expected: body.len() - rest.len(),
-            found: body.len(),
-        });
-    }
     let [bands, quantity, formulation, precision] = settings;
     let [patch_count, mode_count, surface_count, channel_count, sensor_count, zone_count] = counts;
-    let matrix = |scales, data| MatrixBytes { scales, data };
-    let [names, eigenvalues, patch_area, patch_centroid, patch_surface, patch_channel, patch_reflectance, patch_emission, modes_scales, modes_data, black_patches, black_projection, response_scales, response_data, sensor_geometry, zone_area, output_modes, output_channels, view_scales, view_data, grid_pieces, grid_lattice, grid_layout, grid_position, grid_modes, grid_channels, grid_view_scales, grid_view_data] =
-        tables;
-    let [daylight_site, sun_lattice, sun_spacing, sun_nodes, daylight_outputs, daylight_modes, daylight_grid_scales, daylight_grid_data, sun_polygon_counts, sun_polygon_sizes, sun_polygons, sun_glazing, sensor_response_rows, sensor_response, reflection_rank, sky_reflection_weights, sky_reflection_scales, sky_reflection_data, sun_reflection_counts, sun_reflection_patches, sun_reflection, sun_first_patches, sun_first_sizes, sun_first_points, sun_node_power] =
-        daylight;
-    Ok(Payload {
+    // The settings and counts first and the tables' defaults then: no default is written
+    // twice.
+    let mut p = Payload {
         bands,
         quantity,
         formulation,
@@ -287,55 +273,78 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         channel_count,
         sensor_count,
         zone_count,
-        names,
-        eigenvalues,
-        patch_area,
-        patch_centroid,
-        patch_surface,
-        patch_channel,
-        patch_reflectance,
-        patch_emission,
-        modes: matrix(modes_scales, modes_data),
-        black_patches,
-        black_projection,
-        channel_response: matrix(response_scales, response_data),
-        sensor_geometry,
-        zone_area,
-        output_modes,
-        output_channels,
-        output_view: matrix(view_scales, view_data),
-        grid_pieces,
-        grid_lattice,
-        grid_layout,
-        grid_position,
-        grid_modes,
-        grid_channels,
-        grid_view: matrix(grid_view_scales, grid_view_data),
-        sky_subdivision,
-        daylight_site,
-        sun_lattice,
-        sun_spacing,
-        sun_nodes,
-        daylight_outputs,
-        daylight_modes,
-        daylight_grid: matrix(daylight_grid_scales, daylight_grid_data),
-        sun_polygon_counts,
-        sun_polygon_sizes,
-        sun_polygons,
-        sun_glazing,
-        sensor_response_rows,
-        sensor_response,
-        reflection_rank,
-        sky_reflection_weights,
-        sky_reflection: matrix(sky_reflection_scales, sky_reflection_data),
-        sun_reflection_counts,
-        sun_reflection_patches,
-        sun_reflection,
-        sun_first_patches,
-        sun_first_sizes,
-        sun_first_points,
-        sun_node_power,
-    })
+        ..Payload::default()
+    };
+    for slot in [
+        &mut p.names,
+        &mut p.eigenvalues,
+        &mut p.patch_area,
+        &mut p.patch_centroid,
+        &mut p.patch_surface,
+        &mut p.patch_channel,
+        &mut p.patch_reflectance,
+        &mut p.patch_emission,
+        &mut p.modes.scales,
+        &mut p.modes.data,
+        &mut p.black_patches,
+        &mut p.black_projection,
+        &mut p.channel_response.scales,
+        &mut p.channel_response.data,
+        &mut p.sensor_geometry,
+        &mut p.zone_area,
+        &mut p.output_modes,
+        &mut p.output_channels,
+        &mut p.output_view.scales,
+        &mut p.output_view.data,
+        &mut p.grid_pieces,
+        &mut p.grid_lattice,
+        &mut p.grid_layout,
+        &mut p.grid_position,
+        &mut p.grid_modes,
+        &mut p.grid_channels,
+        &mut p.grid_view.scales,
+        &mut p.grid_view.data,
+    ] {
+        *slot = take(&mut rest)?;
+    }
+    p.sky_subdivision = take(&mut rest)?;
+    for slot in [
+        &mut p.daylight_site,
+        &mut p.sun_lattice,
+        &mut p.sun_spacing,
+        &mut p.sun_nodes,
+        &mut p.daylight_outputs,
+        &mut p.daylight_modes,
+        &mut p.daylight_grid.scales,
+        &mut p.daylight_grid.data,
+        &mut p.sun_polygon_counts,
+        &mut p.sun_polygon_sizes,
+        &mut p.sun_polygons,
+        &mut p.sun_glazing,
+        &mut p.sensor_response_rows,
+        &mut p.sensor_response,
+        &mut p.reflection_rank,
+        &mut p.sky_reflection_weights,
+        &mut p.sky_reflection.scales,
+        &mut p.sky_reflection.data,
+        &mut p.sun_reflection_counts,
+        &mut p.sun_reflection_patches,
+        &mut p.sun_reflection,
+        &mut p.sun_first_patches,
+        &mut p.sun_first_sizes,
+        &mut p.sun_first_points,
+        &mut p.sun_node_power,
+    ] {
+        *slot = take(&mut rest)?;
+    }
+    if !rest.is_empty() {
+        return Err(Error::DecodeLength {
+            field: "payload length",
+            expected: body.len() - rest.len(),
+            found: body.len(),
+        });
+    }
+    Ok(p)
 }
 
 #[cfg(test)]
