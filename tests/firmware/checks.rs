@@ -204,6 +204,12 @@ const DAYLIGHT_INSTRUCTIONS: [&str; 7] = [
 /// that exceeds a budget fails here rather than in a later table.
 const BUDGET_FULL_UPDATE_READ_OUTPUTS: u64 = 1000;
 const BUDGET_CHANNEL_UPDATE: u64 = 300;
+/// RAM an evaluator takes on the target beyond its `RAM_BYTES`, bytes: the basis view it
+/// holds (a pointer and a length per table of the payload, 8 bytes each, and the counts)
+/// and its vectors' lengths. 520 bytes measured for the channel evaluator with format 8's
+/// tables, 528 for the daylight evaluator; bounded a little above so that growth shows.
+const BASIS_VIEW_BYTES_MAX: usize = 576;
+
 /// Flash the runtime's own code may take (`.text`, bytes), as the code-size probes of the
 /// firmware example measure it (`scripts/firmware.sh`, docs/embedded.md, "The runtime's own
 /// code"), each a little above its figure so that growth shows here: decoding plus every
@@ -220,12 +226,6 @@ const BUDGET_CHANNEL_UPDATE: u64 = 300;
 /// and linked, where daylight or a name is read. The payload is read in place and moved
 /// whole, and the magic and names are compared without `memcmp`: 1 244 bytes less in the
 /// channel-only controller than format 8's first figures (11 604, 14 208, 15 860, 30 092).
-/// RAM an evaluator takes on the target beyond its `RAM_BYTES`, bytes: the basis view it
-/// holds (a pointer and a length per table of the payload, 8 bytes each, and the counts)
-/// and its vectors' lengths. 520 bytes measured for the channel evaluator with format 8's
-/// tables, 528 for the daylight evaluator; bounded a little above so that growth shows.
-const BASIS_VIEW_BYTES_MAX: usize = 576;
-
 const BUDGET_RUNTIME_TEXT: [(&str, usize); 4] = [
     ("runtime_channels", 10 * 1024 + 256),
     ("runtime_patches", 13 * 1024),
