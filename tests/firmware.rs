@@ -25,7 +25,7 @@
 //!   `eigenrad eval --time ... --cie 12 --dhi-lux 10000 --dni-lux 60000 --json` within
 //!   [`DAYLIGHT_REL_TOL`], the runtime's own sun position must be within 0.05° of SPA's at
 //!   every step, and a whole sky update by the runtime alone (sun, sky, patch luminances,
-//!   `set_sky`, every output) within 200 000 instructions (`firmware/checks.rs`,
+//!   `set_sky`, every output) within 200 000 instructions (`firmware/daylight.rs`,
 //!   `firmware_daylight_office`). Then it runs a day as a daylight-harvesting controller under
 //!   an overcast sky built by the runtime, a model-based controller and one whose photocell
 //!   was commissioned at night side by side; every step agrees with the host's computation
@@ -56,6 +56,10 @@ use serde_json::Value;
 // The test's root stays `tests/firmware.rs`, the file the docs and scripts name.
 #[path = "firmware/checks.rs"]
 mod checks;
+#[path = "firmware/controller.rs"]
+mod controller;
+#[path = "firmware/daylight.rs"]
+mod daylight;
 #[path = "firmware/harvest.rs"]
 mod harvest;
 

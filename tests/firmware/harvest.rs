@@ -5,7 +5,8 @@ use eigenrad_runtime::sky::{self, cie::CieSky};
 use eigenrad_runtime::target::{output_gains, Output};
 use eigenrad_runtime::{Basis, ChannelEvaluator, DaylightEvaluator};
 
-use super::checks::{eval_sky, greedy_levels, offset_text};
+use super::controller::greedy_levels;
+use super::daylight::{eval_sky, offset_text};
 use super::*;
 
 /// The day (`harvest.rs`): its date, its steps (minutes after local midnight), the CIE sky
