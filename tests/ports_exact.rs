@@ -13,25 +13,28 @@
 //! - A luminaire with photometry lights the other room through the doorway as in the one
 //!   scene.
 //! - One machine or two shards give the same bytes; bad port models, and rooms built with
-//!   other form-factor rules, are errors naming the manifest's line and item; a room with
-//!   daylight is refused naming it (exact ports do not carry daylight).
+//!   other form-factor rules, are errors naming the manifest's line and item.
+//! - Daylight through a window and then the doorway reads as in the one scene.
 
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
 
+use common::one_scene::with_the_hole;
 use common::two_rooms::{
-    daylit_left_scene, left_luminaire, rooms_in_one_scene, two_rooms, two_rooms_with_luminaire,
-    PORT,
+    daylit_left_scene, daylit_rooms_in_one_scene, left_luminaire, rooms_in_one_scene, two_rooms,
+    two_rooms_with_luminaire, PORT,
 };
+use eigenrad_precompute::accuracy::runtime_eval::{evaluate_daylight, SkyState};
 use eigenrad_precompute::building::{self, Manifest, Part};
-use eigenrad_precompute::formfactor::{self, exchange, outputs, FormFactorOptions, Occluders};
+use eigenrad_precompute::formfactor::FormFactorOptions;
 use eigenrad_precompute::pipeline::BuildOptions;
-use eigenrad_precompute::radiosity::System;
-use eigenrad_precompute::scene::{self, Scene};
-use eigenrad_precompute::sources;
-use eigenrad_runtime::{Basis, ChannelEvaluator};
+use eigenrad_precompute::sources::daylight::nodes::room_sun;
+use eigenrad_precompute::sources::daylight::{sky_response, sun_light, DaylightOptions};
+use eigenrad_precompute::sources::ChannelLight;
+use eigenrad_runtime::sky::patches::SkyPatches;
+use eigenrad_runtime::{Basis, ChannelEvaluator, Sun};
 
 /// Relative agreement of the merge with the one-scene solve of the two rooms with the doorway
 /// a real hole, at every sensor, zone and grid point: the figure. Both are exact
@@ -105,83 +108,9 @@ fn one_scene_with_the_hole() -> &'static Vec<(String, String, f64)> {
 }
 
 /// The readings of the one scene `text` ([`rooms_in_one_scene`] with more in it) solved in
-/// `scratch` as [`one_scene_with_the_hole`] solves it, luminaires with photometry lighting it
-/// with the build's rules (`sources::luminaires`).
+/// `scratch` as [`one_scene_with_the_hole`] solves it (tests/common/one_scene.rs).
 fn solve_with_the_hole(scratch: &str, text: &str) -> Vec<(String, String, f64)> {
-    {
-        let dir = common::scratch(scratch);
-        let path = dir.join("both.toml");
-        std::fs::write(&path, text).expect("scene");
-        let mut scene: Scene = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
-        // The door quads are the last surfaces, their patches the last patches: cut them off.
-        let surfaces = scene.surfaces.len();
-        let names: Vec<&str> = scene.surfaces[surfaces - 2..]
-            .iter()
-            .map(|s| s.name.as_str())
-            .collect();
-        assert_eq!(names, ["door_left", "door_right"]);
-        let first = scene.surfaces[surfaces - 2].patch_range.start;
-        assert_eq!(
-            scene.surfaces[surfaces - 1].patch_range.end,
-            scene.patches.len()
-        );
-        scene.patches.truncate(first);
-        scene.reflectance.truncate(first);
-        scene.emission.truncate(first);
-        scene.channel_of_patch.truncate(first);
-        scene.surfaces.truncate(surfaces - 2);
-        scene.faces.retain(|f| f.patches.end <= first);
-        let opts = FormFactorOptions::default();
-        let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
-        let ff = formfactor::patch_form_factors_with(&scene.patches, &occluders, &opts);
-        let area: Vec<f64> = scene.patches.iter().map(|p| p.area).collect();
-        let g = exchange::exchange_areas(ff.matrix, &area);
-        let rows = outputs::output_rows(&scene, &g, &area, &occluders, &opts);
-        let mut lights = sources::surfaces::channel_lights(&scene, &g, &area, &rows);
-        // The luminaires' direct light alone, by output, as the channel `direct <channel>`.
-        let mut direct_part = Vec::new();
-        if !scene.luminaires.is_empty() {
-            let options = sources::luminaires::LuminaireOptions::default();
-            let direct = sources::luminaires::channel_lights(&scene, &occluders, &options);
-            for (channel, light) in scene.channels.iter().zip(&direct) {
-                for (o, e) in light.output_irradiance[0].iter().enumerate() {
-                    direct_part.push((o, format!("direct {}", channel.name), *e));
-                }
-            }
-            lights = lights.iter().zip(&direct).map(|(s, l)| s.plus(l)).collect();
-        }
-        let reflectance = vec![scene.reflectance.iter().map(|r| r[0]).collect()];
-        let system = System::new(Arc::new(g), area, reflectance, rows, lights);
-        let responses = system.channel_responses().unwrap_or_else(|e| panic!("{e}"));
-        let mut names: Vec<String> = scene
-            .sensors
-            .iter()
-            .map(|s| format!("sensor {}", s.name))
-            .chain(scene.zones.iter().map(|z| format!("zone {}", z.name)))
-            .collect();
-        let mut per_zone = vec![0; scene.zones.len()];
-        for (z, _, _) in outputs::grid_points(&scene) {
-            names.push(format!(
-                "zone {} point {}",
-                scene.zones[z].name, per_zone[z]
-            ));
-            per_zone[z] += 1;
-        }
-        let m = system.channel_count();
-        let mut out = Vec::new();
-        for (c, channel) in scene.channels.iter().enumerate() {
-            let levels: Vec<f64> = (0..m).map(|d| if d == c { 1.0 } else { 0.0 }).collect();
-            let read = system.readings(0, &responses[c][0], &levels);
-            assert_eq!(read.len(), names.len());
-            for (name, value) in names.iter().zip(read) {
-                out.push((name.clone(), channel.name.clone(), value));
-            }
-        }
-        for (o, channel, e) in direct_part {
-            out.push((names[o].clone(), channel, e));
-        }
-        out
-    }
+    with_the_hole(scratch, text).channel_readings()
 }
 
 /// The one scene's reading `name` of channel `channel` (a neighbour's channel named
@@ -470,23 +399,166 @@ fn a_part_built_without_the_exitance_the_modes_need_is_refused_naming_it() {
     }
 }
 
+/// The left room's daylight through its window and then the open door: built apart and
+/// merged, both rooms read under a sky and under the sun at two nodes of the basis' sun grid
+/// what the two rooms as one scene with the doorway open read, its daylight computed by the
+/// daylight's own functions over the whole scene (sky patches, exterior, sun) and weighted
+/// by the same sky. One of the suns shines through the window and the door onto the right
+/// room: a merge without the daylight straight through the opening misses it by far more.
 #[test]
-fn a_room_with_daylight_is_refused_naming_it() {
+fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
     let dir = common::scratch("ports-exact-daylit");
     let path = two_rooms(&dir, &exact_port());
     std::fs::write(dir.join("left.toml"), daylit_left_scene()).expect("scene");
     let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
-    let parts = building::parts_dir(&dir.join("out"));
-    std::fs::create_dir_all(&parts).expect("parts folder");
-    building::build_rooms(&manifest, &[0, 1], &BuildOptions::default(), &parts)
-        .unwrap_or_else(|e| panic!("{e}"));
-    let e = building::merge(&manifest, &parts, &dir.join("out"), manifest.flash)
-        .expect_err("daylight through an exact port")
-        .to_string();
-    for x in ["building.toml:", "room left", "daylight", "diffusing ports"] {
-        assert!(e.contains(x), "{x:?} not in: {e}");
+    let out = dir.join("out");
+    build(&manifest, &[vec![0, 1]], &out);
+    let one = with_the_hole("ports-exact-daylit-hole", &daylit_rooms_in_one_scene());
+    let site = one.scene.site.clone().expect("the one scene's site");
+    let bases: Vec<Vec<u8>> = ["left", "right"]
+        .iter()
+        .map(|c| std::fs::read(building::basis_path(&out, c)).expect("basis"))
+        .collect();
+    let right = Basis::from_bytes(&bases[1]).unwrap_or_else(|e| panic!("{e}"));
+    let grid = right
+        .sun_grid()
+        .expect("the right room reads the left room's sun grid");
+    let options = DaylightOptions::default();
+    let patches = SkyPatches::TREGENZA;
+    // The one scene's patches of the right room: those east of the door's wall.
+    let in_right: Vec<bool> = one
+        .scene
+        .patches
+        .iter()
+        .map(|p| p.centroid.x > 3.0)
+        .collect();
+    // The sun grid's node whose sun puts most light straight on the right room's patches
+    // (through the window and the door), and a node near noon at the equinox.
+    let sun_at = |node: usize| {
+        let direction = grid.direction(node).expect("node");
+        let sun = room_sun(&site, direction).expect("a node above the horizon");
+        (
+            direction,
+            sun_light(&one.scene, &one.occluders, sun, &options),
+        )
+    };
+    let up = |node: usize| {
+        grid.direction(node)
+            .and_then(|d| room_sun(&site, d))
+            .is_some()
+    };
+    let on_right = |light: &ChannelLight| -> f64 {
+        (0..one.scene.patches.len())
+            .filter(|&k| in_right[k])
+            .map(|k| one.scene.patches[k].area * light.patch_irradiance[0][k])
+            .sum()
+    };
+    let through_door = (0..grid.len())
+        .filter(|&node| up(node))
+        .map(|node| (node, on_right(&sun_at(node).1)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("sun nodes");
+    assert!(
+        through_door.1 > 0.0,
+        "no sun of the grid reaches the right room"
+    );
+    let noon = (0..grid.len())
+        .filter(|&k| {
+            let (d, h) = grid.angles(k).expect("node");
+            d.abs() < 6.0 && h.abs() < 16.0
+        })
+        .find(|&k| up(k))
+        .expect("a node near noon at the equinox");
+    let sky = sky_response(&one.scene, &one.occluders, patches, &options);
+    // A sky of uneven luminances (cd/m²) and its global horizontal illuminance (lux).
+    let luminance: Vec<f32> = (0..patches.count())
+        .map(|k| 1000.0 * (1.0 + (k % 5) as f32 / 4.0))
+        .collect();
+    let global_horizontal = 10_000.0f32;
+    let direct_normal = 1000.0f32;
+    let mut sky_light = sky
+        .exterior
+        .scaled(f64::from(global_horizontal) / std::f64::consts::PI);
+    for (light, &l) in sky.sky.iter().zip(&luminance) {
+        sky_light.add_scaled(light, f64::from(l));
     }
-    assert!(!dir.join("out").join("building.json").exists());
+    let mut lights = vec![sky_light];
+    let mut states = vec![SkyState {
+        sky_luminance: luminance,
+        global_horizontal,
+        sun: None,
+    }];
+    for node in [through_door.0, noon] {
+        let (direction, sun) = sun_at(node);
+        lights.push(sun.scaled(f64::from(direct_normal)));
+        states.push(SkyState {
+            sky_luminance: vec![0.0; patches.count()],
+            global_horizontal: 0.0,
+            sun: Some(Sun {
+                direction,
+                direct_normal,
+            }),
+        });
+    }
+    let reference = one
+        .system
+        .with_lights(lights.clone())
+        .light_responses(0, &lights)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut worst: f64 = 0.0;
+    let mut direct_share: f64 = 0.0;
+    let mut count = 0;
+    for (controller, bytes) in manifest.controllers.iter().zip(&bases) {
+        let basis = Basis::from_bytes(bytes).unwrap_or_else(|e| panic!("{e}"));
+        let names = output_names(&basis);
+        for (case, state) in states.iter().enumerate() {
+            let read = evaluate_daylight(bytes, state, &[0.0, 0.0], false)
+                .unwrap_or_else(|e| panic!("{e}"))
+                .outputs();
+            assert_eq!(read.len(), names.len());
+            for (name, got) in names.iter().zip(read) {
+                let o = one.names.iter().position(|n| n == name).expect("output");
+                let want = reference[case].readings[o];
+                let error = merged_error(
+                    &controller.name,
+                    name,
+                    &format!("daylight case {case}"),
+                    got,
+                    want,
+                );
+                worst = worst.max(error);
+                count += 1;
+                if case == 1 && controller.room == 1 {
+                    let direct = lights[1].output_irradiance[0][o];
+                    direct_share = direct_share.max(direct / want);
+                }
+            }
+        }
+    }
+    eprintln!(
+        "daylight through an exact port against the one scene, {count} readings (a sky, the sun at nodes {} and {noon}): largest relative difference {worst:.2e}; the sun straight through the window and the door is up to {:.0} % of a reading in the right room",
+        through_door.0,
+        100.0 * direct_share
+    );
+    assert!(direct_share > 0.5, "{direct_share}");
+}
+
+/// Every output's name of a basis in the order the runtime reads them (sensors, zones, then
+/// each zone's grid points), as [`readings`] names them.
+fn output_names(basis: &Basis) -> Vec<String> {
+    let mut names: Vec<String> = (0..basis.sensor_count())
+        .map(|s| format!("sensor {}", basis.sensor_name(s).expect("sensor")))
+        .collect();
+    let zones: Vec<&str> = (0..basis.zone_count())
+        .map(|z| basis.zone_name(z).expect("zone"))
+        .collect();
+    names.extend(zones.iter().map(|z| format!("zone {z}")));
+    for (z, name) in zones.iter().enumerate() {
+        for g in 0..basis.grid_points(z).expect("grid") {
+            names.push(format!("zone {name} point {g}"));
+        }
+    }
+    names
 }
 
 #[test]

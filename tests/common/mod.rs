@@ -7,6 +7,7 @@
 #![allow(dead_code)]
 
 pub mod l_office;
+pub mod one_scene;
 pub mod radiance;
 pub mod two_rooms;
 

@@ -220,3 +220,27 @@ pub fn daylit_left_scene() -> String {
         )
         + "\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n"
 }
+
+/// [`rooms_in_one_scene`] with the left room's window and site of [`daylit_left_scene`]: the
+/// two rooms as one scene lit by daylight through that window, the door quads still last.
+pub fn daylit_rooms_in_one_scene() -> String {
+    let door = "\n[[quad]]\nname = \"door_left\"";
+    let one = rooms_in_one_scene();
+    assert!(one.contains(door));
+    one.replacen(
+        "[materials]\n",
+        &format!(
+            "{}\n\n[materials]\nglass = {{ reflectance = 0.0, transmittance = 0.7 }}\n",
+            super::VIENNA
+        ),
+        1,
+    )
+    .replace(
+        "openings = [\"lamp_left\", \"door_left\"]",
+        "openings = [\"lamp_left\", \"door_left\", \"window\"]",
+    )
+    .replace(
+        door,
+        &format!("\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n{door}"),
+    )
+}

@@ -25,8 +25,9 @@ const MAGIC: &[u8] = b"EIGENRAD PART\n";
 /// The layout of [`Part`]: 2 since the ports' responses hold the daylight's flux onto the
 /// port patches, 3 since they are resolved into the ports' direction bins, 4 since it holds
 /// the responses at the exact ports, 5 since those hold the rules of the room's pair
-/// integrals and every patch's exitance only when a controller of the room keeps the modes.
-const PART_FORMAT: u32 = 5;
+/// integrals and every patch's exitance only when a controller of the room keeps the modes,
+/// 6 since they hold the seen patches' exitance under each daylight node.
+const PART_FORMAT: u32 = 6;
 
 /// The program that builds parts: a part of another version is refused. The basis format's
 /// version and the part's layout are part of it, since the tables and the part follow them.

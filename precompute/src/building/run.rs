@@ -173,7 +173,14 @@ fn build_room(
         |scene, occluders, system, daylight| {
             Ok((
                 port::respond(scene, occluders, system, daylight, &openings)?,
-                port::exact::respond(scene, system, &exact, &options.form_factors, modes)?,
+                port::exact::respond(
+                    scene,
+                    system,
+                    daylight,
+                    &exact,
+                    &options.form_factors,
+                    modes,
+                )?,
             ))
         },
     )

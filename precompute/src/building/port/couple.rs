@@ -470,7 +470,7 @@ pub fn couple(
 /// What a room's daylight nodes are: its site, its sky's patches and its sun grid. Rooms
 /// joined through ports must agree on it for their daylight to be added node by node.
 #[derive(PartialEq)]
-struct DaylightFrame<'a> {
+pub(super) struct DaylightFrame<'a> {
     sky_subdivision: u8,
     site: &'a [f64],
     sun_lattice: &'a [u32],
@@ -479,7 +479,7 @@ struct DaylightFrame<'a> {
 
 impl<'a> DaylightFrame<'a> {
     /// The frame of `part`'s daylight.
-    fn of(part: &'a Part) -> Self {
+    pub(super) fn of(part: &'a Part) -> Self {
         let t = &part.tables;
         DaylightFrame {
             sky_subdivision: t.sky_subdivision,

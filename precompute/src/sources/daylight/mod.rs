@@ -195,6 +195,54 @@ pub fn sun_light(
     sun::light(scene, occluders, direction, opts, &glazing(scene))
 }
 
+/// [`sky_response`] from the clear windows alone, on the patches `receiving` marks (indices
+/// into [`Scene::patches`]; the others read 0) and at every output: the light that passes
+/// straight through the windows, where the diffusing windows' is their patches' emission.
+/// An exact port's merge lights the room beyond the opening with it (the scene both rooms).
+///
+/// # Panics
+///
+/// As [`sky_response`].
+pub fn clear_sky_on(
+    scene: &Scene,
+    occluders: &Occluders,
+    patches: SkyPatches,
+    opts: &DaylightOptions,
+    receiving: &[bool],
+) -> SkyResponse {
+    sky::response_on(
+        scene,
+        occluders,
+        patches,
+        opts,
+        &glazing(scene),
+        Some(receiving),
+    )
+}
+
+/// [`sun_light`] from the clear windows alone, on the patches `receiving` marks and at every
+/// output, as [`clear_sky_on`].
+///
+/// # Panics
+///
+/// As [`sun_light`].
+pub fn clear_sun_on(
+    scene: &Scene,
+    occluders: &Occluders,
+    direction: Vec3,
+    opts: &DaylightOptions,
+    receiving: &[bool],
+) -> ChannelLight {
+    sun::light_on(
+        scene,
+        occluders,
+        direction,
+        opts,
+        &glazing(scene),
+        Some(receiving),
+    )
+}
+
 /// One moment's sky as the room's light sources see it: every sky patch's luminance, the
 /// exterior's and the sun's.
 #[derive(Clone, Copy, Debug)]
@@ -275,6 +323,9 @@ pub(super) struct Ctx<'a> {
     /// τ of every window tabulated at [`TAU_STEPS`] + 1 equal steps of `cos θ` from 0 to 1,
     /// for the sky's many evaluations.
     tau_table: Vec<Vec<f64>>,
+    /// The scene's patches that receive light (`None`: all); with it, the clear windows'
+    /// light alone ([`clear_sky_on`]).
+    receiving: Option<&'a [bool]>,
 }
 
 /// Steps of the transmittance table in `cos θ`. Linear interpolation between them departs
@@ -337,6 +388,25 @@ impl<'a> Ctx<'a> {
             gl_receiver: gauss_legendre(opts.receiver_order.clamp(1, MAX_ORDER)),
             apertures,
             tau,
+            receiving: None,
+        }
+    }
+
+    /// This context lighting only the patches `receiving` marks (`None`: all), from the clear
+    /// windows alone when given: the diffusing windows' light is their patches' emission.
+    fn receiving(mut self, receiving: Option<&'a [bool]>) -> Self {
+        if receiving.is_some() {
+            self.apertures.retain(|a| !a.diffusing);
+        }
+        self.receiving = receiving;
+        self
+    }
+
+    /// Whether patch `i` of the scene receives light (every receiver that is no patch does).
+    fn receives(&self, i: Option<usize>) -> bool {
+        match (self.receiving, i) {
+            (Some(marks), Some(i)) => marks.get(i).copied().unwrap_or(false),
+            _ => true,
         }
     }
 
@@ -459,7 +529,13 @@ impl<'a> Ctx<'a> {
             .patches
             .par_iter()
             .enumerate()
-            .map(|(i, p)| on_patch(p, Some(i)))
+            .map(|(i, p)| {
+                if self.receives(Some(i)) {
+                    on_patch(p, Some(i))
+                } else {
+                    vec![0.0; bins]
+                }
+            })
             .collect();
         let mean = |members: Vec<(f64, Vec<f64>)>, area: f64| {
             let mut mean = vec![0.0; bins];

@@ -18,11 +18,24 @@ pub(crate) fn response(
     opts: &DaylightOptions,
     tau: &Transmittance,
 ) -> SkyResponse {
+    response_on(scene, occluders, patches, opts, tau, None)
+}
+
+/// [`response`] on the patches `receiving` marks alone (the others read 0) and every
+/// output, from the clear windows alone when `receiving` is given ([`super::clear_sky_on`]).
+pub(super) fn response_on(
+    scene: &Scene,
+    occluders: &Occluders,
+    patches: SkyPatches,
+    opts: &DaylightOptions,
+    tau: &Transmittance,
+    receiving: Option<&[bool]>,
+) -> SkyResponse {
     let Some(site) = scene.site.as_ref() else {
         panic!("daylight from the sky needs the scene's site (north, ground reflectance)");
     };
     let outside = Outside::new(scene, patches, site.north, site.ground_reflectance);
-    let ctx = Ctx::new(scene, occluders, outside, opts, tau);
+    let ctx = Ctx::new(scene, occluders, outside, opts, tau).receiving(receiving);
     let bins = patches.count() + 1;
     let panes = ctx.diffusing_panes(|a, j| ctx.exitance(a, j, bins));
     let mut emission = vec![vec![0.0; bins]; scene.patches.len()];

@@ -17,6 +17,19 @@ pub(crate) fn light(
     opts: &DaylightOptions,
     tau: &Transmittance,
 ) -> ChannelLight {
+    light_on(scene, occluders, s, opts, tau, None)
+}
+
+/// [`light`] on the patches `receiving` marks alone (the others read 0) and every output,
+/// from the clear windows alone when `receiving` is given ([`super::clear_sun_on`]).
+pub(super) fn light_on(
+    scene: &Scene,
+    occluders: &Occluders,
+    s: Vec3,
+    opts: &DaylightOptions,
+    tau: &Transmittance,
+    receiving: Option<&[bool]>,
+) -> ChannelLight {
     assert!(
         s.is_finite() && (s.length() - 1.0).abs() <= 1e-6,
         "the sun's direction must be a unit vector, found {:?}",
@@ -27,7 +40,7 @@ pub(crate) fn light(
         .as_ref()
         .map_or((0.0, 0.0), |site| (site.north, site.ground_reflectance));
     let outside = Outside::new(scene, SkyPatches::TREGENZA, north, ground);
-    let ctx = Ctx::new(scene, occluders, outside, opts, tau);
+    let ctx = Ctx::new(scene, occluders, outside, opts, tau).receiving(receiving);
     let panes = ctx.diffusing_panes(|a, j| vec![ctx.sun_exitance(a, j, s)]);
     let mut emission = vec![vec![0.0]; scene.patches.len()];
     for (j, e) in &panes {

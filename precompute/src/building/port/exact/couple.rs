@@ -3,15 +3,18 @@
 //! of the building, and what it adds to each room's tables (docs/math.md, "Rooms seen through
 //! an exact port").
 
+use eigenrad_runtime::sky::patches::SkyPatches;
 use eigenrad_runtime::writer::BasisTables;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
 use super::cross::{cross, Cross, Side};
+use super::daylight::{self, Columns};
 use super::{opening_patches, ExactOpening};
 use crate::building::error::BuildingError;
 use crate::building::manifest::{Manifest, PortModel};
 use crate::building::part::{self, Part};
+use crate::building::port::couple::DaylightFrame;
 use crate::building::port::{foreign_channel, Coupled};
 use crate::scene::Scene;
 
@@ -88,18 +91,6 @@ pub fn couple(
         };
         // The part's scene hash was checked against the file: the same scene, meshed again.
         let scene = crate::scene::load(&room.scene).map_err(|e| room_error(e.into()))?;
-        let refuse = |what: &str| {
-            BuildingError::Manifest {
-            at: room.at.clone(),
-            item: format!("room {}", room.name),
-            message: format!("{what}: exact ports do not carry it yet; join this room through diffusing ports (leave out `model = \"exact\"`)"),
-        }
-        };
-        if scene.site.is_some() && !scene.windows.is_empty() {
-            return Err(refuse(
-                "it has daylight, whose nodes an exact port does not couple",
-            ));
-        }
         check_shapes(&scene, part).map_err(|m| part_error(r, m))?;
         if let Some(c) = manifest
             .controllers
@@ -168,6 +159,7 @@ pub fn couple(
                 opening,
                 seen: &parts[r].exact.seen,
                 outputs: outputs(&parts[r].tables),
+                tables: &parts[r].tables,
             });
         }
         terms.push(cross([&sides[0], &sides[1]], &opts));
@@ -190,7 +182,34 @@ pub fn couple(
             Some(first)
         })
         .collect();
-    let sources: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
+    let channels: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
+    // Rooms joined through ports, directly or through others.
+    let mut group: Vec<usize> = (0..rooms).collect();
+    loop {
+        let mut changed = false;
+        for &p in &ports {
+            let [a, b] = manifest.ports[p].rooms;
+            let low = group[a].min(group[b]);
+            for r in [a, b] {
+                if group[r] != low {
+                    group[r] = low;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    // Each group's daylight nodes are right-hand sides too, after the building's channels.
+    let columns = daylight_columns(manifest, parts, &group, &ports, &terms, channels)?;
+    let sources = columns
+        .iter()
+        .flatten()
+        .map(|c| c.first + c.len())
+        .max()
+        .unwrap_or(channels)
+        .max(channels);
     // The direct light of the luminaires with photometry of each room in the rooms its ports
     // join it to, through the openings: `lit[r]` on room r's seen patches (seen × sources)
     // and at its outputs (outputs × sources), `None` where no luminaire reaches it.
@@ -208,6 +227,29 @@ pub fn couple(
             });
             for (c, (on_seen, at_outputs)) in direct.seen.iter().zip(&direct.outputs).enumerate() {
                 let g = first_channel[from] + c;
+                for (a, e) in on_seen.iter().enumerate() {
+                    seen[(a, g)] += port.transmittance * e;
+                }
+                for (o, e) in at_outputs.iter().enumerate() {
+                    read[(o, g)] += port.transmittance * e;
+                }
+            }
+        }
+        // And the daylight of each room's clear windows, node by node.
+        for (side, through) in terms[k].daylight.iter().enumerate() {
+            let r = port.rooms[1 - side];
+            let (Some(through), Some(columns)) = (through, &columns[r]) else {
+                continue;
+            };
+            let (seen, read) = lit[r].get_or_insert_with(|| {
+                (
+                    Mat::zeros(parts[r].exact.seen.len(), sources),
+                    Mat::zeros(outputs(&parts[r].tables), sources),
+                )
+            });
+            for (d, (on_seen, at_outputs)) in through.seen.iter().zip(&through.outputs).enumerate()
+            {
+                let g = columns.column(&through.sun_nodes, d);
                 for (a, e) in on_seen.iter().enumerate() {
                     seen[(a, g)] += port.transmittance * e;
                 }
@@ -243,6 +285,15 @@ pub fn couple(
             for (c, on_seen) in x.channels.get(b).into_iter().flatten().enumerate() {
                 for (v, m) in on_seen.iter().enumerate() {
                     rhs[(offset[r] + v, first_channel[r] + c)] = *m;
+                }
+            }
+            // Daylight is photopic: one band.
+            if let (0, Some(columns)) = (b, &columns[r]) {
+                for (d, on_seen) in x.daylight.iter().enumerate() {
+                    let g = columns.column(&part.tables.sun_nodes, d);
+                    for (v, m) in on_seen.iter().enumerate() {
+                        rhs[(offset[r] + v, g)] = *m;
+                    }
                 }
             }
         }
@@ -299,24 +350,6 @@ pub fn couple(
         }
         exitance.push(m);
         arriving.push(e);
-    }
-    // Rooms joined through ports, directly or through others.
-    let mut group: Vec<usize> = (0..rooms).collect();
-    loop {
-        let mut changed = false;
-        for &p in &ports {
-            let [a, b] = manifest.ports[p].rooms;
-            let low = group[a].min(group[b]);
-            for r in [a, b] {
-                if group[r] != low {
-                    group[r] = low;
-                    changed = true;
-                }
-            }
-        }
-        if !changed {
-            break;
-        }
     }
     for (r, part) in parts.iter().enumerate() {
         if part.exact.openings.is_empty() {
@@ -381,9 +414,96 @@ pub fn couple(
         };
         let patch: Option<&dyn Fn(usize, usize, usize) -> f64> =
             (!x.exitance.is_empty()).then_some(&patch);
-        coupled.tables[r] = coupled_tables(&part.tables, &kept, &reading, patch);
+        let Some(columns) = &columns[r] else {
+            coupled.tables[r] = coupled_tables(&part.tables, &kept, &reading, patch);
+            continue;
+        };
+        // The room's daylight, its own first reflections folded into its modes and readings
+        // (the group's nodes have none of this room's first-reflection tables).
+        let mut own = part.tables.clone();
+        crate::basis::fold_daylight_reflection(&mut own);
+        crate::basis::fold_sun_first(&mut own).map_err(|e| BuildingError::Manifest {
+            at: manifest.rooms[r].at.clone(),
+            item: format!("room {}", part.room),
+            message: format!("its sun's first reflection cannot be folded: {e}"),
+        })?;
+        let mut tables = coupled_tables(&own, &kept, &reading, patch);
+        let patch_daylight = |g: usize, k: usize| patch.map_or(0.0, |p| p(0, g, k));
+        daylight::coupled(
+            &mut tables,
+            &own,
+            &parts[columns.frame].tables,
+            columns,
+            &|g, o| reading(0, g, o),
+            patch.map(|_| &patch_daylight as &dyn Fn(usize, usize) -> f64),
+        );
+        coupled.tables[r] = tables;
     }
     Ok(coupled)
+}
+
+/// The daylight nodes of each group of rooms joined through the exact `ports` (`group[r]`:
+/// the lowest room of room r's group) as columns after the building's `channels`, for every
+/// room of a group where some room has daylight: its rooms' own nodes and those whose sun
+/// reaches a room through an opening (`terms`, the ports' cross terms). The rooms of a group
+/// must share their daylight's frame.
+fn daylight_columns(
+    manifest: &Manifest,
+    parts: &[Part],
+    group: &[usize],
+    ports: &[usize],
+    terms: &[Cross],
+    channels: usize,
+) -> Result<Vec<Option<Columns>>, BuildingError> {
+    let rooms = parts.len();
+    let mut columns: Vec<Option<Columns>> = vec![None; rooms];
+    let mut next = channels;
+    for g in (0..rooms).filter(|&r| group[r] == r) {
+        let joined = |q: usize| group[q] == g && !parts[q].exact.openings.is_empty();
+        let lit: Vec<usize> = (0..rooms)
+            .filter(|&q| joined(q) && !parts[q].exact.daylight.is_empty())
+            .collect();
+        let Some(&first) = lit.first() else {
+            continue;
+        };
+        let frame = DaylightFrame::of(&parts[first]);
+        if let Some(&q) = lit.iter().find(|&&q| DaylightFrame::of(&parts[q]) != frame) {
+            return Err(BuildingError::Manifest {
+                at: manifest.rooms[q].at.clone(),
+                item: format!("room {}", parts[q].room),
+                message: format!(
+                    "its daylight (the site, the sky's patches or the sun grid) differs from room {}'s, which ports join to it: daylight crossing a port is read under one sky, so give the rooms' scenes the same [site] and build them with the same sun grid",
+                    parts[first].room
+                ),
+            });
+        }
+        let sky = parts[first].exact.daylight.len() - parts[first].tables.sun_nodes.len();
+        let mut sun_nodes: Vec<u32> = lit
+            .iter()
+            .flat_map(|&q| parts[q].tables.sun_nodes.iter().copied())
+            .chain(
+                ports
+                    .iter()
+                    .zip(terms)
+                    .filter(|(&p, _)| joined(manifest.ports[p].rooms[0]))
+                    .flat_map(|(_, t)| t.daylight.iter().flatten())
+                    .flat_map(|through| through.sun_nodes.iter().copied()),
+            )
+            .collect();
+        sun_nodes.sort_unstable();
+        sun_nodes.dedup();
+        let group_columns = Columns {
+            first: next,
+            sky,
+            sun_nodes,
+            frame: first,
+        };
+        next += group_columns.len();
+        for q in (0..rooms).filter(|&q| joined(q)) {
+            columns[q] = Some(group_columns.clone());
+        }
+    }
+    Ok(columns)
 }
 
 /// Rows of outputs of a room's tables: sensors, zones, then grid points.
@@ -422,7 +542,15 @@ fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
             .find(|f| f.name == o.surface)
             .is_some_and(|f| !x.seen.iter().any(|k| f.patch_range.contains(k)))
     });
-    if x.patches != n || !seen_ok || !sizes_ok || !opening_free {
+    // The seen patches' exitance under every daylight node, when the room has daylight.
+    let nodes = if scene.site.is_some() && !scene.windows.is_empty() {
+        SkyPatches::reinhart(t.sky_subdivision).map_or(usize::MAX, |sky| sky.count() + 1)
+            + t.sun_nodes.len()
+    } else {
+        0
+    };
+    let daylight_ok = x.daylight.len() == nodes && x.daylight.iter().all(|d| d.len() == s);
+    if x.patches != n || !seen_ok || !sizes_ok || !opening_free || !daylight_ok {
         return Err(format!(
             "its responses at its exact ports do not fit its scene as meshed now ({n} patches, the part {}): build room {} again",
             x.patches, part.room

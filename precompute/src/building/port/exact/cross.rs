@@ -6,6 +6,9 @@
 
 use std::ops::Range;
 
+use eigenrad_runtime::writer::BasisTables;
+
+use super::daylight::{self, BothRooms, Through};
 use super::direct::{self, Direct};
 use crate::formfactor::{self, FormFactorOptions, Occluders};
 use crate::geometry::{Face, Patch};
@@ -14,12 +17,14 @@ use crate::scene::FieldOfView;
 use crate::scene::Scene;
 
 /// One side of an exact port: a room's meshed scene, its opening's patches and its seen
-/// patches (ascending indices into the scene's patches), and its number of outputs.
+/// patches (ascending indices into the scene's patches), its number of outputs and its
+/// part's tables (for its daylight's nodes).
 pub(super) struct Side<'a> {
     pub scene: &'a Scene,
     pub opening: Range<usize>,
     pub seen: &'a [usize],
     pub outputs: usize,
+    pub tables: &'a BasisTables,
 }
 
 /// The cross terms of a port.
@@ -33,6 +38,9 @@ pub(super) struct Cross {
     /// `direct[s]`: the direct light of side `s`'s luminaires with photometry on the other
     /// side, through the opening (`None` without luminaires).
     pub direct: [Option<Direct>; 2],
+    /// `daylight[s]`: the direct daylight of side `s`'s clear windows on the other side,
+    /// through the opening (`None` without daylight).
+    pub daylight: [Option<Through>; 2],
 }
 
 /// The cross terms between the two sides of a port, with the accuracy of `opts`.
@@ -152,9 +160,17 @@ pub(super) fn cross(sides: [&Side; 2], opts: &FormFactorOptions) -> Cross {
             &occluders,
         )
     });
+    let both = BothRooms {
+        patches: &patches,
+        faces: &faces,
+        index: &index,
+        occluders: &occluders,
+    };
+    let daylight = std::array::from_fn(|s| daylight::through(sides, s, &both));
     Cross {
         exchange,
         rows,
         direct,
+        daylight,
     }
 }

@@ -13,12 +13,14 @@
 
 mod couple;
 mod cross;
+mod daylight;
 mod direct;
 
 pub use couple::couple;
 
 use serde::{Deserialize, Serialize};
 
+use crate::basis::BasisDaylight;
 use crate::formfactor::FormFactorOptions;
 use crate::radiosity::System;
 use crate::scene::Scene;
@@ -110,16 +112,23 @@ pub struct ExactPorts {
     /// modes read it (exitance set patch by patch): empty when no controller of the room
     /// keeps them.
     pub exitance: Vec<Vec<Vec<f64>>>,
+    /// `daylight[d][v]`: exitance (lux) of seen patch `v` with daylight node `d` of the
+    /// room's daylight section alone at 1 (its sky's patches, the exterior, its sun nodes, in
+    /// their order). Empty for a room without daylight; daylight is photopic, one band.
+    pub daylight: Vec<Vec<f64>>,
 }
 
 /// The exact responses of a built room at the openings `openings` (`(port, surface)` in the
 /// manifest's order of ports), from its meshed scene and its radiosity system, whose form
 /// factors `opts` computed: one exact solve per band with a right-hand side per seen patch
-/// (`M0 = ρ_i` on patch `i`, the first reflection of unit irradiance), as for the channels.
-/// Every patch's exitance is kept only with `modes` (a controller of the room keeps them).
+/// (`M0 = ρ_i` on patch `i`, the first reflection of unit irradiance), as for the channels;
+/// the seen patches' exitance under each node of the room's `daylight`, from its exact
+/// responses. Every patch's exitance is kept only with `modes` (a controller of the room
+/// keeps them).
 pub fn respond(
     scene: &Scene,
     system: &System,
+    daylight: Option<&BasisDaylight>,
     openings: &[ExactOpening],
     opts: &FormFactorOptions,
     modes: bool,
@@ -187,6 +196,13 @@ pub fn respond(
         if modes {
             ports.exitance.push(exitance);
         }
+    }
+    if let Some(daylight) = daylight {
+        ports.daylight = daylight
+            .responses
+            .iter()
+            .map(|r| seen.iter().map(|&k| r.exitance[k]).collect())
+            .collect();
     }
     Ok(ports)
 }
