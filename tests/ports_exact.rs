@@ -26,10 +26,12 @@ use common::two_rooms::{
     daylit_left_scene, daylit_rooms_in_one_scene, left_luminaire, rooms_in_one_scene, two_rooms,
     two_rooms_with_luminaire, PORT,
 };
+use eigenrad_precompute::accuracy::metric::patch_error;
 use eigenrad_precompute::accuracy::runtime_eval::{evaluate_daylight, SkyState};
 use eigenrad_precompute::building::{self, Manifest, Part};
 use eigenrad_precompute::formfactor::FormFactorOptions;
-use eigenrad_precompute::pipeline::BuildOptions;
+use eigenrad_precompute::pipeline::{BuildOptions, ModeSelection};
+use eigenrad_precompute::scene;
 use eigenrad_precompute::sources::daylight::nodes::room_sun;
 use eigenrad_precompute::sources::daylight::{sky_response, sun_light, DaylightOptions};
 use eigenrad_precompute::sources::ChannelLight;
@@ -48,11 +50,15 @@ fn exact_port() -> String {
 
 /// Builds every room of `manifest` (one call per shard) into `out` and merges.
 fn build(manifest: &Manifest, shards: &[Vec<usize>], out: &Path) {
+    build_with(manifest, shards, out, &BuildOptions::default());
+}
+
+/// [`build`] with the build's `options`.
+fn build_with(manifest: &Manifest, shards: &[Vec<usize>], out: &Path, options: &BuildOptions) {
     let parts = building::parts_dir(out);
     std::fs::create_dir_all(&parts).expect("parts folder");
     for rooms in shards {
-        building::build_rooms(manifest, rooms, &BuildOptions::default(), &parts)
-            .unwrap_or_else(|e| panic!("{e}"));
+        building::build_rooms(manifest, rooms, options, &parts).unwrap_or_else(|e| panic!("{e}"));
     }
     building::merge(manifest, &parts, out, manifest.flash).unwrap_or_else(|e| panic!("{e}"));
 }
@@ -399,20 +405,44 @@ fn a_part_built_without_the_exitance_the_modes_need_is_refused_naming_it() {
     }
 }
 
+/// Area-weighted RMS difference of the daylight's patch exitance through every mode from the
+/// one scene's on each room's reflecting patches: the modes are complete, what remains is
+/// `f32` rounding of `n` terms (as tests/daylight_basis.rs for one room).
+const FULL_MODES: f64 = 1e-4;
+
 /// The left room's daylight through its window and then the open door: built apart and
 /// merged, both rooms read under a sky and under the sun at two nodes of the basis' sun grid
 /// what the two rooms as one scene with the doorway open read, its daylight computed by the
 /// daylight's own functions over the whole scene (sky patches, exterior, sun) and weighted
-/// by the same sky. One of the suns shines through the window and the door onto the right
-/// room: a merge without the daylight straight through the opening misses it by far more.
+/// by the same sky, at every output and, through every mode, at every patch. One of the suns
+/// shines through the window and the door onto the right room: a merge without the daylight
+/// straight through the opening misses it by far more.
 #[test]
 fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
     let dir = common::scratch("ports-exact-daylit");
     let path = two_rooms(&dir, &exact_port());
     std::fs::write(dir.join("left.toml"), daylit_left_scene()).expect("scene");
+    // Both controllers keep every mode, so that the patches' exitance through them is exact.
+    let text = std::fs::read_to_string(&path)
+        .expect("manifest")
+        .replace("[building]\n", "[building]\nflash = \"8MiB\"\n")
+        .replace(
+            "grids = [\"plane_left\"]\n",
+            "grids = [\"plane_left\"]\nmodes = true\n",
+        )
+        .replace(
+            "grids = [\"plane_right\"]\n",
+            "grids = [\"plane_right\"]\nmodes = true\n",
+        );
+    std::fs::write(&path, text).expect("manifest");
     let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(manifest.controllers.iter().all(|c| c.modes));
     let out = dir.join("out");
-    build(&manifest, &[vec![0, 1]], &out);
+    let every_mode = BuildOptions {
+        modes: ModeSelection::Count(usize::MAX),
+        ..BuildOptions::default()
+    };
+    build_with(&manifest, &[vec![0, 1]], &out, &every_mode);
     let one = with_the_hole("ports-exact-daylit-hole", &daylit_rooms_in_one_scene());
     let site = one.scene.site.clone().expect("the one scene's site");
     let bases: Vec<Vec<u8>> = ["left", "right"]
@@ -506,15 +536,57 @@ fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
         .light_responses(0, &lights)
         .unwrap_or_else(|e| panic!("{e}"));
     let mut worst: f64 = 0.0;
+    let mut worst_patches: f64 = 0.0;
     let mut direct_share: f64 = 0.0;
     let mut count = 0;
     for (controller, bytes) in manifest.controllers.iter().zip(&bases) {
         let basis = Basis::from_bytes(bytes).unwrap_or_else(|e| panic!("{e}"));
         let names = output_names(&basis);
+        let room =
+            scene::load(&manifest.rooms[controller.room].scene).unwrap_or_else(|e| panic!("{e}"));
+        // Each of the room's patches in the one scene: the same quad, meshed alike.
+        let same: Vec<usize> = room
+            .patches
+            .iter()
+            .map(|p| {
+                one.scene
+                    .patches
+                    .iter()
+                    .position(|q| {
+                        (q.centroid - p.centroid).length() < 1e-9 && q.normal.dot(p.normal) > 0.999
+                    })
+                    .unwrap_or(usize::MAX)
+            })
+            .collect();
+        // The reflecting patches the modes span (the door's, black, is what leaves).
+        let area: Vec<f64> = room
+            .patches
+            .iter()
+            .zip(&room.reflectance)
+            .map(|(p, r)| if r[0] > 0.0 { p.area } else { 0.0 })
+            .collect();
         for (case, state) in states.iter().enumerate() {
-            let read = evaluate_daylight(bytes, state, &[0.0, 0.0], false)
-                .unwrap_or_else(|e| panic!("{e}"))
-                .outputs();
+            let readout = evaluate_daylight(bytes, state, &[0.0, 0.0], true)
+                .unwrap_or_else(|e| panic!("{e}"));
+            let exact: Vec<f64> = same
+                .iter()
+                .zip(&area)
+                .map(|(&k, &a)| {
+                    assert!(
+                        a == 0.0 || k != usize::MAX,
+                        "a reflecting patch not in the one scene"
+                    );
+                    reference[case].exitance.get(k).copied().unwrap_or(0.0)
+                })
+                .collect();
+            let error = patch_error(&area, &readout.exitance, &exact);
+            assert!(
+                error <= FULL_MODES,
+                "{}, case {case}: daylight's patch exitance through every mode {error:.2e}",
+                controller.name
+            );
+            worst_patches = worst_patches.max(error);
+            let read = readout.outputs();
             assert_eq!(read.len(), names.len());
             for (name, got) in names.iter().zip(read) {
                 let o = one.names.iter().position(|n| n == name).expect("output");
@@ -536,7 +608,7 @@ fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
         }
     }
     eprintln!(
-        "daylight through an exact port against the one scene, {count} readings (a sky, the sun at nodes {} and {noon}): largest relative difference {worst:.2e}; the sun straight through the window and the door is up to {:.0} % of a reading in the right room",
+        "daylight through an exact port against the one scene, {count} readings (a sky, the sun at nodes {} and {noon}): largest relative difference {worst:.2e}, patch exitance through every mode {worst_patches:.2e} (area-weighted RMS); the sun straight through the window and the door is up to {:.0} % of a reading in the right room",
         through_door.0,
         100.0 * direct_share
     );

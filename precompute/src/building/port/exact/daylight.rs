@@ -262,7 +262,7 @@ pub(super) fn coupled(
     let p = own.mode_count;
     let n = own.patch_area.len();
     let amplitudes: Vec<Vec<f64>> = match patch {
-        Some(patch) if p > 0 && !own.daylight_modes.is_empty() => (0..d_all)
+        Some(patch) if p > 0 => (0..d_all)
             .map(|c| {
                 let m: Vec<f64> = (0..n).map(|k| patch(columns.first + c, k)).collect();
                 (0..p)
@@ -283,7 +283,9 @@ pub(super) fn coupled(
             .collect(),
         _ => Vec::new(),
     };
-    if !own.daylight_modes.is_empty() || !amplitudes.is_empty() {
+    // Without a controller keeping the modes nothing reads the patches: the amplitudes of
+    // what enters are not computed (`patch` is `None`), the table keeps its shape.
+    if p > 0 {
         let old = if own.daylight_modes.is_empty() {
             vec![0.0; p * own_nodes]
         } else {
