@@ -9,12 +9,12 @@ use faer::linalg::solvers::Solve;
 use faer::Mat;
 
 use super::cross::{cross, Cross, Side};
-use super::daylight::{self, Columns};
+use super::daylight::{self, daylight_columns};
+use super::tables::{coupled_tables, without_patches_unless};
 use super::{opening_patches, ExactOpening};
 use crate::building::error::BuildingError;
 use crate::building::manifest::{Manifest, PortModel};
 use crate::building::part::{self, Part};
-use crate::building::port::couple::DaylightFrame;
 use crate::building::port::{foreign_channel, Coupled};
 use crate::scene::Scene;
 
@@ -415,7 +415,8 @@ pub fn couple(
         let patch: Option<&dyn Fn(usize, usize, usize) -> f64> =
             (!x.exitance.is_empty()).then_some(&patch);
         let Some(columns) = &columns[r] else {
-            coupled.tables[r] = coupled_tables(&part.tables, &kept, &reading, patch);
+            let tables = coupled_tables(&part.tables, &kept, &reading, patch);
+            coupled.tables[r] = without_patches_unless(patch.is_some(), tables);
             continue;
         };
         // The room's daylight, its own first reflections folded into its modes and readings
@@ -437,73 +438,9 @@ pub fn couple(
             &|g, o| reading(0, g, o),
             patch.map(|_| &patch_daylight as &dyn Fn(usize, usize) -> f64),
         );
-        coupled.tables[r] = tables;
+        coupled.tables[r] = without_patches_unless(patch.is_some(), tables);
     }
     Ok(coupled)
-}
-
-/// The daylight nodes of each group of rooms joined through the exact `ports` (`group[r]`:
-/// the lowest room of room r's group) as columns after the building's `channels`, for every
-/// room of a group where some room has daylight: its rooms' own nodes and those whose sun
-/// reaches a room through an opening (`terms`, the ports' cross terms). The rooms of a group
-/// must share their daylight's frame.
-fn daylight_columns(
-    manifest: &Manifest,
-    parts: &[Part],
-    group: &[usize],
-    ports: &[usize],
-    terms: &[Cross],
-    channels: usize,
-) -> Result<Vec<Option<Columns>>, BuildingError> {
-    let rooms = parts.len();
-    let mut columns: Vec<Option<Columns>> = vec![None; rooms];
-    let mut next = channels;
-    for g in (0..rooms).filter(|&r| group[r] == r) {
-        let joined = |q: usize| group[q] == g && !parts[q].exact.openings.is_empty();
-        let lit: Vec<usize> = (0..rooms)
-            .filter(|&q| joined(q) && !parts[q].exact.daylight.is_empty())
-            .collect();
-        let Some(&first) = lit.first() else {
-            continue;
-        };
-        let frame = DaylightFrame::of(&parts[first]);
-        if let Some(&q) = lit.iter().find(|&&q| DaylightFrame::of(&parts[q]) != frame) {
-            return Err(BuildingError::Manifest {
-                at: manifest.rooms[q].at.clone(),
-                item: format!("room {}", parts[q].room),
-                message: format!(
-                    "its daylight (the site, the sky's patches or the sun grid) differs from room {}'s, which ports join to it: daylight crossing a port is read under one sky, so give the rooms' scenes the same [site] and build them with the same sun grid",
-                    parts[first].room
-                ),
-            });
-        }
-        let sky = parts[first].exact.daylight.len() - parts[first].tables.sun_nodes.len();
-        let mut sun_nodes: Vec<u32> = lit
-            .iter()
-            .flat_map(|&q| parts[q].tables.sun_nodes.iter().copied())
-            .chain(
-                ports
-                    .iter()
-                    .zip(terms)
-                    .filter(|(&p, _)| joined(manifest.ports[p].rooms[0]))
-                    .flat_map(|(_, t)| t.daylight.iter().flatten())
-                    .flat_map(|through| through.sun_nodes.iter().copied()),
-            )
-            .collect();
-        sun_nodes.sort_unstable();
-        sun_nodes.dedup();
-        let group_columns = Columns {
-            first: next,
-            sky,
-            sun_nodes,
-            frame: first,
-        };
-        next += group_columns.len();
-        for q in (0..rooms).filter(|&q| joined(q)) {
-            columns[q] = Some(group_columns.clone());
-        }
-    }
-    Ok(columns)
 }
 
 /// Rows of outputs of a room's tables: sensors, zones, then grid points.
@@ -557,62 +494,4 @@ fn check_shapes(scene: &Scene, part: &Part) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-/// A room's tables `t` with the channels `kept` (`(source, name)`, the room's own first),
-/// where source `g` adds `reading(b, g, o)` at output `o` and `patch(b, g, k)` to the
-/// exitance of patch `k` in band `b` to the room's own response (0 for another room's
-/// channel). Without `patch` (no controller of the room keeps the modes) the tables hold no
-/// patch response.
-fn coupled_tables(
-    t: &BasisTables,
-    kept: &[(usize, String)],
-    reading: &dyn Fn(usize, usize, usize) -> f64,
-    patch: Option<&dyn Fn(usize, usize, usize) -> f64>,
-) -> BasisTables {
-    let bands = t.bands;
-    let own = t.channel_names.len();
-    let outputs = t.sensor_names.len() + t.zone_names.len();
-    let points = t.grid_position.len();
-    let n = t.patch_area.len();
-    let table = |rows: usize, offset: usize, old: &[f64]| -> Vec<f64> {
-        let mut out = Vec::with_capacity(rows * bands * kept.len());
-        for o in 0..rows {
-            for b in 0..bands {
-                for (kc, (g, _)) in kept.iter().enumerate() {
-                    let own_value = if kc < own {
-                        old[(o * bands + b) * own + kc]
-                    } else {
-                        0.0
-                    };
-                    out.push(own_value + reading(b, *g, offset + o));
-                }
-            }
-        }
-        out
-    };
-    let mut tables = t.clone();
-    tables.output_channels = table(outputs, 0, &t.output_channels);
-    tables.grid_channels = table(points, outputs, &t.grid_channels);
-    if let Some(patch) = patch.filter(|_| !t.channel_response.is_empty()) {
-        let mut response = Vec::with_capacity(n * kept.len() * bands);
-        for k in 0..n {
-            for (kc, (g, _)) in kept.iter().enumerate() {
-                for b in 0..bands {
-                    let own_value = if kc < own {
-                        t.channel_response[k * own * bands + kc * bands + b]
-                    } else {
-                        0.0
-                    };
-                    response.push(own_value + patch(b, *g, k));
-                }
-            }
-        }
-        tables.channel_response = response;
-    } else {
-        // No controller reads it: without the modes, a basis keeps no patch.
-        tables.channel_response = Vec::new();
-    }
-    tables.channel_names = kept.iter().map(|(_, name)| name.clone()).collect();
-    tables
 }

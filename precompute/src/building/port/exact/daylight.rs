@@ -12,7 +12,11 @@ use eigenrad_runtime::sky::sun_grid::SunGrid;
 use eigenrad_runtime::writer::BasisTables;
 use rayon::prelude::*;
 
-use super::cross::Side;
+use super::cross::{Cross, Side};
+use crate::building::error::BuildingError;
+use crate::building::manifest::Manifest;
+use crate::building::part::Part;
+use crate::building::port::couple::DaylightFrame;
 use crate::formfactor::Occluders;
 use crate::geometry::{Face, Patch};
 use crate::radiosity::model::amplitude_weight;
@@ -300,4 +304,68 @@ pub(super) fn coupled(
     tables.sun_lattice.clone_from(&frame.sun_lattice);
     tables.sun_spacing.clone_from(&frame.sun_spacing);
     tables.sun_nodes.clone_from(&columns.sun_nodes);
+}
+
+/// The daylight nodes of each group of rooms joined through the exact `ports` (`group[r]`:
+/// the lowest room of room r's group) as columns after the building's `channels`, for every
+/// room of a group where some room has daylight: its rooms' own nodes and those whose sun
+/// reaches a room through an opening (`terms`, the ports' cross terms). The rooms of a group
+/// must share their daylight's frame.
+pub(super) fn daylight_columns(
+    manifest: &Manifest,
+    parts: &[Part],
+    group: &[usize],
+    ports: &[usize],
+    terms: &[Cross],
+    channels: usize,
+) -> Result<Vec<Option<Columns>>, BuildingError> {
+    let rooms = parts.len();
+    let mut columns: Vec<Option<Columns>> = vec![None; rooms];
+    let mut next = channels;
+    for g in (0..rooms).filter(|&r| group[r] == r) {
+        let joined = |q: usize| group[q] == g && !parts[q].exact.openings.is_empty();
+        let lit: Vec<usize> = (0..rooms)
+            .filter(|&q| joined(q) && !parts[q].exact.daylight.is_empty())
+            .collect();
+        let Some(&first) = lit.first() else {
+            continue;
+        };
+        let frame = DaylightFrame::of(&parts[first]);
+        if let Some(&q) = lit.iter().find(|&&q| DaylightFrame::of(&parts[q]) != frame) {
+            return Err(BuildingError::Manifest {
+                at: manifest.rooms[q].at.clone(),
+                item: format!("room {}", parts[q].room),
+                message: format!(
+                    "its daylight (the site, the sky's patches or the sun grid) differs from room {}'s, which ports join to it: daylight crossing a port is read under one sky, so give the rooms' scenes the same [site] and build them with the same sun grid",
+                    parts[first].room
+                ),
+            });
+        }
+        let sky = parts[first].exact.daylight.len() - parts[first].tables.sun_nodes.len();
+        let mut sun_nodes: Vec<u32> = lit
+            .iter()
+            .flat_map(|&q| parts[q].tables.sun_nodes.iter().copied())
+            .chain(
+                ports
+                    .iter()
+                    .zip(terms)
+                    .filter(|(&p, _)| joined(manifest.ports[p].rooms[0]))
+                    .flat_map(|(_, t)| t.daylight.iter().flatten())
+                    .flat_map(|through| through.sun_nodes.iter().copied()),
+            )
+            .collect();
+        sun_nodes.sort_unstable();
+        sun_nodes.dedup();
+        let group_columns = Columns {
+            first: next,
+            sky,
+            sun_nodes,
+            frame: first,
+        };
+        next += group_columns.len();
+        for q in (0..rooms).filter(|&q| joined(q)) {
+            columns[q] = Some(group_columns.clone());
+        }
+    }
+    Ok(columns)
 }

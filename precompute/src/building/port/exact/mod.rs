@@ -15,6 +15,7 @@ mod couple;
 mod cross;
 mod daylight;
 mod direct;
+mod tables;
 
 pub use couple::couple;
 
