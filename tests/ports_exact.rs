@@ -19,6 +19,7 @@
 mod common;
 mod ports_exact {
     pub mod daylight;
+    pub mod three_rooms;
 }
 
 use std::path::{Path, PathBuf};

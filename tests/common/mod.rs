@@ -9,6 +9,7 @@
 pub mod l_office;
 pub mod one_scene;
 pub mod radiance;
+pub mod three_rooms;
 pub mod two_rooms;
 
 use std::path::{Path, PathBuf};

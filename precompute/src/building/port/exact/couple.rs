@@ -8,7 +8,7 @@ use eigenrad_runtime::writer::BasisTables;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
-use super::cross::{cross, Cross, Side};
+use super::cross::{cross, Link, Middle, Side};
 use super::daylight::{self, daylight_columns};
 use super::tables::{coupled_tables, without_patches_unless};
 use super::{opening_patches, ExactOpening};
@@ -124,8 +124,36 @@ pub fn couple(
             }
         }
     }
-    // The cross terms of each port, from its rooms' scenes, by its rooms' rules.
-    let mut terms: Vec<Cross> = Vec::with_capacity(ports.len());
+    // The cross terms of each port, from its rooms' scenes, by its rooms' rules, and of each
+    // two rooms that see each other across a third joined to both.
+    let mut links: Vec<Link> = Vec::with_capacity(ports.len());
+    let scene_of = |r: usize| {
+        scenes[r]
+            .as_ref()
+            .ok_or_else(|| part_error(r, "has no exact ports".into()))
+    };
+    // The patches of port `p`'s opening in its room on side `side`.
+    let opening_of = |p: usize, side: usize| -> Result<std::ops::Range<usize>, BuildingError> {
+        let port = &manifest.ports[p];
+        let r = port.rooms[side];
+        opening_patches(scene_of(r)?, &port.name, &port.openings[side]).map_err(|e| {
+            BuildingError::Room {
+                at: manifest.rooms[r].at.clone(),
+                room: manifest.rooms[r].name.clone(),
+                reason: Box::new(e),
+            }
+        })
+    };
+    let side_of = |p: usize, side: usize| -> Result<Side, BuildingError> {
+        let r = manifest.ports[p].rooms[side];
+        Ok(Side {
+            scene: scene_of(r)?,
+            opening: opening_of(p, side)?,
+            seen: &parts[r].exact.seen,
+            outputs: outputs(&parts[r].tables),
+            tables: &parts[r].tables,
+        })
+    };
     for &p in &ports {
         let port = &manifest.ports[p];
         let [a, b] = port.rooms;
@@ -140,29 +168,46 @@ pub fn couple(
                 ),
             });
         }
-        let opts = rules.options();
-        let mut sides = Vec::with_capacity(2);
-        for (side, r) in port.rooms.into_iter().enumerate() {
-            let scene = scenes[r]
-                .as_ref()
-                .ok_or_else(|| part_error(r, "has no exact ports".into()))?;
-            let opening =
-                opening_patches(scene, &port.name, &port.openings[side]).map_err(|e| {
-                    BuildingError::Room {
-                        at: manifest.rooms[r].at.clone(),
-                        room: manifest.rooms[r].name.clone(),
-                        reason: Box::new(e),
-                    }
-                })?;
-            sides.push(Side {
-                scene,
-                opening,
-                seen: &parts[r].exact.seen,
-                outputs: outputs(&parts[r].tables),
-                tables: &parts[r].tables,
+        let sides = [side_of(p, 0)?, side_of(p, 1)?];
+        links.push(Link {
+            rooms: port.rooms,
+            transmittance: port.transmittance,
+            term: cross([&sides[0], &sides[1]], None, &rules.options()),
+        });
+    }
+    // Two rooms joined to a third by two ports, and not to each other: what passes through
+    // both openings in turn, across the third room.
+    for (i, &p) in ports.iter().enumerate() {
+        for &q in &ports[i + 1..] {
+            let (pr, qr) = (manifest.ports[p].rooms, manifest.ports[q].rooms);
+            let Some((sp, sq)) = (0..2)
+                .flat_map(|sp| (0..2).map(move |sq| (sp, sq)))
+                .find(|&(sp, sq)| pr[sp] == qr[sq])
+            else {
+                continue;
+            };
+            let (x, z) = (pr[1 - sp], qr[1 - sq]);
+            let joined = |a: usize, b: usize| {
+                ports.iter().any(|&k| {
+                    let rooms = manifest.ports[k].rooms;
+                    rooms == [a, b] || rooms == [b, a]
+                })
+            };
+            if x == z || joined(x, z) {
+                continue;
+            }
+            let sides = [side_of(p, 1 - sp)?, side_of(q, 1 - sq)?];
+            let middle = Middle {
+                scene: scene_of(pr[sp])?,
+                openings: [opening_of(p, sp)?, opening_of(q, sq)?],
+            };
+            let rules = &parts[x].exact.rules;
+            links.push(Link {
+                rooms: [x, z],
+                transmittance: manifest.ports[p].transmittance * manifest.ports[q].transmittance,
+                term: cross([&sides[0], &sides[1]], Some(&middle), &rules.options()),
             });
         }
-        terms.push(cross([&sides[0], &sides[1]], &opts));
     }
     // The unknowns: every seen patch's exitance, room by room.
     let offset: Vec<usize> = parts
@@ -202,7 +247,7 @@ pub fn couple(
         }
     }
     // Each group's daylight nodes are right-hand sides too, after the building's channels.
-    let columns = daylight_columns(manifest, parts, &group, &ports, &terms, channels)?;
+    let columns = daylight_columns(manifest, parts, &group, &links, channels)?;
     let sources = columns
         .iter()
         .flatten()
@@ -214,11 +259,10 @@ pub fn couple(
     // join it to, through the openings: `lit[r]` on room r's seen patches (seen × sources)
     // and at its outputs (outputs × sources), `None` where no luminaire reaches it.
     let mut lit: Vec<Option<(Mat<f64>, Mat<f64>)>> = vec![None; rooms];
-    for (k, &p) in ports.iter().enumerate() {
-        let port = &manifest.ports[p];
-        for (side, direct) in terms[k].direct.iter().enumerate() {
+    for link in &links {
+        for (side, direct) in link.term.direct.iter().enumerate() {
             let Some(direct) = direct else { continue };
-            let (from, r) = (port.rooms[side], port.rooms[1 - side]);
+            let (from, r) = (link.rooms[side], link.rooms[1 - side]);
             let (seen, read) = lit[r].get_or_insert_with(|| {
                 (
                     Mat::zeros(parts[r].exact.seen.len(), sources),
@@ -228,16 +272,16 @@ pub fn couple(
             for (c, (on_seen, at_outputs)) in direct.seen.iter().zip(&direct.outputs).enumerate() {
                 let g = first_channel[from] + c;
                 for (a, e) in on_seen.iter().enumerate() {
-                    seen[(a, g)] += port.transmittance * e;
+                    seen[(a, g)] += link.transmittance * e;
                 }
                 for (o, e) in at_outputs.iter().enumerate() {
-                    read[(o, g)] += port.transmittance * e;
+                    read[(o, g)] += link.transmittance * e;
                 }
             }
         }
         // And the daylight of each room's clear windows, node by node.
-        for (side, through) in terms[k].daylight.iter().enumerate() {
-            let r = port.rooms[1 - side];
+        for (side, through) in link.term.daylight.iter().enumerate() {
+            let r = link.rooms[1 - side];
             let (Some(through), Some(columns)) = (through, &columns[r]) else {
                 continue;
             };
@@ -251,10 +295,10 @@ pub fn couple(
             {
                 let g = columns.column(&through.sun_nodes, d);
                 for (a, e) in on_seen.iter().enumerate() {
-                    seen[(a, g)] += port.transmittance * e;
+                    seen[(a, g)] += link.transmittance * e;
                 }
                 for (o, e) in at_outputs.iter().enumerate() {
-                    read[(o, g)] += port.transmittance * e;
+                    read[(o, g)] += link.transmittance * e;
                 }
             }
         }
@@ -262,17 +306,18 @@ pub fn couple(
     // `coupling(k, b, r)`: irradiance arriving at room r's seen patch a from the other room
     // of port k per unit exitance of its seen patch v, `τ G_av / A_a`, as a matrix.
     let coupling = |k: usize, r: usize| -> Mat<f64> {
-        let port = &manifest.ports[ports[k]];
-        let side = usize::from(port.rooms[1] == r);
-        let other = port.rooms[1 - side];
+        let link = &links[k];
+        let side = usize::from(link.rooms[1] == r);
+        let other = link.rooms[1 - side];
         let area = |a: usize| scenes[r].as_ref().map_or(1.0, |s| s.patches[a].area);
         let seen = &parts[r].exact.seen;
-        let g = &terms[k].exchange;
+        let g = &link.term.exchange;
         Mat::from_fn(seen.len(), parts[other].exact.seen.len(), |a, v| {
             let gav = if side == 0 { g[a][v] } else { g[v][a] };
-            port.transmittance * gav / area(seen[a])
+            link.transmittance * gav / area(seen[a])
         })
     };
+
     // Per band: the seen patches' exitance `m` (unknowns × sources) and the irradiance each
     // room's seen patches get from outside, `e[r]` (seen × sources).
     let mut exitance: Vec<Mat<f64>> = Vec::with_capacity(bands);
@@ -313,9 +358,9 @@ pub fn couple(
                 }
             }
         }
-        for (k, &p) in ports.iter().enumerate() {
-            for r in manifest.ports[p].rooms {
-                let other = manifest.ports[p].rooms[usize::from(manifest.ports[p].rooms[0] == r)];
+        for (k, link) in links.iter().enumerate() {
+            for r in link.rooms {
+                let other = link.rooms[usize::from(link.rooms[0] == r)];
                 let x = &parts[r].exact;
                 // `m_r − H_r C m_other = a_r`.
                 let h = response(r);
@@ -336,9 +381,9 @@ pub fn couple(
                 None => Mat::zeros(p.exact.seen.len(), sources),
             })
             .collect();
-        for (k, &p) in ports.iter().enumerate() {
-            for r in manifest.ports[p].rooms {
-                let other = manifest.ports[p].rooms[usize::from(manifest.ports[p].rooms[0] == r)];
+        for (k, link) in links.iter().enumerate() {
+            for r in link.rooms {
+                let other = link.rooms[usize::from(link.rooms[0] == r)];
                 let rows = offset[other]..offset[other] + parts[other].exact.seen.len();
                 let add = coupling(k, r).as_ref() * m.subrows(rows.start, rows.len());
                 for a in 0..add.nrows() {
@@ -377,15 +422,13 @@ pub fn couple(
                 }
             }
         }
-        // The other rooms' seen patches this room's outputs see through each of its ports.
-        let views: Vec<(usize, &Vec<Vec<f64>>, f64)> = ports
+        // The other rooms' seen patches this room's outputs see through its openings.
+        let views: Vec<(usize, &Vec<Vec<f64>>, f64)> = links
             .iter()
-            .enumerate()
-            .filter_map(|(k, &p)| {
-                let port = &manifest.ports[p];
-                let side = port.rooms.iter().position(|&x| x == r)?;
-                let other = port.rooms[1 - side];
-                Some((other, &terms[k].rows[side], port.transmittance))
+            .filter_map(|link| {
+                let side = link.rooms.iter().position(|&x| x == r)?;
+                let other = link.rooms[1 - side];
+                Some((other, &link.term.rows[side], link.transmittance))
             })
             .collect();
         let x = &part.exact;

@@ -43,26 +43,63 @@ pub(super) struct Cross {
     pub daylight: [Option<Through>; 2],
 }
 
-/// The cross terms between the two sides of a port, with the accuracy of `opts`.
-pub(super) fn cross(sides: [&Side; 2], opts: &FormFactorOptions) -> Cross {
-    // Both rooms' patches as one scene, the openings left out (a hole blocks nothing);
-    // `index[s][k]`: patch `k` of side `s` in it.
+/// The room between the two sides of a [`Link`] across it: its scene and the openings of its
+/// ports to the two sides.
+pub(super) struct Middle<'a> {
+    pub scene: &'a Scene,
+    pub openings: [Range<usize>; 2],
+}
+
+/// Two rooms that see each other through openings, the cross terms between them: joined by a
+/// port, or across a third room joined to both (the light passing through both openings in
+/// turn).
+pub(super) struct Link {
+    /// The two rooms (indices into the manifest's rooms), in the order of the terms' sides.
+    pub rooms: [usize; 2],
+    /// The share of the light passing: the port's, or the product of the two ports'.
+    pub transmittance: f64,
+    /// The cross terms.
+    pub term: Cross,
+}
+
+/// The cross terms between the two sides of a port, or of two rooms across the room `middle`
+/// joined to both (whose surfaces then occlude, its two openings left out), with the
+/// accuracy of `opts`.
+pub(super) fn cross(sides: [&Side; 2], middle: Option<&Middle>, opts: &FormFactorOptions) -> Cross {
+    // The rooms' patches as one scene, the openings left out (a hole blocks nothing);
+    // `index[s][k]`: patch `k` of side `s` in it (the middle room's last, `index[2]`).
     let mut patches: Vec<Patch> = Vec::new();
     let mut index: [Vec<Option<usize>>; 2] = [Vec::new(), Vec::new()];
-    for (s, side) in sides.iter().enumerate() {
-        for (k, p) in side.scene.patches.iter().enumerate() {
-            if side.opening.contains(&k) {
-                index[s].push(None);
+    let mut middle_index: Vec<Option<usize>> = Vec::new();
+    let mut add = |scene: &Scene, open: &dyn Fn(usize) -> bool, index: &mut Vec<Option<usize>>| {
+        for (k, p) in scene.patches.iter().enumerate() {
+            if open(k) {
+                index.push(None);
             } else {
-                index[s].push(Some(patches.len()));
+                index.push(Some(patches.len()));
                 patches.push(p.clone());
             }
         }
+    };
+    for (s, side) in sides.iter().enumerate() {
+        add(side.scene, &|k| side.opening.contains(&k), &mut index[s]);
+    }
+    if let Some(m) = middle {
+        add(
+            m.scene,
+            &|k| m.openings.iter().any(|o| o.contains(&k)),
+            &mut middle_index,
+        );
     }
     let mut faces: Vec<Face> = Vec::new();
-    for (s, side) in sides.iter().enumerate() {
-        for face in &side.scene.faces {
-            let mapped: Vec<usize> = face.patches.clone().filter_map(|k| index[s][k]).collect();
+    let scenes = sides
+        .iter()
+        .zip(&index)
+        .map(|(side, index)| (side.scene, index))
+        .chain(middle.map(|m| (m.scene, &middle_index)));
+    for (scene, index) in scenes {
+        for face in &scene.faces {
+            let mapped: Vec<usize> = face.patches.clone().filter_map(|k| index[k]).collect();
             // A face is the opening's or none of it: the opening is a surface of its own.
             if let (Some(&first), true) = (mapped.first(), mapped.len() == face.patches.len()) {
                 faces.push(Face {

@@ -12,7 +12,7 @@ use eigenrad_runtime::sky::sun_grid::SunGrid;
 use eigenrad_runtime::writer::BasisTables;
 use rayon::prelude::*;
 
-use super::cross::{Cross, Side};
+use super::cross::{Link, Side};
 use crate::building::error::BuildingError;
 use crate::building::manifest::Manifest;
 use crate::building::part::Part;
@@ -306,17 +306,16 @@ pub(super) fn coupled(
     tables.sun_nodes.clone_from(&columns.sun_nodes);
 }
 
-/// The daylight nodes of each group of rooms joined through the exact `ports` (`group[r]`:
-/// the lowest room of room r's group) as columns after the building's `channels`, for every
-/// room of a group where some room has daylight: its rooms' own nodes and those whose sun
-/// reaches a room through an opening (`terms`, the ports' cross terms). The rooms of a group
-/// must share their daylight's frame.
+/// The daylight nodes of each group of rooms joined through exact ports (`group[r]`: the
+/// lowest room of room r's group) as columns after the building's `channels`, for every room
+/// of a group where some room has daylight: its rooms' own nodes and those whose sun reaches a
+/// room through openings (`links`, the cross terms of rooms that see each other). The rooms
+/// of a group must share their daylight's frame.
 pub(super) fn daylight_columns(
     manifest: &Manifest,
     parts: &[Part],
     group: &[usize],
-    ports: &[usize],
-    terms: &[Cross],
+    links: &[Link],
     channels: usize,
 ) -> Result<Vec<Option<Columns>>, BuildingError> {
     let rooms = parts.len();
@@ -346,11 +345,10 @@ pub(super) fn daylight_columns(
             .iter()
             .flat_map(|&q| parts[q].tables.sun_nodes.iter().copied())
             .chain(
-                ports
+                links
                     .iter()
-                    .zip(terms)
-                    .filter(|(&p, _)| joined(manifest.ports[p].rooms[0]))
-                    .flat_map(|(_, t)| t.daylight.iter().flatten())
+                    .filter(|link| joined(link.rooms[0]))
+                    .flat_map(|link| link.term.daylight.iter().flatten())
                     .flat_map(|through| through.sun_nodes.iter().copied()),
             )
             .collect();
