@@ -1,8 +1,9 @@
-//! The cross terms of one exact port, from its two rooms' meshed scenes: the exchange areas
-//! between the patches of one room and of the other that see the opening, through it, and
-//! every output's view of the other room's seen patches, occluded by both rooms' surfaces,
-//! and the direct light of each room's luminaires in the other (docs/math.md, "Rooms seen
-//! through an exact port").
+//! The cross terms of one exact port, from its two rooms' meshed scenes, or of two rooms
+//! that see each other across a third: the exchange areas between the patches of one room and
+//! of the other that see the opening, through it, and every output's view of the other
+//! room's seen patches, occluded by the rooms' surfaces, and the direct light of each room's
+//! luminaires and clear windows in the other (docs/math.md, "Rooms seen through an exact
+//! port").
 
 use std::ops::Range;
 

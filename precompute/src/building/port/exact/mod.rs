@@ -3,13 +3,14 @@
 //! Two rooms seen as one scene exchange light only between the patches that see the opening,
 //! through it: the cross exchange areas `G_XY` between room X's patches that see the opening
 //! (its *seen patches* `V_X`) and room Y's, occluded by both rooms. Each room's build answers
-//! for its seen patches ([`respond`]): the exitance every channel gives them, and, for unit
-//! irradiance arriving at each of them from outside, the exitance it then gives them, every
-//! output's reading and every patch's exitance. The merge ([`couple`]) computes the cross
-//! terms from the rooms' scenes (the pair integrals through the opening, the receivers' view
-//! of the other room's seen patches, the direct light of each room's luminaires with
-//! photometry in the other) and solves the coupled system over the seen patches of every
-//! room.
+//! for its seen patches ([`respond`]): the exitance every channel and every daylight node
+//! gives them, and, for unit irradiance arriving at each of them from outside, the exitance it
+//! then gives them, every output's reading and every patch's exitance. The merge ([`couple`])
+//! computes the cross terms from the rooms' scenes (the pair integrals through the opening,
+//! the receivers' view of the other room's seen patches, the direct light of each room's
+//! luminaires with photometry and clear windows in the other), for every port and for every
+//! two rooms that see each other across a third through two openings, and solves the coupled
+//! system over the seen patches of every room.
 
 mod couple;
 mod cross;
