@@ -100,18 +100,7 @@ fn door_open_daylit() -> (Manifest, PathBuf) {
     let dir = common::scratch("ports-daylit");
     let path = two_rooms(&dir, PORT);
     std::fs::write(dir.join("left.toml"), daylit_left_scene()).expect("scene");
-    let text = std::fs::read_to_string(&path)
-        .expect("manifest")
-        .replace("[building]\n", "[building]\nflash = \"8MiB\"\n")
-        .replace(
-            "grids = [\"plane_left\"]\n",
-            "grids = [\"plane_left\"]\nmodes = true\n",
-        )
-        .replace(
-            "grids = [\"plane_right\"]\n",
-            "grids = [\"plane_right\"]\nmodes = true\n",
-        );
-    std::fs::write(&path, text).expect("manifest");
+    both_keep_the_modes(&path);
     let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
     assert!(manifest.controllers.iter().all(|c| c.modes));
     let out = dir.join("out");

@@ -244,3 +244,20 @@ pub fn daylit_rooms_in_one_scene() -> String {
         &format!("\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n{door}"),
     )
 }
+
+/// Rewrites the manifest at `path` ([`two_rooms`]) so that both controllers keep the modes,
+/// with 8 MiB of flash for them.
+pub fn both_keep_the_modes(path: &Path) {
+    let text = std::fs::read_to_string(path)
+        .expect("manifest")
+        .replace("[building]\n", "[building]\nflash = \"8MiB\"\n")
+        .replace(
+            "grids = [\"plane_left\"]\n",
+            "grids = [\"plane_left\"]\nmodes = true\n",
+        )
+        .replace(
+            "grids = [\"plane_right\"]\n",
+            "grids = [\"plane_right\"]\nmodes = true\n",
+        );
+    std::fs::write(path, text).expect("manifest");
+}

@@ -14,7 +14,9 @@ use eigenrad_runtime::{Basis, Sun};
 
 use crate::common;
 use crate::common::one_scene::with_the_hole;
-use crate::common::two_rooms::{daylit_left_scene, daylit_rooms_in_one_scene, two_rooms};
+use crate::common::two_rooms::{
+    both_keep_the_modes, daylit_left_scene, daylit_rooms_in_one_scene, two_rooms,
+};
 use crate::{build_with, exact_port, merged_error};
 
 /// Area-weighted RMS difference of the daylight's patch exitance through every mode from the
@@ -35,18 +37,7 @@ fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
     let path = two_rooms(&dir, &exact_port());
     std::fs::write(dir.join("left.toml"), daylit_left_scene()).expect("scene");
     // Both controllers keep every mode, so that the patches' exitance through them is exact.
-    let text = std::fs::read_to_string(&path)
-        .expect("manifest")
-        .replace("[building]\n", "[building]\nflash = \"8MiB\"\n")
-        .replace(
-            "grids = [\"plane_left\"]\n",
-            "grids = [\"plane_left\"]\nmodes = true\n",
-        )
-        .replace(
-            "grids = [\"plane_right\"]\n",
-            "grids = [\"plane_right\"]\nmodes = true\n",
-        );
-    std::fs::write(&path, text).expect("manifest");
+    both_keep_the_modes(&path);
     let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
     assert!(manifest.controllers.iter().all(|c| c.modes));
     let out = dir.join("out");

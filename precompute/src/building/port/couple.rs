@@ -191,25 +191,8 @@ pub fn couple(
             })
         })
         .collect();
-    // Rooms joined through ports, directly or through others.
     let rooms = parts.len();
-    let mut group: Vec<usize> = (0..rooms).collect();
-    loop {
-        let mut changed = false;
-        for port in &manifest.ports {
-            let [a, b] = port.rooms;
-            let low = group[a].min(group[b]);
-            for r in [a, b] {
-                if group[r] != low {
-                    group[r] = low;
-                    changed = true;
-                }
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
+    let group = super::groups(rooms, manifest.ports.iter().map(|p| p.rooms));
     let first_channel: Vec<usize> = parts
         .iter()
         .scan(0, |next, part| {
@@ -375,19 +358,7 @@ pub fn couple(
             .filter(|&q| group[q] == group[r] && !parts[q].ports.daylight.is_empty())
             .collect();
         if let Some(&first) = lit.first() {
-            let frame = DaylightFrame::of(&parts[first]);
-            for &q in &lit {
-                if DaylightFrame::of(&parts[q]) != frame {
-                    return Err(BuildingError::Manifest {
-                        at: manifest.rooms[q].at.clone(),
-                        item: format!("room {}", parts[q].room),
-                        message: format!(
-                            "its daylight (the site, the sky's patches or the sun grid) differs from room {}'s, which ports join to it: daylight crossing a port is read under one sky, so give the rooms' scenes the same [site] and build them with the same sun grid",
-                            parts[first].room
-                        ),
-                    });
-                }
-            }
+            DaylightFrame::check(manifest, parts, &lit)?;
             // The sky's patches and the exterior, the same nodes in every joined room.
             let sky_nodes = parts[first].ports.daylight.len() - parts[first].tables.sun_nodes.len();
             // Every joined room's sun nodes: a neighbour's sun lights this room through the
@@ -475,6 +446,32 @@ pub(super) struct DaylightFrame<'a> {
     site: &'a [f64],
     sun_lattice: &'a [u32],
     sun_spacing: &'a [f64],
+}
+
+impl DaylightFrame<'_> {
+    /// Whether the rooms `lit` (indices into `parts`, the first their reference) share one
+    /// frame: an error naming the first room that does not.
+    pub(super) fn check(
+        manifest: &Manifest,
+        parts: &[Part],
+        lit: &[usize],
+    ) -> Result<(), BuildingError> {
+        let Some(&first) = lit.first() else {
+            return Ok(());
+        };
+        let frame = DaylightFrame::of(&parts[first]);
+        match lit.iter().find(|&&q| DaylightFrame::of(&parts[q]) != frame) {
+            None => Ok(()),
+            Some(&q) => Err(BuildingError::Manifest {
+                at: manifest.rooms[q].at.clone(),
+                item: format!("room {}", parts[q].room),
+                message: format!(
+                    "its daylight (the site, the sky's patches or the sun grid) differs from room {}'s, which ports join to it: daylight crossing a port is read under one sky, so give the rooms' scenes the same [site] and build them with the same sun grid",
+                    parts[first].room
+                ),
+            }),
+        }
+    }
 }
 
 impl<'a> DaylightFrame<'a> {

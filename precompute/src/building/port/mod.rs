@@ -438,3 +438,24 @@ fn entering_lights(
         })
         .collect()
 }
+
+/// Rooms joined through `links` (pairs of rooms), directly or through others: `group[r]` is
+/// the lowest room of room r's group, of `rooms` rooms.
+fn groups(rooms: usize, links: impl Iterator<Item = [usize; 2]> + Clone) -> Vec<usize> {
+    let mut group: Vec<usize> = (0..rooms).collect();
+    loop {
+        let mut changed = false;
+        for [a, b] in links.clone() {
+            let low = group[a].min(group[b]);
+            for r in [a, b] {
+                if group[r] != low {
+                    group[r] = low;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            return group;
+        }
+    }
+}

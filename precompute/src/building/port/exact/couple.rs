@@ -228,24 +228,7 @@ pub fn couple(
         })
         .collect();
     let channels: usize = parts.iter().map(|p| p.tables.channel_names.len()).sum();
-    // Rooms joined through ports, directly or through others.
-    let mut group: Vec<usize> = (0..rooms).collect();
-    loop {
-        let mut changed = false;
-        for &p in &ports {
-            let [a, b] = manifest.ports[p].rooms;
-            let low = group[a].min(group[b]);
-            for r in [a, b] {
-                if group[r] != low {
-                    group[r] = low;
-                    changed = true;
-                }
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
+    let group = super::super::groups(rooms, ports.iter().map(|&p| manifest.ports[p].rooms));
     // Each group's daylight nodes are right-hand sides too, after the building's channels.
     let columns = daylight_columns(manifest, parts, &group, &links, channels)?;
     let sources = columns

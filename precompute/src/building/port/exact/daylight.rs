@@ -329,17 +329,7 @@ pub(super) fn daylight_columns(
         let Some(&first) = lit.first() else {
             continue;
         };
-        let frame = DaylightFrame::of(&parts[first]);
-        if let Some(&q) = lit.iter().find(|&&q| DaylightFrame::of(&parts[q]) != frame) {
-            return Err(BuildingError::Manifest {
-                at: manifest.rooms[q].at.clone(),
-                item: format!("room {}", parts[q].room),
-                message: format!(
-                    "its daylight (the site, the sky's patches or the sun grid) differs from room {}'s, which ports join to it: daylight crossing a port is read under one sky, so give the rooms' scenes the same [site] and build them with the same sun grid",
-                    parts[first].room
-                ),
-            });
-        }
+        DaylightFrame::check(manifest, parts, &lit)?;
         let sky = parts[first].exact.daylight.len() - parts[first].tables.sun_nodes.len();
         let mut sun_nodes: Vec<u32> = lit
             .iter()
