@@ -238,9 +238,9 @@ pub fn couple(
         .max()
         .unwrap_or(channels)
         .max(channels);
-    // The direct light of the luminaires with photometry of each room in the rooms its ports
-    // join it to, through the openings: `lit[r]` on room r's seen patches (seen × sources)
-    // and at its outputs (outputs × sources), `None` where no luminaire reaches it.
+    // The direct light of the luminaires with photometry and the clear windows of each room in
+    // the rooms it sees through openings: `lit[r]` on room r's seen patches (seen × sources)
+    // and at its outputs (outputs × sources), `None` where none reaches it.
     let mut lit: Vec<Option<(Mat<f64>, Mat<f64>)>> = vec![None; rooms];
     for link in &links {
         for (side, direct) in link.term.direct.iter().enumerate() {
@@ -286,8 +286,8 @@ pub fn couple(
             }
         }
     }
-    // `coupling(k, b, r)`: irradiance arriving at room r's seen patch a from the other room
-    // of port k per unit exitance of its seen patch v, `τ G_av / A_a`, as a matrix.
+    // `coupling(k, r)`: irradiance arriving at room r's seen patch a from the other room of
+    // link k per unit exitance of its seen patch v, `τ G_av / A_a`, as a matrix.
     let coupling = |k: usize, r: usize| -> Mat<f64> {
         let link = &links[k];
         let side = usize::from(link.rooms[1] == r);
@@ -300,7 +300,6 @@ pub fn couple(
             link.transmittance * gav / area(seen[a])
         })
     };
-
     // Per band: the seen patches' exitance `m` (unknowns × sources) and the irradiance each
     // room's seen patches get from outside, `e[r]` (seen × sources).
     let mut exitance: Vec<Mat<f64>> = Vec::with_capacity(bands);
