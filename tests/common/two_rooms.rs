@@ -221,12 +221,47 @@ pub fn daylit_left_scene() -> String {
         + "\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n"
 }
 
-/// [`rooms_in_one_scene`] with the left room's window and site of [`daylit_left_scene`]: the
-/// two rooms as one scene lit by daylight through that window, the door quads still last.
-pub fn daylit_rooms_in_one_scene() -> String {
+/// The right room's window, in its wall y = 3 m facing into it (−y, north with the site's
+/// north 0): sunlit only by summer mornings' and evenings' suns.
+pub const RIGHT_WINDOW: &str = "\n[[quad]]\nname = \"window_right\"\nmaterial = \"glass\"\ncorners = [[4.5, 3, 0.9], [4.5, 3, 2.0], [3.5, 3, 2.0], [3.5, 3, 0.9]]\n";
+
+/// [`right_scene`] with [`RIGHT_WINDOW`] and the site of [`daylit_left_scene`].
+pub fn daylit_right_scene() -> String {
+    right_scene(0.5)
+        .replacen(
+            "[materials]\n",
+            &format!(
+                "{}\n\n[materials]\nglass = {{ reflectance = 0.0, transmittance = 0.7 }}\n",
+                super::VIENNA
+            ),
+            1,
+        )
+        .replace(
+            "openings = [\"lamp_right\", \"door\"]",
+            "openings = [\"lamp_right\", \"door\", \"window_right\"]",
+        )
+        + RIGHT_WINDOW
+}
+
+/// [`rooms_in_one_scene`] with the left room's window and site of [`daylit_left_scene`] (and
+/// with `right_window`, [`RIGHT_WINDOW`]): the two rooms as one scene lit by daylight through
+/// the windows, the door quads still last.
+pub fn daylit_rooms_in_one_scene(right_window: bool) -> String {
     let door = "\n[[quad]]\nname = \"door_left\"";
     let one = rooms_in_one_scene();
     assert!(one.contains(door));
+    let mut windows = "\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n".to_string();
+    let mut one = one.replace(
+        "openings = [\"lamp_left\", \"door_left\"]",
+        "openings = [\"lamp_left\", \"door_left\", \"window\"]",
+    );
+    if right_window {
+        windows.push_str(RIGHT_WINDOW);
+        one = one.replace(
+            "openings = [\"lamp_right\", \"door_right\"]",
+            "openings = [\"lamp_right\", \"door_right\", \"window_right\"]",
+        );
+    }
     one.replacen(
         "[materials]\n",
         &format!(
@@ -235,14 +270,7 @@ pub fn daylit_rooms_in_one_scene() -> String {
         ),
         1,
     )
-    .replace(
-        "openings = [\"lamp_left\", \"door_left\"]",
-        "openings = [\"lamp_left\", \"door_left\", \"window\"]",
-    )
-    .replace(
-        door,
-        &format!("\n[[quad]]\nname = \"window\"\nmaterial = \"glass\"\ncorners = [[0.5, 0, 0.9], [0.5, 0, 2.0], [2.5, 0, 2.0], [2.5, 0, 0.9]]\n{door}"),
-    )
+    .replace(door, &format!("{windows}{door}"))
 }
 
 /// Rewrites the manifest at `path` ([`two_rooms`]) so that both controllers keep the modes,

@@ -5,7 +5,7 @@ use eigenrad_precompute::accuracy::metric::patch_error;
 use eigenrad_precompute::accuracy::runtime_eval::{evaluate_daylight, SkyState};
 use eigenrad_precompute::building::{self, Manifest};
 use eigenrad_precompute::pipeline::{BuildOptions, ModeSelection};
-use eigenrad_precompute::scene;
+use eigenrad_precompute::scene::{self, Scene};
 use eigenrad_precompute::sources::daylight::nodes::room_sun;
 use eigenrad_precompute::sources::daylight::{sky_response, sun_light, DaylightOptions};
 use eigenrad_precompute::sources::ChannelLight;
@@ -15,7 +15,8 @@ use eigenrad_runtime::{Basis, Sun};
 use crate::common;
 use crate::common::one_scene::with_the_hole;
 use crate::common::two_rooms::{
-    both_keep_the_modes, daylit_left_scene, daylit_rooms_in_one_scene, two_rooms,
+    both_keep_the_modes, daylit_left_scene, daylit_right_scene, daylit_rooms_in_one_scene,
+    two_rooms,
 };
 use crate::{build_with, exact_port, merged_error};
 
@@ -33,9 +34,25 @@ const FULL_MODES: f64 = 1e-4;
 /// straight through the opening misses it by far more.
 #[test]
 fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
-    let dir = common::scratch("ports-exact-daylit");
+    daylight_as_in_one_scene("ports-exact-daylit", false);
+}
+
+/// The same with a window in the right room too, under the same site: each room's daylight
+/// reaches the other, the rooms' sun nodes joined.
+#[test]
+fn daylight_of_both_rooms_through_the_doorway_reads_as_in_one_scene() {
+    daylight_as_in_one_scene("ports-exact-daylit-both", true);
+}
+
+/// Builds the two rooms with the left room's window (and with `right_window`, the right
+/// room's) in `scratch`, merges, and compares with the one scene as the tests above say.
+fn daylight_as_in_one_scene(scratch: &str, right_window: bool) {
+    let dir = common::scratch(scratch);
     let path = two_rooms(&dir, &exact_port());
     std::fs::write(dir.join("left.toml"), daylit_left_scene()).expect("scene");
+    if right_window {
+        std::fs::write(dir.join("right.toml"), daylit_right_scene()).expect("scene");
+    }
     // Both controllers keep every mode, so that the patches' exitance through them is exact.
     both_keep_the_modes(&path);
     let manifest = Manifest::load(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -46,7 +63,10 @@ fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
         ..BuildOptions::default()
     };
     build_with(&manifest, &[vec![0, 1]], &out, &every_mode);
-    let one = with_the_hole("ports-exact-daylit-hole", &daylit_rooms_in_one_scene());
+    let one = with_the_hole(
+        &format!("{scratch}-hole"),
+        &daylit_rooms_in_one_scene(right_window),
+    );
     let site = one.scene.site.clone().expect("the one scene's site");
     let bases: Vec<Vec<u8>> = ["left", "right"]
         .iter()
@@ -75,22 +95,30 @@ fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
             sun_light(&one.scene, &one.occluders, sun, &options),
         )
     };
-    let up = |node: usize| {
+    // Whether node `node`'s sun is up and on the side `south` (the left room's window's) or
+    // the other (the right room's).
+    let up = |node: usize, south: bool| {
         grid.direction(node)
             .and_then(|d| room_sun(&site, d))
-            .is_some()
+            .is_some_and(|sun| (sun.y < 0.0) == south)
     };
-    let on_right = |light: &ChannelLight| -> f64 {
+    // The lumens a light puts on the patches of the right room (`right`) or the left one.
+    let on = |light: &ChannelLight, right: bool| -> f64 {
         (0..one.scene.patches.len())
-            .filter(|&k| in_right[k])
+            .filter(|&k| in_right[k] == right)
             .map(|k| one.scene.patches[k].area * light.patch_irradiance[0][k])
             .sum()
     };
-    let through_door = (0..grid.len())
-        .filter(|&node| up(node))
-        .map(|node| (node, on_right(&sun_at(node).1)))
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .expect("sun nodes");
+    // The southern sun putting most light on the right room: through the left room's window
+    // and the door (the right room's window faces north).
+    let most_on = |south: bool, right: bool| {
+        (0..grid.len())
+            .filter(|&node| up(node, south))
+            .map(|node| (node, on(&sun_at(node).1, right)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .expect("sun nodes")
+    };
+    let through_door = most_on(true, true);
     assert!(
         through_door.1 > 0.0,
         "no sun of the grid reaches the right room"
@@ -100,20 +128,58 @@ fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
             let (d, h) = grid.angles(k).expect("node");
             d.abs() < 6.0 && h.abs() < 16.0
         })
-        .find(|&k| up(k))
+        .find(|&k| up(k, true))
         .expect("a node near noon at the equinox");
-    let sky = sky_response(&one.scene, &one.occluders, patches, &options);
+    let mut nodes = vec![through_door.0, noon];
+    if right_window {
+        // A northern sun through the right room's window and the door onto the left room.
+        let back = most_on(false, false);
+        assert!(back.1 > 0.0, "no northern sun reaches the left room");
+        nodes.push(back.0);
+    }
     // A sky of uneven luminances (cd/m²) and its global horizontal illuminance (lux).
     let luminance: Vec<f32> = (0..patches.count())
         .map(|k| 1000.0 * (1.0 + (k % 5) as f32 / 4.0))
         .collect();
     let global_horizontal = 10_000.0f32;
     let direct_normal = 1000.0f32;
-    let mut sky_light = sky
-        .exterior
-        .scaled(f64::from(global_horizontal) / std::f64::consts::PI);
-    for (light, &l) in sky.sky.iter().zip(&luminance) {
-        sky_light.add_scaled(light, f64::from(l));
+    // The sky's light through the windows of `scene`.
+    let sky_through = |scene: &Scene| {
+        let sky = sky_response(scene, &one.occluders, patches, &options);
+        let mut light = sky
+            .exterior
+            .scaled(f64::from(global_horizontal) / std::f64::consts::PI);
+        for (response, &l) in sky.sky.iter().zip(&luminance) {
+            light.add_scaled(response, f64::from(l));
+        }
+        light
+    };
+    // Window by window, summed: a receiving patch's cells are refined for the windows the
+    // quadrature is given (their distance and light), so each window's light is integrated
+    // as its own room's build integrates it. Both windows in one call integrate the same
+    // light on other cells: the difference is the quadrature's own error, reported below.
+    let mut sky_light = ChannelLight {
+        emission: vec![vec![0.0; one.scene.patches.len()]],
+        patch_irradiance: vec![vec![0.0; one.scene.patches.len()]],
+        output_irradiance: vec![vec![0.0; one.names.len()]],
+    };
+    for window in &one.scene.windows {
+        let mut alone = one.scene.clone();
+        alone.windows = vec![window.clone()];
+        sky_light.add_scaled(&sky_through(&alone), 1.0);
+    }
+    if right_window {
+        let together = sky_through(&one.scene);
+        let patch = |l: &ChannelLight| l.patch_irradiance[0].clone();
+        let largest = patch(&sky_light).iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let moved = patch(&together)
+            .iter()
+            .zip(&patch(&sky_light))
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        eprintln!(
+            "the sky through both windows integrated together against window by window: patch irradiance moves by up to {:.1e} of its largest value",
+            moved / largest
+        );
     }
     let mut lights = vec![sky_light];
     let mut states = vec![SkyState {
@@ -121,7 +187,7 @@ fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
         global_horizontal,
         sun: None,
     }];
-    for node in [through_door.0, noon] {
+    for &node in &nodes {
         let (direction, sun) = sun_at(node);
         lights.push(sun.scaled(f64::from(direct_normal)));
         states.push(SkyState {
@@ -213,8 +279,8 @@ fn daylight_through_the_window_and_the_doorway_reads_as_in_one_scene() {
         }
     }
     eprintln!(
-        "daylight through an exact port against the one scene, {count} readings (a sky, the sun at nodes {} and {noon}): largest relative difference {:.2e} ({}), patch exitance through every mode {worst_patches:.2e} (area-weighted RMS); the sun straight through the window and the door is up to {:.0} % of a reading in the right room",
-        through_door.0,
+        "daylight through an exact port against the one scene{}, {count} readings (a sky, the sun at nodes {nodes:?}): largest relative difference {:.2e} ({}), patch exitance through every mode {worst_patches:.2e} (area-weighted RMS); the sun straight through the left window and the door is up to {:.0} % of a reading in the right room",
+        if right_window { ", a window in each room" } else { "" },
         worst.0,
         worst.1,
         100.0 * direct_share
