@@ -70,6 +70,7 @@ use crate::scene::receivers::{mean_over_points, receivers, Receiver};
 use crate::scene::{FieldOfView, Scene};
 
 mod cells;
+mod clear;
 pub mod direct;
 pub mod nodes;
 mod outside;
@@ -81,6 +82,7 @@ pub mod sun_first;
 mod tests;
 
 use cells::{uniform_light, Pane, Viewer, MAX_ORDER};
+pub use clear::{clear_sky_on, clear_sun_on};
 use outside::{distance_to_polygon, Outside};
 
 /// How finely daylight through the windows is integrated.
@@ -193,54 +195,6 @@ pub fn sun_light(
     opts: &DaylightOptions,
 ) -> ChannelLight {
     sun::light(scene, occluders, direction, opts, &glazing(scene))
-}
-
-/// [`sky_response`] from the clear windows alone, on the patches `receiving` marks (indices
-/// into [`Scene::patches`]; the others read 0) and at every output: the light that passes
-/// straight through the windows, where the diffusing windows' is their patches' emission.
-/// An exact port's merge lights the room beyond the opening with it (the scene both rooms).
-///
-/// # Panics
-///
-/// As [`sky_response`].
-pub fn clear_sky_on(
-    scene: &Scene,
-    occluders: &Occluders,
-    patches: SkyPatches,
-    opts: &DaylightOptions,
-    receiving: &[bool],
-) -> SkyResponse {
-    sky::response_on(
-        scene,
-        occluders,
-        patches,
-        opts,
-        &glazing(scene),
-        Some(receiving),
-    )
-}
-
-/// [`sun_light`] from the clear windows alone, on the patches `receiving` marks and at every
-/// output, as [`clear_sky_on`].
-///
-/// # Panics
-///
-/// As [`sun_light`].
-pub fn clear_sun_on(
-    scene: &Scene,
-    occluders: &Occluders,
-    direction: Vec3,
-    opts: &DaylightOptions,
-    receiving: &[bool],
-) -> ChannelLight {
-    sun::light_on(
-        scene,
-        occluders,
-        direction,
-        opts,
-        &glazing(scene),
-        Some(receiving),
-    )
 }
 
 /// One moment's sky as the room's light sources see it: every sky patch's luminance, the
