@@ -12,7 +12,9 @@ use crate::scene::{Bands, Scene};
 use crate::sources::daylight::direct::direct_sun_tables;
 use crate::sources::daylight::nodes::DaylightNodes;
 use crate::sources::daylight::reflection::first_reflection;
-use crate::sources::daylight::sun_first::{culling_suns, sun_first_tables};
+use crate::sources::daylight::sun_first::{
+    culling_suns, sun_first_responses, sun_first_tables, zone_sun_tables,
+};
 
 /// Fills every table of the basis for the first `p` modes of `model`, section by section of
 /// `docs/format.md`.
@@ -213,6 +215,10 @@ pub struct BasisDaylight {
     /// Each node's initial exitance, its first reflection (lux per unit of the node;
     /// [`crate::radiosity::System::initial_exitances`]), in the nodes' order.
     pub initial: Vec<Vec<f64>>,
+    /// Per patch, whether the sun lights it at the centre of a cell of the sun grid
+    /// ([`crate::sources::daylight::sun_first::lit_between_nodes`]); empty unless the basis
+    /// stores the sun's first reflection for the controller.
+    pub lit_between_nodes: Vec<bool>,
 }
 
 /// The daylight section (docs/format.md, "Daylight") of a basis whose other tables `t` holds:
@@ -278,20 +284,29 @@ pub fn daylight_tables(
     t.sun_reflection = first.sun_values;
     t.daylight_modes = first.modes;
     debug_assert_eq!(t.daylight_outputs.len(), outputs * d);
-    // The patches some stored sun node lights directly and that reflect: the candidates of
-    // the sun's first reflection on the controller.
+    // The patches some stored sun node or the sun at a cell's centre lights directly and
+    // that reflect: the candidates of the sun's first reflection on the controller.
     let bands = t.bands.max(1);
     let lit = |i: usize| {
         t.patch_reflectance.get(i * bands).is_some_and(|&r| r > 0.0)
-            && daylight.initial[first_sun..].iter().any(|m0| m0[i] > 0.0)
+            && (daylight.initial[first_sun..].iter().any(|m0| m0[i] > 0.0)
+                || daylight.lit_between_nodes.get(i) == Some(&true))
     };
-    let first_tables = if sun_first {
-        sun_first_tables(&scene.patches, lit)
+    let (first_tables, zone_tables) = if sun_first {
+        (
+            sun_first_tables(&scene.patches, lit),
+            zone_sun_tables(scene),
+        )
     } else {
         Default::default()
     };
     let patch_suns = culling_suns(site, grid, &nodes.sun_nodes);
-    let direct = direct_sun_tables(scene, site, &first_tables.sample_points, &patch_suns);
+    let culling: Vec<_> = [&first_tables.sample_points, &zone_tables.sample_points]
+        .into_iter()
+        .flatten()
+        .copied()
+        .collect();
+    let direct = direct_sun_tables(scene, site, &culling, &patch_suns);
     t.sun_polygon_counts = direct.counts.to_vec();
     t.sun_polygon_sizes = direct.sizes;
     t.sun_polygons = direct.polygons;
@@ -305,6 +320,12 @@ pub fn daylight_tables(
     t.sun_first_sizes = first_tables.sizes;
     t.sun_first_points = first_tables.points;
     t.sun_node_power = vec![0.0; nodes.sun_nodes.len()];
+    let readings = scene.sensors.len() + scene.zones.len() + t.grid_position.len();
+    t.sun_first_response =
+        sun_first_responses(scene, model.system, &t.sun_first_patches, readings)?;
+    t.zone_sun_counts = zone_tables.counts;
+    t.zone_sun_sizes = zone_tables.sizes;
+    t.zone_sun_polygons = zone_tables.polygons;
     split_direct_sun(t, nodes)?;
     Ok(split_first_reflection(t, nodes)?)
 }
@@ -393,6 +414,10 @@ pub fn fold_sun_first(t: &mut BasisTables) -> std::result::Result<(), eigenrad_r
     t.sun_first_sizes.clear();
     t.sun_first_points.clear();
     t.sun_node_power.clear();
+    t.sun_first_response.clear();
+    t.zone_sun_counts.clear();
+    t.zone_sun_sizes.clear();
+    t.zone_sun_polygons.clear();
     Ok(())
 }
 

@@ -1,4 +1,4 @@
-//! The serialized basis, format version 8: the wire types a writer fills and the reader
+//! The serialized basis, format version 9: the wire types a writer fills and the reader
 //! decodes in place. `docs/format.md` is the normative description; this module is its
 //! layout and header, the checks of the payload's sections are in `decode/`.
 //!
@@ -35,7 +35,7 @@ use crate::error::{Error, Result};
 /// The eight bytes every basis starts with.
 pub const MAGIC: [u8; 8] = *b"EIGENRAD";
 /// The format version this runtime writes and reads.
-pub const FORMAT_VERSION: u16 = 8;
+pub const FORMAT_VERSION: u16 = 9;
 /// Size of the fixed header in bytes.
 pub const HEADER_LEN: usize = 20;
 

@@ -137,12 +137,21 @@ pub struct BasisTables {
     pub sun_reflection: Vec<f64>,
     /// Empty, or the patches the sun can light directly, ascending.
     pub sun_first_patches: Vec<u32>,
-    /// Each such patch's sample points.
+    /// Each such patch's corners.
     pub sun_first_sizes: Vec<u8>,
-    /// Per such patch: unit normal, then each sample point's position (m) and weight.
+    /// Per such patch: unit normal, then its corners in order (m).
     pub sun_first_points: Vec<f64>,
     /// Empty, or per sun node the controller's first-reflection power, lm per lux.
     pub sun_node_power: Vec<f64>,
+    /// Empty, or per candidate every reading's response to a unit of its first reflection
+    /// (sensors, zones, grid points; lux per lux).
+    pub sun_first_response: Vec<f64>,
+    /// Empty, or per zone the polygons its direct sun is computed on.
+    pub zone_sun_counts: Vec<u32>,
+    /// Each such polygon's corners.
+    pub zone_sun_sizes: Vec<u8>,
+    /// Per such polygon: unit normal, then its corners in order (m).
+    pub zone_sun_polygons: Vec<f64>,
 }
 
 /// `values` rounded to `f32`, little-endian.
@@ -306,6 +315,10 @@ impl BasisTables {
             sun_first_sizes: Vec::new(),
             sun_first_points: Vec::new(),
             sun_node_power: Vec::new(),
+            sun_first_response: Vec::new(),
+            zone_sun_counts: Vec::new(),
+            zone_sun_sizes: Vec::new(),
+            zone_sun_polygons: Vec::new(),
         }
     }
 
@@ -441,6 +454,10 @@ impl BasisTables {
             sun_first_sizes: &self.sun_first_sizes,
             sun_first_points: &f32_bytes(&self.sun_first_points),
             sun_node_power: &f32_bytes(&self.sun_node_power),
+            sun_first_response: &f32_bytes(&self.sun_first_response),
+            zone_sun_counts: &u32_bytes(&self.zone_sun_counts),
+            zone_sun_sizes: &self.zone_sun_sizes,
+            zone_sun_polygons: &f32_bytes(&self.zone_sun_polygons),
         })
     }
 }

@@ -1,7 +1,7 @@
-//! The sun's first reflection on the controller (format version 8; docs/format.md, "The
-//! sun's first reflection"): the tiny daylight basis with a window, a wall outside and one
-//! candidate patch, read at a sun node against sums by hand, and each malformed table
-//! refused naming it.
+//! The sun's first reflection on the controller (format versions 8 and 9; docs/format.md,
+//! "The sun's first reflection"): the tiny daylight basis with a window, a wall outside and
+//! one candidate patch, read at a sun node against sums by hand, a candidate's sunlit area
+//! against its closed form, and each malformed table refused naming it.
 #![allow(
     clippy::unwrap_used,
     clippy::expect_used,
@@ -74,6 +74,89 @@ fn a_node_reads_its_rest_its_direct_sun_and_its_first_reflection() {
     }
 }
 
+/// With every reading's response to the candidate stored (format version 9), a reading is
+/// the node's stored rest (weighed per unit of power, as before) plus its direct sun plus
+/// its response times `M0`, the response taking the place of the view; with a zone polygon
+/// (the same square as the candidate, fully lit), the zone adds its direct sun, `τ sin a`.
+#[test]
+fn responses_take_the_place_of_the_views_and_zones_get_their_direct_sun() {
+    let a = (90.0f64 - f64::from(LATITUDE)).to_radians();
+    let direct = 0.5 * a.sin();
+    let m0 = 0.5 * direct;
+    let e_n = 1000.0;
+    let response = [0.7, 0.9, 0.4, 0.6];
+    for zone_polygon in [false, true] {
+        let mut t = with_first([1.0, 2.0 * m0, 1.0]);
+        t.sun_first_response = response.to_vec();
+        if zone_polygon {
+            t.zone_sun_counts = vec![1];
+            t.zone_sun_sizes = vec![4];
+            t.zone_sun_polygons = t.sun_first_points.clone();
+        }
+        let bytes = t.to_bytes().unwrap();
+        let basis = Basis::from_bytes(&bytes).unwrap();
+        let mut day = Day::new(basis).unwrap();
+        day.set_sky(&[0.0; 145], 0.0, Some(noon(e_n as f32)))
+            .unwrap();
+        let want = |rest: f64, direct: f64, o: usize| e_n * (rest + direct + response[o] * m0);
+        let zone_direct = if zone_polygon { direct } else { 0.0 };
+        let cases = [
+            (day.sensor_illuminance(0).unwrap(), want(148.0, direct, 0)),
+            (
+                day.zone_illuminance(0).unwrap(),
+                want(296.0, zone_direct, 1),
+            ),
+            (
+                day.grid_point_illuminance(0, 0).unwrap(),
+                want(296.0, direct, 2),
+            ),
+            (
+                day.grid_point_illuminance(0, 1).unwrap(),
+                want(444.0, direct, 3),
+            ),
+        ];
+        for (got, want) in cases {
+            assert!(
+                (f64::from(got) - want).abs() <= 1e-5 * want,
+                "{got} against {want} (zone polygon {zone_polygon})"
+            );
+        }
+    }
+}
+
+/// A candidate the window's shadow edge crosses: a 2 m square on the floor plane at
+/// height 0.8 from y = 0.3 to 2.3, under the noon sun at the node (altitude `a`). A point at
+/// depth `y` sees the sun through the window while `0.8 + y tan a ≤ 2.5`, so the lit part
+/// is `y ≤ 1.7 / tan a`, and between x = 0 and 2 (the window's width, the sun due south):
+/// the power is `ρ τ sin a` times that area, the closed form, where four sample points
+/// (the rule before format 9) would give 0.5 or 0.75 of the whole.
+#[test]
+fn a_partly_lit_candidate_reads_its_lit_area() {
+    let a = (90.0f64 - f64::from(LATITUDE)).to_radians();
+    let mut t = with_first([1.0, 1.0, 1.0]);
+    t.sun_first_points = vec![
+        0.0, 0.0, 1.0, //
+        0.0, 0.3, 0.8, 2.0, 0.3, 0.8, 2.0, 2.3, 0.8, 0.0, 2.3, 0.8,
+    ];
+    let bytes = t.to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let direct = eigenrad_runtime::sky::direct::DirectSun::new(&basis)
+        .unwrap()
+        .unwrap();
+    let first = eigenrad_runtime::sky::sun_first::SunFirst::new(&basis, direct).unwrap();
+    let sun = direct.room_direction(noon(1.0).direction);
+    let power = first.each_lit(sun, |_, _, _| {});
+    let lit_depth = 1.7 / a.tan() - 0.3;
+    assert!(lit_depth > 0.0 && lit_depth < 2.0, "{lit_depth}");
+    // ρ τ sin a E over the lit area, per unit of the patch's area, times the stored area
+    // (patch 0's, 2 m²).
+    let want = 0.5 * 0.5 * a.sin() * (2.0 * lit_depth) / 4.0 * 2.0;
+    assert!(
+        (f64::from(power) - want).abs() <= 1e-4 * want,
+        "{power} against {want}"
+    );
+}
+
 /// Where the wall outside hides the sun from the candidate (raised to 4 m; every stored
 /// corner's power positive), the rest is read per unit of a power of 0: the reading is its
 /// direct sun and first reflection alone, both 0, where format 7 interpolated the corners'
@@ -110,7 +193,7 @@ type Case = (&'static str, fn(&mut BasisTables), Error);
 #[test]
 fn malformed_tables_are_refused_naming_them() {
     let value = |field: &'static str, index: usize| Error::DecodeValue { field, index };
-    let cases: [Case; 8] = [
+    let cases: [Case; 12] = [
         (
             "a power per sun node",
             |t| t.sun_node_power.pop().map(drop).unwrap_or(()),
@@ -133,8 +216,11 @@ fn malformed_tables_are_refused_naming_them() {
             value("sun_first_sizes", 0),
         ),
         (
-            "no sample point",
-            |t| t.sun_first_sizes = vec![0],
+            "two corners",
+            |t| {
+                t.sun_first_sizes = vec![2];
+                t.sun_first_points.truncate(9);
+            },
             value("sun_first_sizes", 0),
         ),
         (
@@ -148,9 +234,45 @@ fn malformed_tables_are_refused_naming_them() {
             value("sun_first_points", 0),
         ),
         (
-            "a weight above 1",
-            |t| t.sun_first_points[6] = 1.5,
+            "a corner too far away",
+            |t| t.sun_first_points[6] = 1.0e30,
             value("sun_first_points", 6),
+        ),
+        (
+            "a response too many",
+            |t| t.sun_first_response = vec![0.1; 5],
+            Error::DecodeLength {
+                field: "sun_first_response",
+                expected: 16,
+                found: 20,
+            },
+        ),
+        (
+            "a negative response",
+            |t| {
+                t.sun_first_response = vec![0.1; 4];
+                t.sun_first_response[3] = -0.1;
+            },
+            value("sun_first_response", 3),
+        ),
+        (
+            "a zone's polygon of two corners",
+            |t| {
+                t.zone_sun_counts = vec![1];
+                t.zone_sun_sizes = vec![2];
+                t.zone_sun_polygons = vec![0.0, 0.0, 1.0, 0.0, 0.0, 0.8, 1.0, 0.0, 0.8];
+            },
+            value("zone_sun_sizes", 0),
+        ),
+        (
+            "a zone's polygon with a normal not of unit length",
+            |t| {
+                t.zone_sun_counts = vec![1];
+                t.zone_sun_sizes = vec![3];
+                t.zone_sun_polygons =
+                    vec![0.0, 0.0, 2.0, 0.0, 0.0, 0.8, 1.0, 0.0, 0.8, 0.0, 1.0, 0.8];
+            },
+            value("zone_sun_polygons", 0),
         ),
         (
             "candidates without the direct sun's geometry",

@@ -305,6 +305,10 @@ pub fn cut(room: &BasisTables, selection: &Selection) -> BasisTables {
         sun_first_sizes: Vec::new(),
         sun_first_points: Vec::new(),
         sun_node_power: Vec::new(),
+        sun_first_response: Vec::new(),
+        zone_sun_counts: Vec::new(),
+        zone_sun_sizes: Vec::new(),
+        zone_sun_polygons: Vec::new(),
     };
     if room.grid_pieces.is_empty() {
         // The room has no grid at all: written as it writes it.

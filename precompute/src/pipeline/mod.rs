@@ -413,11 +413,22 @@ pub fn build_tables_and<T>(
             );
             let responses = system.light_responses(0, &nodes.lights)?;
             let initial = system.initial_exitances(0, &nodes.lights);
+            let lit_between_nodes = match &scene.site {
+                Some(site) if opts.sun_first => sources::daylight::sun_first::lit_between_nodes(
+                    &scene,
+                    &occluders,
+                    site,
+                    &nodes.sun_grid,
+                    &daylight_opts,
+                ),
+                _ => Vec::new(),
+            };
             Ok::<_, Error>((
                 basis::BasisDaylight {
                     nodes,
                     responses,
                     initial,
+                    lit_between_nodes,
                 },
                 discretisation,
             ))

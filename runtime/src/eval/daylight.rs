@@ -463,6 +463,8 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
 /// power `P_c` is positive takes `w_c P(s) / (P_c Σ_lit w / E_n)`, the bilinear mean of the
 /// lit nodes' `Q_c / P_c` times `P(s)` (docs/math.md, "The sun between the grid's nodes, part
 /// by part"); a node lighting no candidate keeps its weight, its column the rest itself.
+/// With the stored responses what is left of a column after the reflected sun is mostly a
+/// work-plane zone's direct sun, which follows the power entering the room as well.
 fn per_power(
     first: &SunFirst<'_, '_>,
     first_sun: usize,

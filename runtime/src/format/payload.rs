@@ -217,17 +217,34 @@ pub struct Payload<'a> {
     /// the sun can light directly, ascending (docs/format.md, "The sun's first reflection").
     #[serde(borrow)]
     pub sun_first_patches: &'a [u8],
-    /// `C` `u8`: each such patch's sample points, 1 to 16.
+    /// `C` `u8`: each such patch's corners, 3 to 16.
     #[serde(borrow)]
     pub sun_first_sizes: &'a [u8],
-    /// `f32`, patch by patch: its unit normal, then each sample point's position (m) and
-    /// weight (its share of the patch's area).
+    /// `f32`, patch by patch: its unit normal, then its corners in order (m), a convex
+    /// polygon.
     #[serde(borrow)]
     pub sun_first_points: &'a [u8],
     /// One `f32` per stored sun node: the power of its first reflection as the controller
     /// computes it, `P = Σ_j A_j ρ_j E_j` (lm per lux of direct normal illuminance).
     #[serde(borrow)]
     pub sun_node_power: &'a [u8],
+    /// Empty (what the room reflects after the first reflection is interpolated per unit of
+    /// its power), or `C × (S + Z + G)` `f32`, candidate by candidate: each reading's response
+    /// to a unit of that candidate's first reflection (lux per lux), the direct sun on a
+    /// surface zone's own candidates included.
+    #[serde(borrow)]
+    pub sun_first_response: &'a [u8],
+    /// Empty, or with the candidates one `u32` per zone: the polygons its direct sun is
+    /// computed on at the sun (a work plane's receivers; 0 for a zone whose direct sun is
+    /// in its candidates' responses or interpolated).
+    #[serde(borrow)]
+    pub zone_sun_counts: &'a [u8],
+    /// One `u8` per such polygon: its corners, 3 to 16.
+    #[serde(borrow)]
+    pub zone_sun_sizes: &'a [u8],
+    /// `f32`, polygon by polygon: its unit normal, then its corners in order (m), convex.
+    #[serde(borrow)]
+    pub zone_sun_polygons: &'a [u8],
 }
 
 /// Decodes the postcard payload that fills `body` exactly, borrowing its tables.
@@ -334,6 +351,10 @@ pub(crate) fn decode_payload(body: &[u8]) -> Result<Payload<'_>> {
         &mut p.sun_first_sizes,
         &mut p.sun_first_points,
         &mut p.sun_node_power,
+        &mut p.sun_first_response,
+        &mut p.zone_sun_counts,
+        &mut p.zone_sun_sizes,
+        &mut p.zone_sun_polygons,
     ] {
         *slot = take(&mut rest)?;
     }
@@ -358,7 +379,7 @@ mod tests {
     /// the three loops take the fields in the struct's order.
     #[test]
     fn decode_payload_reads_what_postcard_derives() {
-        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..53u8)
+        let store: alloc::vec::Vec<alloc::vec::Vec<u8>> = (0..57u8)
             .map(|k| {
                 (0..=k)
                     .map(|i| k.wrapping_mul(31).wrapping_add(i))
@@ -429,6 +450,10 @@ mod tests {
             sun_first_sizes: t(50),
             sun_first_points: t(51),
             sun_node_power: t(52),
+            sun_first_response: t(53),
+            zone_sun_counts: t(54),
+            zone_sun_sizes: t(55),
+            zone_sun_polygons: t(56),
         };
         let mut buffer = [0u8; 2048];
         let body = postcard::to_slice(&payload, &mut buffer).unwrap();

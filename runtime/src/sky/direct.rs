@@ -275,14 +275,30 @@ impl<'b, 'a> DirectSun<'b, 'a> {
         (inside && t.is_finite()).then_some(t)
     }
 
+    /// Where each stored polygon starts in the polygon table and its vertex count: the
+    /// window faces, then the room occluders, then the exterior ones.
+    pub(super) fn polygons(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        let total = self
+            .state
+            .counts
+            .iter()
+            .fold(0usize, |a, &c| a.saturating_add(c as usize));
+        let sizes = self.basis.tables.sun_polygon_sizes;
+        sizes.iter().take(total).scan(0usize, |offset, &size| {
+            let (here, size) = (*offset, usize::from(size));
+            *offset = offset.saturating_add(3 + 3 * size);
+            Some((here, size))
+        })
+    }
+
     /// The three `f32` of the polygon table from `offset`.
-    fn vector(&self, offset: usize) -> [f32; 3] {
+    pub(super) fn vector(&self, offset: usize) -> [f32; 3] {
         let at = |k: usize| f32_at(self.basis.tables.sun_polygons, offset + k);
         [at(0), at(1), at(2)]
     }
 
     /// Window face `w`'s transmittance at incidence cosine `cos`, linear in its table.
-    fn transmittance(&self, w: usize, cos: f32) -> f32 {
+    pub(super) fn transmittance(&self, w: usize, cos: f32) -> f32 {
         let at = cos.clamp(0.0, 1.0) * GLAZING_STEPS as f32;
         // `at` is in [0, 64]: the cast truncates towards zero.
         let i = (at as usize).min(GLAZING_STEPS - 1);

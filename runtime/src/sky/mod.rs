@@ -51,6 +51,7 @@ pub mod perez;
 pub mod sun;
 pub mod sun_first;
 pub mod sun_grid;
+pub mod sunlit;
 
 use crate::error::{Error, Result};
 

@@ -256,8 +256,8 @@ pub fn reseal(bytes: &mut [u8]) {
 
 /// `tiny_daylight` with the sun's first reflection (format version 8): a 2 m × 1.5 m window face in the wall y = 0 (x 0 to 2, z 1 to 2.5,
 /// τ = 0.5), a wall outside at y = −2 up to z = 2.5, and the floor (patch 0, ρ 0.5, 2 m²)
-/// as the one candidate, sampled at (1, 1, 0.8) facing up (a desk's height, so that the
-/// sun through the window reaches it) with weight 1. The floor's view from the sensor and
+/// as the one candidate, its polygon the 0.2 m square about (1, 1, 0.8) facing up (a
+/// desk's height, so that the sun through the window reaches it). The floor's view from the sensor and
 /// the zone is 0.2 and 0.3, from the grid points 0.25 and 0.35. `power` per sun node.
 pub fn tiny_daylight_sun_first(power: [f64; 3]) -> BasisTables {
     let mut t = tiny_daylight();
@@ -274,8 +274,11 @@ pub fn tiny_daylight_sun_first(power: [f64; 3]) -> BasisTables {
     t.output_view = vec![0.2, 0.3, 0.1, 0.05];
     t.grid_view = vec![0.25, 0.12, 0.35, 0.08];
     t.sun_first_patches = vec![0];
-    t.sun_first_sizes = vec![1];
-    t.sun_first_points = vec![0.0, 0.0, 1.0, 1.0, 1.0, 0.8, 1.0];
+    t.sun_first_sizes = vec![4];
+    t.sun_first_points = vec![
+        0.0, 0.0, 1.0, // facing up
+        0.9, 0.9, 0.8, 1.1, 0.9, 0.8, 1.1, 1.1, 0.8, 0.9, 1.1, 0.8,
+    ];
     t.sun_node_power = power.to_vec();
     t
 }
