@@ -115,8 +115,13 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             d.bytes
         );
         if let Some(e) = &d.sky_discretisation {
-            // The node tables are as wide as the nodes; the direct sun's tables are apart.
-            let tables = d.bytes - d.direct_sun.as_ref().map_or(0, |t| t.bytes);
+            // The node tables are as wide as the nodes; the direct sun's tables and the sun's
+            // first reflection's are apart.
+            let tables = d.bytes.saturating_sub(
+                d.direct_sun
+                    .as_ref()
+                    .map_or(0, |t| t.bytes + t.candidate_bytes[0]),
+            );
             let _ = writeln!(
                 s,
                 "  sky patches chosen for --sky-tolerance: Reinhart MF:{}, the direct daylight of {} readings under {} reference skies within {:.3} % of MF:{} (mean {:.3} %); the sky's columns take about {} of the {} bytes",
@@ -136,6 +141,17 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
                 "  direct sun on the controller: {} window faces, {} room and {} exterior occluders, {} bytes",
                 direct.window_faces, direct.room_occluders, direct.exterior_occluders, direct.bytes
             );
+            if direct.candidates > 0 {
+                let _ = writeln!(
+                    s,
+                    "  the sun's first reflection on the controller: {} candidate patches of {}, every reading's response to each ({} bytes), {} zone polygons: {} bytes",
+                    direct.candidates,
+                    r.patches,
+                    direct.candidate_bytes[1],
+                    direct.zone_polygons,
+                    direct.candidate_bytes[0]
+                );
+            }
         }
         if let Some(f) = &d.first_reflection {
             let _ = writeln!(

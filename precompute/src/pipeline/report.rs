@@ -111,6 +111,13 @@ pub struct DirectSunReport {
     pub exterior_occluders: usize,
     /// Bytes of the six tables.
     pub bytes: usize,
+    /// Candidate patches of the sun's first reflection on the controller (`--sun-first`;
+    /// 0 without).
+    pub candidates: usize,
+    /// Polygons the zones' direct sun is computed on.
+    pub zone_polygons: usize,
+    /// Bytes of the sun's first reflection's tables, and of its responses among them.
+    pub candidate_bytes: [usize; 2],
 }
 
 /// What the daylight's first reflection takes (docs/format.md, "First reflection").
@@ -212,11 +219,16 @@ impl DaylightReport {
                 let basis = eigenrad_runtime::Basis::from_bytes(bytes)?;
                 eigenrad_runtime::sky::direct::DirectSun::new(&basis)?.map(|d| {
                     let [w, r, e] = d.polygon_counts();
+                    let first = eigenrad_runtime::sky::sun_first::SunFirst::new(&basis, d);
                     DirectSunReport {
                         window_faces: w,
                         room_occluders: r,
                         exterior_occluders: e,
                         bytes: d.stored_bytes(),
+                        candidates: first.map_or(0, |f| f.patch_count()),
+                        zone_polygons: first.map_or(0, |f| f.zone_polygon_count()),
+                        candidate_bytes: first
+                            .map_or([0, 0], |f| [f.stored_bytes(), f.response_bytes()]),
                     }
                 })
             },

@@ -62,7 +62,7 @@ pub(super) fn check(raw: &Payload<'_>, c: &Counts) -> Result<()> {
         let patch = u32_at(raw.sun_first_patches, index) as usize;
         // A candidate reflects: its first reflection is `ρ E`. Band 0 is the photopic one.
         let reflectance = f32_at(raw.patch_reflectance, patch.saturating_mul(c.bands));
-        if size < 3 || size > MAX_CORNERS || reflectance <= 0.0 {
+        if !(3..=MAX_CORNERS).contains(&size) || reflectance <= 0.0 {
             return Err(bad_value("sun_first_sizes", index));
         }
         values = cols(values.checked_add(3 + 3 * usize::from(size)))?;
@@ -111,7 +111,7 @@ fn check_zones(raw: &Payload<'_>, c: &Counts) -> Result<()> {
     check_len("zone_sun_sizes", raw.zone_sun_sizes, polygons, 1)?;
     let mut values = 0usize;
     for (index, &size) in raw.zone_sun_sizes.iter().enumerate() {
-        if size < 3 || size > MAX_CORNERS {
+        if !(3..=MAX_CORNERS).contains(&size) {
             return Err(bad_value("zone_sun_sizes", index));
         }
         values = cols(values.checked_add(3 + 3 * usize::from(size)))?;

@@ -60,7 +60,7 @@ impl<'b, 'a> SunFirst<'b, 'a> {
         f32_at(self.basis.tables.sun_node_power, position)
     }
 
-    /// Bytes of the five tables, their lengths included: what the sun's first reflection
+    /// Bytes of the eight tables, their lengths included: what the sun's first reflection
     /// adds to the basis.
     pub fn stored_bytes(&self) -> usize {
         let t = &self.basis.tables;
@@ -70,7 +70,20 @@ impl<'b, 'a> SunFirst<'b, 'a> {
             t.sun_first_points,
             t.sun_node_power,
             t.sun_first_response,
+            t.zone_sun_counts,
+            t.zone_sun_sizes,
+            t.zone_sun_polygons,
         ])
+    }
+
+    /// Bytes of the responses alone (`sun_first_response`), its length included.
+    pub fn response_bytes(&self) -> usize {
+        crate::storage::serialized_len(&[self.basis.tables.sun_first_response])
+    }
+
+    /// Polygons the zones' direct sun is computed on, all zones together.
+    pub fn zone_polygon_count(&self) -> usize {
+        self.basis.tables.zone_sun_sizes.len()
     }
 
     /// Whether the basis stores every reading's response to each candidate: the sun's
@@ -91,6 +104,13 @@ impl<'b, 'a> SunFirst<'b, 'a> {
     /// reflection (lux per lux of direct normal illuminance), and returns their power
     /// `P = Σ_j A_j M0_j` (lm per lux).
     pub fn each_lit(&self, sun: [f32; 3], mut lit: impl FnMut(usize, usize, f32)) -> f32 {
+        self.each_lit_dyn(sun, &mut lit)
+    }
+
+    /// [`SunFirst::each_lit`] through a reference: one copy of the candidates' loop in flash
+    /// whatever the callers.
+    #[inline(never)]
+    fn each_lit_dyn(&self, sun: [f32; 3], lit: &mut dyn FnMut(usize, usize, f32)) -> f32 {
         let t = &self.basis.tables;
         let bands = self.basis.counts.bands;
         let mut power = 0.0;
@@ -99,22 +119,7 @@ impl<'b, 'a> SunFirst<'b, 'a> {
             let here = offset;
             let size = usize::from(size).min(usize::from(MAX_CORNERS));
             offset = offset.saturating_add(3 + 3 * size);
-            let at = |i: usize| f32_at(t.sun_first_points, here.saturating_add(i));
-            let normal = [at(0), at(1), at(2)];
-            let facing = normal[0] * sun[0] + normal[1] * sun[1] + normal[2] * sun[2];
-            // NaN compares false: a NaN direction lights nothing.
-            if facing.is_nan() || facing <= 0.0 {
-                continue;
-            }
-            let mut corners = [[0.0f32; 3]; MAX_CORNERS as usize];
-            for (i, c) in corners.iter_mut().enumerate().take(size) {
-                *c = [at(3 + 3 * i), at(4 + 3 * i), at(5 + 3 * i)];
-            }
-            let corners = corners.get(..size).unwrap_or(&[]);
-            let irradiance = match self.direct.on_patch(corners, normal, sun) {
-                Some(e) => e,
-                None => self.sampled(corners, normal, sun),
-            };
+            let (irradiance, _) = self.on_polygon(t.sun_first_points, here, size, sun);
             if irradiance > 0.0 {
                 let patch = u32_at(t.sun_first_patches, k) as usize;
                 // Daylight is photopic: band 0.
@@ -126,9 +131,30 @@ impl<'b, 'a> SunFirst<'b, 'a> {
         power
     }
 
+    /// The mean direct irradiance (per lux of direct normal illuminance) over the polygon of
+    /// `size` corners stored in `table` from `offset` (its unit normal, then its corners) and
+    /// its area (m²; 0 when it faces away from `sun`): clipped exactly, or sampled where the
+    /// clipping does not fit its buffers.
+    #[inline(never)]
+    fn on_polygon(&self, table: &[u8], offset: usize, size: usize, sun: [f32; 3]) -> (f32, f32) {
+        let at = |i: usize| f32_at(table, offset.saturating_add(i));
+        let normal = [at(0), at(1), at(2)];
+        let mut corners = [[0.0f32; 3]; MAX_CORNERS as usize];
+        for (i, c) in corners.iter_mut().enumerate().take(size) {
+            *c = [at(3 + 3 * i), at(4 + 3 * i), at(5 + 3 * i)];
+        }
+        let corners = corners.get(..size).unwrap_or(&[]);
+        let irradiance = match self.direct.on_patch(corners, normal, sun) {
+            Some(e) => e,
+            None => self.sampled(corners, normal, sun),
+        };
+        (irradiance, polygon_area(corners))
+    }
+
     /// The mean direct irradiance of a patch sampled at the centroids of the triangles its
     /// centroid fans it into, each weighed by its area: the rule where the sunlit pieces do
     /// not fit their buffers or a polygon is not convex.
+    #[inline(never)]
     fn sampled(&self, corners: &[[f32; 3]], normal: [f32; 3], sun: [f32; 3]) -> f32 {
         let n = corners.len() as f32;
         let centre = corners.iter().fold([0.0f32; 3], |c, x| {
@@ -169,6 +195,7 @@ impl SunFirst<'_, '_> {
     /// room-frame direction `sun`: the area-weighted mean over the polygons the basis stores
     /// for it (a work plane's receivers), each clipped as a candidate is; 0 for a zone without
     /// them or out of range.
+    #[inline(never)]
     pub fn zone_direct(&self, zone: usize, sun: [f32; 3]) -> f32 {
         let t = &self.basis.tables;
         if t.zone_sun_counts.is_empty() {
@@ -183,18 +210,7 @@ impl SunFirst<'_, '_> {
             let here = offset;
             let size = size(k).min(usize::from(MAX_CORNERS));
             offset = offset.saturating_add(3 + 3 * size);
-            let at = |i: usize| f32_at(t.zone_sun_polygons, here.saturating_add(i));
-            let normal = [at(0), at(1), at(2)];
-            let mut corners = [[0.0f32; 3]; MAX_CORNERS as usize];
-            for (i, c) in corners.iter_mut().enumerate().take(size) {
-                *c = [at(3 + 3 * i), at(4 + 3 * i), at(5 + 3 * i)];
-            }
-            let corners = corners.get(..size).unwrap_or(&[]);
-            let area = polygon_area(corners);
-            let irradiance = match self.direct.on_patch(corners, normal, sun) {
-                Some(e) => e,
-                None => self.sampled(corners, normal, sun),
-            };
+            let (irradiance, area) = self.on_polygon(t.zone_sun_polygons, here, size, sun);
             sum += area * irradiance;
             total += area;
         }

@@ -189,14 +189,18 @@ impl Pieces {
             return Err(Overflow);
         }
         let s = shadow.bounds();
+        let apart = |b: [f32; 4]| b[2] <= s[0] || s[2] <= b[0] || b[3] <= s[1] || s[3] <= b[1];
+        // Most shadows miss every piece: nothing to copy then.
+        if self.items().iter().all(|p| apart(p.bounds())) {
+            return Ok(());
+        }
         let edges = shadow.vertices();
         let mut out = Pieces {
             len: 0,
             items: [Piece::EMPTY; MAX_PIECES],
         };
         for piece in self.items() {
-            let b = piece.bounds();
-            if b[2] <= s[0] || s[2] <= b[0] || b[3] <= s[1] || s[3] <= b[1] {
+            if apart(piece.bounds()) {
                 out.push(*piece)?;
                 continue;
             }
@@ -278,14 +282,9 @@ impl Plane {
     /// half-spaces `keep` holds (each a point and a normal: `(x − p) · m ≥ 0`) and at least
     /// `margin` over the plane: projected along the sun and made counter-clockwise. `None`
     /// past [`MAX_VERTICES`]; an empty piece when nothing is left.
-    pub fn shadow(
-        &self,
-        vertices: impl Iterator<Item = V3> + Clone,
-        keep: &[(V3, V3)],
-        margin: f32,
-    ) -> Option<Piece> {
+    pub fn shadow(&self, vertices: &[V3], keep: &[(V3, V3)], margin: f32) -> Option<Piece> {
         let mut space = Space::EMPTY;
-        for x in vertices {
+        for &x in vertices {
             space.push(x)?;
         }
         let over = (self.origin, self.normal);
@@ -335,7 +334,8 @@ impl DirectSun<'_, '_> {
             if cos_window.is_nan() || cos_window <= 0.0 {
                 continue;
             }
-            let corners = (0..size).map(|i| self.vector(offset + 3 + 3 * i));
+            let mut corners = [[0.0f32; 3]; MAX_VERTICES];
+            let corners = self.corners(offset, size, &mut corners);
             let light = plane.shadow(corners, &[], SURFACE_MARGIN)?;
             if light.len < 3 {
                 continue;
@@ -355,7 +355,10 @@ impl DirectSun<'_, '_> {
             if inside.len < 3 {
                 continue;
             }
-            let mut lit = Pieces::one(inside);
+            // The pieces are made when a shadow first falls on the lit part: most candidates
+            // are lit whole or cut by no occluder, and the buffers are large to clear.
+            let mut lit: Option<Pieces> = None;
+            let bounds = inside.bounds();
             // A room occluder shades on the room's side of the window's plane, an exterior
             // one past it.
             let on_window = self.vector(offset + 3);
@@ -373,16 +376,50 @@ impl DirectSun<'_, '_> {
                 .take(room.saturating_add(exterior));
             for (k, (offset, size)) in occluders.enumerate() {
                 let keep = if k < room { room_side } else { outside };
-                let corners = (0..size).map(|i| self.vector(offset + 3 + 3 * i));
+                let mut corners = [[0.0f32; 3]; MAX_VERTICES];
+                let corners = self.corners(offset, size, &mut corners);
+                // Wholly behind the patch's plane or on the wrong side of the window's: no
+                // shadow, and nothing to clip.
+                let reaches = |point: V3, normal: V3, margin: f32| {
+                    corners
+                        .iter()
+                        .any(|&c| dot(sub(c, point), normal) >= margin)
+                };
+                if !reaches(first, normal, SURFACE_MARGIN) || !reaches(keep.0, keep.1, 0.0) {
+                    continue;
+                }
                 let shadow = plane.shadow(corners, &[keep], SURFACE_MARGIN)?;
-                if shadow.len >= 3 && shadow.area() > 0.0 {
-                    lit.subtract(&shadow).ok()?;
+                let s = shadow.bounds();
+                let apart = bounds[2] <= s[0]
+                    || s[2] <= bounds[0]
+                    || bounds[3] <= s[1]
+                    || s[3] <= bounds[1];
+                if shadow.len >= 3 && shadow.area() > 0.0 && !apart {
+                    lit.get_or_insert_with(|| Pieces::one(inside))
+                        .subtract(&shadow)
+                        .ok()?;
                 }
             }
-            total += self.transmittance(w, cos_window) * lit.area();
+            let lit_area = lit.map_or_else(|| inside.area(), |p| p.area());
+            total += self.transmittance(w, cos_window) * lit_area;
         }
         let irradiance = total * cos / area;
         irradiance.is_finite().then_some(irradiance)
+    }
+
+    /// The corners of the stored polygon at `offset` of `size` vertices, in `buffer` (at
+    /// most [`MAX_VERTICES`] of them).
+    fn corners<'c>(
+        &self,
+        offset: usize,
+        size: usize,
+        buffer: &'c mut [V3; MAX_VERTICES],
+    ) -> &'c [V3] {
+        let size = size.min(MAX_VERTICES);
+        for (i, c) in buffer.iter_mut().enumerate().take(size) {
+            *c = self.vector(offset + 3 + 3 * i);
+        }
+        buffer.get(..size).unwrap_or(&[])
     }
 }
 
@@ -539,7 +576,7 @@ mod tests {
             [1.0, 1.0, 1.0],
             [0.0, 1.0, 1.0],
         ];
-        let shadow = plane.shadow(window.iter().copied(), &[], 1e-6).unwrap();
+        let shadow = plane.shadow(&window[..], &[], 1e-6).unwrap();
         assert!((shadow.area() - 1.0).abs() < 1e-5, "{}", shadow.area());
         let b = shadow.bounds();
         assert!((b[0] + 1.0).abs() < 1e-5 && b[2].abs() < 1e-5, "{b:?}");
@@ -550,15 +587,11 @@ mod tests {
             [0.0, 1.0, 1.0],
             [0.0, 0.0, 1.0],
         ];
-        let shadow = plane.shadow(wall.iter().copied(), &[], 1e-6).unwrap();
+        let shadow = plane.shadow(&wall[..], &[], 1e-6).unwrap();
         assert!((shadow.area() - 1.0).abs() < 1e-4, "{}", shadow.area());
         // Kept to x ≥ 0.5 only (a half-space), the window's shadow halves.
         let half = plane
-            .shadow(
-                window.iter().copied(),
-                &[([0.5, 0.0, 0.0], [1.0, 0.0, 0.0])],
-                1e-6,
-            )
+            .shadow(&window[..], &[([0.5, 0.0, 0.0], [1.0, 0.0, 0.0])], 1e-6)
             .unwrap();
         assert!((half.area() - 0.5).abs() < 1e-5, "{}", half.area());
         // The sun behind the plane lights nothing.
