@@ -307,6 +307,33 @@ fn malformed_tables_are_refused_naming_them() {
     ));
 }
 
+/// A stored power made subnormal (its high byte zeroed, as the fuzzing below once found) is
+/// in range, but dividing a node's rest by it overflows: the sky update refuses the basis
+/// naming the table rather than reading an infinite illuminance.
+#[test]
+fn a_power_near_zero_is_refused_rather_than_read_as_infinite() {
+    let mut t = with_first([0.3, 0.2, 0.1]);
+    t.sun_node_power[1] = f64::from(f32::from_bits(0x004C_CCCD));
+    let bytes = t.to_bytes().unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let mut day = Day::new(basis).unwrap();
+    let sun = Sun {
+        direction: direction_of(LATITUDE, 0.0, 4.862789),
+        direct_normal: 50_000.0,
+    };
+    let got = day.set_sky(&[1000.0; 145], 10_000.0, Some(sun));
+    assert!(
+        matches!(
+            got,
+            Err(Error::DecodeValue {
+                field: "daylight_outputs",
+                ..
+            })
+        ),
+        "{got:?}"
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 

@@ -85,16 +85,11 @@ pub(super) fn check(raw: &Payload<'_>, c: &Counts) -> Result<()> {
             Allowed::NonNegative,
         )?;
     }
-    let mut offset = 0usize;
-    for &size in raw.sun_first_sizes {
-        let at = |k: usize| f32_at(raw.sun_first_points, offset + k);
-        let length = at(0) * at(0) + at(1) * at(1) + at(2) * at(2);
-        if (length - 1.0).abs() > NORMAL_TOLERANCE {
-            return Err(bad_value("sun_first_points", offset));
-        }
-        offset += 3 + 3 * usize::from(size);
-    }
-    Ok(())
+    unit_normals(
+        "sun_first_points",
+        raw.sun_first_points,
+        raw.sun_first_sizes,
+    )
 }
 
 /// The zones' polygons: none, or one count per zone, one size of 3 to [`MAX_CORNERS`] per
@@ -122,12 +117,22 @@ fn check_zones(raw: &Payload<'_>, c: &Counts) -> Result<()> {
         values,
         Allowed::Bounded,
     )?;
+    unit_normals(
+        "zone_sun_polygons",
+        raw.zone_sun_polygons,
+        raw.zone_sun_sizes,
+    )
+}
+
+/// Each polygon of `table` (its normal, then `sizes[k]` corners) has a unit normal, within
+/// [`NORMAL_TOLERANCE`]; the error names `field` and the normal's place.
+fn unit_normals(field: &'static str, table: &[u8], sizes: &[u8]) -> Result<()> {
     let mut offset = 0usize;
-    for &size in raw.zone_sun_sizes {
-        let at = |k: usize| f32_at(raw.zone_sun_polygons, offset + k);
+    for &size in sizes {
+        let at = |k: usize| f32_at(table, offset + k);
         let length = at(0) * at(0) + at(1) * at(1) + at(2) * at(2);
         if (length - 1.0).abs() > NORMAL_TOLERANCE {
-            return Err(bad_value("zone_sun_polygons", offset));
+            return Err(bad_value(field, offset));
         }
         offset += 3 + 3 * usize::from(size);
     }

@@ -207,6 +207,9 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
     /// An input that is negative, not finite or above [`MAX_EXITANCE`], a wrong number of
     /// luminances, or a sun direction that is not a unit vector is an error and changes
     /// nothing.
+    /// A basis whose tables, each in range, multiply to a reading that is not finite (a
+    /// sun node's stored power near 0) gives [`Error::DecodeValue`] naming
+    /// `daylight_outputs` and the reading, after the update.
     pub fn set_sky(
         &mut self,
         sky_luminance: &[f32],
@@ -306,7 +309,29 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
                 }
             }
         }
-        Ok(())
+        // Tables in range can still multiply to an overflow (a node's stored power close to
+        // 0 divides its rest): such a basis is refused here rather than read as infinite.
+        match self.outputs.iter().position(|x| !x.is_finite()) {
+            Some(index) => Err(Error::DecodeValue {
+                field: "daylight_outputs",
+                index,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Grid point `g`'s reading, [`Error::DecodeValue`] naming `daylight_grid` when the
+    /// basis' tables make it overflow (as [`Self::set_sky`] refuses the outputs').
+    fn checked_grid_reading(&self, g: usize) -> Result<f32> {
+        let x = self.grid_reading(g);
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(Error::DecodeValue {
+                field: "daylight_grid",
+                index: g,
+            })
+        }
     }
 
     /// The sun's first reflection, when the basis stores it.
@@ -393,14 +418,14 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
     /// per node as a sensor's. O(D).
     pub fn grid_point_illuminance(&self, zone: usize, point: usize) -> Result<f32> {
         let g = self.basis.grid_index(zone, point)?;
-        Ok(self.grid_reading(g))
+        self.checked_grid_reading(g)
     }
 
     /// `E_avg`, `E_min`, `E_max` and `U_o` of zone `zone`'s grid under daylight alone,
     /// streamed without a buffer. O(points · D). [`Error::NoGrid`] for a zone without one.
     pub fn zone_figures(&self, zone: usize) -> Result<Figures> {
         let range = self.basis.grid_range(zone)?;
-        let [figures] = grid_figures(zone, range, |g| Ok([self.grid_reading(g)]))?;
+        let [figures] = grid_figures(zone, range, |g| Ok([self.checked_grid_reading(g)?]))?;
         Ok(figures)
     }
 
@@ -415,7 +440,7 @@ impl<'a, const SKY: usize, const OUTPUTS: usize, const EXITANCE: usize>
         let range = self.basis.grid_range(zone)?;
         let [figures] = grid_figures(zone, range, |g| {
             let [e] = electric.grid_reading(g);
-            Ok([self.grid_reading(g) + e])
+            Ok([self.checked_grid_reading(g)? + e])
         })?;
         Ok(figures)
     }

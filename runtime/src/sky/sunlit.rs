@@ -37,23 +37,30 @@ const SURFACE_MARGIN: f32 = 1.0e-4;
 type V2 = [f32; 2];
 type V3 = [f32; 3];
 
-/// A convex polygon in the patch's plane, counter-clockwise seen from the patch's front.
+/// A polygon of at most [`MAX_VERTICES`] vertices of `D` coordinates, clipped in place of
+/// the plane (`D = 2`, [`Piece`]) or of space (`D = 3`).
 #[derive(Clone, Copy, Debug)]
-pub struct Piece {
+pub struct Polygon<const D: usize> {
     len: usize,
-    v: [V2; MAX_VERTICES],
+    v: [[f32; D]; MAX_VERTICES],
 }
 
-impl Piece {
+/// A convex polygon in the patch's plane, counter-clockwise seen from the patch's front.
+pub type Piece = Polygon<2>;
+
+/// A polygon of space being clipped.
+type Space = Polygon<3>;
+
+impl<const D: usize> Polygon<D> {
     /// No vertex.
-    pub const EMPTY: Piece = Piece {
+    pub const EMPTY: Polygon<D> = Polygon {
         len: 0,
-        v: [[0.0; 2]; MAX_VERTICES],
+        v: [[0.0; D]; MAX_VERTICES],
     };
 
     /// The polygon of `vertices`, `None` past [`MAX_VERTICES`].
-    pub fn from_vertices(vertices: &[V2]) -> Option<Piece> {
-        let mut p = Piece::EMPTY;
+    pub fn from_vertices(vertices: &[[f32; D]]) -> Option<Polygon<D>> {
+        let mut p = Polygon::EMPTY;
         for &x in vertices {
             p.push(x)?;
         }
@@ -61,16 +68,41 @@ impl Piece {
     }
 
     /// Its vertices.
-    pub fn vertices(&self) -> &[V2] {
+    pub fn vertices(&self) -> &[[f32; D]] {
         self.v.get(..self.len).unwrap_or(&[])
     }
 
-    fn push(&mut self, x: V2) -> Option<()> {
+    fn push(&mut self, x: [f32; D]) -> Option<()> {
         *self.v.get_mut(self.len)? = x;
         self.len += 1;
         Some(())
     }
 
+    /// The part where `side(x) ≥ 0` for an affine `side` (Sutherland–Hodgman on one edge or
+    /// plane); `None` past [`MAX_VERTICES`].
+    fn keep(&self, side: impl Fn([f32; D]) -> f32) -> Option<Polygon<D>> {
+        let v = self.vertices();
+        let mut out = Polygon::EMPTY;
+        for (i, &p) in v.iter().enumerate() {
+            let q = v.get(i + 1).or(v.first()).copied().unwrap_or(p);
+            let (sp, sq) = (side(p), side(q));
+            if sp >= 0.0 {
+                out.push(p)?;
+            }
+            if (sp >= 0.0) != (sq >= 0.0) {
+                let f = sp / (sp - sq);
+                let mut x = p;
+                for (xk, (pk, qk)) in x.iter_mut().zip(p.iter().zip(&q)) {
+                    *xk = pk + f * (qk - pk);
+                }
+                out.push(x)?;
+            }
+        }
+        Some(out)
+    }
+}
+
+impl Piece {
     /// Signed area (positive counter-clockwise), m².
     pub fn area(&self) -> f32 {
         let v = self.vertices();
@@ -85,21 +117,7 @@ impl Piece {
     /// The part left of the directed line `a → b` (Sutherland–Hodgman on one edge); `None`
     /// past [`MAX_VERTICES`].
     pub fn left_of(&self, a: V2, b: V2) -> Option<Piece> {
-        let side = |x: V2| (b[0] - a[0]) * (x[1] - a[1]) - (b[1] - a[1]) * (x[0] - a[0]);
-        let v = self.vertices();
-        let mut out = Piece::EMPTY;
-        for (i, &p) in v.iter().enumerate() {
-            let q = v.get(i + 1).or(v.first()).copied().unwrap_or(p);
-            let (sp, sq) = (side(p), side(q));
-            if sp >= 0.0 {
-                out.push(p)?;
-            }
-            if (sp >= 0.0) != (sq >= 0.0) {
-                let f = sp / (sp - sq);
-                out.push([p[0] + f * (q[0] - p[0]), p[1] + f * (q[1] - p[1])])?;
-            }
-        }
-        Some(out)
+        self.keep(|x: V2| (b[0] - a[0]) * (x[1] - a[1]) - (b[1] - a[1]) * (x[0] - a[0]))
     }
 
     /// Bounds: least x, least y, largest x, largest y.
@@ -423,46 +441,10 @@ impl DirectSun<'_, '_> {
     }
 }
 
-/// A polygon of space being clipped.
-#[derive(Clone, Copy)]
-struct Space {
-    len: usize,
-    v: [V3; MAX_VERTICES],
-}
-
 impl Space {
-    const EMPTY: Space = Space {
-        len: 0,
-        v: [[0.0; 3]; MAX_VERTICES],
-    };
-
-    fn vertices(&self) -> &[V3] {
-        self.v.get(..self.len).unwrap_or(&[])
-    }
-
-    fn push(&mut self, x: V3) -> Option<()> {
-        *self.v.get_mut(self.len)? = x;
-        self.len += 1;
-        Some(())
-    }
-
     /// The part where `(x − point) · normal ≥ margin`.
     fn clip(&self, point: V3, normal: V3, margin: f32) -> Option<Space> {
-        let side = |x: V3| dot(sub(x, point), normal) - margin;
-        let v = self.vertices();
-        let mut out = Space::EMPTY;
-        for (i, &p) in v.iter().enumerate() {
-            let q = v.get(i + 1).or(v.first()).copied().unwrap_or(p);
-            let (sp, sq) = (side(p), side(q));
-            if sp >= 0.0 {
-                out.push(p)?;
-            }
-            if (sp >= 0.0) != (sq >= 0.0) {
-                let f = sp / (sp - sq);
-                out.push(add(p, scale(sub(q, p), f)))?;
-            }
-        }
-        Some(out)
+        self.keep(|x: V3| dot(sub(x, point), normal) - margin)
     }
 }
 
