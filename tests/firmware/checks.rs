@@ -219,10 +219,10 @@ pub(crate) const BASIS_VIEW_BYTES_MAX: usize = 576;
 /// but the grids' (12 988 in format 8; format 8's four decoded tables added 412 to both),
 /// a channel-only controller that also solves its levels for a target (14 104 in format 8),
 /// and decoding plus every `DaylightEvaluator` operation with the runtime's sun and sky
-/// (35 440: its update's tables summed eight or six rows at a time by kernels of their own,
+/// (35 556: its update's tables summed eight or six rows at a time by kernels of their own,
 /// the sun's first reflection, its candidates' loop, their view rows or responses and the
 /// per-power weights, format 9's clipping of their sunlit polygons and the zones', and the
-/// refusal of a reading that overflows: 7 204 bytes more than format 8's 28 236), which a
+/// refusal of a reading that overflows: 7 320 bytes more than format 8's 28 236), which a
 /// controller reading daylight pays for whether its basis stores candidates or not). Decoding checks the daylight
 /// section's shape only, and the names' framing but not their UTF-8; those are checked,
 /// and linked, where daylight or a name is read. The payload is read in place and moved

@@ -119,6 +119,13 @@ impl<'b, 'a> SunFirst<'b, 'a> {
             let here = offset;
             let size = usize::from(size).min(usize::from(MAX_CORNERS));
             offset = offset.saturating_add(3 + 3 * size);
+            // A candidate facing away is dark: its corners are not read.
+            let at = |i: usize| f32_at(t.sun_first_points, here.saturating_add(i));
+            let facing = at(0) * sun[0] + at(1) * sun[1] + at(2) * sun[2];
+            // NaN compares false: a NaN direction lights nothing.
+            if facing.is_nan() || facing <= 0.0 {
+                continue;
+            }
             let (irradiance, _) = self.on_polygon(t.sun_first_points, here, size, sun);
             if irradiance > 0.0 {
                 let patch = u32_at(t.sun_first_patches, k) as usize;
@@ -133,7 +140,7 @@ impl<'b, 'a> SunFirst<'b, 'a> {
 
     /// The mean direct irradiance (per lux of direct normal illuminance) over the polygon of
     /// `size` corners stored in `table` from `offset` (its unit normal, then its corners) and
-    /// its area (m²; 0 when it faces away from `sun`): clipped exactly, or sampled where the
+    /// its area (m²): clipped exactly, or sampled where the
     /// clipping does not fit its buffers.
     #[inline(never)]
     fn on_polygon(&self, table: &[u8], offset: usize, size: usize, sun: [f32; 3]) -> (f32, f32) {
