@@ -21,8 +21,44 @@ impl Occluders {
         ignore: &[usize],
     ) -> Shaft {
         let mut shaft = Shaft::default();
+        self.visit_shaft(a, a_normal, b, b_normal, ignore, &mut |index| {
+            shaft.push(index)
+        });
+        shaft
+    }
+
+    /// The outlines (corners in order, metres) of every occluder [`Occluders::shaft`] would
+    /// list, however many: where the shadows themselves are wanted, not rays.
+    pub(crate) fn shaft_outlines_all(
+        &self,
+        a: &[Vec3],
+        a_normal: Vec3,
+        b: &[Vec3],
+        b_normal: Vec3,
+        ignore: &[usize],
+    ) -> Vec<&[Vec3]> {
+        let mut outlines = Vec::new();
+        self.visit_shaft(a, a_normal, b, b_normal, ignore, &mut |index| {
+            let k = &self.blockers[index];
+            outlines.push(&k.corners[..k.len]);
+            true
+        });
+        outlines
+    }
+
+    /// Calls `found` with the index of each occluder of [`Occluders::shaft`] until it returns
+    /// false.
+    fn visit_shaft(
+        &self,
+        a: &[Vec3],
+        a_normal: Vec3,
+        b: &[Vec3],
+        b_normal: Vec3,
+        ignore: &[usize],
+        found: &mut dyn FnMut(usize) -> bool,
+    ) {
         if self.blockers.is_empty() || a.is_empty() || b.is_empty() {
-            return shaft;
+            return;
         }
         let tol = self.tolerance;
         let bounds = Aabb::of(a).union(Aabb::of(b)).expanded(tol);
@@ -57,8 +93,8 @@ impl Occluders {
                     if planes.excludes(&k.corners[..k.len], tol) {
                         continue;
                     }
-                    if !shaft.push(index) {
-                        return shaft;
+                    if !found(index) {
+                        return;
                     }
                 }
             } else if top + 2 <= STACK {
@@ -67,7 +103,6 @@ impl Occluders {
                 top += 2;
             }
         }
-        shaft
     }
 
     /// Does one blocker cut every segment from the convex polygon `a` to the convex polygon

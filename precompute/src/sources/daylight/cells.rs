@@ -295,25 +295,4 @@ impl Ctx<'_> {
         }
         sample(y, d, cw).map(|(bin, f)| (bin, f * cx * cw / r2))
     }
-
-    /// Area, m², of the part of the convex cell `corners` where `lit` holds: the
-    /// Gauss–Legendre rule, and cells whose points disagree split down to `edge_depth`.
-    pub(super) fn lit_area(&self, corners: &[Vec3], lit: &dyn Fn(Vec3) -> bool, depth: u32) -> f64 {
-        let (mut area, mut some, mut all) = (0.0, false, true);
-        for_each_on_cell(corners, &self.gl, |x, w| {
-            if lit(x) {
-                area += w;
-                some = true;
-            } else {
-                all = false;
-            }
-        });
-        if some && !all && depth < self.opts.edge_depth {
-            return split_cell(corners)
-                .iter()
-                .map(|c| self.lit_area(c, lit, depth + 1))
-                .sum();
-        }
-        area
-    }
 }

@@ -41,16 +41,19 @@
 //! The sun is a direction `s`: `E(x) = τ(θ_w) max(0, n_x · s) V(x, s)` where the ray from
 //! `x` towards the sun crosses a window, no room surface before it and no obstruction after
 //! it. On a patch, the window's projection along `s` onto the patch's plane is cut out of the
-//! patch exactly (convex polygon clipping); shadows inside and outside the room are
-//! integrated on that lit part by cells split where their points disagree, down to
-//! `edge_depth`.
+//! patch exactly (convex polygon clipping), and so are the shadows inside and outside the room
+//! on that lit part: every occluder between the two planes and every obstruction past the
+//! window projected along `s`, united and taken out by polygon Booleans (`sunlit`). A
+//! quadrature of the lit part, however fine, misses slivers of sun between shadows that none
+//! of its points sees.
 //!
 //! # Diffusing glazing
 //!
 //! The window's patches emit (as [`ChannelLight::emission`], Lambertian) their transmitted
 //! exitance `M(y) = ∫ L τ(θ) cos θ dω` over the exterior hemisphere, averaged over each
 //! window patch (sky patches and ground integrated in altitude and azimuth; obstructions by
-//! rays); for the sun, `τ(θ_w) cos θ_w` times the window patch's unshaded fraction. Their
+//! rays); for the sun, `τ(θ_w) cos θ_w` times the window patch's unshaded fraction (the
+//! obstructions' shadows on it, exactly as on a receiving patch). Their
 //! direct irradiance on receivers is that exitance through the point-to-patch form factor
 //! `∫ cos θ_x cos θ_w / (π r²) V dA`, by the same window quadrature, so that
 //! [`ChannelLight::external`] of a diffusing window's light is the quadratures' disagreement
@@ -78,6 +81,7 @@ pub mod reflection;
 mod sky;
 mod sun;
 pub mod sun_first;
+mod sunlit;
 #[cfg(test)]
 mod tests;
 
@@ -117,8 +121,8 @@ pub struct DaylightOptions {
     /// its angular diameter seen face-on, shrinking as `√cos θ_w` with the solid angle seen
     /// obliquely. Default 0.02 (1.1°, a tenth of a Tregenza patch's 12°).
     pub edge_angle: f64,
-    /// Most times a cell is split along an edge (a sky patch's boundary, a shadow's, the sun
-    /// patch's). Default 8: 1/256 of its side.
+    /// Most times a window cell is split along an edge (a sky patch's boundary, a
+    /// shadow's). Default 8: 1/256 of its side.
     pub edge_depth: u32,
     /// Diffusing windows: each sky patch is integrated over `sky_cells × sky_cells` cells in
     /// altitude and azimuth, the ground over cells of the same size. Default 2.

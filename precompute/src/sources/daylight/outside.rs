@@ -125,6 +125,11 @@ impl Outside {
         }
     }
 
+    /// The obstructions' faces, corners in order (m).
+    pub(super) fn faces(&self) -> impl Iterator<Item = &[Vec3]> {
+        self.faces.iter().map(|f| f.corners.as_slice())
+    }
+
     /// Are there obstructions at all?
     pub(super) fn has_obstructions(&self) -> bool {
         self.occluders.is_some()

@@ -4,6 +4,7 @@
 use eigenrad_runtime::sky::patches::SkyPatches;
 
 use super::outside::{area, clip, ray_polygon, Outside};
+use super::sunlit::{along_sun, area_outside, shadow};
 use super::{Aperture, ChannelLight, Ctx, DaylightOptions, Transmittance};
 use crate::formfactor::Occluders;
 use crate::geometry::{doubled_vector_area, Patch, Vec3};
@@ -66,7 +67,8 @@ pub(super) fn light_on(
 impl Ctx<'_> {
     /// Mean illuminance (lux per lux of direct normal illuminance) on a receiving patch from
     /// the sun in direction `s` through the clear windows: the window's projection along `s`
-    /// cut out of the patch, and the shadows on that part integrated.
+    /// cut out of the patch, less the shadows on that part of the room's occluders and the
+    /// obstructions outside, exactly ([`super::sunlit`]).
     fn sun_on_patch(&self, p: &Patch, ignore: Option<usize>, s: Vec3) -> f64 {
         let corners = &p.polygon.vertices;
         let cx = p.normal.dot(s);
@@ -92,16 +94,16 @@ impl Ctx<'_> {
                 if front.len() < 3 {
                     continue;
                 }
-                let mut shadow: Vec<Vec3> = front
+                let mut beam: Vec<Vec3> = front
                     .iter()
-                    .map(|&y| y - s * (p.normal.dot(y - o) / cx))
+                    .map(|&y| along_sun(y, o, p.normal, s))
                     .collect();
-                if doubled_vector_area(&shadow).dot(p.normal) < 0.0 {
-                    shadow.reverse();
+                if doubled_vector_area(&beam).dot(p.normal) < 0.0 {
+                    beam.reverse();
                 }
                 let mut part = corners.clone();
-                for k in 0..shadow.len() {
-                    let (a, b) = (shadow[k], shadow[(k + 1) % shadow.len()]);
+                for k in 0..beam.len() {
+                    let (a, b) = (beam[k], beam[(k + 1) % beam.len()]);
                     let inward = p.normal.cross(b - a);
                     if inward.length() > 0.0 {
                         part = clip(&part, a, inward);
@@ -114,17 +116,31 @@ impl Ctx<'_> {
                 if whole.is_nan() || whole <= 0.0 {
                     continue;
                 }
-                let ignore: Vec<usize> = ignore.into_iter().chain([*pw]).collect();
-                let shaft = self.occluders.shaft(window, *nw, &part, p.normal, &ignore);
-                let seen = if shaft.is_clear() && !self.outside.has_obstructions() && s.z >= 0.0 {
-                    whole
+                let seen = if s.z < 0.0 {
+                    // The ground hides the sun.
+                    0.0
                 } else {
-                    let lit = |x: Vec3| {
-                        let y = x + s * (nw.dot(window[0] - x) / nw.dot(s));
-                        (shaft.is_clear() || self.occluders.visible_in(&shaft, x, y, &ignore))
-                            && self.outside.sun_reaches(y, s)
-                    };
-                    self.lit_area(&part, &lit, 0)
+                    let ignore: Vec<usize> = ignore.into_iter().chain([*pw]).collect();
+                    let w0 = window[0];
+                    // The room's occluders between the patch's plane and the window's, the
+                    // obstructions past the window's.
+                    let in_room = [(o, p.normal), (w0, *nw)];
+                    let outdoors = [(o, p.normal), past_the_pane(w0, *nw)];
+                    let room = self
+                        .occluders
+                        .shaft_outlines_all(window, *nw, &part, p.normal, &ignore)
+                        .into_iter()
+                        .filter_map(|c| shadow(c, &in_room, o, p.normal, s));
+                    let exterior = self
+                        .outside
+                        .faces()
+                        .filter_map(|c| shadow(c, &outdoors, o, p.normal, s));
+                    let dark: Vec<Vec<Vec3>> = room.chain(exterior).collect();
+                    if dark.is_empty() {
+                        whole
+                    } else {
+                        area_outside(&part, p.normal, &dark)
+                    }
                 };
                 lit += t * seen;
             }
@@ -168,11 +184,24 @@ impl Ctx<'_> {
             return 0.0;
         }
         let unshaded = if self.outside.has_obstructions() {
-            let open = |y: Vec3| self.outside.sun_reaches(y, s);
-            self.lit_area(&w.polygon.vertices, &open, 0) / w.area
+            let corners = &w.polygon.vertices;
+            let outdoors = [past_the_pane(corners[0], w.normal)];
+            let dark: Vec<Vec<Vec3>> = self
+                .outside
+                .faces()
+                .filter_map(|c| shadow(c, &outdoors, corners[0], w.normal, s))
+                .collect();
+            area_outside(corners, w.normal, &dark) / w.area
         } else {
             1.0
         };
         self.transmittance(a.window, cw) * cw * unshaded
     }
+}
+
+/// The side of a pane's plane (a corner `corner`, `normal` into the room) past it, as a plane
+/// [`shadow`] keeps: strictly, so that a face in the pane's own plane (which a ray leaving the
+/// pane does not cross) casts nothing.
+fn past_the_pane(corner: Vec3, normal: Vec3) -> (Vec3, Vec3) {
+    (corner - normal * 1e-9, -normal)
 }
