@@ -10,6 +10,10 @@ use crate::error::{Error, Result};
 use crate::pipeline::BuildReport;
 use crate::verify::{self, VerifyReport};
 
+/// The largest error between the sun grid's nodes a reading should have, relative to its
+/// largest sun response: above it the report points to `--sun-first`.
+const SUN_BETWEEN_NODES: f64 = 0.02;
+
 /// Human-readable build report.
 pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
     let mut s = String::new();
@@ -183,6 +187,18 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             );
         }
         s += &sun_parts(&i.parts);
+        let worst = [&i.zones, &i.sensors, &i.grid_points]
+            .iter()
+            .map(|e| e.max)
+            .fold(0.0, f64::max);
+        let computed = d.direct_sun.as_ref().is_some_and(|x| x.candidates > 0);
+        if !computed && worst > SUN_BETWEEN_NODES {
+            let _ = writeln!(
+                s,
+                "  readings under the sun are interpolated between the nodes, {:.1} % off at the largest: `--sun-first` computes the sun patch and its first reflection on the controller at the sun's own direction (docs/accuracy.md, \"The sun's first reflection on the controller\")",
+                100.0 * worst
+            );
+        }
         let _ = writeln!(
             s,
             "  through the runtime against the exact solve (CIE overcast sky, zenith 3000 cd/m², E_gh 10000 lux; then with the sun at a node, E_n 50000 lux): sensors, zones and grid points within {:.1e}; patch exitance {:.1e} overcast, {:.1e} with the sun (area-weighted RMS)",
