@@ -224,6 +224,10 @@ enum Mesh {
     /// `examples/office-daylight/scene.toml` as it is: the office with a glazed window at a
     /// site, its daylight in the basis.
     Daylight,
+    /// The daylight office built with `--sun-first` (the sun's first reflection computed on
+    /// the controller) and `--no-grids` (its grid points' responses to the sun's candidates
+    /// would leave no room for the firmware in the part's flash).
+    DaylightSunFirst,
 }
 
 /// `eigenrad build` of the office at `modes` modes per band and storage `precision`
@@ -235,6 +239,7 @@ fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) 
         Mesh::Office => format!("office-p{modes}-{precision}"),
         Mesh::Coarse => format!("office-coarse-p{modes}-{precision}"),
         Mesh::Daylight => format!("office-daylight-p{modes}-{precision}"),
+        Mesh::DaylightSunFirst => format!("office-daylight-sun-first-p{modes}-{precision}"),
     };
     // Builds run one at a time: each uses every core for its form factors.
     let mut built = BUILT
@@ -247,11 +252,17 @@ fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) 
     let scene = match mesh {
         Mesh::Office => office_scene(),
         Mesh::Coarse => coarse_office_scene(),
-        Mesh::Daylight => root().join("examples/office-daylight/scene.toml"),
+        Mesh::Daylight | Mesh::DaylightSunFirst => {
+            root().join("examples/office-daylight/scene.toml")
+        }
+    };
+    let flags: &[&str] = match mesh {
+        Mesh::DaylightSunFirst => &["--sun-first", "--no-grids"],
+        _ => &[],
     };
     let path = work_dir().join(format!("{name}.basis"));
     let modes = modes.to_string();
-    let report = run_eigenrad(&[
+    let mut args: Vec<&std::ffi::OsStr> = vec![
         "build".as_ref(),
         scene.as_os_str(),
         "-o".as_ref(),
@@ -260,7 +271,9 @@ fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) 
         modes.as_ref(),
         "--precision".as_ref(),
         precision.as_ref(),
-    ]);
+    ];
+    args.extend(flags.iter().map(|f| std::ffi::OsStr::new(f)));
+    let report = run_eigenrad(&args);
     eprintln!("built {name}:\n{}", String::from_utf8_lossy(&report.stdout));
     std::fs::write(work_dir().join(format!("{name}.report")), &report.stdout).unwrap();
     built.insert(name.clone(), path.clone());

@@ -36,6 +36,140 @@ const BUDGET_DAYLIGHT_UPDATE_READ_OUTPUTS: u64 = 20_000;
 /// Cortex-M4F when the table is read from bytes.
 const BUDGET_DAYLIGHT_UPDATE_READ_OUTPUTS_MODES: u64 = 20_000;
 
+/// Every step of the firmware's day loop against `eigenrad eval --time` on the same basis:
+/// the sun, the runtime's sun against SPA's, `E_gh`, every sensor, zone and grid figure.
+fn steps_against_eval(name: &str, path: &Path, day: &Daylight) {
+    let in_date = |date: &str| {
+        day.steps
+            .iter()
+            .filter(|s| s.time.starts_with(date))
+            .count()
+    };
+    let mut worst = (0.0f64, String::new());
+    let mut worst_sun = 0.0f64;
+    let mut worst_runtime_sun = 0.0f64;
+    let mut check = |what: &dyn Fn() -> String, firmware: f64, host: f64| {
+        let relative = (firmware - host).abs() / host.abs().max(1.0);
+        assert!(
+            relative <= DAYLIGHT_REL_TOL,
+            "{}: firmware {firmware:e}, eigenrad eval {host:e} (relative {relative:e})",
+            what()
+        );
+        if relative >= worst.0 {
+            worst = (relative, what());
+        }
+    };
+    for (k, step) in day.steps.iter().enumerate() {
+        let json = eval_daylight(&path, &step.time).unwrap_or_else(|e| panic!("{e}"));
+        let light = &json["daylight"];
+        let sun = &light["sun"];
+        for (got, key) in [(step.altitude, "altitude"), (step.azimuth, "azimuth")] {
+            let want = sun[key].as_f64().expect(key);
+            assert!(
+                (got - want).abs() <= SUN_TOL_DEG,
+                "step {k} ({}): sun {key} {got}°, eval {want}°",
+                step.time
+            );
+            worst_sun = worst_sun.max((got - want).abs());
+        }
+        assert!(step.altitude > 0.0);
+        // The runtime's own sun against SPA's (the host's, printed by the firmware).
+        let (alt, az) = step.runtime_sun.expect("the runtime's sun at every step");
+        let (a1, a2) = (alt.to_radians(), step.altitude.to_radians());
+        let cos =
+            a1.sin() * a2.sin() + a1.cos() * a2.cos() * (az - step.azimuth).to_radians().cos();
+        let separation = cos.clamp(-1.0, 1.0).acos().to_degrees();
+        assert!(
+            separation <= RUNTIME_SUN_BOUND,
+            "step {k} ({}): the runtime's sun {alt}° {az}° is {separation}° from SPA's",
+            step.time
+        );
+        worst_runtime_sun = worst_runtime_sun.max(separation);
+        let global = light["global_horizontal_lux"].as_f64().expect("E_gh");
+        assert!(
+            (f64::from(step.global_horizontal) - global).abs() <= 1e-6 * global,
+            "step {k}: E_gh {} lux, eval {global}",
+            step.global_horizontal
+        );
+        for (kind, got, key) in [
+            ("sensor", &step.sensors, "sensors"),
+            ("zone", &step.zones, "zones"),
+        ] {
+            let want = json[key].as_array().expect(key);
+            assert_eq!(got.len(), want.len(), "step {k}: {kind} count");
+            for ((name, value), w) in got.iter().zip(want) {
+                assert_eq!(w["name"].as_str(), Some(name.as_str()), "step {k}: {kind}");
+                assert!(*value > 0.0, "step {k}: {kind} {name} has no daylight");
+                let host = numbers(&w["daylight"], "daylight")[0];
+                check(
+                    &|| format!("step {k} ({}): {kind} {name}", step.time),
+                    *value,
+                    host,
+                );
+            }
+        }
+        let grids = light["grids"].as_array().expect("daylight grids");
+        assert_eq!(step.figures.len(), grids.len(), "step {k}: grids");
+        for ((zone, figures), g) in step.figures.iter().zip(grids) {
+            assert_eq!(g["zone"].as_str(), Some(zone.as_str()), "step {k}: grid");
+            for (i, key) in ["average", "minimum", "maximum", "uniformity"]
+                .iter()
+                .enumerate()
+            {
+                let host = numbers(&g[*key], key)[0];
+                check(
+                    &|| format!("step {k} ({}): {zone} grid {key}", step.time),
+                    figures[i],
+                    host,
+                );
+            }
+        }
+    }
+    let (relative, at) = worst;
+    eprintln!(
+        "{name}: {} daylight steps ({} in June, {} in December) against eigenrad eval: \
+         largest relative difference {relative:e} ({at}), sun within {worst_sun:e}°, the \
+         runtime's sun within {worst_runtime_sun:e}° of SPA's",
+        day.steps.len(),
+        in_date(DAYLIGHT_DATES[0]),
+        in_date(DAYLIGHT_DATES[1])
+    );
+}
+
+/// Instruction budget of a sky update plus the read of every sensor and zone on the daylight
+/// office built with `--sun-first --no-grids`, by a `DaylightEvaluator` without modes: each of
+/// its 486 candidate patches' sunlit polygon clipped at the sun, every reading's response to
+/// it read, the work-plane zone's 60 receivers clipped for its direct sun. Measured 5 046 224
+/// (docs/embedded.md): about 79 ms at 64 MHz, once per sun update.
+const BUDGET_SUN_FIRST_UPDATE_READ_OUTPUTS: u64 = 5_500_000;
+
+/// The daylight office with the sun's first reflection computed on the controller
+/// (`--sun-first`, format 9): the firmware's day loop reads what `eigenrad eval --time` reads
+/// from the same basis, and a sky update with every output read stays within its budget.
+#[test]
+fn firmware_daylight_office_sun_first() {
+    let (path, name) = office_basis(Mesh::DaylightSunFirst, 32, "f16");
+    let Some(run) = check_against_eval(&name, &path) else {
+        return;
+    };
+    let bytes = std::fs::read(&path).unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    assert!(
+        eigenrad_runtime::sky::sun_first::SunFirst::stored(&basis),
+        "{name}: the sun's first reflection is in the basis"
+    );
+    let day = run.daylight.as_ref().expect("daylight records");
+    assert!(!day.steps.is_empty());
+    steps_against_eval(&name, &path, day);
+    let update = run.instructions["daylight_update_read_outputs"];
+    assert!(
+        update <= BUDGET_SUN_FIRST_UPDATE_READ_OUTPUTS,
+        "daylight update with the sun's first reflection and every output read: {update} \
+         instructions, budget {BUDGET_SUN_FIRST_UPDATE_READ_OUTPUTS}"
+    );
+    eprintln!("{name}: a daylight update and every output read takes {update} instructions");
+}
+
 /// `eigenrad eval BASIS --json --time TIME` under the firmware's sky: the JSON, or what eval
 /// said when it refused (the sun below the horizon).
 fn eval_daylight(basis: &Path, time: &str) -> Result<Value, String> {
@@ -191,95 +325,7 @@ fn firmware_daylight_office() {
     assert!(per_date[0].len() > per_date[1].len(), "{per_date:?}");
 
     // Every step against eval.
-    let mut worst = (0.0f64, String::new());
-    let mut worst_sun = 0.0f64;
-    let mut worst_runtime_sun = 0.0f64;
-    let mut check = |what: &dyn Fn() -> String, firmware: f64, host: f64| {
-        let relative = (firmware - host).abs() / host.abs().max(1.0);
-        assert!(
-            relative <= DAYLIGHT_REL_TOL,
-            "{}: firmware {firmware:e}, eigenrad eval {host:e} (relative {relative:e})",
-            what()
-        );
-        if relative >= worst.0 {
-            worst = (relative, what());
-        }
-    };
-    for (k, step) in day.steps.iter().enumerate() {
-        let json = eval_daylight(&path, &step.time).unwrap_or_else(|e| panic!("{e}"));
-        let light = &json["daylight"];
-        let sun = &light["sun"];
-        for (got, key) in [(step.altitude, "altitude"), (step.azimuth, "azimuth")] {
-            let want = sun[key].as_f64().expect(key);
-            assert!(
-                (got - want).abs() <= SUN_TOL_DEG,
-                "step {k} ({}): sun {key} {got}°, eval {want}°",
-                step.time
-            );
-            worst_sun = worst_sun.max((got - want).abs());
-        }
-        assert!(step.altitude > 0.0);
-        // The runtime's own sun against SPA's (the host's, printed by the firmware).
-        let (alt, az) = step.runtime_sun.expect("the runtime's sun at every step");
-        let (a1, a2) = (alt.to_radians(), step.altitude.to_radians());
-        let cos =
-            a1.sin() * a2.sin() + a1.cos() * a2.cos() * (az - step.azimuth).to_radians().cos();
-        let separation = cos.clamp(-1.0, 1.0).acos().to_degrees();
-        assert!(
-            separation <= RUNTIME_SUN_BOUND,
-            "step {k} ({}): the runtime's sun {alt}° {az}° is {separation}° from SPA's",
-            step.time
-        );
-        worst_runtime_sun = worst_runtime_sun.max(separation);
-        let global = light["global_horizontal_lux"].as_f64().expect("E_gh");
-        assert!(
-            (f64::from(step.global_horizontal) - global).abs() <= 1e-6 * global,
-            "step {k}: E_gh {} lux, eval {global}",
-            step.global_horizontal
-        );
-        for (kind, got, key) in [
-            ("sensor", &step.sensors, "sensors"),
-            ("zone", &step.zones, "zones"),
-        ] {
-            let want = json[key].as_array().expect(key);
-            assert_eq!(got.len(), want.len(), "step {k}: {kind} count");
-            for ((name, value), w) in got.iter().zip(want) {
-                assert_eq!(w["name"].as_str(), Some(name.as_str()), "step {k}: {kind}");
-                assert!(*value > 0.0, "step {k}: {kind} {name} has no daylight");
-                let host = numbers(&w["daylight"], "daylight")[0];
-                check(
-                    &|| format!("step {k} ({}): {kind} {name}", step.time),
-                    *value,
-                    host,
-                );
-            }
-        }
-        let grids = light["grids"].as_array().expect("daylight grids");
-        assert_eq!(step.figures.len(), grids.len(), "step {k}: grids");
-        for ((zone, figures), g) in step.figures.iter().zip(grids) {
-            assert_eq!(g["zone"].as_str(), Some(zone.as_str()), "step {k}: grid");
-            for (i, key) in ["average", "minimum", "maximum", "uniformity"]
-                .iter()
-                .enumerate()
-            {
-                let host = numbers(&g[*key], key)[0];
-                check(
-                    &|| format!("step {k} ({}): {zone} grid {key}", step.time),
-                    figures[i],
-                    host,
-                );
-            }
-        }
-    }
-    let (relative, at) = worst;
-    eprintln!(
-        "{name}: {} daylight steps ({} in June, {} in December) against eigenrad eval: \
-         largest relative difference {relative:e} ({at}), sun within {worst_sun:e}°, the \
-         runtime's sun within {worst_runtime_sun:e}° of SPA's",
-        day.steps.len(),
-        per_date[0].len(),
-        per_date[1].len()
-    );
+    steps_against_eval(&name, &path, day);
 
     // Instructions.
     let update = run.instructions["daylight_update_read_outputs"];
