@@ -272,7 +272,7 @@ fn office_basis(mesh: Mesh, modes: usize, precision: &str) -> (PathBuf, String) 
         "--precision".as_ref(),
         precision.as_ref(),
     ];
-    args.extend(flags.iter().map(|f| std::ffi::OsStr::new(f)));
+    args.extend(flags.iter().map(std::ffi::OsStr::new));
     let report = run_eigenrad(&args);
     eprintln!("built {name}:\n{}", String::from_utf8_lossy(&report.stdout));
     std::fs::write(work_dir().join(format!("{name}.report")), &report.stdout).unwrap();

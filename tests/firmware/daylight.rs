@@ -60,7 +60,7 @@ fn steps_against_eval(name: &str, path: &Path, day: &Daylight) {
         }
     };
     for (k, step) in day.steps.iter().enumerate() {
-        let json = eval_daylight(&path, &step.time).unwrap_or_else(|e| panic!("{e}"));
+        let json = eval_daylight(path, &step.time).unwrap_or_else(|e| panic!("{e}"));
         let light = &json["daylight"];
         let sun = &light["sun"];
         for (got, key) in [(step.altitude, "altitude"), (step.azimuth, "azimuth")] {
