@@ -9,7 +9,7 @@ use crate::formfactor::{FormFactors, Hierarchical, WORST_PAIRS};
 const MAGIC: &[u8; 8] = b"EIGENRFF";
 /// Version of the entry layout (the `cache` module's docs); another layout is another key, so old entries are
 /// simply never read again.
-pub(super) const ENTRY_VERSION: u32 = 3;
+pub(super) const ENTRY_VERSION: u32 = 4;
 /// Magic, version, kind, key, rows, columns.
 const HEADER_BYTES: usize = 8 + 4 + 4 + 32 + 8 + 8;
 /// Payload length and checksum.

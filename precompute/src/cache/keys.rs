@@ -90,6 +90,7 @@ pub fn hierarchical_key(
         admissibility,
         tolerance,
         split_by_sight,
+        shade_mixed,
     } = settings;
     let mut h = Sha256::new();
     h.update(b"eigenrad hierarchical form factors\0");
@@ -98,6 +99,7 @@ pub fn hierarchical_key(
     h.update(admissibility.to_bits().to_le_bytes());
     h.update(tolerance.to_bits().to_le_bytes());
     h.update([u8::from(*split_by_sight)]);
+    h.update([u8::from(*shade_mixed)]);
     h.finalize().into()
 }
 

@@ -48,6 +48,13 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             c.row_error,
             crate::formfactor::hierarchical::ROWS_CHECKED
         );
+        if c.shaded_blocks > 0 {
+            let _ = writeln!(
+                s,
+                "  visibility between clusters (--visibility clusters): {} well-separated blocks a blocker may cut read without shadows, times one visible share per patch from rays; the measured error above is against the exact shadows",
+                c.shaded_blocks
+            );
+        }
     }
     let _ = writeln!(
         s,

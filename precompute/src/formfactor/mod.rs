@@ -269,6 +269,19 @@ pub fn patch_form_factors_hierarchical(
     opts: &FormFactorOptions,
     settings: &hierarchical::Settings,
 ) -> Result<FormFactors<Hierarchical>, hierarchical::NonFiniteEntry> {
+    let shade = |a: &[usize], b: &[usize]| visibility::between_clusters(occluders, patches, a, b);
+    hierarchical_shaded_by(patches, occluders, opts, settings, &shade)
+}
+
+/// [`patch_form_factors_hierarchical`] with the visible shares of shaded blocks from `shade`
+/// (patch indices of the two clusters; `hierarchical::Occlusion::shade`).
+fn hierarchical_shaded_by(
+    patches: &[Patch],
+    occluders: &Occluders,
+    opts: &FormFactorOptions,
+    settings: &hierarchical::Settings,
+    shade: &hierarchical::Shade,
+) -> Result<FormFactors<Hierarchical>, hierarchical::NonFiniteEntry> {
     let prepared = Prepared::new(patches, max_order(opts));
     let ctx = Context::new(&prepared, occluders, opts, true);
     let areas: Vec<f64> = patches.iter().map(|p| p.area).collect();
@@ -279,20 +292,17 @@ pub fn patch_form_factors_hierarchical(
         let g = stats.add(a, b, gab, gba, areas[a], areas[b]);
         g / (areas[a] * areas[b]).sqrt()
     };
+    let unoccluded = |i: usize, j: usize, stats: &mut PairStats| -> f64 {
+        let (a, b) = (i.min(j), i.max(j));
+        let gab = areas[a] * ctx.pair_unoccluded(&prepared, a, b);
+        let gba = areas[b] * ctx.pair_unoccluded(&prepared, b, a);
+        let g = stats.add(a, b, gab, gba, areas[a], areas[b]);
+        g / (areas[a] * areas[b]).sqrt()
+    };
     let bar = progress_bar(0, opts.progress, "form factors", "blocks");
-    // The shaft between two clusters' rectangles, with nothing ignored: it holds every
-    // blocker of every pair between them, so a clear one leaves all their pairs unoccluded.
-    let clear = |a: &[Vec3], a_normal: Vec3, b: &[Vec3], b_normal: Vec3| {
-        occluders.shaft(a, a_normal, b, b_normal, &[]).is_clear()
-    };
-    let hidden =
-        |a: &[Vec3], b: &[Vec3]| occluders.one_blocker_hides(a, b) || occluders.solid_hides(a, b);
-    let occlusion = hierarchical::Occlusion {
-        clear: &clear,
-        hidden: &hidden,
-    };
-    let (operator, stats) =
-        Hierarchical::assemble(patches, settings, &scaled, Some(&occlusion), &bar)?;
+    let (operator, stats) = seen_through(occluders, &unoccluded, shade, |occlusion| {
+        Hierarchical::assemble(patches, settings, &scaled, Some(occlusion), &bar)
+    })?;
     bar.finish_and_clear();
     let row_sums = operator.form_factor_row_sums(&areas);
     Ok(FormFactors {
@@ -301,6 +311,44 @@ pub fn patch_form_factors_hierarchical(
         reciprocity_share: stats.worst_share,
         row_sums,
         worst_pairs: stats.worst_pairs,
+    })
+}
+
+/// `then` called with what lies between two clusters' rectangles among `occluders`, for the
+/// hierarchical partition.
+fn seen_through<R>(
+    occluders: &Occluders,
+    unoccluded: &(dyn Fn(usize, usize, &mut PairStats) -> f64 + Sync),
+    shade: &hierarchical::Shade,
+    then: impl FnOnce(&hierarchical::Occlusion) -> R,
+) -> R {
+    // The shaft between two clusters' rectangles, with nothing ignored: it holds every
+    // blocker of every pair between them, so a clear one leaves all their pairs unoccluded.
+    let clear = |a: &[Vec3], a_normal: Vec3, b: &[Vec3], b_normal: Vec3| {
+        occluders.shaft(a, a_normal, b, b_normal, &[]).is_clear()
+    };
+    let hidden =
+        |a: &[Vec3], b: &[Vec3]| occluders.one_blocker_hides(a, b) || occluders.solid_hides(a, b);
+    then(&hierarchical::Occlusion {
+        clear: &clear,
+        hidden: &hidden,
+        unoccluded,
+        shade,
+    })
+}
+
+/// How the hierarchical partition of `patches` among `occluders` divides the entries, before
+/// any is read ([`hierarchical::Census`]).
+pub fn partition_census(
+    patches: &[Patch],
+    occluders: &Occluders,
+    settings: &hierarchical::Settings,
+) -> hierarchical::Census {
+    // The census reads no entry.
+    let unread = |_: usize, _: usize, _: &mut PairStats| 0.0;
+    let unseen = |_: &[usize], _: &[usize]| (Vec::new(), Vec::new());
+    seen_through(occluders, &unread, &unseen, |occlusion| {
+        Hierarchical::census(patches, settings, Some(occlusion))
     })
 }
 

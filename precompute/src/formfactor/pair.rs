@@ -243,6 +243,22 @@ impl Context<'_> {
     /// `sources` to target `j`. `ignore` lists scene patches that must not block (the source
     /// and target themselves).
     pub(super) fn pair(&self, sources: &Prepared, i: usize, j: usize, ignore: &[usize]) -> f64 {
+        self.pair_seen(sources, i, j, ignore, true)
+    }
+
+    /// [`Context::pair`] as if no blocker stood between the two patches.
+    pub(super) fn pair_unoccluded(&self, sources: &Prepared, i: usize, j: usize) -> f64 {
+        self.pair_seen(sources, i, j, &[], false)
+    }
+
+    fn pair_seen(
+        &self,
+        sources: &Prepared,
+        i: usize,
+        j: usize,
+        ignore: &[usize],
+        blockers: bool,
+    ) -> f64 {
         let src = &sources.patches[i];
         let tgt = &self.targets.patches[j];
         let (sv, tv) = (&src.polygon.vertices, &tgt.polygon.vertices);
@@ -254,8 +270,9 @@ impl Context<'_> {
         if !any_in_front(tv, src.normal, s0, tol) || !any_in_front(sv, tgt.normal, t0, tol) {
             return 0.0;
         }
-        let shaft = self.occluders.shaft(sv, src.normal, tv, tgt.normal, ignore);
-        let occluded = !shaft.is_clear();
+        let shaft = blockers.then(|| self.occluders.shaft(sv, src.normal, tv, tgt.normal, ignore));
+        let shaft = shaft.as_ref().filter(|shaft| !shaft.is_clear());
+        let occluded = shaft.is_some();
         // A closed box that every segment between the two runs through hides the pair whole
         // (`bvh::Solid`): no shadow is cast at any point.
         if occluded && self.occluders.solid_hides(sv, tv) {
@@ -286,18 +303,18 @@ impl Context<'_> {
                     < GAP_RATIO * near::diameter(region);
         // Sampled visibility: the unoccluded integral times one visible fraction for the pair
         // (module `sampled`); close pairs keep the shadows, whose edges they resolve.
-        let fraction = match self.opts.visibility {
-            Visibility::Sampled { per_side } if occluded && !close => {
-                sampled::visible_fraction(self.occluders, &shaft, src, tgt, per_side, ignore)
+        let fraction = match (self.opts.visibility, shaft) {
+            (Visibility::Sampled { per_side }, Some(shaft)) if !close => {
+                sampled::visible_fraction(self.occluders, shaft, src, tgt, per_side, ignore)
             }
             _ => None,
         };
         if fraction == Some(0.0) {
             return 0.0;
         }
-        let shadows = occluded && fraction.is_none();
+        let shadows = shaft.filter(|_| fraction.is_none());
         let mut order = self.source_order(sources.bounds[i], j, touches);
-        if shadows && order <= self.opts.gauss_order {
+        if shadows.is_some() && order <= self.opts.gauss_order {
             // One rule for every pair a blocker may cut (touching pairs keep their own).
             order = self.opts.occluded_order;
         }
@@ -309,10 +326,9 @@ impl Context<'_> {
                 cone: None,
             };
             sum += weight
-                * if shadows {
-                    self.visible_kernel(viewer, j, &shaft, ignore)
-                } else {
-                    self.kernel(viewer, j)
+                * match shadows {
+                    Some(shaft) => self.visible_kernel(viewer, j, shaft, ignore),
+                    None => self.kernel(viewer, j),
                 };
         };
         if src.area > 0.0 && close {

@@ -667,3 +667,17 @@ fn shielded_response_to_a_rectangle_matches_a_direct_quadrature() {
     );
     assert!(rel(f[0], direct) < 1e-5);
 }
+
+/// The hierarchical operator of `patches` with every shaded block's visible fraction 1: the
+/// unoccluded entries of the pairs a blocker may cut, for the shaded blocks' test.
+pub(in crate::formfactor) fn hierarchical_with_unit_fractions(
+    patches: &[Patch],
+    occluders: &Occluders,
+    opts: &FormFactorOptions,
+    settings: &super::hierarchical::Settings,
+) -> super::Hierarchical {
+    let unit = |a: &[usize], b: &[usize]| (vec![1.0; a.len()], vec![1.0; b.len()]);
+    super::hierarchical_shaded_by(patches, occluders, opts, settings, &unit)
+        .expect("finite")
+        .matrix
+}

@@ -147,3 +147,98 @@ impl Query<'_> {
             .fold((0.0, 0.0), |acc, p| (acc.0 + p.0, acc.1 + p.1))
     }
 }
+
+/// Patches of a cluster whose centroids each patch of the other cluster casts rays to (at
+/// most), in [`between_clusters`].
+pub(crate) const CLUSTER_RAY_ENDS: usize = 16;
+
+/// How much of the light between the patches `a` and the patches `b` (indices into
+/// `patches`) the occluders let through, as one factor per patch: the block of a pair's
+/// entries is approximated by `V_ij = r_i c_j`, with `r` and `c` returned (dimensionless).
+///
+/// Each patch `i` of `a` casts rays from its centroid to the centroids of up to
+/// [`CLUSTER_RAY_ENDS`] patches of `b` spread evenly over the list, each weighted by the
+/// point-to-point kernel `A_j cos θ_i cos θ_j / r²`; `f_i`, the weighted share of them that no
+/// blocker cuts, is its own view of `b`; likewise `g_j` for each patch of `b`. With `v̄` the
+/// kernel-weighted mean of all those rays, `V_ij = f_i g_j / v̄`, so that `r_i = f_i / √v̄` and
+/// `c_j = g_j / √v̄`: exact where the blockers that matter stand next to one cluster (a desk
+/// over part of the floor, seen from the ceiling), and the block's mean either way. A patch
+/// none of whose rays face the other cluster takes `v̄`. All zeros when no ray gets through;
+/// all ones where no ray faces (nothing to say the light is cut). Deterministic: the same
+/// lists give the same rays.
+pub(crate) fn between_clusters(
+    occluders: &Occluders,
+    patches: &[Patch],
+    a: &[usize],
+    b: &[usize],
+) -> (Vec<f64>, Vec<f64>) {
+    let spread = |list: &[usize]| -> Vec<usize> {
+        let k = list.len().min(CLUSTER_RAY_ENDS);
+        (0..k)
+            .map(|s| list[(2 * s + 1) * list.len() / (2 * k)])
+            .collect()
+    };
+    // (seen, total) kernel weights of the rays from each patch of `from` to `to`'s ends.
+    let views = |from: &[usize], to: &[usize]| -> Vec<(f64, f64)> {
+        let ends = spread(to);
+        from.iter()
+            .map(|&i| {
+                let p = &patches[i];
+                let (mut seen, mut total) = (0.0, 0.0);
+                for &j in &ends {
+                    let q = &patches[j];
+                    let d = q.centroid - p.centroid;
+                    let (cp, cq) = (p.normal.dot(d), -q.normal.dot(d));
+                    if i == j || cp <= 0.0 || cq <= 0.0 {
+                        continue;
+                    }
+                    let r2 = d.dot(d);
+                    let w = q.area * cp * cq / (r2 * r2);
+                    total += w;
+                    // The same segment whichever patch casts it.
+                    let (from, to) = if i < j {
+                        (p.centroid, q.centroid)
+                    } else {
+                        (q.centroid, p.centroid)
+                    };
+                    if occluders.visible(from, to, &[i, j]) {
+                        seen += w;
+                    }
+                }
+                (seen, total)
+            })
+            .collect()
+    };
+    let (rows, cols) = (views(a, b), views(b, a));
+    // Each side summed on its own, then added: the same bits whichever list comes first.
+    let sum = |views: &[(f64, f64)]| {
+        views
+            .iter()
+            .fold((0.0, 0.0), |(s, t), &(si, ti)| (s + si, t + ti))
+    };
+    let ((seen_a, total_a), (seen_b, total_b)) = (sum(&rows), sum(&cols));
+    let (seen, total) = (seen_a + seen_b, total_a + total_b);
+    if !(total > 0.0 && total.is_finite()) {
+        return (vec![1.0; a.len()], vec![1.0; b.len()]);
+    }
+    let mean = (seen / total).clamp(0.0, 1.0);
+    if mean == 0.0 {
+        return (vec![0.0; a.len()], vec![0.0; b.len()]);
+    }
+    let root = mean.sqrt();
+    let factor = |&(s, t): &(f64, f64)| {
+        let own = if t > 0.0 && t.is_finite() {
+            (s / t).clamp(0.0, 1.0)
+        } else {
+            mean
+        };
+        own / root
+    };
+    (
+        rows.iter().map(factor).collect(),
+        cols.iter().map(factor).collect(),
+    )
+}
+
+#[cfg(test)]
+mod tests;

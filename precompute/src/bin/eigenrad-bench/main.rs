@@ -15,6 +15,9 @@
 //!   shadows: CPU time, and how far row sums, products and every channel's readings move.
 //! - `eigenrad-bench sight SCENE...`: the hierarchical form factors without and with the
 //!   scene's blocks as solids: CPU time, entries read, blocks, and how far the products move.
+//! - `eigenrad-bench partition SCENE...`: how the hierarchical operator's block partition
+//!   divides the entries before any is read (close, split by sight, compressed, dark), at
+//!   sizes whose form factors would take hours.
 //! - `eigenrad-bench daylight SCENE...`: the room's response to the sky (Tregenza, Reinhart
 //!   MF:2) and to one sun direction, against the time to prepare the scene.
 //! - `eigenrad-bench building MANIFEST`: a building's rooms one after the other against all
@@ -26,6 +29,7 @@ mod building;
 mod compress;
 mod daylight;
 mod eigen;
+mod partition;
 mod rays;
 mod scale;
 mod sight;
@@ -97,6 +101,12 @@ enum Command {
         /// Scene files.
         scenes: Vec<PathBuf>,
     },
+    /// How the hierarchical operator's partition divides each scene's entries before any is
+    /// read: close, split by sight, compressed, dark (no form factor is computed).
+    Partition {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+    },
     /// Sampled visibility against the exact shadows on each scene: CPU time, and how far the
     /// row sums, products and every channel's readings move.
     Rays {
@@ -106,8 +116,11 @@ enum Command {
         #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
         operator: OperatorChoice,
         /// Points per side of the sampled grids, one run each (comma-separated).
-        #[arg(long, value_delimiter = ',', default_value = "2,3,4")]
+        #[arg(long, value_delimiter = ',', default_value = "2,3,4", num_args = 0..)]
         points: Vec<u32>,
+        /// One more run with `--visibility clusters`.
+        #[arg(long)]
+        clusters: bool,
     },
     /// A building's rooms built one after the other, then all at once: wall times, the
     /// speed-up, and each controller's basis size.
@@ -148,13 +161,18 @@ fn main() -> Result<()> {
             machine();
             sight::run(&scenes)?;
         }
+        Command::Partition { scenes } => {
+            machine();
+            partition::run(&scenes)?;
+        }
         Command::Rays {
             scenes,
             operator,
             points,
+            clusters,
         } => {
             machine();
-            rays::run(&scenes, operator, &points)?;
+            rays::run(&scenes, operator, &points, clusters)?;
         }
         Command::Building { manifest } => {
             machine();

@@ -1,4 +1,5 @@
-//! `eigenrad-bench rays`: sampled visibility (`--visibility sampled`) against the exact
+//! `eigenrad-bench rays`: sampled visibility (`--visibility sampled`, and with `--clusters`
+//! `--visibility clusters`) against the exact
 //! shadows on the same scene: form-factor time, and how far the row sums, the products `G x`
 //! and every channel's reading at every output move. Each scene is prepared once with exact
 //! visibility and once per grid size in this process, one after the other, with the same
@@ -104,7 +105,12 @@ fn errors<'a>(
 }
 
 /// Prints one row per scene and visibility: the sampled form factors against the exact ones.
-pub(crate) fn run(scenes: &[PathBuf], operator: OperatorChoice, points: &[u32]) -> Result<()> {
+pub(crate) fn run(
+    scenes: &[PathBuf],
+    operator: OperatorChoice,
+    points: &[u32],
+    clusters: bool,
+) -> Result<()> {
     println!("| scene | patches | visibility | CPU s | form factors wall s | CPU ratio | row sums largest / RMS | G x largest / RMS | readings largest / RMS |");
     println!("|---|---|---|---|---|---|---|---|---|");
     for scene in scenes {
@@ -116,8 +122,17 @@ pub(crate) fn run(scenes: &[PathBuf], operator: OperatorChoice, points: &[u32]) 
             exact.cpu,
             exact.form_factor_wall
         );
-        for &per_side in points {
-            let s = run_one(scene, operator, Visibility::Sampled { per_side })?;
+        let variants = points
+            .iter()
+            .map(|&per_side| {
+                (
+                    format!("sampled {per_side}×{per_side}"),
+                    Visibility::Sampled { per_side },
+                )
+            })
+            .chain(clusters.then(|| ("clusters".to_string(), Visibility::Clusters)));
+        for (label, visibility) in variants {
+            let s = run_one(scene, operator, visibility)?;
             // Row sums are fractions of the patch's output: their differences are absolute.
             let rows = errors(exact.row_sums.iter().zip(&s.row_sums), |_| 1.0);
             let (mut gx, mut reading) = ((0.0f64, 0.0f64), (0.0f64, 0.0f64));
@@ -133,7 +148,7 @@ pub(crate) fn run(scenes: &[PathBuf], operator: OperatorChoice, points: &[u32]) 
                 reading = (reading.0.max(e.0), reading.1.max(e.1));
             }
             println!(
-                "| {} | {n} | sampled {per_side}×{per_side} | {:.1} | {:.1} | {:.2} | {:.1e} / {:.1e} | {:.1e} / {:.1e} | {:.1e} / {:.1e} |",
+                "| {} | {n} | {label} | {:.1} | {:.1} | {:.2} | {:.1e} / {:.1e} | {:.1e} / {:.1e} | {:.1e} / {:.1e} |",
                 scene.display(),
                 s.cpu,
                 s.form_factor_wall,

@@ -124,6 +124,10 @@ enum VisibilityArg {
     /// rays between the two patches that no blocker cuts; faster with many blockers, readings
     /// within about 1e-3 instead of 1e-6 (docs/performance.md, "Sampled visibility").
     Sampled,
+    /// With the hierarchical operator: well-separated clusters of patches that a blocker may
+    /// cut share one visible fraction from rays between them; close pairs keep the exact
+    /// shadows (docs/performance.md, "Visibility between clusters")
+    Clusters,
 }
 
 impl CacheArgs {
@@ -143,6 +147,7 @@ impl CacheArgs {
                 VisibilityArg::Sampled => Visibility::Sampled {
                     per_side: self.visibility_points,
                 },
+                VisibilityArg::Clusters => Visibility::Clusters,
             },
             ..FormFactorOptions::default()
         }

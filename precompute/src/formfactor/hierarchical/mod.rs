@@ -9,6 +9,9 @@
 //!
 //! - `tree`: the cluster tree and the block partition;
 //! - `aca`: the low-rank approximation of one block, its guard and its recompression;
+//! - `block`: one block as numbers and its part of a product;
+//! - `fill`: one block computed from the pair integrals (whole, low rank, or shaded);
+//! - `census`: what the partition makes of a scene before any entry is read;
 //! - `stored`: the operator as numbers, for the form-factor cache.
 //!
 //! Assembly reads entries through a function of two patch indices, so that the form factors'
@@ -16,6 +19,9 @@
 //! the same way.
 
 mod aca;
+mod block;
+mod census;
+mod fill;
 mod stored;
 #[cfg(test)]
 pub(in crate::formfactor) mod tests;
@@ -31,7 +37,9 @@ use serde::Serialize;
 use super::operator::FormFactorOperator;
 use super::PairStats;
 use crate::geometry::{Patch, Vec3};
-use aca::Compressed;
+use block::{Block, Data};
+pub use census::Census;
+use fill::{fill, Outcome};
 use tree::{BlockSpan, ClearBetween, ClusterTree, Kind, Seeing};
 
 /// How the operator is built; `Default` gives the settings `--operator hierarchical` uses.
@@ -52,6 +60,11 @@ pub struct Settings {
     /// cut are split further rather than approximated whole. Default true; false gives the
     /// partition by distance alone.
     pub split_by_sight: bool,
+    /// Store each well-separated pair that a blocker may cut as its unoccluded entries times
+    /// one visible fraction for the two clusters (`Occlusion::fraction`) instead of splitting
+    /// it down to blocks read whole: the pair integrals' shadows are left to close clusters,
+    /// and the operator approximates the visibility of distant ones. Default false (exact).
+    pub shade_mixed: bool,
 }
 
 impl Default for Settings {
@@ -61,6 +74,7 @@ impl Default for Settings {
             admissibility: 1.0,
             tolerance: 1e-6,
             split_by_sight: true,
+            shade_mixed: false,
         }
     }
 }
@@ -78,6 +92,9 @@ pub struct Compression {
     /// Well-separated blocks computed whole because no rank smaller than the block's own
     /// saved memory.
     pub rank_fallbacks: usize,
+    /// Well-separated blocks that a blocker may cut, stored as their unoccluded entries times
+    /// the clusters' visible fraction ([`Settings::shade_mixed`]).
+    pub shaded_blocks: usize,
     /// Largest rank of a low-rank block.
     pub max_rank: usize,
     /// Mean rank of the low-rank blocks.
@@ -95,99 +112,6 @@ pub struct Compression {
 
 /// Rows of `S` that [`Compression::row_error`] compares with the pair integrals.
 pub const ROWS_CHECKED: usize = 8;
-
-/// How one block's numbers are stored (f32, column-major).
-#[derive(Clone, Debug)]
-enum Data {
-    /// `m × n` entries.
-    Dense(Vec<f32>),
-    /// `U` (m × r) and `V` (n × r): the block is `U Vᵀ`.
-    LowRank {
-        rank: usize,
-        u: Vec<f32>,
-        v: Vec<f32>,
-    },
-}
-
-#[derive(Clone, Debug)]
-struct Block {
-    span: BlockSpan,
-    data: Data,
-}
-
-impl Block {
-    /// Entry `(a, b)` of the block (local indices).
-    fn at(&self, a: usize, b: usize) -> f64 {
-        let m = self.span.rows.len();
-        match &self.data {
-            Data::Dense(d) => f64::from(d[b * m + a]),
-            Data::LowRank { rank, u, v } => {
-                let n = self.span.cols.len();
-                (0..*rank)
-                    .map(|k| f64::from(u[k * m + a]) * f64::from(v[k * n + b]))
-                    .sum()
-            }
-        }
-    }
-
-    fn bytes(&self) -> usize {
-        4 * match &self.data {
-            Data::Dense(d) => d.len(),
-            Data::LowRank { u, v, .. } => u.len() + v.len(),
-        }
-    }
-
-    /// `y[rows] += B x[cols]` and, off the diagonal, `y[cols] += Bᵀ x[rows]`, for `k` columns
-    /// stored one after the other (`x` and `y` are `n × k`, column-major).
-    fn product(&self, n: usize, k: usize, x: &[f64], y: &mut [f64]) {
-        let (rows, cols) = (self.span.rows.clone(), self.span.cols.clone());
-        let mirror = !self.span.is_diagonal();
-        let m = rows.len();
-        for c in 0..k {
-            let (xc, yc) = (&x[c * n..(c + 1) * n], &mut y[c * n..(c + 1) * n]);
-            match &self.data {
-                Data::Dense(d) => {
-                    for (b, column) in d.chunks_exact(m.max(1)).enumerate() {
-                        let xb = xc[cols.start + b];
-                        let mut back = 0.0;
-                        for (a, &e) in column.iter().enumerate() {
-                            let e = f64::from(e);
-                            yc[rows.start + a] += e * xb;
-                            back += e * xc[rows.start + a];
-                        }
-                        if mirror {
-                            yc[cols.start + b] += back;
-                        }
-                    }
-                }
-                Data::LowRank { rank, u, v } => {
-                    let nb = cols.len();
-                    for r in 0..*rank {
-                        let (ur, vr) = (&u[r * m..(r + 1) * m], &v[r * nb..(r + 1) * nb]);
-                        let t: f64 = vr
-                            .iter()
-                            .zip(&xc[cols.clone()])
-                            .map(|(&e, x)| f64::from(e) * x)
-                            .sum();
-                        let s: f64 = ur
-                            .iter()
-                            .zip(&xc[rows.clone()])
-                            .map(|(&e, x)| f64::from(e) * x)
-                            .sum();
-                        for (yi, &e) in yc[rows.clone()].iter_mut().zip(ur) {
-                            *yi += f64::from(e) * t;
-                        }
-                        if mirror {
-                            for (yj, &e) in yc[cols.clone()].iter_mut().zip(vr) {
-                                *yj += f64::from(e) * s;
-                            }
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
 
 /// The hierarchical operator (module docs).
 #[derive(Clone, Debug)]
@@ -216,7 +140,17 @@ pub(super) struct Occlusion<'a> {
     /// `hidden(a, b)`: one blocker, or one closed box of blockers, cuts every segment from `a`
     /// to `b`.
     pub(super) hidden: &'a (dyn Fn(&[Vec3], &[Vec3]) -> bool + Sync),
+    /// `unoccluded(i, j, stats)`: `S_ij` as if nothing stood between the two patches, for
+    /// [`Settings::shade_mixed`].
+    pub(super) unoccluded: &'a (dyn Fn(usize, usize, &mut PairStats) -> f64 + Sync),
+    /// `shade(a, b)`: the share of the light between the patches `a` and those of `b`
+    /// (patch indices) that no blocker cuts, as factors `(r, c)` by patch, the pair `(i, j)`'s
+    /// share being `r_i c_j`; for [`Settings::shade_mixed`] (dimensionless).
+    pub(super) shade: &'a Shade<'a>,
 }
+
+/// [`Occlusion::shade`].
+pub(super) type Shade<'a> = dyn Fn(&[usize], &[usize]) -> (Vec<f64>, Vec<f64>) + Sync + 'a;
 
 /// A non-finite entry met during assembly: the patches of the pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -225,10 +159,11 @@ pub struct NonFiniteEntry {
     pub patches: [usize; 2],
 }
 
-/// Columns of a product that one task carries through every block, in order: each column's
-/// sum runs over the blocks in one fixed order whatever the threads, so products are the same
-/// bytes on any machine.
-const COLUMNS_PER_TASK: usize = 4;
+/// Most columns of a product that one task carries through every block, in order. Each
+/// column's sum runs over the blocks in one fixed order whatever the threads and the grouping,
+/// so products are the same bytes on any machine; wider groups read the stored numbers fewer
+/// times.
+const MAX_COLUMNS_PER_TASK: usize = 32;
 
 impl Hierarchical {
     /// Assembles the operator over `patches` from `scaled(i, j, stats)`, the entry `S_ij` of
@@ -245,33 +180,14 @@ impl Hierarchical {
         progress: &ProgressBar,
     ) -> Result<(Hierarchical, PairStats), NonFiniteEntry> {
         let n = patches.len();
-        // A pair integral counts a corner as in front of the source beyond 1e-9 of the sum of
-        // the two patches' radii. Half of 1e-9 of the smallest radius is the most a cluster's
-        // planes may spread, the most its normals may turn a height across the scene, and
-        // the most a corner may stand in front of a dark pair's plane: together 1.5e-9 of
-        // that radius, below every pair's own tolerance, so that a block called dark is one
-        // whose pair integrals all return 0.
-        let half = 0.5e-9
-            * patches
-                .iter()
-                .map(smallest_radius)
-                .fold(f64::INFINITY, f64::min);
-        let tree = ClusterTree::new(patches, settings.leaf, half);
-        let nothing_between = |_: &[Vec3], _: Vec3, _: &[Vec3], _: Vec3| true;
-        let nothing_hides = |_: &[Vec3], _: &[Vec3]| false;
-        let seeing = Seeing {
-            clear: occlusion.map_or(&nothing_between, |o| o.clear),
-            hidden: occlusion.map_or(&nothing_hides, |o| o.hidden),
-            dark_tolerance: half,
-        };
-        let spans = tree::partition(&tree, settings, Some(&seeing));
+        let (tree, spans) = partitioned(patches, settings, occlusion);
         progress.set_length(spans.len() as u64);
         let order = &tree.order;
         let built: Vec<(Block, PairStats, Outcome)> = spans
             .into_par_iter()
             .enumerate()
             .map(|(index, span)| {
-                let out = fill(span, order, settings, scaled, index as u64);
+                let out = fill(span, order, settings, scaled, occlusion, index as u64);
                 progress.inc(1);
                 out
             })
@@ -284,18 +200,23 @@ impl Hierarchical {
             stats.merge(block_stats);
             read += outcome.read;
             let entries = block.span.rows.len() * block.span.cols.len();
+            if block.span.kind == Kind::Shaded {
+                compression.shaded_blocks += 1;
+            }
             match (block.span.kind, &block.data) {
                 (Kind::Near, _) => compression.near_blocks += 1,
-                (Kind::Far | Kind::Dark, Data::LowRank { rank, .. }) => {
+                (Kind::Far | Kind::Dark | Kind::Shaded, Data::LowRank { rank, .. }) => {
                     compression.low_rank_blocks += 1;
                     compression.max_rank = compression.max_rank.max(*rank);
                     rank_sum += rank;
                     low_rank_entries += entries * if block.span.is_diagonal() { 1 } else { 2 };
                 }
-                (Kind::Far | Kind::Dark, Data::Dense(_)) if outcome.guarded => {
+                (Kind::Far | Kind::Dark | Kind::Shaded, Data::Dense(_)) if outcome.guarded => {
                     compression.guard_fallbacks += 1
                 }
-                (Kind::Far | Kind::Dark, Data::Dense(_)) => compression.rank_fallbacks += 1,
+                (Kind::Far | Kind::Dark | Kind::Shaded, Data::Dense(_)) => {
+                    compression.rank_fallbacks += 1
+                }
             }
             if let Some(pair) = outcome.non_finite {
                 return Err(NonFiniteEntry { patches: pair });
@@ -389,14 +310,43 @@ impl Hierarchical {
         }
     }
 
-    /// `y = S x` in the tree's order, `k` columns (column-major, `n × k`), the blocks in their
+    /// `y = S x` in the tree's order, `k` columns (row-major, `n × k`), the blocks in their
     /// one order.
     fn scaled_product(&self, k: usize, x: &[f64], y: &mut [f64]) {
-        let n = self.order.len();
         for block in &self.blocks {
-            block.product(n, k, x, y);
+            block.product(k, x, y);
         }
     }
+}
+
+/// The cluster tree over `patches` and the partition of its `S` into blocks, seen through
+/// `occlusion` (module `tree`).
+fn partitioned(
+    patches: &[Patch],
+    settings: &Settings,
+    occlusion: Option<&Occlusion>,
+) -> (ClusterTree, Vec<BlockSpan>) {
+    // A pair integral counts a corner as in front of the source beyond 1e-9 of the sum of
+    // the two patches' radii. Half of 1e-9 of the smallest radius is the most a cluster's
+    // planes may spread, the most its normals may turn a height across the scene, and the
+    // most a corner may stand in front of a dark pair's plane: together 1.5e-9 of that
+    // radius, below every pair's own tolerance, so that a block called dark is one whose pair
+    // integrals all return 0.
+    let half = 0.5e-9
+        * patches
+            .iter()
+            .map(smallest_radius)
+            .fold(f64::INFINITY, f64::min);
+    let tree = ClusterTree::new(patches, settings.leaf, half);
+    let nothing_between = |_: &[Vec3], _: Vec3, _: &[Vec3], _: Vec3| true;
+    let nothing_hides = |_: &[Vec3], _: &[Vec3]| false;
+    let seeing = Seeing {
+        clear: occlusion.map_or(&nothing_between, |o| o.clear),
+        hidden: occlusion.map_or(&nothing_hides, |o| o.hidden),
+        dark_tolerance: half,
+    };
+    let spans = tree::partition(&tree, settings, Some(&seeing));
+    (tree, spans)
 }
 
 /// The distance from a patch's centroid to its farthest corner, metres (what the pair
@@ -409,106 +359,6 @@ fn smallest_radius(p: &Patch) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// How one block's assembly went.
-struct Outcome {
-    /// Entries read through the pair integrals.
-    read: usize,
-    /// The guard fired.
-    guarded: bool,
-    /// A pair whose entry was not finite.
-    non_finite: Option<[usize; 2]>,
-}
-
-/// Computes one block of the partition: whole if near, compressed if far.
-fn fill(
-    span: BlockSpan,
-    order: &[usize],
-    settings: &Settings,
-    scaled: &(dyn Fn(usize, usize, &mut PairStats) -> f64 + Sync),
-    seed: u64,
-) -> (Block, PairStats, Outcome) {
-    let stats = std::cell::RefCell::new(PairStats::default());
-    let read = std::cell::Cell::new(0usize);
-    let non_finite = std::cell::Cell::new(None);
-    let (rows, cols) = (span.rows.clone(), span.cols.clone());
-    let entry = |a: usize, b: usize| -> f64 {
-        let (i, j) = (order[rows.start + a], order[cols.start + b]);
-        if i == j {
-            return 0.0;
-        }
-        read.set(read.get() + 1);
-        let s = scaled(i, j, &mut stats.borrow_mut());
-        if !s.is_finite() {
-            non_finite.set(Some([i.min(j), i.max(j)]));
-            return 0.0;
-        }
-        s
-    };
-    let (m, n) = (rows.len(), cols.len());
-    let mut guarded = false;
-    let data = match span.kind {
-        Kind::Near if span.is_diagonal() => {
-            // One value per pair, mirrored: the diagonal block is exactly symmetric.
-            let mut d = vec![0.0f32; m * m];
-            for b in 0..m {
-                for a in 0..b {
-                    let s = entry(a, b) as f32;
-                    d[b * m + a] = s;
-                    d[a * m + b] = s;
-                }
-            }
-            Data::Dense(d)
-        }
-        Kind::Near => Data::Dense(dense_f32(m, n, &entry)),
-        Kind::Dark => Data::LowRank {
-            rank: 0,
-            u: Vec::new(),
-            v: Vec::new(),
-        },
-        Kind::Far => match aca::compress(m, n, &entry, settings.tolerance, seed) {
-            Compressed::LowRank(approximation) => Data::LowRank {
-                rank: approximation.rank(),
-                u: column_major_f32(approximation.u.as_ref()),
-                v: column_major_f32(approximation.v.as_ref()),
-            },
-            Compressed::Dense {
-                entries,
-                guarded: g,
-            } => {
-                guarded = g;
-                Data::Dense(column_major_f32(entries.as_ref()))
-            }
-        },
-    };
-    let outcome = Outcome {
-        read: read.get(),
-        guarded,
-        non_finite: non_finite.get(),
-    };
-    (Block { span, data }, stats.into_inner(), outcome)
-}
-
-/// A matrix's entries in f32, column after column.
-fn column_major_f32(m: MatRef<'_, f64>) -> Vec<f32> {
-    let mut out = Vec::with_capacity(m.nrows() * m.ncols());
-    for j in 0..m.ncols() {
-        for i in 0..m.nrows() {
-            out.push(m[(i, j)] as f32);
-        }
-    }
-    out
-}
-
-fn dense_f32(m: usize, n: usize, entry: &dyn Fn(usize, usize) -> f64) -> Vec<f32> {
-    let mut d = Vec::with_capacity(m * n);
-    for b in 0..n {
-        for a in 0..m {
-            d.push(entry(a, b) as f32);
-        }
-    }
-    d
-}
-
 impl FormFactorOperator for Hierarchical {
     fn len(&self) -> usize {
         self.order.len()
@@ -517,20 +367,28 @@ impl FormFactorOperator for Hierarchical {
     fn apply(&self, mut out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par) {
         let n = self.len();
         let k = rhs.ncols();
+        // One task per thread, each streaming the blocks once for its columns; the grouping
+        // does not change the bytes (Block::product).
+        let tasks = match par {
+            Par::Seq => 1,
+            _ => rayon::current_num_threads().max(1),
+        };
+        let width = k.div_ceil(tasks).clamp(1, MAX_COLUMNS_PER_TASK);
         let groups: Vec<Range<usize>> = (0..k)
-            .step_by(COLUMNS_PER_TASK)
-            .map(|c| c..(c + COLUMNS_PER_TASK).min(k))
+            .step_by(width)
+            .map(|c| c..(c + width).min(k))
             .collect();
         let one = |cols: &Range<usize>| -> Vec<f64> {
-            // D x in the tree's order.
-            let mut x = vec![0.0; n * cols.len()];
-            for (c, col) in cols.clone().enumerate() {
-                for (p, &i) in self.order.iter().enumerate() {
-                    x[c * n + p] = self.root_area[i] * rhs[(i, col)];
+            // D x in the tree's order, row-major.
+            let w = cols.len();
+            let mut x = vec![0.0; n * w];
+            for (p, &i) in self.order.iter().enumerate() {
+                for (c, col) in cols.clone().enumerate() {
+                    x[p * w + c] = self.root_area[i] * rhs[(i, col)];
                 }
             }
-            let mut y = vec![0.0; n * cols.len()];
-            self.scaled_product(cols.len(), &x, &mut y);
+            let mut y = vec![0.0; n * w];
+            self.scaled_product(w, &x, &mut y);
             y
         };
         let results: Vec<Vec<f64>> = match par {
@@ -538,9 +396,10 @@ impl FormFactorOperator for Hierarchical {
             _ => groups.par_iter().map(one).collect(),
         };
         for (cols, y) in groups.iter().zip(&results) {
+            let w = cols.len();
             for (c, col) in cols.clone().enumerate() {
                 for (p, &i) in self.order.iter().enumerate() {
-                    out[(i, col)] = self.root_area[i] * y[c * n + p];
+                    out[(i, col)] = self.root_area[i] * y[p * w + c];
                 }
             }
         }

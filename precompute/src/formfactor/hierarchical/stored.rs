@@ -37,7 +37,7 @@ impl Hierarchical {
             out.push(match span.kind {
                 Kind::Near => 0.0,
                 // A dark block is a far one of rank 0.
-                Kind::Far | Kind::Dark => 1.0,
+                Kind::Far | Kind::Dark | Kind::Shaded => 1.0,
             });
             match &block.data {
                 Data::Dense(d) => {
@@ -56,6 +56,7 @@ impl Hierarchical {
             index(c.low_rank_blocks),
             index(c.guard_fallbacks),
             index(c.rank_fallbacks),
+            index(c.shaded_blocks),
             index(c.max_rank),
             c.mean_rank,
             c.low_rank_share,
@@ -119,6 +120,7 @@ impl Hierarchical {
                 rows: nodes[row_node].0.clone(),
                 cols: nodes[col_node].0.clone(),
                 kind,
+                split_from: None,
             };
             let (m, k) = (span.rows.len(), span.cols.len());
             let rank = r.number()?;
@@ -139,6 +141,7 @@ impl Hierarchical {
             low_rank_blocks: r.index(block_count)?,
             guard_fallbacks: r.index(block_count)?,
             rank_fallbacks: r.index(block_count)?,
+            shaded_blocks: r.index(block_count)?,
             max_rank: r.index(n)?,
             mean_rank: r.number()?,
             low_rank_share: r.number()?,

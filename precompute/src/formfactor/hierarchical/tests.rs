@@ -79,11 +79,11 @@ fn compressed_matches_dense_in_a_furnished_room() {
 }
 
 /// An open-plan floor in small: a 12 × 6 × 2.7 m room with six desks in two rows and two
-/// columns from floor to ceiling, about 0.9 m a patch, so that most pairs have several
-/// blockers between them (as on `examples/scaling/open-plan-*.toml`).
+/// columns from floor to ceiling, about `size` metres a patch (0.9 in most tests), so that
+/// most pairs have several blockers between them (as on `examples/scaling/open-plan-*.toml`).
 /// Its desks and columns are closed boxes, returned as solids too.
-pub(in crate::formfactor) fn open_plan_in_small() -> (Vec<Patch>, Vec<Solid>) {
-    let mut patches = meshed_box(v(0.0, 0.0, 0.0), v(12.0, 6.0, 2.7), 0.9, true, 0);
+pub(in crate::formfactor) fn open_plan_in_small(size: f64) -> (Vec<Patch>, Vec<Solid>) {
+    let mut patches = meshed_box(v(0.0, 0.0, 0.0), v(12.0, 6.0, 2.7), size, true, 0);
     let mut solids = Vec::new();
     for row in 0..2 {
         for desk in 0..3 {
@@ -95,7 +95,7 @@ pub(in crate::formfactor) fn open_plan_in_small() -> (Vec<Patch>, Vec<Solid>) {
     solids.push(closed((v(8.0, 2.8, 0.0), v(8.4, 3.2, 2.7))));
     for (k, solid) in solids.iter().enumerate() {
         let b = solid.bounds;
-        patches.extend(meshed_box(b.min, b.max, 0.9, false, 6 + 6 * k));
+        patches.extend(meshed_box(b.min, b.max, size, false, 6 + 6 * k));
     }
     (patches, solids)
 }
@@ -106,7 +106,7 @@ pub(in crate::formfactor) fn open_plan_in_small() -> (Vec<Patch>, Vec<Solid>) {
 /// fallbacks and the near blocks against the dense matrix rather than the compression.
 #[test]
 fn compressed_matches_dense_among_many_blockers() {
-    let (patches, solids) = open_plan_in_small();
+    let (patches, solids) = open_plan_in_small(0.9);
     compressed_matches_dense(&patches, &solids, 0.0);
 }
 
@@ -185,7 +185,8 @@ fn sight_of_blocks_agrees_with_their_pairs() {
                     assert!(shaft.is_clear(), "clear block, occluded pair ({i}, {j})");
                     clear_far += 1;
                 }
-                Kind::Near => {}
+                // The tests' settings split mixed pairs: none is shaded.
+                Kind::Near | Kind::Shaded => {}
             }
         }
     }
@@ -310,6 +311,12 @@ fn compressed_matches_dense(patches: &[Patch], solids: &[Solid], low_rank_share:
     let mut again = Mat::<f64>::zeros(n, 6);
     h.apply(again.as_mut(), x.as_ref(), Par::Seq);
     assert!((0..n).all(|i| (0..6).all(|k| again[(i, k)].to_bits() == got[(i, k)].to_bits())));
+    // And whichever columns are carried together.
+    for k in 0..6 {
+        let mut alone = Mat::<f64>::zeros(n, 1);
+        h.apply(alone.as_mut(), x.as_ref().get(.., k..k + 1), Par::Seq);
+        assert!((0..n).all(|i| alone[(i, 0)].to_bits() == got[(i, k)].to_bits()));
+    }
 }
 
 /// Reference: the white furnace. In a closed room of uniform reflectance ρ, uniform emitted
@@ -433,3 +440,95 @@ fn recompression_keeps_the_block() {
     }
     assert!((err2 / norm2).sqrt() < 2e-6, "{:e}", (err2 / norm2).sqrt());
 }
+
+/// Reference: the dense matrix of the exact pair integrals on the open plan in small (six
+/// desks and two columns among far clusters). With [`Settings::shade_mixed`] no pair of
+/// clusters is split by sight: each well-separated pair a blocker may cut is one block, its
+/// unoccluded entries times the clusters' visible fraction (read without shadows). The
+/// approximation is of the visibility, not of the compression: its products and its row
+/// sums are held to [`SHADED_PRODUCT`] and [`SHADED_ROW_SUM`] of the dense ones, and the same
+/// blocks with no shading at all (every fraction 1) are at least twice as far off, so the
+/// fractions do their work.
+#[test]
+fn shaded_blocks_approximate_the_exact_visibility() {
+    let (patches, solids) = open_plan_in_small(0.6);
+    let n = patches.len();
+    let occluders = Occluders::new(&patches);
+    let opts = FormFactorOptions::default();
+    let area: Vec<f64> = patches.iter().map(|p| p.area).collect();
+    let dense = exchange::exchange_areas(
+        patch_form_factors_with(&patches, &occluders, &opts).matrix,
+        &area,
+    );
+    let occluders = occluders.with_solids(&solids);
+    let split = Settings {
+        tolerance: 1e-4,
+        ..small_leaves()
+    };
+    let shaded = Settings {
+        shade_mixed: true,
+        ..split.clone()
+    };
+    let exact =
+        patch_form_factors_hierarchical(&patches, &occluders, &opts, &split).expect("finite");
+    let ff = patch_form_factors_hierarchical(&patches, &occluders, &opts, &shaded).expect("finite");
+    let unshaded = crate::formfactor::tests::hierarchical_with_unit_fractions(
+        &patches, &occluders, &opts, &shaded,
+    );
+    let (c, c_exact) = (ff.matrix.compression(), exact.matrix.compression());
+    println!("{n} patches, shaded: {c:?}\nsplit: {c_exact:?}");
+    assert!(c.shaded_blocks > 0, "{c:?}");
+    let census =
+        |settings: &Settings| crate::formfactor::partition_census(&patches, &occluders, settings);
+    assert_eq!(census(&shaded).mixed_whole, 0.0);
+    assert!(census(&split).mixed_whole > 0.0);
+    // Products against the dense matrix, relative to each product's largest entry.
+    let x = Mat::<f64>::from_fn(n, 4, |i, k| {
+        if k == 0 {
+            1.0
+        } else {
+            (((i * 7 + k * 13) % 17) as f64 - 8.0) / 8.0
+        }
+    });
+    let product_error = |h: &Hierarchical| {
+        let (mut want, mut got) = (Mat::<f64>::zeros(n, 4), Mat::<f64>::zeros(n, 4));
+        dense.apply(want.as_mut(), x.as_ref(), Par::Seq);
+        h.apply(got.as_mut(), x.as_ref(), Par::Seq);
+        (0..4)
+            .map(|k| {
+                let w: Vec<f64> = (0..n).map(|i| want[(i, k)]).collect();
+                let g: Vec<f64> = (0..n).map(|i| got[(i, k)]).collect();
+                relative_max(&g, &w)
+            })
+            .fold(0.0, f64::max)
+    };
+    // Against the dense row sums: the faces on the floor see nothing, theirs are 0.
+    let dense_sums = dense.form_factor_row_sums(&area);
+    let row_error = |h: &Hierarchical| {
+        h.form_factor_row_sums(&area)
+            .iter()
+            .zip(&dense_sums)
+            .map(|(s, d)| (s - d).abs())
+            .fold(0.0, f64::max)
+    };
+    let (product, rows) = (product_error(&ff.matrix), row_error(&ff.matrix));
+    let (product_unshaded, rows_unshaded) = (product_error(&unshaded), row_error(&unshaded));
+    println!(
+        "products {product:.2e} (unshaded {product_unshaded:.2e}), row sums {rows:.2e} \
+         (unshaded {rows_unshaded:.2e}), exact split {:.2e}",
+        product_error(&exact.matrix)
+    );
+    assert!(product < SHADED_PRODUCT, "{product:e}");
+    assert!(rows < SHADED_ROW_SUM, "{rows:e}");
+    assert!(
+        product_unshaded > 2.0 * product,
+        "{product_unshaded:e} {product:e}"
+    );
+    assert!(rows_unshaded > 2.0 * rows, "{rows_unshaded:e} {rows:e}");
+}
+
+/// Bound of [`shaded_blocks_approximate_the_exact_visibility`] on the products (relative to
+/// each product's largest entry).
+const SHADED_PRODUCT: f64 = 3e-2;
+/// The same test's bound on the row sums' difference from the dense ones.
+const SHADED_ROW_SUM: f64 = 3e-2;

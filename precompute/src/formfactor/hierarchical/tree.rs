@@ -296,6 +296,9 @@ pub(super) enum Kind {
     Far,
     /// Admissible and dark ([`Sight::Dark`]): every entry is 0, stored at rank 0 unread.
     Dark,
+    /// Admissible and mixed, with [`Settings::shade_mixed`]: the unoccluded entries, at low
+    /// rank, times one visible fraction for the pair of clusters.
+    Shaded,
 }
 
 /// A block of the partition: rows of cluster `row_node`, columns of `col_node`.
@@ -306,6 +309,9 @@ pub(super) struct BlockSpan {
     pub(super) rows: Range<usize>,
     pub(super) cols: Range<usize>,
     pub(super) kind: Kind,
+    /// The admissible pair of clusters `(row_node, col_node)` that sight split this block
+    /// from ([`Sight::Mixed`]), if any: its ancestor in the partition, for the census.
+    pub(super) split_from: Option<(usize, usize)>,
 }
 
 impl BlockSpan {
@@ -360,61 +366,87 @@ pub(super) fn partition(
     let mut blocks = Vec::new();
     let seeing = seeing.filter(|_| settings.split_by_sight);
     if !tree.nodes.is_empty() {
-        visit(tree, settings, seeing, 0, 0, &mut blocks);
+        let walk = Walk {
+            tree,
+            settings,
+            seeing,
+        };
+        walk.visit(0, 0, None, &mut blocks);
     }
     blocks
 }
 
-fn visit(
-    tree: &ClusterTree,
-    settings: &Settings,
-    seeing: Option<&Seeing>,
-    t: usize,
-    s: usize,
-    out: &mut Vec<BlockSpan>,
-) {
-    let (tn, sn) = (&tree.nodes[t], &tree.nodes[s]);
-    let span = |kind| BlockSpan {
-        row_node: t,
-        col_node: s,
-        rows: tn.range.clone(),
-        cols: sn.range.clone(),
-        kind,
-    };
-    if t == s {
-        match tn.children {
-            None => out.push(span(Kind::Near)),
-            Some([a, b]) => {
-                visit(tree, settings, seeing, a, a, out);
-                visit(tree, settings, seeing, a, b, out);
-                visit(tree, settings, seeing, b, b, out);
+/// The partition's recursion and what it reads.
+struct Walk<'a> {
+    tree: &'a ClusterTree,
+    settings: &'a Settings,
+    seeing: Option<&'a Seeing<'a>>,
+}
+
+impl Walk<'_> {
+    /// Appends the blocks of the pair `(t, s)`; `split_from`: the mixed admissible pair it
+    /// descends from.
+    fn visit(
+        &self,
+        t: usize,
+        s: usize,
+        split_from: Option<(usize, usize)>,
+        out: &mut Vec<BlockSpan>,
+    ) {
+        let (tn, sn) = (&self.tree.nodes[t], &self.tree.nodes[s]);
+        let span = |kind| BlockSpan {
+            row_node: t,
+            col_node: s,
+            rows: tn.range.clone(),
+            cols: sn.range.clone(),
+            kind,
+            split_from,
+        };
+        if t == s {
+            match tn.children {
+                None => out.push(span(Kind::Near)),
+                Some([a, b]) => {
+                    self.visit(a, a, split_from, out);
+                    self.visit(a, b, split_from, out);
+                    self.visit(b, b, split_from, out);
+                }
+            }
+            return;
+        }
+        let gap = tn.bounds.distance(&sn.bounds);
+        let small = tn.bounds.diameter().min(sn.bounds.diameter());
+        let mut split_from = split_from;
+        if gap > 0.0 && small <= self.settings.admissibility * gap {
+            let sight = self
+                .seeing
+                .map(|seeing| seeing.sight(tn.plate.as_ref(), sn.plate.as_ref()));
+            match sight {
+                None | Some(Sight::Clear) => return out.push(span(Kind::Far)),
+                Some(Sight::Dark) => return out.push(span(Kind::Dark)),
+                Some(Sight::Mixed) if self.settings.shade_mixed => {
+                    return out.push(span(Kind::Shaded))
+                }
+                // Split like a close pair: the parts no silhouette crosses compress.
+                Some(Sight::Mixed) => split_from = split_from.or(Some((t, s))),
             }
         }
-        return;
-    }
-    let gap = tn.bounds.distance(&sn.bounds);
-    let small = tn.bounds.diameter().min(sn.bounds.diameter());
-    if gap > 0.0 && small <= settings.admissibility * gap {
-        match seeing.map(|seeing| seeing.sight(tn.plate.as_ref(), sn.plate.as_ref())) {
-            None | Some(Sight::Clear) => return out.push(span(Kind::Far)),
-            Some(Sight::Dark) => return out.push(span(Kind::Dark)),
-            // Split like a close pair: the parts no silhouette crosses compress.
-            Some(Sight::Mixed) => {}
-        }
-    }
-    match (tn.children, sn.children) {
-        (None, None) => out.push(span(Kind::Near)),
-        (None, Some([c, d])) => {
-            visit(tree, settings, seeing, t, c, out);
-            visit(tree, settings, seeing, t, d, out);
-        }
-        (Some([a, b]), None) => {
-            visit(tree, settings, seeing, a, s, out);
-            visit(tree, settings, seeing, b, s, out);
-        }
-        (Some([a, b]), Some([c, d])) => {
-            for (x, y) in [(a, c), (a, d), (b, c), (b, d)] {
-                visit(tree, settings, seeing, x, y, out);
+        match (tn.children, sn.children) {
+            (None, None) => out.push(BlockSpan {
+                split_from,
+                ..span(Kind::Near)
+            }),
+            (None, Some([c, d])) => {
+                self.visit(t, c, split_from, out);
+                self.visit(t, d, split_from, out);
+            }
+            (Some([a, b]), None) => {
+                self.visit(a, s, split_from, out);
+                self.visit(b, s, split_from, out);
+            }
+            (Some([a, b]), Some([c, d])) => {
+                for (x, y) in [(a, c), (a, d), (b, c), (b, d)] {
+                    self.visit(x, y, split_from, out);
+                }
             }
         }
     }

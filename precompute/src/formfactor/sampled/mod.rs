@@ -31,6 +31,12 @@ pub enum Visibility {
         /// Points per side of each patch's grid (at least 1).
         per_side: u32,
     },
+    /// With the hierarchical operator, two well-separated clusters of patches that a blocker
+    /// may cut share one visible fraction, from rays between them
+    /// (`visibility::between_clusters`), times their unoccluded form factors
+    /// (`hierarchical::Settings::shade_mixed`); the other pairs keep the exact shadows. The
+    /// dense operators read every pair exactly.
+    Clusters,
 }
 
 impl Visibility {

@@ -52,7 +52,7 @@ fn errors(a: &[f64], b: &[f64], scale: f64) -> (f64, f64) {
 /// when built again (a fixed pattern).
 #[test]
 fn sampled_visibility_stays_near_the_exact_shadows() {
-    let (patches, _) = open_plan_in_small();
+    let (patches, _) = open_plan_in_small(0.9);
     let n = patches.len();
     let occluders = Occluders::new(&patches);
     let exact = patch_form_factors_with(&patches, &occluders, &FormFactorOptions::default());

@@ -1,0 +1,105 @@
+//! The visible shares between two clusters against every ray between their patches.
+
+use super::*;
+use crate::formfactor::tests::{grid, v};
+
+/// [`between_clusters`] on two 2 × 2 m plates of 8 × 8 patches facing each other
+/// 2 m apart: every share 1 with nothing between, 0 behind a sheet that covers the gap.
+/// Behind a sheet over the half x < 1 m: at mid-height the shares' kernel-weighted mean is
+/// that of the rays between every pair of centroids (counted here, ray by ray) within 0.1
+/// (rays through the sheet's edge may count either way); just above the lower plate, each
+/// lower patch sees the upper plate whole or not at all, and its share is within 0.1 of
+/// the exact one. Either way round, the same shares.
+#[test]
+fn visible_shares_between_clusters() {
+    let below = grid(
+        v(0.0, 0.0, 0.0),
+        v(2.0, 0.0, 0.0),
+        v(0.0, 2.0, 0.0),
+        8,
+        8,
+        0,
+    );
+    let above = grid(
+        v(0.0, 0.0, 2.0),
+        v(0.0, 2.0, 0.0),
+        v(2.0, 0.0, 0.0),
+        8,
+        8,
+        1,
+    );
+    let (a, b): (Vec<usize>, Vec<usize>) = ((0..64).collect(), (64..128).collect());
+    let scene = |sheet: Vec<Patch>| {
+        let mut patches = below.clone();
+        patches.extend(above.iter().cloned());
+        patches.extend(sheet);
+        patches
+    };
+    let shares = |patches: &[Patch]| {
+        let occluders = Occluders::new(patches);
+        let (r, c) = between_clusters(&occluders, patches, &a, &b);
+        let (c2, r2) = between_clusters(&occluders, patches, &b, &a);
+        assert_eq!((&r, &c), (&r2, &c2));
+        (r, c, occluders)
+    };
+    let sheet = |x: f64, z: f64| {
+        grid(
+            v(-1.0, -1.0, z),
+            v(x + 1.0, 0.0, 0.0),
+            v(0.0, 4.0, 0.0),
+            1,
+            1,
+            2,
+        )
+    };
+    let open = scene(Vec::new());
+    let (r, c, _) = shares(&open);
+    assert!(r.iter().chain(&c).all(|&x| x == 1.0));
+    let (r, c, _) = shares(&scene(sheet(3.0, 1.0)));
+    assert!(r.iter().chain(&c).all(|&x| x == 0.0));
+    // The kernel-weighted means of the model and of every ray between centroids.
+    let means = |patches: &[Patch], r: &[f64], c: &[f64], occluders: &Occluders| {
+        let (mut model, mut rays, mut total) = (0.0, 0.0, 0.0);
+        for (ia, &i) in a.iter().enumerate() {
+            for (jb, &j) in b.iter().enumerate() {
+                let (p, q) = (&patches[i], &patches[j]);
+                let d = q.centroid - p.centroid;
+                let w = p.normal.dot(d) * -q.normal.dot(d) / d.dot(d).powi(2);
+                total += w;
+                model += w * r[ia] * c[jb];
+                if occluders.visible(p.centroid, q.centroid, &[i, j]) {
+                    rays += w;
+                }
+            }
+        }
+        (model / total, rays / total)
+    };
+    let half = scene(sheet(1.0, 1.0));
+    let (r, c, occluders) = shares(&half);
+    let (model, rays) = means(&half, &r, &c, &occluders);
+    assert!((model - rays).abs() < 0.1, "{model} {rays}");
+    // A sheet 1 cm above the lower plate: patch by patch.
+    let low = scene(sheet(1.0, 0.01));
+    let (r, c, occluders) = shares(&low);
+    let (model, rays) = means(&low, &r, &c, &occluders);
+    assert!((model - rays).abs() < 0.1, "{model} {rays}");
+    for (ia, &i) in a.iter().enumerate() {
+        let p = &low[i];
+        let (mut exact, mut modelled, mut total) = (0.0, 0.0, 0.0);
+        for (jb, &j) in b.iter().enumerate() {
+            let q = &low[j];
+            let d = q.centroid - p.centroid;
+            let w = p.normal.dot(d) * -q.normal.dot(d) / d.dot(d).powi(2);
+            total += w;
+            modelled += w * r[ia] * c[jb];
+            if occluders.visible(p.centroid, q.centroid, &[i, j]) {
+                exact += w;
+            }
+        }
+        let (exact, modelled) = (exact / total, modelled / total);
+        assert!(
+            (modelled - exact).abs() < 0.1,
+            "patch {i}: {modelled} against {exact}"
+        );
+    }
+}
