@@ -23,7 +23,10 @@
 //!   fall back to a visible fraction estimated by rays refined at silhouettes (module
 //!   `visibility`). Pairs that no blocker can cut cost no visibility work at all. On request
 //!   ([`Visibility::Sampled`], module `sampled`) a pair of patches that do not come close takes
-//!   its unoccluded form factor times a visible fraction from a fixed grid of rays instead.
+//!   its unoccluded form factor times a visible fraction from a fixed grid of rays instead;
+//!   with the hierarchical operator ([`Visibility::Clusters`]) a well-separated pair of
+//!   clusters that a blocker may cut takes its unoccluded form factors times one visible
+//!   share per patch from rays between the clusters (`visibility::between_clusters`).
 //!
 //! Both `F_ij` and `F_ji` are computed, and `G = A F` is symmetrised (see `docs/math.md`).
 

@@ -234,7 +234,8 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
         needed + rows_needed,
         formfactor::occluded_share(&scene.patches, &occluders),
     );
-    if opts.visibility == formfactor::Visibility::Clusters && storage != Storage::Hierarchical {
+    let clusters = opts.visibility == formfactor::Visibility::Clusters;
+    if clusters && storage != Storage::Hierarchical {
         // Said whatever the narration: the flag asked for something this build does not do.
         stages::tell(
             "note: --visibility clusters shades well-separated clusters of the hierarchical \
@@ -245,6 +246,14 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
     if stages.narration().tells_plan() {
         for line in plan.lines() {
             stages::tell(&line);
+        }
+        if clusters && storage == Storage::Hierarchical {
+            stages::tell(
+                "note: the expected time counts every pair a blocker may cut as read with its \
+                 shadows; --visibility clusters reads the well-separated ones without, so expect \
+                 less (a fifth of the form factors' time on a 5643-patch open-plan floor, \
+                 docs/performance.md, \"Visibility between clusters\")",
+            );
         }
     }
     let expected = plan.seconds.clone();

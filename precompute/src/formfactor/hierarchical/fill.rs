@@ -19,7 +19,9 @@ pub(super) struct Outcome {
     pub(super) non_finite: Option<[usize; 2]>,
 }
 
-/// Computes one block of the partition: whole if near, compressed if far.
+/// Computes one block of the partition: whole if near, compressed if far, and if shaded
+/// ([`Settings::shade_mixed`]) its unoccluded entries compressed, each times its pair's
+/// visible share `r_i c_j` ([`Occlusion::shade`]).
 pub(super) fn fill(
     span: BlockSpan,
     order: &[usize],
@@ -28,22 +30,24 @@ pub(super) fn fill(
     occlusion: Option<&Occlusion>,
     seed: u64,
 ) -> (Block, PairStats, Outcome) {
-    if span.kind == Kind::Shaded {
-        if let Some(occlusion) = occlusion {
-            return fill_shaded(span, order, settings, occlusion, seed);
-        }
-    }
+    let (rows, cols) = (span.rows.clone(), span.cols.clone());
+    let (source, shares) = match (span.kind, occlusion) {
+        (Kind::Shaded, Some(o)) => (
+            o.unoccluded,
+            Some((o.shade)(&order[rows.clone()], &order[cols.clone()])),
+        ),
+        _ => (scaled, None),
+    };
     let stats = std::cell::RefCell::new(PairStats::default());
     let read = std::cell::Cell::new(0usize);
     let non_finite = std::cell::Cell::new(None);
-    let (rows, cols) = (span.rows.clone(), span.cols.clone());
     let entry = |a: usize, b: usize| -> f64 {
         let (i, j) = (order[rows.start + a], order[cols.start + b]);
         if i == j {
             return 0.0;
         }
         read.set(read.get() + 1);
-        let s = scaled(i, j, &mut stats.borrow_mut());
+        let s = source(i, j, &mut stats.borrow_mut());
         if !s.is_finite() {
             non_finite.set(Some([i.min(j), i.max(j)]));
             return 0.0;
@@ -51,6 +55,11 @@ pub(super) fn fill(
         s
     };
     let (m, n) = (rows.len(), cols.len());
+    let unlit = Data::LowRank {
+        rank: 0,
+        u: Vec::new(),
+        v: Vec::new(),
+    };
     let mut guarded = false;
     let data = match span.kind {
         Kind::Near if span.is_diagonal() => {
@@ -66,13 +75,18 @@ pub(super) fn fill(
             Data::Dense(d)
         }
         Kind::Near => Data::Dense(dense_f32(m, n, &entry)),
-        Kind::Dark => Data::LowRank {
-            rank: 0,
-            u: Vec::new(),
-            v: Vec::new(),
-        },
+        Kind::Dark => unlit,
+        // No ray gets through: nothing to read.
+        Kind::Shaded
+            if shares
+                .as_ref()
+                .is_some_and(|(r, _)| r.iter().all(|&x| x == 0.0)) =>
+        {
+            unlit
+        }
         Kind::Far | Kind::Shaded => {
-            let (data, g) = compressed(m, n, &entry, settings.tolerance, seed, None);
+            let shares = shares.as_ref().map(|(r, c)| (r.as_slice(), c.as_slice()));
+            let (data, g) = compressed(m, n, &entry, settings.tolerance, seed, shares);
             guarded = g;
             data
         }
@@ -119,51 +133,6 @@ fn compressed(
             (Data::Dense(column_major_f32(scaled.as_ref())), guarded)
         }
     }
-}
-
-/// A shaded block ([`Settings::shade_mixed`]): the unoccluded entries compressed, each times
-/// its pair's visible share `r_i c_j` ([`Occlusion::shade`]).
-fn fill_shaded(
-    span: BlockSpan,
-    order: &[usize],
-    settings: &Settings,
-    occlusion: &Occlusion,
-    seed: u64,
-) -> (Block, PairStats, Outcome) {
-    let stats = std::cell::RefCell::new(PairStats::default());
-    let read = std::cell::Cell::new(0usize);
-    let non_finite = std::cell::Cell::new(None);
-    let (rows, cols) = (&order[span.rows.clone()], &order[span.cols.clone()]);
-    let (r, c) = (occlusion.shade)(rows, cols);
-    let entry = |a: usize, b: usize| -> f64 {
-        let (i, j) = (rows[a], cols[b]);
-        read.set(read.get() + 1);
-        let s = (occlusion.unoccluded)(i, j, &mut stats.borrow_mut());
-        if !s.is_finite() {
-            non_finite.set(Some([i.min(j), i.max(j)]));
-            return 0.0;
-        }
-        s
-    };
-    let (data, guarded) = if r.iter().chain(&c).any(|&x| x > 0.0) {
-        let (m, n) = (rows.len(), cols.len());
-        compressed(m, n, &entry, settings.tolerance, seed, Some((&r, &c)))
-    } else {
-        (
-            Data::LowRank {
-                rank: 0,
-                u: Vec::new(),
-                v: Vec::new(),
-            },
-            false,
-        )
-    };
-    let outcome = Outcome {
-        read: read.get(),
-        guarded,
-        non_finite: non_finite.get(),
-    };
-    (Block { span, data }, stats.into_inner(), outcome)
 }
 
 /// A matrix's entries in f32, column after column.

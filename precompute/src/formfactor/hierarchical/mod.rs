@@ -165,6 +165,13 @@ pub struct NonFiniteEntry {
 /// times.
 const MAX_COLUMNS_PER_TASK: usize = 32;
 
+/// Groups of at least this many columns are multiplied with their values side by side
+/// (`Block::product_by_rows`), smaller ones column after column: measured on a 5643-patch
+/// floor, 8 columns a group (the eigensolve) take 0.63 of the time side by side, 3 columns (the
+/// exact responses of 5 channels) 1.65 times as long (docs/performance.md, "What changed for
+/// speed").
+const ROW_MAJOR_FROM: usize = 4;
+
 impl Hierarchical {
     /// Assembles the operator over `patches` from `scaled(i, j, stats)`, the entry `S_ij` of
     /// patches `i` and `j` (called with `i ≠ j` only; the diagonal is 0, as for flat
@@ -310,11 +317,16 @@ impl Hierarchical {
         }
     }
 
-    /// `y = S x` in the tree's order, `k` columns (row-major, `n × k`), the blocks in their
-    /// one order.
-    fn scaled_product(&self, k: usize, x: &[f64], y: &mut [f64]) {
+    /// `y = S x` in the tree's order, `k` columns (`n × k`, row-major when `by_rows`, else
+    /// column-major), the blocks in their one order.
+    fn scaled_product(&self, k: usize, by_rows: bool, x: &[f64], y: &mut [f64]) {
+        let n = self.order.len();
         for block in &self.blocks {
-            block.product(k, x, y);
+            if by_rows {
+                block.product_by_rows(k, x, y);
+            } else {
+                block.product_by_columns(n, k, x, y);
+            }
         }
     }
 }
@@ -378,17 +390,20 @@ impl FormFactorOperator for Hierarchical {
             .step_by(width)
             .map(|c| c..(c + width).min(k))
             .collect();
+        // Side by side from ROW_MAJOR_FROM columns a group (the same bytes either way).
+        let by_rows = width >= ROW_MAJOR_FROM;
+        let at = |p: usize, c: usize, w: usize| if by_rows { p * w + c } else { c * n + p };
         let one = |cols: &Range<usize>| -> Vec<f64> {
-            // D x in the tree's order, row-major.
+            // D x in the tree's order.
             let w = cols.len();
             let mut x = vec![0.0; n * w];
-            for (p, &i) in self.order.iter().enumerate() {
-                for (c, col) in cols.clone().enumerate() {
-                    x[p * w + c] = self.root_area[i] * rhs[(i, col)];
+            for (c, col) in cols.clone().enumerate() {
+                for (p, &i) in self.order.iter().enumerate() {
+                    x[at(p, c, w)] = self.root_area[i] * rhs[(i, col)];
                 }
             }
             let mut y = vec![0.0; n * w];
-            self.scaled_product(w, &x, &mut y);
+            self.scaled_product(w, by_rows, &x, &mut y);
             y
         };
         let results: Vec<Vec<f64>> = match par {
@@ -399,7 +414,7 @@ impl FormFactorOperator for Hierarchical {
             let w = cols.len();
             for (c, col) in cols.clone().enumerate() {
                 for (p, &i) in self.order.iter().enumerate() {
-                    out[(i, col)] = self.root_area[i] * y[p * w + c];
+                    out[(i, col)] = self.root_area[i] * y[at(p, c, w)];
                 }
             }
         }

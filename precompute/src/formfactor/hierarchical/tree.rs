@@ -16,7 +16,8 @@
 //! from the other (every entry is 0, nothing is read), *clear* when no blocker can cut a
 //! segment between them (the kernel is smooth: low rank), and *mixed* otherwise, split
 //! further like an inadmissible pair, so that only the parts a silhouette crosses are stored
-//! dense and the rest of the block still compresses.
+//! dense and the rest of the block still compresses; or, with [`Settings::shade_mixed`],
+//! kept whole as a *shaded* block (its unoccluded entries times visible shares from rays).
 //!
 //! Only the upper half of the symmetric partition is kept: diagonal blocks `(τ, τ)` and
 //! blocks whose rows all come before their columns in the tree's order. Every stored
