@@ -17,7 +17,7 @@ pub struct Census {
     pub blocks: usize,
     /// Entries in blocks of clusters too close to be admissible: read whole.
     pub near: f64,
-    /// Entries of admissible pairs that a blocker may cut ([`tree`]'s mixed pairs), split down
+    /// Entries of admissible pairs that a blocker may cut (the `tree` module's mixed pairs), split down
     /// to blocks read whole.
     pub mixed_whole: f64,
     /// Entries of the same mixed pairs that the split brought into admissible blocks again

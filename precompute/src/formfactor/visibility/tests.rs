@@ -57,21 +57,28 @@ fn visible_shares_between_clusters() {
     assert!(r.iter().chain(&c).all(|&x| x == 1.0));
     let (r, c, _) = shares(&scene(sheet(3.0, 1.0)));
     assert!(r.iter().chain(&c).all(|&x| x == 0.0));
-    // The kernel-weighted means of the model and of every ray between centroids.
-    let means = |patches: &[Patch], r: &[f64], c: &[f64], occluders: &Occluders| {
-        let (mut model, mut rays, mut total) = (0.0, 0.0, 0.0);
-        for (ia, &i) in a.iter().enumerate() {
-            for (jb, &j) in b.iter().enumerate() {
-                let (p, q) = (&patches[i], &patches[j]);
-                let d = q.centroid - p.centroid;
-                let w = p.normal.dot(d) * -q.normal.dot(d) / d.dot(d).powi(2);
-                total += w;
-                model += w * r[ia] * c[jb];
-                if occluders.visible(p.centroid, q.centroid, &[i, j]) {
-                    rays += w;
-                }
+    // Kernel-weighted sums over the pairs of patch `a[ia]` with every patch of `b`: the
+    // model's, the rays' between centroids, and the weights'.
+    let sums = |patches: &[Patch], r: &[f64], c: &[f64], occluders: &Occluders, ia: usize| {
+        let (i, (mut model, mut rays, mut total)) = (a[ia], (0.0, 0.0, 0.0));
+        let p = &patches[i];
+        for (jb, &j) in b.iter().enumerate() {
+            let q = &patches[j];
+            let d = q.centroid - p.centroid;
+            let w = p.normal.dot(d) * -q.normal.dot(d) / d.dot(d).powi(2);
+            total += w;
+            model += w * r[ia] * c[jb];
+            if occluders.visible(p.centroid, q.centroid, &[i, j]) {
+                rays += w;
             }
         }
+        (model, rays, total)
+    };
+    // The same over every pair: the model's mean and the rays'.
+    let means = |patches: &[Patch], r: &[f64], c: &[f64], occluders: &Occluders| {
+        let (model, rays, total) = (0..a.len())
+            .map(|ia| sums(patches, r, c, occluders, ia))
+            .fold((0.0, 0.0, 0.0), |s, x| (s.0 + x.0, s.1 + x.1, s.2 + x.2));
         (model / total, rays / total)
     };
     let half = scene(sheet(1.0, 1.0));
@@ -84,19 +91,8 @@ fn visible_shares_between_clusters() {
     let (model, rays) = means(&low, &r, &c, &occluders);
     assert!((model - rays).abs() < 0.1, "{model} {rays}");
     for (ia, &i) in a.iter().enumerate() {
-        let p = &low[i];
-        let (mut exact, mut modelled, mut total) = (0.0, 0.0, 0.0);
-        for (jb, &j) in b.iter().enumerate() {
-            let q = &low[j];
-            let d = q.centroid - p.centroid;
-            let w = p.normal.dot(d) * -q.normal.dot(d) / d.dot(d).powi(2);
-            total += w;
-            modelled += w * r[ia] * c[jb];
-            if occluders.visible(p.centroid, q.centroid, &[i, j]) {
-                exact += w;
-            }
-        }
-        let (exact, modelled) = (exact / total, modelled / total);
+        let (model, rays, total) = sums(&low, &r, &c, &occluders, ia);
+        let (modelled, exact) = (model / total, rays / total);
         assert!(
             (modelled - exact).abs() < 0.1,
             "patch {i}: {modelled} against {exact}"
