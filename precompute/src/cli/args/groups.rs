@@ -125,8 +125,9 @@ enum VisibilityArg {
     /// within about 1e-3 instead of 1e-6 (docs/performance.md, "Sampled visibility").
     Sampled,
     /// With the hierarchical operator: well-separated clusters of patches that a blocker may
-    /// cut share one visible fraction from rays between them; close pairs keep the exact
-    /// shadows (docs/performance.md, "Visibility between clusters")
+    /// cut are read without shadows, times each patch's visible share of the other cluster
+    /// from rays; close pairs keep the exact shadows; readings within about 1e-2
+    /// (docs/performance.md, "Visibility between clusters")
     Clusters,
 }
 

@@ -61,9 +61,10 @@ pub struct Settings {
     /// partition by distance alone.
     pub split_by_sight: bool,
     /// Store each well-separated pair that a blocker may cut as its unoccluded entries times
-    /// one visible fraction for the two clusters (`Occlusion::fraction`) instead of splitting
-    /// it down to blocks read whole: the pair integrals' shadows are left to close clusters,
-    /// and the operator approximates the visibility of distant ones. Default false (exact).
+    /// visible shares per patch from rays between the two clusters (`Occlusion::shade`)
+    /// instead of splitting it down to blocks read whole: the pair integrals' shadows are left
+    /// to close clusters, and the operator approximates the visibility of distant ones.
+    /// Default false (exact).
     pub shade_mixed: bool,
 }
 

@@ -298,7 +298,7 @@ pub(super) enum Kind {
     /// Admissible and dark ([`Sight::Dark`]): every entry is 0, stored at rank 0 unread.
     Dark,
     /// Admissible and mixed, with [`Settings::shade_mixed`]: the unoccluded entries, at low
-    /// rank, times one visible fraction for the pair of clusters.
+    /// rank, times each pair's visible share (one factor per patch).
     Shaded,
 }
 

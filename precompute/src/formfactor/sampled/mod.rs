@@ -32,8 +32,8 @@ pub enum Visibility {
         per_side: u32,
     },
     /// With the hierarchical operator, two well-separated clusters of patches that a blocker
-    /// may cut share one visible fraction, from rays between them
-    /// (`visibility::between_clusters`), times their unoccluded form factors
+    /// may cut take their unoccluded form factors times each patch's visible share of the
+    /// other cluster, from rays between them (`visibility::between_clusters`)
     /// (`hierarchical::Settings::shade_mixed`); the other pairs keep the exact shadows. The
     /// dense operators read every pair exactly.
     Clusters,
