@@ -65,6 +65,24 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
         r.bytes,
         output.display()
     );
+    for (band, e) in r.eigensolve.iter().enumerate() {
+        let band = if r.eigensolve.len() > 1 {
+            format!(" of band {band}")
+        } else {
+            String::new()
+        };
+        let work = match (e.restarts, e.operator_columns) {
+            (Some(restarts), Some(columns)) => {
+                format!(", {restarts} restarts, the operator applied to {columns} vectors")
+            }
+            _ => String::new(),
+        };
+        let _ = writeln!(
+            s,
+            "  modes{band}: {}{work}, largest residual {:.1e}",
+            e.method, e.max_residual
+        );
+    }
     let flash = crate::flash::FlashBudget {
         bytes: r.plan.flash_bytes,
     };

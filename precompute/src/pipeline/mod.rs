@@ -34,7 +34,10 @@ mod stages;
 pub use grids::{scene_grids, GridPoint, GridReadout, PieceLayout};
 pub use plan::{time_model, BasisSize, Plan, StageSeconds};
 use report::{grid_report, verify};
-pub use report::{output_names, BuildReport, CaseAccuracy, DaylightReport, OperatorReport, Stage};
+pub use report::{
+    output_names, BuildReport, CaseAccuracy, DaylightReport, EigensolveReport, OperatorReport,
+    Stage,
+};
 use stages::Stages;
 pub use stages::{Narration, LINE_PREFIX};
 
@@ -503,6 +506,11 @@ pub fn build_tables_and<T>(
         formulation: opts.formulation.name(),
         precision: opts.precision.name(),
         modes: p,
+        eigensolve: model
+            .bands
+            .iter()
+            .map(|b| EigensolveReport::of(&b.modes))
+            .collect(),
         bytes: bytes.len(),
         form_factors: form_factor_health,
         operator: OperatorReport {

@@ -31,6 +31,36 @@ pub struct CaseAccuracy {
     pub worst_reading_name: String,
 }
 
+/// How one band's modes were found.
+#[derive(Clone, Debug, Serialize)]
+pub struct EigensolveReport {
+    /// "dense" (faer's full eigendecomposition) or "block Lanczos".
+    pub method: &'static str,
+    /// Largest explicit residual `‖H u − μ u‖₂` of a kept mode (dimensionless: `‖H‖ < 1`).
+    pub max_residual: f64,
+    /// Block Lanczos only: thick restarts.
+    pub restarts: Option<usize>,
+    /// Block Lanczos only: vectors the operator was applied to, what the solve's time is
+    /// made of.
+    pub operator_columns: Option<usize>,
+}
+
+impl EigensolveReport {
+    /// The report of `modes`.
+    pub fn of(modes: &crate::radiosity::eigen::Modes) -> EigensolveReport {
+        use crate::radiosity::eigen::Method;
+        EigensolveReport {
+            method: match modes.method {
+                Method::Dense => "dense",
+                Method::Lanczos => "block Lanczos",
+            },
+            max_residual: modes.max_residual,
+            restarts: modes.work.map(|w| w.restarts),
+            operator_columns: modes.work.map(|w| w.columns),
+        }
+    }
+}
+
 /// Time spent in one stage.
 #[derive(Clone, Debug, Serialize)]
 pub struct Stage {
@@ -59,6 +89,8 @@ pub struct BuildReport {
     pub precision: &'static str,
     /// Modes kept per band.
     pub modes: usize,
+    /// How each band's modes were found.
+    pub eigensolve: Vec<EigensolveReport>,
     /// Basis size in bytes.
     pub bytes: usize,
     /// Form-factor health.

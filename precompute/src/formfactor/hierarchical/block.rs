@@ -97,72 +97,103 @@ impl Block {
 
     /// `y[rows] += B x[cols]` and, off the diagonal, `y[cols] += Bᵀ x[rows]`, for `k` columns
     /// stored side by side (`x` and `y` are `n × k`, row-major: the `k` values of a row are
-    /// adjacent): each stored number is read once for all `k` columns, the inner loops run
-    /// along the `k` values, the fastest way for many columns. Each column's sums run in the
-    /// order of [`Block::product_by_columns`]: either gives the same bytes.
+    /// adjacent): each stored number is read once for a chunk of columns, the inner loops run
+    /// along the chunk's values, the fastest way for many columns. The columns go in chunks of
+    /// 8, then 4, then one at a time, each of a width known when compiling, so that a chunk's
+    /// sums stay in registers. Each column's sums run in the order of
+    /// [`Block::product_by_columns`]: either gives the same bytes.
     pub(super) fn product_by_rows(&self, k: usize, x: &[f64], y: &mut [f64]) {
+        let mut first = 0;
+        while first < k {
+            let left = k - first;
+            if left >= 8 {
+                self.chunk_by_rows::<8>(k, first, x, y);
+                first += 8;
+            } else if left >= 4 {
+                self.chunk_by_rows::<4>(k, first, x, y);
+                first += 4;
+            } else {
+                self.chunk_by_rows::<1>(k, first, x, y);
+                first += 1;
+            }
+        }
+    }
+
+    /// [`Block::product_by_rows`] for the `W` columns from `first`.
+    fn chunk_by_rows<const W: usize>(&self, k: usize, first: usize, x: &[f64], y: &mut [f64]) {
         let (rows, cols) = (self.span.rows.clone(), self.span.cols.clone());
         let mirror = !self.span.is_diagonal();
         let m = rows.len();
-        let row_of = |p: usize| p * k..(p + 1) * k;
-        let mut back = vec![0.0; k];
+        let at = |p: usize| p * k + first;
+        let load = |v: &[f64], p: usize| -> [f64; W] {
+            let s = at(p);
+            std::array::from_fn(|c| v[s + c])
+        };
         match &self.data {
             Data::Dense(d) => {
                 for (b, column) in d.chunks_exact(m.max(1)).enumerate() {
-                    back.fill(0.0);
-                    let xb = row_of(cols.start + b);
+                    let xb = load(x, cols.start + b);
+                    let mut back = [0.0; W];
                     for (a, &e) in column.iter().enumerate() {
                         let e = f64::from(e);
-                        let ya = row_of(rows.start + a);
+                        let ya = at(rows.start + a);
                         if mirror {
-                            for (s, &xa) in back.iter_mut().zip(&x[ya.clone()]) {
-                                *s += e * xa;
+                            let xa = load(x, rows.start + a);
+                            for c in 0..W {
+                                back[c] += e * xa[c];
                             }
                         }
-                        let (yr, xr) = (&mut y[ya], &x[xb.clone()]);
-                        for (yi, &xi) in yr.iter_mut().zip(xr) {
-                            *yi += e * xi;
+                        let yr = &mut y[ya..ya + W];
+                        for c in 0..W {
+                            yr[c] += e * xb[c];
                         }
                     }
                     if mirror {
-                        for (yi, &s) in y[xb].iter_mut().zip(&back) {
-                            *yi += s;
+                        let yb = at(cols.start + b);
+                        let yr = &mut y[yb..yb + W];
+                        for c in 0..W {
+                            yr[c] += back[c];
                         }
                     }
                 }
             }
             Data::LowRank { rank, u, v } => {
                 let nb = cols.len();
-                let mut t = vec![0.0; k];
                 for r in 0..*rank {
                     let (ur, vr) = (&u[r * m..(r + 1) * m], &v[r * nb..(r + 1) * nb]);
-                    t.fill(0.0);
-                    back.fill(0.0);
+                    let mut t = [0.0; W];
+                    let mut back = [0.0; W];
                     for (b, &e) in vr.iter().enumerate() {
                         let e = f64::from(e);
-                        for (s, &xi) in t.iter_mut().zip(&x[row_of(cols.start + b)]) {
-                            *s += e * xi;
+                        let xb = load(x, cols.start + b);
+                        for c in 0..W {
+                            t[c] += e * xb[c];
                         }
                     }
                     if mirror {
                         for (a, &e) in ur.iter().enumerate() {
                             let e = f64::from(e);
-                            for (s, &xi) in back.iter_mut().zip(&x[row_of(rows.start + a)]) {
-                                *s += e * xi;
+                            let xa = load(x, rows.start + a);
+                            for c in 0..W {
+                                back[c] += e * xa[c];
                             }
                         }
                     }
                     for (a, &e) in ur.iter().enumerate() {
                         let e = f64::from(e);
-                        for (yi, &s) in y[row_of(rows.start + a)].iter_mut().zip(&t) {
-                            *yi += e * s;
+                        let ya = at(rows.start + a);
+                        let yr = &mut y[ya..ya + W];
+                        for c in 0..W {
+                            yr[c] += e * t[c];
                         }
                     }
                     if mirror {
                         for (b, &e) in vr.iter().enumerate() {
                             let e = f64::from(e);
-                            for (yi, &s) in y[row_of(cols.start + b)].iter_mut().zip(&back) {
-                                *yi += e * s;
+                            let yb = at(cols.start + b);
+                            let yr = &mut y[yb..yb + W];
+                            for c in 0..W {
+                                yr[c] += e * back[c];
                             }
                         }
                     }

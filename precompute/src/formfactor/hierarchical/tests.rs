@@ -289,11 +289,16 @@ fn compressed_matches_dense(patches: &[Patch], solids: &[Solid], low_rank_share:
     }
     println!("worst entry error {worst:.2e} of the largest entry");
     assert!(worst < tolerance, "{worst:e}");
-    let x = Mat::<f64>::from_fn(n, 6, |i, k| (((i * 7 + k * 13) % 17) as f64 - 8.0) / 8.0);
-    let (mut want, mut got) = (Mat::<f64>::zeros(n, 6), Mat::<f64>::zeros(n, 6));
+    // 13 columns: one thread carries them in chunks of 8, 4 and 1, two threads 7 each as
+    // 4, 1, 1, 1 (Block::product_by_rows), and one at a time column after column.
+    const COLUMNS: usize = 13;
+    let x = Mat::<f64>::from_fn(n, COLUMNS, |i, k| {
+        (((i * 7 + k * 13) % 17) as f64 - 8.0) / 8.0
+    });
+    let (mut want, mut got) = (Mat::<f64>::zeros(n, COLUMNS), Mat::<f64>::zeros(n, COLUMNS));
     dense.apply(want.as_mut(), x.as_ref(), Par::Seq);
     h.apply(got.as_mut(), x.as_ref(), Par::rayon(2));
-    for k in 0..6 {
+    for k in 0..COLUMNS {
         let w: Vec<f64> = (0..n).map(|i| want[(i, k)]).collect();
         let g: Vec<f64> = (0..n).map(|i| got[(i, k)]).collect();
         let e = relative_max(&g, &w);
@@ -308,11 +313,11 @@ fn compressed_matches_dense(patches: &[Patch], solids: &[Solid], low_rank_share:
         .fold(0.0, f64::max);
     assert!(e < tolerance, "row sums {e:e}");
     // Products are the same bytes however many threads run them.
-    let mut again = Mat::<f64>::zeros(n, 6);
+    let mut again = Mat::<f64>::zeros(n, COLUMNS);
     h.apply(again.as_mut(), x.as_ref(), Par::Seq);
-    assert!((0..n).all(|i| (0..6).all(|k| again[(i, k)].to_bits() == got[(i, k)].to_bits())));
+    assert!((0..n).all(|i| (0..COLUMNS).all(|k| again[(i, k)].to_bits() == got[(i, k)].to_bits())));
     // And whichever columns are carried together.
-    for k in 0..6 {
+    for k in 0..COLUMNS {
         let mut alone = Mat::<f64>::zeros(n, 1);
         h.apply(alone.as_mut(), x.as_ref().get(.., k..k + 1), Par::Seq);
         assert!((0..n).all(|i| alone[(i, 0)].to_bits() == got[(i, k)].to_bits()));

@@ -97,6 +97,8 @@ pub(crate) struct Eigenpairs {
     pub vectors: Mat<f64>,
     /// `‖H u_k − μ_k u_k‖₂` per pair.
     pub residuals: Vec<f64>,
+    /// What the solve took.
+    pub work: super::LanczosWork,
 }
 
 /// Deterministic, generic start vector (a symmetric start would miss antisymmetric modes of
@@ -211,6 +213,10 @@ pub(crate) fn lanczos(
                     values,
                     vectors: u,
                     residuals: res,
+                    work: super::LanczosWork {
+                        restarts,
+                        columns: 0,
+                    },
                 });
             }
             best = best.min(max);
@@ -366,14 +372,24 @@ pub(crate) const BLOCK: usize = 16;
 /// Restarts of [`block_lanczos`] before it gives up.
 const MAX_BLOCK_RESTARTS: usize = 300;
 
+/// Columns of the basis of [`block_lanczos`] per wanted pair, and blocks of extra Ritz pairs
+/// a restart keeps beyond the wanted ones. The strongest modes of a large floor lie close
+/// together, and a small basis restarts often: for 32 modes of a 9888-patch open-plan floor,
+/// 3 columns a pair and one extra block took 34 restarts and 1760 operator columns, 6 and 3
+/// take 6 restarts and 896 columns (docs/performance.md, "What changed for speed"). The basis
+/// and its image cost `2 · 8 · n · 6k` bytes: 295 MB for 32 modes of 96 000 patches.
+const BASIS_PER_WANTED: usize = 6;
+const KEPT_BLOCKS: usize = 3;
+
 /// Thick-restart block Lanczos with full reorthogonalisation: [`lanczos`] with the operator
 /// applied to [`BLOCK`] vectors at once, so that `G` (the only n×n matrix) is streamed once per
 /// block instead of once per vector, and the products are matrix–matrix (BLAS-3) work.
 ///
 /// The basis `V` and its image `H V` are both kept, so the Rayleigh quotient `T = Vᵀ (H V)`
 /// and every Ritz residual `H u − θ u = (H V) s − θ V s` are explicit. A cycle expands `V` by
-/// blocks `H X` (orthogonalised twice against `V`, then within the block), up to `m_cap`
-/// columns; a restart keeps the `k + BLOCK` best Ritz pairs (`V ← V S`, `H V ← (H V) S`) and
+/// blocks `H X` (orthogonalised twice against `V`, then within the block), up to
+/// [`BASIS_PER_WANTED`]` · k` columns; a restart keeps the `k + KEPT_BLOCKS · BLOCK` best Ritz
+/// pairs (`V ← V S`, `H V ← (H V) S`) and
 /// continues from the residuals of the wanted pairs not yet converged, which span the same
 /// space as the next block of the unrestarted iteration. Columns that vanish on
 /// orthogonalisation (an invariant subspace, e.g. the rank-one sphere) are replaced by fresh
@@ -391,10 +407,10 @@ pub(crate) fn block_lanczos(
     let n = op.dim();
     let k = k.min(n);
     let b = BLOCK.min(n).max(1);
-    let m_cap = (3 * k).max(k + 4 * b).min(n);
-    let k_keep = (k + b).min(m_cap.saturating_sub(b)).max(k.min(m_cap));
-    let mut v = Mat::<f64>::zeros(n, m_cap);
-    let mut hv = Mat::<f64>::zeros(n, m_cap);
+    let m_cap = (BASIS_PER_WANTED * k).max(k + 4 * b).min(n);
+    let k_keep = (k + KEPT_BLOCKS * b)
+        .min(m_cap.saturating_sub(b))
+        .max(k.min(m_cap));
     let mut seed = 1u64;
     // The block to add next (not yet orthogonalised).
     let mut x = Mat::<f64>::from_fn(n, b, |_, _| 0.0);
@@ -407,7 +423,10 @@ pub(crate) fn block_lanczos(
     }
     let mut m = 0usize;
     let mut restarts = 0usize;
+    let mut columns = 0usize;
     let mut best = f64::INFINITY;
+    let mut v = Mat::<f64>::zeros(n, m_cap);
+    let mut hv = Mat::<f64>::zeros(n, m_cap);
     loop {
         // Expand by blocks until the basis is full.
         while m < m_cap {
@@ -421,6 +440,7 @@ pub(crate) fn block_lanczos(
             v.as_mut().get_mut(.., m..m + added).copy_from(block);
             let mut hb = Mat::<f64>::zeros(n, added);
             op.apply_to(hb.as_mut(), block, par);
+            columns += added;
             hv.as_mut().get_mut(.., m..m + added).copy_from(&hb);
             m += added;
             x = hb;
@@ -468,6 +488,10 @@ pub(crate) fn block_lanczos(
                     values,
                     vectors,
                     residuals: res,
+                    work: super::LanczosWork {
+                        restarts,
+                        columns: columns + wanted,
+                    },
                 });
             }
             best = best.min(max);

@@ -78,6 +78,18 @@ pub struct Modes {
     /// Largest `‖H u − μ u‖₂` over the kept modes (split: unit `u`, dimensionless;
     /// seed: `‖S v − λ v‖₂` in m²).
     pub max_residual: f64,
+    /// What the partial solver took; `None` from the dense one.
+    pub work: Option<LanczosWork>,
+}
+
+/// The work of one block Lanczos solve: what its time is made of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LanczosWork {
+    /// Thick restarts before every wanted pair converged.
+    pub restarts: usize,
+    /// Vectors the operator was applied to (columns of its products), the final check of
+    /// the residuals included.
+    pub columns: usize,
 }
 
 /// Failures of the eigen- and exact solves.
@@ -278,6 +290,7 @@ pub fn modes(
             },
             method: Method::Dense,
             max_residual: 0.0,
+            work: None,
         });
     }
     match formulation {
@@ -368,13 +381,14 @@ fn split_dense(
         solver_used: Solver::Dense,
         method: Method::Dense,
         max_residual,
+        work: None,
     })
 }
 
 /// Settings of the partial path (absolute tolerances: `‖H‖ ≤ ρmax < 1`).
 fn krylov_settings() -> KrylovSettings {
     KrylovSettings {
-        tol: 1e-11,
+        tol: RESIDUAL_TOLERANCE / 10.0,
         accept: RESIDUAL_TOLERANCE,
     }
 }
@@ -414,6 +428,7 @@ fn split_partial(
         solver_used: Solver::Partial,
         method: Method::Lanczos,
         max_residual,
+        work: Some(pairs.work),
     }))
 }
 
@@ -458,6 +473,7 @@ fn seed_dense(
         solver_used: Solver::Dense,
         method: Method::Dense,
         max_residual,
+        work: None,
     })
 }
 
