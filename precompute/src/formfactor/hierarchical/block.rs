@@ -46,6 +46,7 @@ impl Block {
     /// `y[rows] += B x[cols]` and, off the diagonal, `y[cols] += Bᵀ x[rows]`, for `k` columns
     /// stored one after the other (`x` and `y` are `n × k`, column-major): the inner loops run
     /// along a block's column, the fastest way for a few columns.
+    #[inline(always)]
     pub(super) fn product_by_columns(&self, n: usize, k: usize, x: &[f64], y: &mut [f64]) {
         let (rows, cols) = (self.span.rows.clone(), self.span.cols.clone());
         let mirror = !self.span.is_diagonal();
@@ -102,6 +103,7 @@ impl Block {
     /// 8, then 4, then one at a time, each of a width known when compiling, so that a chunk's
     /// sums stay in registers. Each column's sums run in the order of
     /// [`Block::product_by_columns`]: either gives the same bytes.
+    #[inline(always)]
     pub(super) fn product_by_rows(&self, k: usize, x: &[f64], y: &mut [f64]) {
         let mut first = 0;
         while first < k {
@@ -120,14 +122,18 @@ impl Block {
     }
 
     /// [`Block::product_by_rows`] for the `W` columns from `first`.
+    #[inline(always)]
     fn chunk_by_rows<const W: usize>(&self, k: usize, first: usize, x: &[f64], y: &mut [f64]) {
         let (rows, cols) = (self.span.rows.clone(), self.span.cols.clone());
         let mirror = !self.span.is_diagonal();
         let m = rows.len();
         let at = |p: usize| p * k + first;
+        // One bounds check a row, none a value: the loops over `c` then vectorise.
         let load = |v: &[f64], p: usize| -> [f64; W] {
             let s = at(p);
-            std::array::from_fn(|c| v[s + c])
+            let mut row = [0.0; W];
+            row.copy_from_slice(&v[s..s + W]);
+            row
         };
         match &self.data {
             Data::Dense(d) => {

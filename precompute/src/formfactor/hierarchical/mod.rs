@@ -320,9 +320,46 @@ impl Hierarchical {
 
     /// `y = S x` in the tree's order, `k` columns (`n × k`, row-major when `by_rows`, else
     /// column-major), the blocks in their one order.
+    ///
+    /// The loops are compiled once per vector width and run at the widest the machine has
+    /// (`pulp::Arch`): the same additions and multiplications in the same order at every
+    /// width (Rust never fuses a multiply and an add unasked), so the bytes do not depend on
+    /// the machine.
     fn scaled_product(&self, k: usize, by_rows: bool, x: &[f64], y: &mut [f64]) {
-        let n = self.order.len();
-        for block in &self.blocks {
+        pulp::Arch::new().dispatch(ScaledProduct {
+            operator: self,
+            k,
+            by_rows,
+            x,
+            y,
+        });
+    }
+}
+
+/// [`Hierarchical::scaled_product`]'s loops, compiled for each vector width: `with_simd` is
+/// inlined into a function built for the width `S`, and so is everything it calls.
+struct ScaledProduct<'a> {
+    operator: &'a Hierarchical,
+    k: usize,
+    by_rows: bool,
+    x: &'a [f64],
+    y: &'a mut [f64],
+}
+
+impl pulp::WithSimd for ScaledProduct<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let ScaledProduct {
+            operator,
+            k,
+            by_rows,
+            x,
+            y,
+        } = self;
+        let n = operator.order.len();
+        for block in &operator.blocks {
             if by_rows {
                 block.product_by_rows(k, x, y);
             } else {
