@@ -32,7 +32,7 @@ mod report;
 mod stages;
 
 pub use grids::{scene_grids, GridPoint, GridReadout, PieceLayout};
-pub use plan::{time_model, BasisSize, Plan, StageSeconds};
+pub use plan::{time_model, BasisSize, Blocking, Plan, StageSeconds};
 use report::{grid_report, verify};
 pub use report::{
     output_names, BuildReport, CaseAccuracy, DaylightReport, EigensolveReport, OperatorReport,
@@ -228,6 +228,7 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
         )));
     }
     let occluders = Occluders::with_faces(&scene.patches, &scene.faces);
+    let clusters = opts.visibility == formfactor::Visibility::Clusters;
     let plan = Plan::of(
         &scene,
         build,
@@ -235,9 +236,11 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
         opts.operator.reason(n),
         storage.operator_bytes(n as f64),
         needed + rows_needed,
-        formfactor::occluded_share(&scene.patches, &occluders),
+        Blocking {
+            share: formfactor::occluded_share(&scene.patches, &occluders),
+            clusters: clusters && storage == Storage::Hierarchical,
+        },
     );
-    let clusters = opts.visibility == formfactor::Visibility::Clusters;
     if clusters && storage != Storage::Hierarchical {
         // Said whatever the narration: the flag asked for something this build does not do.
         stages::tell(
@@ -249,14 +252,6 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
     if stages.narration().tells_plan() {
         for line in plan.lines() {
             stages::tell(&line);
-        }
-        if clusters && storage == Storage::Hierarchical {
-            stages::tell(
-                "note: the expected time counts every pair a blocker may cut as read with its \
-                 shadows; --visibility clusters reads the well-separated ones without, so expect \
-                 less (a fifth of the form factors' time on a 5643-patch open-plan floor, \
-                 docs/performance.md, \"Visibility between clusters\")",
-            );
         }
     }
     let expected = plan.seconds.clone();
@@ -382,7 +377,6 @@ pub fn build_tables_and<T>(
         timings: _,
         plan,
     } = prepared;
-    let expected = plan.seconds.clone();
     if !opts.grids {
         // The grid points are the outputs after the sensors and zones: drop them all.
         let keep = outputs::grid_offset(&scene);
@@ -396,6 +390,11 @@ pub fn build_tables_and<T>(
         ModeSelection::Count(p) => p.min(n),
         ModeSelection::Tolerance(_) => n.min(TOLERANCE_MAX_MODES),
     };
+    // Said again now that the operator's size is known.
+    let expected = plan.seconds_once_built(
+        system.operator().stored_bytes(),
+        p_max * system.band_count(),
+    );
     let modes = stages.run("eigenbasis", Some(expected.eigenbasis), || {
         Model::modes(&system, opts.formulation, p_max, opts.solver)
     })?;

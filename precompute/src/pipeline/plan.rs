@@ -16,8 +16,9 @@ use crate::sources::daylight::nodes::{room_sun, sun_grid};
 
 /// The time model: wall-clock seconds of each stage of `eigenrad build` on the 2-core machine
 /// of docs/performance.md, from `eigenrad-bench scale` on the office at 1101 to 9905 patches
-/// (idle machine, "Precompute scaling") and `eigenrad-bench compress` ("The hierarchical
-/// operator"). A loaded machine takes longer: the lines give the order of magnitude.
+/// (idle machine, "Precompute scaling"), `eigenrad-bench compress` ("The hierarchical
+/// operator") and builds of the open-plan floor ("Scenes at scale"; the stages after the form
+/// factors). A loaded machine takes longer: the lines give the order of magnitude.
 pub mod time_model {
     /// Seconds of the dense form factors at [`REFERENCE_PATCHES`]: 87.3 s for the office.
     pub const DENSE_FORM_FACTOR_SECONDS: f64 = 87.3;
@@ -46,12 +47,36 @@ pub mod time_model {
     /// with either operator. For that floor (`s` = 0.71, dense) 42.7 s, against the 49 s its
     /// 97.6 CPU-seconds make on two cores.
     pub const OCCLUDED_PAIR_COST: f64 = 10.0;
-    /// Operator bytes the block Lanczos eigensolve streams per second: the 785 MB of `G` in
-    /// 10.0 s at 9905 patches (about a hundred products of sixteen vectors).
-    pub const EIGEN_OPERATOR_BYTES_PER_SECOND: f64 = 7.85e7;
+    /// Seconds per patch of the hierarchical form factors with `--visibility clusters` on the
+    /// open-plan floor, about half of whose facing pairs a blocker may cut: 48.0 s at 9888
+    /// patches, 83.9 s at 20 892, 224.0 s at 50 111 and 482 s at 102 934 (4.0–4.9 ms a
+    /// patch, growing as `n^0.99`; docs/performance.md, "Visibility between clusters").
+    pub const CLUSTERS_FORM_FACTOR_SECONDS_PER_PATCH: f64 = 4.8e-3;
+    /// Vectors the block Lanczos eigensolve applies the operator to per wanted mode
+    /// (`radiosity::eigen`, a basis of six columns a mode): 784 for 32 modes of the
+    /// open-plan floor at 5643 patches, 896 at 9888 and at 20 892 (the build report's
+    /// "modes" line).
+    pub const EIGEN_COLUMNS_PER_MODE: f64 = 28.0;
+    /// Operator bytes times vectors the eigensolve gets through per second with the dense
+    /// f64 operator (faer's matrix product), the rest of the Lanczos work included: 784
+    /// vectors of 195.8 MB in 1.44 s on office-5k (`--solver partial`).
+    pub const DENSE_F64_BYTE_COLUMNS_PER_SECOND: f64 = 1.07e11;
+    /// The same with the dense f32 operator: 784 vectors of 97.9 MB in 1.59 s on office-5k.
+    pub const DENSE_F32_BYTE_COLUMNS_PER_SECOND: f64 = 4.8e10;
+    /// The same with the hierarchical operator: 896 vectors of 80.5 MB in 3.09 s and of
+    /// 208.8 MB in 8.03 s on the open-plan floor at 9888 and 20 892 patches
+    /// (`--visibility clusters`).
+    pub const HIERARCHICAL_BYTE_COLUMNS_PER_SECOND: f64 = 2.3e10;
     /// Operator bytes per second of the exact channel responses and of the report's exact
-    /// cases (conjugate gradients, every right-hand side in one block): 785 MB in 0.6 s.
+    /// cases with a dense operator (conjugate gradients, every right-hand side in one
+    /// block): 785 MB in 0.6 s.
     pub const SOLVE_OPERATOR_BYTES_PER_SECOND: f64 = 1.3e9;
+    /// The same with the hierarchical operator, for the channels' responses: 80.5 MB in
+    /// 0.88 s and 208.8 MB in 2.43 s on the open-plan floor (five channels) at 9888 and
+    /// 20 892 patches.
+    pub const HIERARCHICAL_SOLVE_BYTES_PER_SECOND: f64 = 8.8e7;
+    /// The same for the report's cases: 80.5 MB in 1.12 s and 208.8 MB in 3.18 s.
+    pub const HIERARCHICAL_CASES_BYTES_PER_SECOND: f64 = 6.9e7;
     /// Seconds per patch of the sensors' and zones' rows (0.3 s at 9905 patches).
     pub const OUTPUT_SECONDS_PER_PATCH: f64 = 3.0e-5;
     /// Seconds per patch of writing the basis (0.32 s at 9905 patches).
@@ -81,17 +106,18 @@ pub struct StageSeconds {
 
 impl StageSeconds {
     /// Expected seconds of a build of `patches` patches whose operator is `storage` and holds
-    /// `operator_bytes` bytes, `occluded_share` of its facing pairs having a blocker between
-    /// them ([`time_model`]; [`crate::formfactor::occluded_share`]).
+    /// `operator_bytes` bytes, with `blocking` between its patches ([`time_model`]), `modes`
+    /// to find (per band times the bands).
     pub fn of(
         patches: f64,
         storage: Storage,
         operator_bytes: f64,
-        occluded_share: f64,
+        blocking: Blocking,
+        modes: usize,
     ) -> StageSeconds {
         use time_model::*;
         let scale = patches / REFERENCE_PATCHES;
-        let share = occluded_share.clamp(0.0, 1.0);
+        let share = blocking.share.clamp(0.0, 1.0);
         let dense = DENSE_FORM_FACTOR_SECONDS * scale.powf(DENSE_FORM_FACTOR_EXPONENT);
         // The pairs a blocker may cut are read whole by either operator (the hierarchical one
         // stores the blocks they fall in whole), at `OCCLUDED_PAIR_COST` times a clear pair's
@@ -100,22 +126,62 @@ impl StageSeconds {
         let form_factors = match storage {
             Storage::F64 | Storage::F32 => (1.0 - share) * dense + occluded,
             Storage::Hierarchical => {
-                (1.0 - share)
+                let shadows = (1.0 - share)
                     * DENSE_FORM_FACTOR_SECONDS
                     * HIERARCHICAL_FORM_FACTOR_RATIO
                     * scale.powf(HIERARCHICAL_FORM_FACTOR_EXPONENT)
-                    + occluded
+                    + occluded;
+                // Without shadows between well-separated clusters the occluded pairs no longer
+                // grow as n²: the open-plan floor's time a patch, unless the scene is quicker.
+                if blocking.clusters {
+                    shadows.min(CLUSTERS_FORM_FACTOR_SECONDS_PER_PATCH * patches)
+                } else {
+                    shadows
+                }
             }
         };
-        let solve = operator_bytes / SOLVE_OPERATOR_BYTES_PER_SECOND;
+        let after = StageSeconds::after_form_factors(storage, operator_bytes, modes);
         StageSeconds {
             form_factors,
             outputs: OUTPUT_SECONDS_PER_PATCH * patches,
-            eigenbasis: operator_bytes / EIGEN_OPERATOR_BYTES_PER_SECOND,
-            exact_solves: solve,
-            exact_cases: solve,
+            eigenbasis: after.eigenbasis,
+            exact_solves: after.exact_solves,
+            exact_cases: after.exact_cases,
             serialization: SERIALIZATION_SECONDS_PER_PATCH * patches,
             verification: VERIFICATION_SECONDS_PER_PATCH * patches,
+        }
+    }
+
+    /// Expected seconds of the stages that work through the operator once it is built and
+    /// holds `operator_bytes` ([`StageSeconds::eigenbasis`], [`StageSeconds::exact_solves`],
+    /// [`StageSeconds::exact_cases`]; the other fields 0): what a build says again when its
+    /// operator's size is known. `modes` to find in all (per band times the bands).
+    pub fn after_form_factors(storage: Storage, operator_bytes: f64, modes: usize) -> StageSeconds {
+        use time_model::*;
+        let byte_columns_per_second = match storage {
+            Storage::F64 => DENSE_F64_BYTE_COLUMNS_PER_SECOND,
+            Storage::F32 => DENSE_F32_BYTE_COLUMNS_PER_SECOND,
+            Storage::Hierarchical => HIERARCHICAL_BYTE_COLUMNS_PER_SECOND,
+        };
+        let (solves, cases) = match storage {
+            Storage::F64 | Storage::F32 => (
+                SOLVE_OPERATOR_BYTES_PER_SECOND,
+                SOLVE_OPERATOR_BYTES_PER_SECOND,
+            ),
+            Storage::Hierarchical => (
+                HIERARCHICAL_SOLVE_BYTES_PER_SECOND,
+                HIERARCHICAL_CASES_BYTES_PER_SECOND,
+            ),
+        };
+        StageSeconds {
+            form_factors: 0.0,
+            outputs: 0.0,
+            eigenbasis: EIGEN_COLUMNS_PER_MODE * modes as f64 * operator_bytes
+                / byte_columns_per_second,
+            exact_solves: operator_bytes / solves,
+            exact_cases: operator_bytes / cases,
+            serialization: 0.0,
+            verification: 0.0,
         }
     }
 
@@ -129,6 +195,17 @@ impl StageSeconds {
             + self.serialization
             + self.verification
     }
+}
+
+/// What lies between the patches, as the time model counts it.
+#[derive(Clone, Copy, Debug)]
+pub struct Blocking {
+    /// Share of the facing pairs with a blocker between them, sampled
+    /// ([`crate::formfactor::occluded_share`]; dimensionless).
+    pub share: f64,
+    /// Whether well-separated clusters are read without shadows (`--visibility clusters`,
+    /// hierarchical operator).
+    pub clusters: bool,
 }
 
 /// Expected bytes of the basis, by section (docs/format.md). Matrices are counted at the
@@ -223,6 +300,9 @@ pub struct Plan {
     pub patches: usize,
     /// The operator's storage, by name.
     pub operator: &'static str,
+    /// The operator's storage.
+    #[serde(skip)]
+    pub(crate) storage: Storage,
     /// Why that operator (the `--operator` choice and the size rule that applied).
     pub operator_reason: String,
     /// Expected peak memory of the build, bytes ([`crate::memory`]).
@@ -244,8 +324,8 @@ pub struct Plan {
 
 impl Plan {
     /// The plan of building `scene` (meshed) with `opts`, its operator `storage` holding about
-    /// `operator_bytes`, the build expected to peak at `memory_bytes`, `occluded_share` of
-    /// its facing pairs having a blocker between them.
+    /// `operator_bytes`, the build expected to peak at `memory_bytes`, with `blocking` between
+    /// its patches.
     pub(crate) fn of(
         scene: &Scene,
         opts: &BuildOptions,
@@ -253,7 +333,7 @@ impl Plan {
         operator_reason: String,
         operator_bytes: f64,
         memory_bytes: f64,
-        occluded_share: f64,
+        blocking: Blocking,
     ) -> Plan {
         let n = scene.patches.len();
         let modes = match opts.modes {
@@ -284,14 +364,35 @@ impl Plan {
         Plan {
             patches: n,
             operator: storage.name(),
+            storage,
             operator_reason,
             memory_bytes,
-            seconds: StageSeconds::of(n as f64, storage, operator_bytes, occluded_share),
+            seconds: StageSeconds::of(
+                n as f64,
+                storage,
+                operator_bytes,
+                blocking,
+                modes * scene.bands.count(),
+            ),
             modes,
             basis,
             flash_bytes: opts.flash.bytes,
             bytes_per_mode,
-            occluded_share,
+            occluded_share: blocking.share,
+        }
+    }
+
+    /// The expected seconds per stage again once the operator is built and holds
+    /// `operator_bytes`, `modes` to find (per band times the bands): the stages that work
+    /// through it from its actual size ([`StageSeconds::after_form_factors`]), the others
+    /// as planned.
+    pub fn seconds_once_built(&self, operator_bytes: usize, modes: usize) -> StageSeconds {
+        StageSeconds {
+            form_factors: self.seconds.form_factors,
+            outputs: self.seconds.outputs,
+            serialization: self.seconds.serialization,
+            verification: self.seconds.verification,
+            ..StageSeconds::after_form_factors(self.storage, operator_bytes as f64, modes)
         }
     }
 
