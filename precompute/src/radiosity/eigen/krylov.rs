@@ -215,7 +215,7 @@ pub(crate) fn lanczos(
                     residuals: res,
                     work: super::LanczosWork {
                         restarts,
-                        columns: 0,
+                        columns: st.applied + k,
                     },
                 });
             }
@@ -257,6 +257,8 @@ struct LanczosState {
     m: usize,
     /// Seed of the last start vector.
     seed: u64,
+    /// Vectors the operator was applied to.
+    applied: usize,
 }
 
 #[cfg(test)]
@@ -278,6 +280,7 @@ impl LanczosState {
             hsum: vec![0.0; m_cap + 1],
             m: 0,
             seed,
+            applied: 0,
         }
     }
 
@@ -287,6 +290,7 @@ impl LanczosState {
         while self.m < m_cap {
             let j = self.m;
             op.apply_to(self.w.as_mut(), self.basis.as_ref().get(.., j..j + 1), par);
+            self.applied += 1;
             self.hsum[..=j].iter_mut().for_each(|x| *x = 0.0);
             for _ in 0..2 {
                 let v = self.basis.as_ref().get(.., 0..j + 1);
