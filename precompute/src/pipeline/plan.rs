@@ -197,6 +197,11 @@ impl StageSeconds {
     }
 }
 
+/// Serializes a storage by its name.
+fn storage_name<S: serde::Serializer>(storage: &Storage, to: S) -> Result<S::Ok, S::Error> {
+    to.serialize_str(storage.name())
+}
+
 /// What lies between the patches, as the time model counts it.
 #[derive(Clone, Copy, Debug)]
 pub struct Blocking {
@@ -298,11 +303,9 @@ impl BasisSize {
 pub struct Plan {
     /// Patches.
     pub patches: usize,
-    /// The operator's storage, by name.
-    pub operator: &'static str,
-    /// The operator's storage.
-    #[serde(skip)]
-    pub(crate) storage: Storage,
+    /// The operator's storage (by name in the JSON report, as `operator`).
+    #[serde(rename = "operator", serialize_with = "storage_name")]
+    pub storage: Storage,
     /// Why that operator (the `--operator` choice and the size rule that applied).
     pub operator_reason: String,
     /// Expected peak memory of the build, bytes ([`crate::memory`]).
@@ -363,7 +366,6 @@ impl Plan {
         let bytes_per_mode = BasisSize::of(counts(modes + 1)).total() - basis.total();
         Plan {
             patches: n,
-            operator: storage.name(),
             storage,
             operator_reason,
             memory_bytes,
@@ -408,7 +410,7 @@ impl Plan {
             format!(
                 "{} patches, operator {} ({}); expected about {} and {:.2} GB at the peak (time model of the office builds on 2 cores, with {:.0} % of the pairs a blocker may cut, docs/performance.md)",
                 self.patches,
-                self.operator,
+                self.storage.name(),
                 self.operator_reason,
                 super::stages::seconds(self.seconds.total()),
                 self.memory_bytes / 1e9,
