@@ -61,7 +61,9 @@ pub use health::{
     CavityClosure, FormFactorHealth, PairDisagreement, RowMiss, CAVITY_TOLERANCE, CLOSED_TOLERANCE,
     WORST_ROWS,
 };
-pub(crate) use quadrature::{for_each_on_cell, gauss_legendre, split_cell};
+pub use quadrature::gauss_legendre;
+pub(crate) use quadrature::{for_each_on_cell, split_cell};
+pub(crate) use shadow::visible_sum;
 
 use crate::geometry::{Patch, Vec3};
 use crate::scene::FieldOfView;

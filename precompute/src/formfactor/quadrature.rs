@@ -19,7 +19,7 @@ pub(crate) struct Sample {
 ///
 /// Newton iteration on the Legendre polynomial P_m from the Tricomi initial guess
 /// (Abramowitz & Stegun 25.4.29, Numerical Recipes `gauleg`); accurate to rounding.
-pub(crate) fn gauss_legendre(m: usize) -> Vec<(f64, f64)> {
+pub fn gauss_legendre(m: usize) -> Vec<(f64, f64)> {
     let mut rule = Vec::with_capacity(m);
     for i in 0..m {
         let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (m as f64 + 0.5)).cos();

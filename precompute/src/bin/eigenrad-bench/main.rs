@@ -13,6 +13,8 @@
 //!   one: memory, form-factor time, every channel's readings, the strongest eigenvalues.
 //! - `eigenrad-bench rays SCENE... [--points 2,3,4]`: sampled visibility against the exact
 //!   shadows: CPU time, and how far row sums, products and every channel's readings move.
+//! - `eigenrad-bench shadows SCENE...`: the luminaires' direct light with shadows as polygons
+//!   against rays refined along shadow edges: CPU time, and how far the light moves.
 //! - `eigenrad-bench sight SCENE...`: the hierarchical form factors without and with the
 //!   scene's blocks as solids: CPU time, entries read, blocks, and how far the products move.
 //! - `eigenrad-bench partition SCENE...`: how the hierarchical operator's block partition
@@ -32,6 +34,7 @@ mod eigen;
 mod partition;
 mod rays;
 mod scale;
+mod shadows;
 mod sight;
 mod update;
 
@@ -122,6 +125,15 @@ enum Command {
         #[arg(long)]
         clusters: bool,
     },
+    /// The luminaires' direct light with shadows as polygons against rays refined along the
+    /// shadow edges: CPU time, and how far the light of patches and outputs moves.
+    Shadows {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+        /// Points along each side of the midpoint rule on the patch where the two differ most.
+        #[arg(long, default_value_t = 1000)]
+        midpoint: usize,
+    },
     /// A building's rooms built one after the other, then all at once: wall times, the
     /// speed-up, and each controller's basis size.
     Building {
@@ -173,6 +185,10 @@ fn main() -> Result<()> {
         } => {
             machine();
             rays::run(&scenes, operator, &points, clusters)?;
+        }
+        Command::Shadows { scenes, midpoint } => {
+            machine();
+            shadows::run(&scenes, midpoint)?;
         }
         Command::Building { manifest } => {
             machine();

@@ -41,18 +41,38 @@
 //! opening's half-diagonal), at most `max_depth` times. A smooth integrand is then integrated
 //! to about `(cell_angle / 2)^(2 order)`, ~1e-7 at the defaults; the tests hold patches next to
 //! a point source to 1e-5 of the exact patch average. A patch whose plane has the whole
-//! opening behind or in it receives nothing and costs nothing. Where a shadow edge crosses a
+//! opening behind or in it receives nothing and costs nothing.
+//!
+//! # Shadows
+//!
+//! Where the shaft of a cell small for its distance holds blockers, each piece of the opening
+//! (cut for the cell's centroid) is a point source, and the part of the cell it lights is the
+//! cell less the blockers' shadows from it, as convex polygons (`formfactor::shadow`, the form
+//! factors' exact visibility): the rule integrates the smooth `I cos θ / d²` on each lit
+//! piece, and a shadow edge costs no refinement. The tests hold the flux of a shadow and patch
+//! means under a penumbra to 1e-9 of exact. Where the polygons do not fit their fixed
+//! capacities, the shaft overflowed, the cell straddles the opening's plane, or
+//! [`LuminaireOptions::polygon_shadows`] is off, rays decide: where a shadow edge crosses a
 //! cell (some of its points lit, a blocker hiding light from some, and not the same pieces of
 //! the opening hidden from all: a cell wholly inside one part of a penumbra is smooth) the
 //! cell is split again, down to `edge_depth` (1/256 of the patch's side): the tests hold the
-//! flux of a shadow to 2e-3, and patch means under a penumbra to 1e-3 of exact. The split
+//! flux of a shadow to 2e-3, and patch means under a penumbra to 1e-3 of exact. Rays miss a
+//! shadow that falls between a cell's points: on the open-plan floor cut to 1809 patches some
+//! patch means were 2 % off by rays, within 3e-4 with the polygons (`eigenrad-bench shadows`,
+//! docs/performance.md, "Shadows as polygons").
+//!
+//! # Near field and the opening's pieces
+//!
+//! The split
 //! pieces of a Lambertian opening converge to its exitance's exact form factor as `1/k²`:
 //! 0.7 % off at the five-times rule, 0.05 % at twenty times.
 
 use rayon::prelude::*;
 
 use super::ChannelLight;
-use crate::formfactor::{for_each_on_cell, gauss_legendre, split_cell, Occluders, Shaft};
+use crate::formfactor::{
+    for_each_on_cell, gauss_legendre, split_cell, visible_sum, Occluders, Shaft,
+};
 use crate::geometry::{Patch, Vec3};
 use crate::scene::photometry::OpeningShape;
 use crate::scene::receivers::{mean_over_points, receivers, Receiver};
@@ -81,6 +101,10 @@ pub struct LuminaireOptions {
     /// Most times a patch is split where a shadow edge crosses it. Default 8: cells of
     /// 1/256 of its side along the edge.
     pub edge_depth: u32,
+    /// Shadows on a patch's cells as polygons, exact for the pieces of the opening. Default
+    /// true; false, or where the polygons do not fit their fixed capacities, rays refined
+    /// along the shadow edges (`edge_depth`).
+    pub polygon_shadows: bool,
 }
 
 impl Default for LuminaireOptions {
@@ -91,6 +115,7 @@ impl Default for LuminaireOptions {
             order: 4,
             max_depth: 5,
             edge_depth: 8,
+            polygon_shadows: true,
         }
     }
 }
@@ -401,8 +426,17 @@ impl<'a> Source<'a> {
             .fold(0.0, f64::max);
         let nearest =
             ((self.lum.position - centroid).length() - half_diameter - self.radius()).max(0.0);
-        if depth < self.opts.max_depth && 2.0 * half_diameter > self.opts.cell_angle * nearest {
+        let large = 2.0 * half_diameter > self.opts.cell_angle * nearest;
+        if depth < self.opts.max_depth && large {
             return split(corners);
+        }
+        // Blockers between the cell and the opening, and the cell small for its distance:
+        // the shadows as polygons, when they fit the fixed capacities.
+        let polygons = self.opts.polygon_shadows && !large;
+        if let Some(shaft) = shaft.filter(|s| polygons && !s.is_clear()) {
+            if let Some(lumens) = self.shadowed_cell(corners, normal, shaft, centroid) {
+                return lumens;
+            }
         }
         let (mut lumens, mut seen, mut hidden) = (0.0, false, false);
         let (mut first, mut uniform) = (None, true);
@@ -419,6 +453,55 @@ impl<'a> Source<'a> {
             return split(corners);
         }
         lumens
+    }
+}
+
+impl Source<'_> {
+    /// `∫ E dA` over a convex cell, lm, with exact shadows: each piece of the opening (cut
+    /// for the distance of the cell's `centroid` to the opening) is a point source, the part of
+    /// the cell it lights is the cell less the shadows the shaft's occluders cast from it
+    /// (`formfactor::shadow`, convex pieces), and the Gauss–Legendre rule integrates the
+    /// smooth `I cos θ / r²` over each lit piece. `None` when the shaft overflowed or the lit
+    /// part is too fragmented for the fixed capacities: the caller then traces rays.
+    fn shadowed_cell(
+        &self,
+        corners: &[Vec3],
+        normal: Vec3,
+        shaft: &Shaft,
+        centroid: Vec3,
+    ) -> Option<f64> {
+        let &origin = corners.first()?;
+        let d = self.distance(centroid);
+        let mut lumens = 0.0;
+        let mut complete = true;
+        self.for_each_piece(d, |q, share| {
+            // A piece behind the cell's plane, or in it, lights none of it.
+            if !complete || normal.dot(q - origin) <= 0.0 {
+                return;
+            }
+            let Some(outlines) = self.occluders.shaft_outlines(shaft) else {
+                complete = false;
+                return;
+            };
+            let lit = visible_sum(q, corners, normal, outlines, |piece| {
+                let mut sum = 0.0;
+                for_each_on_cell(piece, self.gl, |x, w| {
+                    let v = q - x;
+                    let r2 = v.dot(v);
+                    let sensitivity =
+                        FieldOfView::HEMISPHERE.sensitivity(normal.dot(v) / r2.sqrt());
+                    if sensitivity > 0.0 {
+                        sum += w * self.lum.intensity(-v) * share * sensitivity / r2;
+                    }
+                });
+                sum
+            });
+            match lit {
+                Some(l) => lumens += l,
+                None => complete = false,
+            }
+        });
+        complete.then_some(lumens)
     }
 }
 

@@ -180,22 +180,30 @@ fn a_blocker_shadows_a_sensor_and_a_patch() {
     assert!(relative(e, 50.0 * 2.0 / (1.5f64 * 1.5 + 4.0).powf(1.5)) < 1e-12);
     // The blocker's shadow is the square of side 1.2 m around the origin: the four central
     // patches lose exactly that area's share of their light, the rest nothing.
-    let shadowed: f64 = (0..16)
-        .map(|k| patches[k].area * source.patch(&patches[k], &[k]))
-        .sum();
     let open = luminaire(isotropic(50.0), lum.position, DOWN, 0.0);
     let clear_patches = floor(4, 1.0, 0.0);
     let clear_occluders = Occluders::new(&clear_patches);
     let clear = Source::new(&open, &clear_occluders, &opts, &gl);
     let all: f64 = (0..16).map(|k| clear.patch(&clear_patches[k], &[k])).sum();
     let shadow = 50.0 * solid_angle(-0.6, 0.6, -0.6, 0.6, 2.0);
-    // Shadow edges cut the cells: refined to 1/256 of a patch there, within 2e-3 of the
-    // shadow's flux.
-    let error = relative(all - shadowed, shadow);
-    assert!(
-        error < 2e-3,
-        "{all} − {shadowed} against {shadow}: {error:.2e}"
-    );
+    // The shadow cut out of the cells as a polygon (the default): exact but for rounding;
+    // by rays, its edges refined to 1/256 of a patch, within 2e-3 of the shadow's flux.
+    let rays = LuminaireOptions {
+        polygon_shadows: false,
+        ..LuminaireOptions::default()
+    };
+    for (opts, tolerance) in [(&opts, 1e-9), (&rays, 2e-3)] {
+        let source = Source::new(&lum, &occluders, opts, &gl);
+        let shadowed: f64 = (0..16)
+            .map(|k| patches[k].area * source.patch(&patches[k], &[k]))
+            .sum();
+        let error = relative(all - shadowed, shadow);
+        assert!(
+            error < tolerance,
+            "polygons {}: {all} − {shadowed} against {shadow}: {error:.2e}",
+            opts.polygon_shadows
+        );
+    }
 }
 
 /// An extended opening casts a penumbra: its points see some pieces of the opening and not
@@ -249,25 +257,38 @@ fn an_extended_opening_casts_a_penumbra_integrated_over_patches() {
         }
         worst
     };
-    // Measured at the defaults: 6.4e-4 worst (the four patches the penumbra crosses), the
-    // error of the 4 × 4 rule on the cells a shadow edge cuts, of order their side (1/256 of
-    // the patch's): 1.6e-4 at edge_depth 10 and 4.0e-5 at 12, while order 8 in place of 4
-    // gives 5.2e-4. Against the same exact reference, the midpoint rule on a 256 × 256 grid
-    // of `Source::point` per patch is 2.6e-3 off, 512² 7.6e-4, 1024² 6.4e-4, 2048² 1.9e-4:
-    // as a reference for this tolerance a grid needs to be finer than 2048².
-    let defaults = worst(&LuminaireOptions::default());
+    // The shadows as polygons (the default): each piece's shadow is cut out of the cells
+    // exactly, and the 4 × 4 rule on the lit parts integrates a smooth `I cos θ / r²`.
+    // Measured 1.2e-12.
+    let polygons = worst(&LuminaireOptions::default());
     assert!(
-        defaults < 1e-3,
-        "patch means within {defaults:.2e} of exact"
+        polygons < 1e-9,
+        "patch means within {polygons:.2e} of exact"
+    );
+    // Rays refined along the shadow edges, where the polygons do not fit their capacities.
+    // Measured: 6.4e-4 worst (the four patches the penumbra crosses), the error of the 4 × 4
+    // rule on the cells a shadow edge cuts, of order their side (1/256 of the patch's):
+    // 1.6e-4 at edge_depth 10 and 4.0e-5 at 12, while order 8 in place of 4 gives 5.2e-4.
+    // Against the same exact reference, the midpoint rule on a 256 × 256 grid of
+    // `Source::point` per patch is 2.6e-3 off, 512² 7.6e-4, 1024² 6.4e-4, 2048² 1.9e-4: as a
+    // reference for this tolerance a grid needs to be finer than 2048².
+    let rays = LuminaireOptions {
+        polygon_shadows: false,
+        ..LuminaireOptions::default()
+    };
+    let traced = worst(&rays);
+    assert!(
+        traced < 1e-3,
+        "patch means by rays within {traced:.2e} of exact"
     );
     // Finer edge cells close in on the exact means as their side: the error is the edges'.
     let finer = worst(&LuminaireOptions {
         edge_depth: 10,
-        ..LuminaireOptions::default()
+        ..rays
     });
     assert!(
-        finer < defaults / 3.0,
-        "edge_depth 10: {finer:.2e}, 8: {defaults:.2e}"
+        finer < traced / 3.0,
+        "edge_depth 10: {finer:.2e}, 8: {traced:.2e}"
     );
 }
 
