@@ -78,27 +78,28 @@ fn differences(a: &[&[f64]], b: &[&[f64]]) -> Differences {
     }
 }
 
-/// The reference's split of a luminous opening: pieces four times finer than a build's
-/// (`LuminaireOptions::near_field_ratio`, 5), so that it stands closer to the extended
+/// The second reference's split of a luminous opening: pieces four times finer than a
+/// build's (`LuminaireOptions::near_field_ratio`, 5), so that it stands closer to the extended
 /// opening than either computation compared.
-const REFERENCE_NEAR_FIELD_RATIO: f64 = 20.0;
+const FINER_NEAR_FIELD_RATIO: f64 = 20.0;
 
 /// Mean direct illuminance, lux, of channel `channel` over patch `k` of `scene` by the
 /// midpoint rule on `side × side` points of its bilinear parameter square (quadrilaterals;
-/// `None` for other patches), each point's opening split [`REFERENCE_NEAR_FIELD_RATIO`].
+/// `None` for other patches), each point's opening split by `near_field_ratio`.
 fn midpoint(
     scene: &Scene,
     occluders: &Occluders,
     channel: usize,
     k: usize,
     side: usize,
+    near_field_ratio: f64,
 ) -> Option<f64> {
     let patch = &scene.patches[k];
     let &[a, b, c, d] = patch.polygon.vertices.as_slice() else {
         return None;
     };
     let opts = LuminaireOptions {
-        near_field_ratio: REFERENCE_NEAR_FIELD_RATIO,
+        near_field_ratio,
         ..LuminaireOptions::default()
     };
     let gl = gauss_legendre(opts.order);
@@ -188,28 +189,38 @@ pub(crate) fn run(scenes: &[PathBuf], side: usize) -> Result<()> {
         );
         let (c, k) = on_patches.at;
         let value = |run: &Run| run.lights.get(c).map_or(0.0, |l| l.patch_irradiance[0][k]);
-        let reference = midpoint(&scene, &occluders, c, k, side);
+        let surface = scene.surfaces[scene.patches[k].surface].name.clone();
+        let build_ratio = LuminaireOptions::default().near_field_ratio;
+        let same = midpoint(&scene, &occluders, c, k, side, build_ratio);
+        let finer = midpoint(&scene, &occluders, c, k, side, FINER_NEAR_FIELD_RATIO);
         worst.push((
             path.clone(),
             c,
             k,
+            surface,
             value(&polygons),
             value(&rays),
-            reference,
+            same,
+            finer,
         ));
     }
-    println!("\nOn the patch where the two differ most, against the midpoint rule on {side} × {side} points (rays from every piece of the opening at each point, in pieces at most 1/{REFERENCE_NEAR_FIELD_RATIO} of their distance):\n");
-    println!("| scene | channel | patch | polygons lux | rays lux | midpoint lux | polygons off | rays off |");
-    println!("|---|---|---|---|---|---|---|---|");
-    for (path, c, k, polygons, rays, reference) in worst {
-        let off =
-            |x: f64| reference.map_or("–".to_string(), |r| format!("{:.1e}", (x - r).abs() / r));
+    println!("\nOn the patch where the two differ most, against the midpoint rule on {side} × {side} points, rays from every piece of the opening at each point, the opening split as a build splits it (pieces at most 1/5 of their distance) and four times finer (1/{FINER_NEAR_FIELD_RATIO}):\n");
+    println!("| scene | channel | patch | polygons lux | rays lux | midpoint lux | polygons off | rays off | midpoint, finer pieces, lux | polygons off | rays off |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    for (path, c, k, surface, polygons, rays, same, finer) in worst {
+        let value = |r: Option<f64>| r.map_or("–".to_string(), |r| format!("{r:.4}"));
+        let off = |x: f64, r: Option<f64>| {
+            r.map_or("–".to_string(), |r| format!("{:.1e}", (x - r).abs() / r))
+        };
         println!(
-            "| {} | {c} | {k} | {polygons:.4} | {rays:.4} | {} | {} | {} |",
+            "| {} | {c} | {k} ({surface}) | {polygons:.4} | {rays:.4} | {} | {} | {} | {} | {} | {} |",
             path.display(),
-            reference.map_or("–".to_string(), |r| format!("{r:.4}")),
-            off(polygons),
-            off(rays)
+            value(same),
+            off(polygons, same),
+            off(rays, same),
+            value(finer),
+            off(polygons, finer),
+            off(rays, finer)
         );
     }
     Ok(())
