@@ -530,7 +530,7 @@ pub fn point_form_factors(
     occluders: &Occluders,
 ) -> Vec<f64> {
     let opts = FormFactorOptions::default();
-    let targets = Prepared::new(patches, max_order(&opts));
+    let targets = Prepared::targets(patches);
     let ctx = Context::new(&targets, occluders, &opts, false);
     let normal = normal.normalized();
     let in_cone = |half_angle: Option<f64>| {
@@ -583,7 +583,7 @@ pub fn receiver_form_factors(
     occluders: &Occluders,
     opts: &FormFactorOptions,
 ) -> Mat<f64> {
-    let targets = Prepared::new(patches, max_order(opts));
+    let targets = Prepared::targets(patches);
     let sources = Prepared::new(receivers, opts.gauss_order);
     let ctx = Context::new(&targets, occluders, opts, false);
     let bar = progress_bar(receivers.len(), opts.progress, "receivers", "rows");
