@@ -5,8 +5,9 @@
 //! seconds of each, and how far the direct illuminance of the patches and of the outputs
 //! (sensors, zones, grid points) moves between them. On the patch and channel where the two
 //! differ most, an independent reference: the midpoint rule on a fine grid of points over the
-//! patch, each point's illuminance by rays from every piece of an opening split four times
-//! finer (`Source::point`), no cell refinement and no polygon.
+//! patch, each point's illuminance by rays from every piece of the opening (`Source::point`), no
+//! cell refinement and no polygon; the opening split by the five-times rule, as the rays split
+//! it, and four times finer, as the polygons split it in a shadowed cell.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -78,9 +79,9 @@ fn differences(a: &[&[f64]], b: &[&[f64]]) -> Differences {
     }
 }
 
-/// The second reference's split of a luminous opening: pieces four times finer than a
-/// build's (`LuminaireOptions::near_field_ratio`, 5), so that it stands closer to the extended
-/// opening than either computation compared.
+/// The second reference's split of a luminous opening: pieces four times finer than the
+/// five-times rule's (`LuminaireOptions::near_field_ratio`), closer to the extended opening,
+/// as the polygons split it in a shadowed cell (`LuminaireOptions::shadow_ratio`).
 const FINER_NEAR_FIELD_RATIO: f64 = 20.0;
 
 /// Mean direct illuminance, lux, of channel `channel` over patch `k` of `scene` by the
@@ -204,7 +205,7 @@ pub(crate) fn run(scenes: &[PathBuf], side: usize) -> Result<()> {
             finer,
         ));
     }
-    println!("\nOn the patch where the two differ most, against the midpoint rule on {side} × {side} points, rays from every piece of the opening at each point, the opening split as a build splits it (pieces at most 1/5 of their distance) and four times finer (1/{FINER_NEAR_FIELD_RATIO}):\n");
+    println!("\nOn the patch where the two differ most, against the midpoint rule on {side} × {side} points, rays from every piece of the opening at each point, the opening split by the five-times rule (pieces at most 1/5 of their distance, as the rays split it) and four times finer (1/{FINER_NEAR_FIELD_RATIO}, as the polygons split it in a shadowed cell):\n");
     println!("| scene | channel | patch | polygons lux | rays lux | midpoint lux | polygons off | rays off | midpoint, finer pieces, lux | polygons off | rays off |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (path, c, k, surface, polygons, rays, same, finer) in worst {

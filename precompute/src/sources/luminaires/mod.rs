@@ -45,27 +45,28 @@
 //!
 //! # Shadows
 //!
-//! Where the shaft of a cell small for its distance holds blockers, each piece of the opening
-//! (cut for the cell's centroid) is a point source, and the part of the cell it lights is the
-//! cell less the blockers' shadows from it, as convex polygons (`formfactor::shadow`, the form
-//! factors' exact visibility): the rule integrates the smooth `I cos θ / d²` on each lit
-//! piece, and a shadow edge costs no refinement. The tests hold the flux of a shadow and patch
-//! means under a penumbra to 1e-9 of exact. Where the polygons do not fit their fixed
+//! Where the shaft of a cell small for its distance holds blockers, the opening is split
+//! finer, into pieces at most `1/shadow_ratio` (1/20) of the distance from the cell's centroid:
+//! a penumbra is a staircase of one step a piece, and the five-times rule, made for a smooth
+//! field, leaves it coarse (a floor patch by a desk 23 % off a four times finer split, at 2.7e-3
+//! with it). Each piece is a point source, and the part of the cell it lights is the cell less
+//! the blockers' shadows from it, as convex polygons (`formfactor::shadow`, the form factors'
+//! exact visibility): the rule integrates the smooth `I cos θ / d²` on each lit piece, and a
+//! shadow edge costs no refinement. The tests hold the flux of a shadow and patch means under
+//! a penumbra to 1e-9 of exact for the pieces. Where the polygons do not fit their fixed
 //! capacities, the shaft overflowed, the cell straddles the opening's plane, or
-//! [`LuminaireOptions::polygon_shadows`] is off, rays decide: where a shadow edge crosses a
-//! cell (some of its points lit, a blocker hiding light from some, and not the same pieces of
-//! the opening hidden from all: a cell wholly inside one part of a penumbra is smooth) the
-//! cell is split again, down to `edge_depth` (1/256 of the patch's side): the tests hold the
-//! flux of a shadow to 2e-3, and patch means under a penumbra to 1e-3 of exact. Rays miss a
-//! shadow that falls between a cell's points: on the open-plan floor cut to 1809 patches some
-//! patch means were 2 % off by rays, within 3e-4 with the polygons (`eigenrad-bench shadows`,
-//! docs/performance.md, "Shadows as polygons").
+//! [`LuminaireOptions::polygon_shadows`] is off, rays decide, from the pieces of the five-times
+//! rule: where a shadow edge crosses a cell (some of its points lit, a blocker hiding light
+//! from some, and not the same pieces of the opening hidden from all: a cell wholly inside one
+//! part of a penumbra is smooth) the cell is split again, down to `edge_depth` (1/256 of the
+//! patch's side): the tests hold the flux of a shadow to 2e-3, and patch means under a
+//! penumbra to 1e-3 of exact. Rays miss a shadow that falls between a cell's points: some
+//! patch means of the open-plan floor were 19 % off by rays against a midpoint rule with the
+//! same pieces, 1.9e-3 with the polygons (`eigenrad-bench shadows`, docs/performance.md,
+//! "Shadows as polygons").
 //!
-//! # Near field and the opening's pieces
-//!
-//! The split
-//! pieces of a Lambertian opening converge to its exitance's exact form factor as `1/k²`:
-//! 0.7 % off at the five-times rule, 0.05 % at twenty times.
+//! The split pieces of a Lambertian opening converge to its exitance's exact form factor as
+//! `1/k²`: 0.7 % off at the five-times rule, 0.05 % at twenty times.
 
 use rayon::prelude::*;
 
@@ -105,6 +106,11 @@ pub struct LuminaireOptions {
     /// true; false, or where the polygons do not fit their fixed capacities, rays refined
     /// along the shadow edges (`edge_depth`).
     pub polygon_shadows: bool,
+    /// With the shadows as polygons, a cell with blockers between it and the opening splits
+    /// the opening until each piece is at most `1/shadow_ratio` of its distance
+    /// (dimensionless). Default 20, four times `near_field_ratio`: a penumbra is a staircase
+    /// of one step a piece, which the five-times rule, made for a smooth field, leaves coarse.
+    pub shadow_ratio: f64,
 }
 
 impl Default for LuminaireOptions {
@@ -116,6 +122,7 @@ impl Default for LuminaireOptions {
             max_depth: 5,
             edge_depth: 8,
             polygon_shadows: true,
+            shadow_ratio: 20.0,
         }
     }
 }
@@ -254,8 +261,12 @@ impl<'a> Source<'a> {
 
     /// The pieces of the opening seen from a point `d` metres from its nearest point: `f(position, share)` for each,
     /// shares summing to 1 (module documentation, "Near field").
-    fn for_each_piece(&self, d: f64, mut f: impl FnMut(Vec3, f64)) {
-        let ratio = self.opts.near_field_ratio;
+    fn for_each_piece(&self, d: f64, f: impl FnMut(Vec3, f64)) {
+        self.for_each_piece_at(d, self.opts.near_field_ratio, f)
+    }
+
+    /// [`Source::for_each_piece`] with pieces at most `d / ratio` across.
+    fn for_each_piece_at(&self, d: f64, ratio: f64, mut f: impl FnMut(Vec3, f64)) {
         let count = |half: f64| -> usize {
             let k = (ratio * 2.0 * half / d).ceil();
             if k.is_finite() {
@@ -457,10 +468,10 @@ impl<'a> Source<'a> {
 }
 
 impl Source<'_> {
-    /// `∫ E dA` over a convex cell, lm, with exact shadows: each piece of the opening (cut
-    /// for the distance of the cell's `centroid` to the opening) is a point source, the part of
-    /// the cell it lights is the cell less the shadows the shaft's occluders cast from it
-    /// (`formfactor::shadow`, convex pieces), and the Gauss–Legendre rule integrates the
+    /// `∫ E dA` over a convex cell, lm, with exact shadows: each piece of the opening (cut by
+    /// `shadow_ratio` for the distance of the cell's `centroid` to it) is a point source, the
+    /// part of the cell it lights is the cell less the shadows the shaft's occluders cast from
+    /// it (`formfactor::shadow`, convex pieces), and the Gauss–Legendre rule integrates the
     /// smooth `I cos θ / r²` over each lit piece. `None` when the shaft overflowed or the lit
     /// part is too fragmented for the fixed capacities: the caller then traces rays.
     fn shadowed_cell(
@@ -474,7 +485,7 @@ impl Source<'_> {
         let d = self.distance(centroid);
         let mut lumens = 0.0;
         let mut complete = true;
-        self.for_each_piece(d, |q, share| {
+        self.for_each_piece_at(d, self.opts.shadow_ratio, |q, share| {
             // A piece behind the cell's plane, or in it, lights none of it.
             if !complete || normal.dot(q - origin) <= 0.0 {
                 return;

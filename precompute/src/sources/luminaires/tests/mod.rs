@@ -209,12 +209,13 @@ fn a_blocker_shadows_a_sensor_and_a_patch() {
 /// An extended opening casts a penumbra: its points see some pieces of the opening and not
 /// others. An isotropic opening (1000 cd, 1.2 m × 0.3 m, 2 m up) over a floor of 0.5 m
 /// patches, a 0.6 m square blocker at 1 m. Seen from the floor (2 m to 2.2 m from the
-/// opening) the opening is split into 3 × 1 pieces (`⌈5 · 1.2 / d⌉ = 3` along its length,
-/// module documentation), point sources of 1000/3 cd at x = −0.4, 0, 0.4 m, and the piece at
-/// `p` hides the rectangle `[−0.6 − p, 0.6 − p] × [−0.6, 0.6]` of the floor. Reference, exact
-/// for that model: a piece of intensity `I` at height `h` puts `I Ω` lm on a rectangle below
-/// it, `Ω` its solid angle (`solid_angle`), so each patch receives `Σ I (Ω(patch) −
-/// Ω(patch ∩ shadow))`.
+/// opening) the five-times rule splits it into 3 × 1 pieces (`⌈5 · 1.2 / d⌉ = 3` along its
+/// length, module documentation), and a shadow ratio of 10 into 6 × 2 (`⌈10 · 1.2 / d⌉ = 6`,
+/// `⌈10 · 0.3 / d⌉ = 2`); a piece at `(p, q)` is a point source of its share of the
+/// intensity and hides the rectangle `[−0.6 − p, 0.6 − p] × [−0.6 − q, 0.6 − q]` of the floor.
+/// Reference, exact for those pieces: a piece of intensity `I` at height `h` puts `I Ω` lm on a
+/// rectangle below it, `Ω` its solid angle (`solid_angle`), so each patch receives `Σ I
+/// (Ω(patch) − Ω(patch ∩ shadow))`.
 #[test]
 fn an_extended_opening_casts_a_penumbra_integrated_over_patches() {
     let (i, h) = (1000.0, 2.0);
@@ -230,28 +231,37 @@ fn an_extended_opening_casts_a_penumbra_integrated_over_patches() {
     let mut patches = floor(4, 0.5, 0.0);
     patches.push(floor(1, 0.6, 1.0).remove(0));
     let occluders = Occluders::new(&patches);
-    let exact = |lo: Vec3, hi: Vec3| -> f64 {
+    // The pieces' centres of a split into `along × across`, from a side's centre fractions.
+    let centres = |k: usize, half: f64| -> Vec<f64> {
+        (0..k)
+            .map(|m| half * (-1.0 + (2.0 * m as f64 + 1.0) / k as f64))
+            .collect()
+    };
+    let exact = |lo: Vec3, hi: Vec3, along: usize, across: usize| -> f64 {
+        let share = i / (along * across) as f64;
         let mut lumens = 0.0;
-        for piece in [-0.4, 0.0, 0.4] {
-            let all = solid_angle(lo.x - piece, hi.x - piece, lo.y, hi.y, h);
-            let (x1, x2) = ((-0.6 - piece).max(lo.x), (0.6 - piece).min(hi.x));
-            let (y1, y2) = ((-0.6f64).max(lo.y), 0.6f64.min(hi.y));
-            let hidden = if x1 < x2 && y1 < y2 {
-                solid_angle(x1 - piece, x2 - piece, y1, y2, h)
-            } else {
-                0.0
-            };
-            lumens += i / 3.0 * (all - hidden);
+        for &px in &centres(along, 0.6) {
+            for &py in &centres(across, 0.15) {
+                let all = solid_angle(lo.x - px, hi.x - px, lo.y - py, hi.y - py, h);
+                let (x1, x2) = ((-0.6 - px).max(lo.x), (0.6 - px).min(hi.x));
+                let (y1, y2) = ((-0.6 - py).max(lo.y), (0.6 - py).min(hi.y));
+                let hidden = if x1 < x2 && y1 < y2 {
+                    solid_angle(x1 - px, x2 - px, y1 - py, y2 - py, h)
+                } else {
+                    0.0
+                };
+                lumens += share * (all - hidden);
+            }
         }
         lumens / ((hi.x - lo.x) * (hi.y - lo.y))
     };
-    let worst = |opts: &LuminaireOptions| -> f64 {
+    let worst = |opts: &LuminaireOptions, along: usize, across: usize| -> f64 {
         let gl = gauss_legendre(opts.order);
         let source = Source::new(&lum, &occluders, opts, &gl);
         let mut worst = 0.0f64;
         for (k, p) in patches[..16].iter().enumerate() {
             let (lo, hi) = (p.polygon.vertices[0], p.polygon.vertices[2]);
-            let reference = exact(lo, hi);
+            let reference = exact(lo, hi, along, across);
             assert!(reference > 0.0);
             worst = worst.max(relative(source.patch(p, &[k]), reference));
         }
@@ -259,33 +269,50 @@ fn an_extended_opening_casts_a_penumbra_integrated_over_patches() {
     };
     // The shadows as polygons (the default): each piece's shadow is cut out of the cells
     // exactly, and the 4 × 4 rule on the lit parts integrates a smooth `I cos θ / r²`.
-    // Measured 1.2e-12.
-    let polygons = worst(&LuminaireOptions::default());
-    assert!(
-        polygons < 1e-9,
-        "patch means within {polygons:.2e} of exact"
-    );
-    // Rays refined along the shadow edges, where the polygons do not fit their capacities.
-    // Measured: 6.4e-4 worst (the four patches the penumbra crosses), the error of the 4 × 4
-    // rule on the cells a shadow edge cuts, of order their side (1/256 of the patch's):
-    // 1.6e-4 at edge_depth 10 and 4.0e-5 at 12, while order 8 in place of 4 gives 5.2e-4.
-    // Against the same exact reference, the midpoint rule on a 256 × 256 grid of
-    // `Source::point` per patch is 2.6e-3 off, 512² 7.6e-4, 1024² 6.4e-4, 2048² 1.9e-4: as a
-    // reference for this tolerance a grid needs to be finer than 2048².
+    // Measured 1.2e-12 with 3 × 1 pieces (a shadow ratio of 5, as the five-times rule).
+    let polygons = LuminaireOptions {
+        shadow_ratio: 10.0,
+        ..LuminaireOptions::default()
+    };
+    for (ratio, along, across) in [(5.0, 3, 1), (10.0, 6, 2)] {
+        let opts = LuminaireOptions {
+            shadow_ratio: ratio,
+            ..polygons.clone()
+        };
+        let error = worst(&opts, along, across);
+        assert!(
+            error < 1e-9,
+            "{along} × {across} pieces: patch means within {error:.2e} of exact"
+        );
+    }
+    // The pieces matter: the 3 × 1 split is far from the 6 × 2 one in the penumbra.
+    assert!(worst(&polygons, 3, 1) > 1e-2);
+    // Rays refined along the shadow edges, where the polygons do not fit their capacities,
+    // with the five-times rule's 3 × 1 pieces. Measured: 6.4e-4 worst (the four patches the
+    // penumbra crosses), the error of the 4 × 4 rule on the cells a shadow edge cuts, of
+    // order their side (1/256 of the patch's): 1.6e-4 at edge_depth 10 and 4.0e-5 at 12,
+    // while order 8 in place of 4 gives 5.2e-4. Against the same exact reference, the
+    // midpoint rule on a 256 × 256 grid of `Source::point` per patch is 2.6e-3 off, 512²
+    // 7.6e-4, 1024² 6.4e-4, 2048² 1.9e-4: as a reference for this tolerance a grid needs to
+    // be finer than 2048².
     let rays = LuminaireOptions {
         polygon_shadows: false,
         ..LuminaireOptions::default()
     };
-    let traced = worst(&rays);
+    let traced = worst(&rays, 3, 1);
     assert!(
         traced < 1e-3,
         "patch means by rays within {traced:.2e} of exact"
     );
     // Finer edge cells close in on the exact means as their side: the error is the edges'.
-    let finer = worst(&LuminaireOptions {
-        edge_depth: 10,
-        ..rays
-    });
+    let finer = worst(
+        &LuminaireOptions {
+            edge_depth: 10,
+            ..rays
+        },
+        3,
+        1,
+    );
     assert!(
         finer < traced / 3.0,
         "edge_depth 10: {finer:.2e}, 8: {traced:.2e}"
