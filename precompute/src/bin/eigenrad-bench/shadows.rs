@@ -79,11 +79,6 @@ fn differences(a: &[&[f64]], b: &[&[f64]]) -> Differences {
     }
 }
 
-/// The second reference's split of a luminous opening: pieces four times finer than the
-/// five-times rule's (`LuminaireOptions::near_field_ratio`), closer to the extended opening,
-/// as the polygons split it in a shadowed cell (`LuminaireOptions::shadow_ratio`).
-const FINER_NEAR_FIELD_RATIO: f64 = 20.0;
-
 /// Mean direct illuminance, lux, of channel `channel` over patch `k` of `scene` by the
 /// midpoint rule on `side × side` points of its bilinear parameter square (quadrilaterals;
 /// `None` for other patches), each point's opening split by `near_field_ratio`.
@@ -193,7 +188,9 @@ pub(crate) fn run(scenes: &[PathBuf], side: usize) -> Result<()> {
         let surface = scene.surfaces[scene.patches[k].surface].name.clone();
         let build_ratio = LuminaireOptions::default().near_field_ratio;
         let same = midpoint(&scene, &occluders, c, k, side, build_ratio);
-        let finer = midpoint(&scene, &occluders, c, k, side, FINER_NEAR_FIELD_RATIO);
+        // Closer to the extended opening: as the polygons split it in a shadowed cell.
+        let finer_ratio = LuminaireOptions::default().shadow_ratio;
+        let finer = midpoint(&scene, &occluders, c, k, side, finer_ratio);
         worst.push((
             path.clone(),
             c,
@@ -205,7 +202,7 @@ pub(crate) fn run(scenes: &[PathBuf], side: usize) -> Result<()> {
             finer,
         ));
     }
-    println!("\nOn the patch where the two differ most, against the midpoint rule on {side} × {side} points, rays from every piece of the opening at each point, the opening split by the five-times rule (pieces at most 1/5 of their distance, as the rays split it) and four times finer (1/{FINER_NEAR_FIELD_RATIO}, as the polygons split it in a shadowed cell):\n");
+    println!("\nOn the patch where the two differ most, against the midpoint rule on {side} × {side} points, rays from every piece of the opening at each point, the opening split by the five-times rule (pieces at most 1/5 of their distance, as the rays split it) and as the polygons split it in a shadowed cell (1/{}):\n", LuminaireOptions::default().shadow_ratio);
     println!("| scene | channel | patch | polygons lux | rays lux | midpoint lux | polygons off | rays off | midpoint, finer pieces, lux | polygons off | rays off |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (path, c, k, surface, polygons, rays, same, finer) in worst {
