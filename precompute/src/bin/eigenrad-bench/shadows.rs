@@ -94,8 +94,10 @@ fn midpoint(
     let &[a, b, c, d] = patch.polygon.vertices.as_slice() else {
         return None;
     };
+    // One split at every point, shadowed or not.
     let opts = LuminaireOptions {
         near_field_ratio,
+        shadow_ratio: near_field_ratio,
         ..LuminaireOptions::default()
     };
     let gl = gauss_legendre(opts.order);

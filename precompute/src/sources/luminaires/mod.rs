@@ -48,9 +48,10 @@
 //! Where the shaft of a cell small for its distance holds blockers, the opening is split
 //! finer, into pieces at most `1/shadow_ratio` (1/20) of the distance from the cell's centroid:
 //! a penumbra is a staircase of one step a piece, and the five-times rule, made for a smooth
-//! field, leaves it coarse (a floor patch by a desk 23 % off a four times finer split, at 2.7e-3
-//! with it). Each piece is a point source, and the part of the cell it lights is the cell less
-//! the blockers' shadows from it, as convex polygons (`formfactor::shadow`, the form factors'
+//! field, leaves it coarse (the side of a desk of the open-plan floor 23 % off a four times
+//! finer split, at 2.7e-3 with it). A point (a sensor, a grid point) a blocker may shadow is
+//! lit by the same finer pieces, one ray each. In a cell, each piece is a point source, and
+//! the part of the cell it lights is the cell less the blockers' shadows from it, as convex polygons (`formfactor::shadow`, the form factors'
 //! exact visibility): the rule integrates the smooth `I cos θ / d²` on each lit piece, and a
 //! shadow edge costs no refinement. The tests hold the flux of a shadow and patch means under
 //! a penumbra to 1e-9 of exact for the pieces. Where the polygons do not fit their fixed
@@ -259,14 +260,10 @@ impl<'a> Source<'a> {
         self.half.0.hypot(self.half.1)
     }
 
-    /// The pieces of the opening seen from a point `d` metres from its nearest point: `f(position, share)` for each,
-    /// shares summing to 1 (module documentation, "Near field").
-    fn for_each_piece(&self, d: f64, f: impl FnMut(Vec3, f64)) {
-        self.for_each_piece_at(d, self.opts.near_field_ratio, f)
-    }
-
-    /// [`Source::for_each_piece`] with pieces at most `d / ratio` across.
-    fn for_each_piece_at(&self, d: f64, ratio: f64, mut f: impl FnMut(Vec3, f64)) {
+    /// The pieces of the opening seen from a point `d` metres from its nearest point, each at
+    /// most `d / ratio` across: `f(position, share)` for each, shares summing to 1 (module
+    /// documentation, "Near field").
+    fn for_each_piece(&self, d: f64, ratio: f64, mut f: impl FnMut(Vec3, f64)) {
         let count = |half: f64| -> usize {
             let k = (ratio * 2.0 * half / d).ceil();
             if k.is_finite() {
@@ -305,7 +302,14 @@ impl<'a> Source<'a> {
     /// counts; `ignore` the receiving patch.
     pub fn point(&self, x: Vec3, normal: Vec3, field: FieldOfView, ignore: &[usize]) -> f64 {
         let shaft = self.shaft(&[x], normal, ignore);
-        self.lit(x, normal, field, ignore, shaft.as_ref()).lux
+        // A point a blocker may shadow sees the opening in the finer pieces of a shadowed
+        // cell (module documentation, "Shadows"): each is one ray.
+        let ratio = match &shaft {
+            Some(s) if !s.is_clear() => self.opts.shadow_ratio,
+            _ => self.opts.near_field_ratio,
+        };
+        self.lit(x, normal, field, ignore, shaft.as_ref(), ratio)
+            .lux
     }
 
     /// The occluders that may cut light from the opening to a receiver (its `corners`, one for
@@ -343,8 +347,9 @@ impl<'a> Source<'a> {
         (u.max(0.0).powi(2) + w.max(0.0).powi(2) + h * h).sqrt()
     }
 
-    /// What [`Source::point`] receives at `x`, with which pieces of the opening a blocker
-    /// hides; `shaft` holds the occluders that may cut light reaching `x` ([`Source::shaft`]).
+    /// What [`Source::point`] receives at `x` from the opening split by `ratio`
+    /// ([`Source::for_each_piece`]), with which pieces a blocker hides; `shaft` holds the
+    /// occluders that may cut light reaching `x` ([`Source::shaft`]).
     fn lit(
         &self,
         x: Vec3,
@@ -352,6 +357,7 @@ impl<'a> Source<'a> {
         field: FieldOfView,
         ignore: &[usize],
         shaft: Option<&Shaft>,
+        ratio: f64,
     ) -> Received {
         let d = self.distance(x);
         if d == 0.0 {
@@ -359,7 +365,7 @@ impl<'a> Source<'a> {
         }
         let (mut e, mut hidden) = (0.0, false);
         let (mut signature, mut piece) = (SIGNATURE_SEED, 0u64);
-        self.for_each_piece(d, |q, share| {
+        self.for_each_piece(d, ratio, |q, share| {
             piece += 1;
             let v = q - x;
             let r2 = v.dot(v);
@@ -452,7 +458,8 @@ impl<'a> Source<'a> {
         let (mut lumens, mut seen, mut hidden) = (0.0, false, false);
         let (mut first, mut uniform) = (None, true);
         for_each_on_cell(corners, self.gl, |x, w| {
-            let r = self.lit(x, normal, FieldOfView::HEMISPHERE, ignore, shaft);
+            let ratio = self.opts.near_field_ratio;
+            let r = self.lit(x, normal, FieldOfView::HEMISPHERE, ignore, shaft, ratio);
             lumens += w * r.lux;
             seen |= r.lux > 0.0;
             hidden |= r.hidden;
@@ -485,7 +492,7 @@ impl Source<'_> {
         let d = self.distance(centroid);
         let mut lumens = 0.0;
         let mut complete = true;
-        self.for_each_piece_at(d, self.opts.shadow_ratio, |q, share| {
+        self.for_each_piece(d, self.opts.shadow_ratio, |q, share| {
             // A piece behind the cell's plane, or in it, lights none of it.
             if !complete || normal.dot(q - origin) <= 0.0 {
                 return;

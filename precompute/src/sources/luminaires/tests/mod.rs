@@ -287,6 +287,44 @@ fn an_extended_opening_casts_a_penumbra_integrated_over_patches() {
     }
     // The pieces matter: the 3 × 1 split is far from the 6 × 2 one in the penumbra.
     assert!(worst(&polygons, 3, 1) > 1e-2);
+    // A point in the penumbra, 0.7 m from the centre below the opening's length: the
+    // segments from the opening to it cross the blocker's plane halfway, so the part of the
+    // opening with `x ∈ [−0.6, −0.1]` is hidden. Reference: the opening as the limit of its
+    // pieces, `∫ (I / A) cos θ / r² dA` over its visible part, by the midpoint rule on 2400 ×
+    // 600 points (a hidden edge along a column boundary of the grid). The default split
+    // (pieces at most 1/20 of the distance, 12 × 3) within 1e-2, measured 5.1e-4; the
+    // five-times rule's 3 × 1 pieces, one of which is hidden, 12.8 % off.
+    let x = Vec3::new(0.7, 0.0, 0.0);
+    let (m, n) = (2400, 600);
+    let mut limit = 0.0;
+    for a in 0..m {
+        let px = -0.6 + 1.2 * (a as f64 + 0.5) / m as f64;
+        if (-0.6..=-0.1).contains(&px) {
+            continue;
+        }
+        for b in 0..n {
+            let py = -0.15 + 0.3 * (b as f64 + 0.5) / n as f64;
+            let r2 = (px - x.x).powi(2) + py * py + h * h;
+            limit += h / r2.powf(1.5);
+        }
+    }
+    let limit = limit * i / (m * n) as f64;
+    let gl = gauss_legendre(4);
+    let at = |opts: &LuminaireOptions| {
+        Source::new(&lum, &occluders, opts, &gl).point(x, UP, FieldOfView::HEMISPHERE, &[])
+    };
+    let fine = relative(at(&LuminaireOptions::default()), limit);
+    let coarse = relative(
+        at(&LuminaireOptions {
+            shadow_ratio: 5.0,
+            ..LuminaireOptions::default()
+        }),
+        limit,
+    );
+    assert!(
+        fine < 1e-2 && coarse > 1e-1,
+        "a point in the penumbra: {fine:.1e} finer, {coarse:.1e} by the five-times rule"
+    );
     // Rays refined along the shadow edges, where the polygons do not fit their capacities,
     // with the five-times rule's 3 × 1 pieces. Measured: 6.4e-4 worst (the four patches the
     // penumbra crosses), the error of the 4 × 4 rule on the cells a shadow edge cuts, of
