@@ -265,10 +265,11 @@ pub fn patch_form_factors_f32(
 }
 
 /// [`patch_form_factors_with`] stored as a hierarchical operator ([`Hierarchical`]): the same
-/// pair integrals, both directions of each pair read and symmetrised as in the dense matrix,
-/// but only for the pairs of close clusters and the rows and columns that the low-rank
-/// approximation of well-separated clusters reads (`hierarchical::Settings`). The
-/// reciprocity figures are those of the pairs read.
+/// pair integrals, but only for the pairs of close clusters and the rows and columns that the
+/// low-rank approximation of well-separated clusters reads (`hierarchical::Settings`). Pairs
+/// a blocker may cut are read both ways and symmetrised as in the dense matrix; pairs of
+/// well-separated clusters that see each other clear one way, from the smaller patch. The
+/// reciprocity figures are those of the pairs read both ways.
 pub fn patch_form_factors_hierarchical(
     patches: &[Patch],
     occluders: &Occluders,
@@ -298,11 +299,18 @@ fn hierarchical_shaded_by(
         let g = stats.add(a, b, gab, gba, areas[a], areas[b]);
         g / (areas[a] * areas[b]).sqrt()
     };
-    let unoccluded = |i: usize, j: usize, stats: &mut PairStats| -> f64 {
+    // Well-separated pairs only (the blocks of clusters seen clear, and the shaded ones): one
+    // direction, from the patch of the smaller radius, whose outer quadrature is the more
+    // accurate of the two (its error falls as a power of the source's size over the distance)
+    // and the cheaper; the reciprocity figures are those of the pairs read both ways.
+    let unoccluded = |i: usize, j: usize, _: &mut PairStats| -> f64 {
         let (a, b) = (i.min(j), i.max(j));
-        let gab = areas[a] * ctx.pair_unoccluded(&prepared, a, b);
-        let gba = areas[b] * ctx.pair_unoccluded(&prepared, b, a);
-        let g = stats.add(a, b, gab, gba, areas[a], areas[b]);
+        let (from, to) = if prepared.radius(b) < prepared.radius(a) {
+            (b, a)
+        } else {
+            (a, b)
+        };
+        let g = areas[from] * ctx.pair_unoccluded(&prepared, from, to);
         g / (areas[a] * areas[b]).sqrt()
     };
     let bar = progress_bar(0, opts.progress, "form factors", "blocks");

@@ -98,6 +98,11 @@ impl<'a> Prepared<'a> {
     pub(super) fn targets(patches: &'a [Patch]) -> Self {
         Prepared::new(patches, 1)
     }
+
+    /// The largest distance from patch `i`'s centroid to a corner, metres.
+    pub(super) fn radius(&self, i: usize) -> f64 {
+        self.bounds[i].radius
+    }
 }
 
 /// Gauss–Legendre rules of orders 1 to `max` on [0, 1].

@@ -66,11 +66,11 @@ impl Hierarchical {
                     census.mixed_blocks_whole += 1;
                     tops.insert(top);
                 }
-                (Kind::Far | Kind::Dark | Kind::Shaded, Some(top)) => {
+                (Kind::Far | Kind::Clear | Kind::Dark | Kind::Shaded, Some(top)) => {
                     census.mixed_compressed += entries;
                     tops.insert(top);
                 }
-                (Kind::Far, None) => census.far += entries,
+                (Kind::Far | Kind::Clear, None) => census.far += entries,
                 (Kind::Dark, None) => census.dark += entries,
                 (Kind::Shaded, None) => census.shaded += entries,
             }

@@ -36,6 +36,7 @@ pub(super) fn fill(
             o.unoccluded,
             Some((o.shade)(&order[rows.clone()], &order[cols.clone()])),
         ),
+        (Kind::Clear, Some(o)) => (o.unoccluded, None),
         _ => (scaled, None),
     };
     let stats = std::cell::RefCell::new(PairStats::default());
@@ -84,7 +85,7 @@ pub(super) fn fill(
         {
             unlit
         }
-        Kind::Far | Kind::Shaded => {
+        Kind::Far | Kind::Clear | Kind::Shaded => {
             let shares = shares.as_ref().map(|(r, c)| (r.as_slice(), c.as_slice()));
             let (data, g) = compressed(m, n, &entry, settings.tolerance, seed, shares);
             guarded = g;

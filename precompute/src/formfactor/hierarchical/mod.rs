@@ -141,8 +141,9 @@ pub(super) struct Occlusion<'a> {
     /// `hidden(a, b)`: one blocker, or one closed box of blockers, cuts every segment from `a`
     /// to `b`.
     pub(super) hidden: &'a (dyn Fn(&[Vec3], &[Vec3]) -> bool + Sync),
-    /// `unoccluded(i, j, stats)`: `S_ij` as if nothing stood between the two patches, for
-    /// [`Settings::shade_mixed`].
+    /// `unoccluded(i, j, stats)`: `S_ij` of two well-separated patches as if nothing stood
+    /// between them, for the blocks seen clear ([`Kind::Clear`]) and the shaded ones
+    /// ([`Settings::shade_mixed`]); it may read the pair one way and record nothing in `stats`.
     pub(super) unoccluded: &'a (dyn Fn(usize, usize, &mut PairStats) -> f64 + Sync),
     /// `shade(a, b)`: the share of the light between the patches `a` and those of `b`
     /// (patch indices) that no blocker cuts, as factors `(r, c)` by patch, the pair `(i, j)`'s
@@ -213,16 +214,21 @@ impl Hierarchical {
             }
             match (block.span.kind, &block.data) {
                 (Kind::Near, _) => compression.near_blocks += 1,
-                (Kind::Far | Kind::Dark | Kind::Shaded, Data::LowRank { rank, .. }) => {
+                (
+                    Kind::Far | Kind::Clear | Kind::Dark | Kind::Shaded,
+                    Data::LowRank { rank, .. },
+                ) => {
                     compression.low_rank_blocks += 1;
                     compression.max_rank = compression.max_rank.max(*rank);
                     rank_sum += rank;
                     low_rank_entries += entries * if block.span.is_diagonal() { 1 } else { 2 };
                 }
-                (Kind::Far | Kind::Dark | Kind::Shaded, Data::Dense(_)) if outcome.guarded => {
+                (Kind::Far | Kind::Clear | Kind::Dark | Kind::Shaded, Data::Dense(_))
+                    if outcome.guarded =>
+                {
                     compression.guard_fallbacks += 1
                 }
-                (Kind::Far | Kind::Dark | Kind::Shaded, Data::Dense(_)) => {
+                (Kind::Far | Kind::Clear | Kind::Dark | Kind::Shaded, Data::Dense(_)) => {
                     compression.rank_fallbacks += 1
                 }
             }

@@ -37,7 +37,7 @@ impl Hierarchical {
             out.push(match span.kind {
                 Kind::Near => 0.0,
                 // A dark block is a far one of rank 0.
-                Kind::Far | Kind::Dark | Kind::Shaded => 1.0,
+                Kind::Far | Kind::Clear | Kind::Dark | Kind::Shaded => 1.0,
             });
             match &block.data {
                 Data::Dense(d) => {

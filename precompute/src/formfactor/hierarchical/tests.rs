@@ -173,7 +173,7 @@ fn sight_of_blocks_agrees_with_their_pairs() {
                     );
                     dark += 1;
                 }
-                Kind::Far => {
+                Kind::Clear => {
                     let (p, q) = (&patches[i], &patches[j]);
                     let shaft = occluders.shaft(
                         &p.polygon.vertices,
@@ -186,7 +186,7 @@ fn sight_of_blocks_agrees_with_their_pairs() {
                     clear_far += 1;
                 }
                 // The tests' settings split mixed pairs: none is shaded.
-                Kind::Near | Kind::Shaded => {}
+                Kind::Near | Kind::Far | Kind::Shaded => {}
             }
         }
     }

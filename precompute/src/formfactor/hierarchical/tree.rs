@@ -293,8 +293,12 @@ fn split(
 pub(super) enum Kind {
     /// Every entry computed.
     Near,
-    /// Admissible: approximated at low rank.
+    /// Admissible, with no sight known (the partition by distance alone): approximated at low
+    /// rank from the pair integrals with their shadows.
     Far,
+    /// Admissible and clear ([`Sight::Clear`]): no blocker cuts a pair, so the low-rank
+    /// approximation reads the unoccluded entries, one way (`Occlusion::unoccluded`).
+    Clear,
     /// Admissible and dark ([`Sight::Dark`]): every entry is 0, stored at rank 0 unread.
     Dark,
     /// Admissible and mixed, with [`Settings::shade_mixed`]: the unoccluded entries, at low
@@ -422,7 +426,8 @@ impl Walk<'_> {
                 .seeing
                 .map(|seeing| seeing.sight(tn.plate.as_ref(), sn.plate.as_ref()));
             match sight {
-                None | Some(Sight::Clear) => return out.push(span(Kind::Far)),
+                None => return out.push(span(Kind::Far)),
+                Some(Sight::Clear) => return out.push(span(Kind::Clear)),
                 Some(Sight::Dark) => return out.push(span(Kind::Dark)),
                 Some(Sight::Mixed) if self.settings.shade_mixed => {
                     return out.push(span(Kind::Shaded))
