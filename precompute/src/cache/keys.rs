@@ -44,6 +44,8 @@ pub fn key(patches: &[Patch], faces: &[Face], opts: &FormFactorOptions) -> [u8; 
         visibility_cell_share,
         occluded_order,
         visibility,
+        // In the hierarchical key, as `Settings::shade_misfit`: no pair integral reads it.
+        cluster_misfit: _,
         operator: _,
     } = opts;
     let mut h = Sha256::new();
@@ -91,6 +93,7 @@ pub fn hierarchical_key(
         tolerance,
         split_by_sight,
         shade_mixed,
+        shade_misfit,
     } = settings;
     let mut h = Sha256::new();
     h.update(b"eigenrad hierarchical form factors\0");
@@ -100,6 +103,8 @@ pub fn hierarchical_key(
     h.update(tolerance.to_bits().to_le_bytes());
     h.update([u8::from(*split_by_sight)]);
     h.update([u8::from(*shade_mixed)]);
+    h.update(shade_misfit.to_bits().to_le_bytes());
+    hash_usize(&mut h, hierarchical::ASSEMBLY_VERSION);
     h.finalize().into()
 }
 

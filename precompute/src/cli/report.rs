@@ -48,11 +48,13 @@ pub fn format_build_report(r: &BuildReport, output: &Path) -> String {
             c.row_error,
             crate::formfactor::hierarchical::ROWS_CHECKED
         );
-        if c.shaded_blocks > 0 {
+        if c.shaded_blocks > 0 || c.shade_splits > 0 {
             let _ = writeln!(
                 s,
-                "  visibility between clusters (--visibility clusters): {} well-separated blocks a blocker may cut read without shadows, times one visible share per patch from rays; the measured error above is against the exact shadows",
-                c.shaded_blocks
+                "  visibility between clusters (--visibility clusters): {} well-separated blocks a blocker may cut read without shadows, times one visible share per patch from rays; {} split further where their rays strayed from the shares by more than {:.0e} of a patch's output; the measured error above is against the exact shadows",
+                c.shaded_blocks,
+                c.shade_splits,
+                c.shade_misfit
             );
         }
     }

@@ -116,6 +116,9 @@ pub struct FormFactorOptions {
     /// `docs/performance.md`, "Sampled visibility"). Point sensors and grid points keep exact
     /// visibility.
     pub visibility: Visibility,
+    /// With [`Visibility::Clusters`]: the misfit above which a shaded block is split
+    /// (`--cluster-misfit`; [`hierarchical::Settings::shade_misfit`], dimensionless).
+    pub cluster_misfit: f64,
     /// How the patch form factors are stored while the room is solved (`--operator`):
     /// f64, f32, or by size (the default). It does not enter the pair integrals.
     pub operator: OperatorChoice,
@@ -133,6 +136,7 @@ impl Default for FormFactorOptions {
             visibility_cell_share: 1e-3,
             occluded_order: 5,
             visibility: Visibility::Exact,
+            cluster_misfit: hierarchical::SHADE_MISFIT,
             operator: OperatorChoice::Auto,
         }
     }
@@ -360,7 +364,11 @@ pub fn partition_census(
 ) -> hierarchical::Census {
     // The census reads no entry.
     let unread = |_: usize, _: usize, _: &mut PairStats| 0.0;
-    let unseen = |_: &[usize], _: &[usize]| (Vec::new(), Vec::new());
+    let unseen = |_: &[usize], _: &[usize]| visibility::ClusterShares {
+        rows: Vec::new(),
+        cols: Vec::new(),
+        misfit: 0.0,
+    };
     seen_through(occluders, &unread, &unseen, |occlusion| {
         Hierarchical::census(patches, settings, Some(occlusion))
     })

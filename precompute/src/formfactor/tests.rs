@@ -435,7 +435,11 @@ pub(in crate::formfactor) fn hierarchical_with_unit_fractions(
     opts: &FormFactorOptions,
     settings: &super::hierarchical::Settings,
 ) -> super::Hierarchical {
-    let unit = |a: &[usize], b: &[usize]| (vec![1.0; a.len()], vec![1.0; b.len()]);
+    let unit = |a: &[usize], b: &[usize]| super::visibility::ClusterShares {
+        rows: vec![1.0; a.len()],
+        cols: vec![1.0; b.len()],
+        misfit: 0.0,
+    };
     super::hierarchical_shaded_by(patches, occluders, opts, settings, &unit)
         .expect("finite")
         .matrix

@@ -152,9 +152,29 @@ impl Query<'_> {
 /// most), in [`between_clusters`].
 pub(crate) const CLUSTER_RAY_ENDS: usize = 16;
 
+/// What [`between_clusters`] finds between two clusters: one visible share per patch and how
+/// far the rays it cast stray from the product of the shares.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct ClusterShares {
+    /// `r_i` for each patch of the first cluster (dimensionless).
+    pub(crate) rows: Vec<f64>,
+    /// `c_j` for each patch of the second cluster (dimensionless).
+    pub(crate) cols: Vec<f64>,
+    /// The rays' estimate of the error `V_ij ≈ r_i c_j` brings to a patch's row of form
+    /// factors over the other cluster, as a share of the patch's output (dimensionless): for
+    /// each patch, `Σ_e π⁻¹ (m / k) w_ie |v_ie − r c|` over its `k` rays of kernel weight `w_ie`
+    /// to the other cluster's `m` patches (`v_ie` 1 where the ray gets through, 0 where it is
+    /// cut), its mean over each cluster's patches, the larger of the two. 0 where every ray
+    /// agrees with the product: a blocker's shadow that falls on whole patches of one side
+    /// only (a desk over part of the floor) is a product; one that depends on both ends (a
+    /// column between two walls) is not.
+    pub(crate) misfit: f64,
+}
+
 /// How much of the light between the patches `a` and the patches `b` (indices into
 /// `patches`) the occluders let through, as one factor per patch: the block of a pair's
-/// entries is approximated by `V_ij = r_i c_j`, with `r` and `c` returned (dimensionless).
+/// entries is approximated by `V_ij = r_i c_j`, with `r` and `c` returned (dimensionless),
+/// and how far the rays cast stray from it ([`ClusterShares::misfit`]).
 ///
 /// Each patch `i` of `a` casts rays from its centroid to the centroids of up to
 /// [`CLUSTER_RAY_ENDS`] patches of `b` spread evenly over the list, each weighted by the
@@ -171,21 +191,22 @@ pub(crate) fn between_clusters(
     patches: &[Patch],
     a: &[usize],
     b: &[usize],
-) -> (Vec<f64>, Vec<f64>) {
+) -> ClusterShares {
     let spread = |list: &[usize]| -> Vec<usize> {
         let k = list.len().min(CLUSTER_RAY_ENDS);
-        (0..k)
-            .map(|s| list[(2 * s + 1) * list.len() / (2 * k)])
-            .collect()
+        (0..k).map(|s| (2 * s + 1) * list.len() / (2 * k)).collect()
     };
-    // (seen, total) kernel weights of the rays from each patch of `from` to `to`'s ends.
-    let views = |from: &[usize], to: &[usize]| -> Vec<(f64, f64)> {
+    // Each ray from a patch of `from` to an end of `to`: the end's place in `to`, its kernel
+    // weight, and whether it gets through.
+    type Ray = (usize, f64, bool);
+    let cast = |from: &[usize], to: &[usize]| -> Vec<Vec<Ray>> {
         let ends = spread(to);
         from.iter()
             .map(|&i| {
                 let p = &patches[i];
-                let (mut seen, mut total) = (0.0, 0.0);
-                for &j in &ends {
+                let mut rays = Vec::with_capacity(ends.len());
+                for &at in &ends {
+                    let j = to[at];
                     let q = &patches[j];
                     let d = q.centroid - p.centroid;
                     let (cp, cq) = (p.normal.dot(d), -q.normal.dot(d));
@@ -194,22 +215,30 @@ pub(crate) fn between_clusters(
                     }
                     let r2 = d.dot(d);
                     let w = q.area * cp * cq / (r2 * r2);
-                    total += w;
                     // The same segment whichever patch casts it.
                     let (from, to) = if i < j {
                         (p.centroid, q.centroid)
                     } else {
                         (q.centroid, p.centroid)
                     };
-                    if occluders.visible(from, to, &[i, j]) {
-                        seen += w;
-                    }
+                    rays.push((at, w, occluders.visible(from, to, &[i, j])));
                 }
-                (seen, total)
+                rays
             })
             .collect()
     };
-    let (rows, cols) = (views(a, b), views(b, a));
+    // (seen, total) kernel weights of each patch's rays.
+    let views = |rays: &[Vec<Ray>]| -> Vec<(f64, f64)> {
+        rays.iter()
+            .map(|rays| {
+                rays.iter().fold((0.0, 0.0), |(s, t), &(_, w, seen)| {
+                    (if seen { s + w } else { s }, t + w)
+                })
+            })
+            .collect()
+    };
+    let (rays_ab, rays_ba) = (cast(a, b), cast(b, a));
+    let (rows, cols) = (views(&rays_ab), views(&rays_ba));
     // Each side summed on its own, then added: the same bits whichever list comes first.
     let sum = |views: &[(f64, f64)]| {
         views
@@ -218,12 +247,17 @@ pub(crate) fn between_clusters(
     };
     let ((seen_a, total_a), (seen_b, total_b)) = (sum(&rows), sum(&cols));
     let (seen, total) = (seen_a + seen_b, total_a + total_b);
+    let uniform = |share: f64, misfit: f64| ClusterShares {
+        rows: vec![share; a.len()],
+        cols: vec![share; b.len()],
+        misfit,
+    };
     if !(total > 0.0 && total.is_finite()) {
-        return (vec![1.0; a.len()], vec![1.0; b.len()]);
+        return uniform(1.0, 0.0);
     }
     let mean = (seen / total).clamp(0.0, 1.0);
     if mean == 0.0 {
-        return (vec![0.0; a.len()], vec![0.0; b.len()]);
+        return uniform(0.0, 0.0);
     }
     let root = mean.sqrt();
     let factor = |&(s, t): &(f64, f64)| {
@@ -234,10 +268,34 @@ pub(crate) fn between_clusters(
         };
         own / root
     };
-    (
+    let (r, c): (Vec<f64>, Vec<f64>) = (
         rows.iter().map(factor).collect(),
         cols.iter().map(factor).collect(),
-    )
+    );
+    // The rays' disagreement with the product, as a share of each casting patch's output.
+    let misfit = |rays: &[Vec<Ray>], own: &[f64], other: &[f64]| -> f64 {
+        let scale = other.len() as f64
+            / (std::f64::consts::PI * CLUSTER_RAY_ENDS.min(other.len()).max(1) as f64);
+        let total: f64 = rays
+            .iter()
+            .zip(own)
+            .map(|(rays, &x)| {
+                rays.iter()
+                    .map(|&(at, w, seen)| {
+                        let model = (x * other[at]).min(1.0);
+                        w * (f64::from(u8::from(seen)) - model).abs()
+                    })
+                    .sum::<f64>()
+            })
+            .sum();
+        scale * total / rays.len().max(1) as f64
+    };
+    let misfit = misfit(&rays_ab, &r, &c).max(misfit(&rays_ba, &c, &r));
+    ClusterShares {
+        rows: r,
+        cols: c,
+        misfit,
+    }
 }
 
 #[cfg(test)]

@@ -279,6 +279,7 @@ fn prepare_stages(path: &Path, build: &BuildOptions, stages: &mut Stages) -> Res
             Storage::Hierarchical => {
                 let settings = formfactor::hierarchical::Settings {
                     shade_mixed: opts.visibility == formfactor::Visibility::Clusters,
+                    shade_misfit: opts.cluster_misfit,
                     ..formfactor::hierarchical::Settings::default()
                 };
                 let ff = cache::hierarchical_form_factors(

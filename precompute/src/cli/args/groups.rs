@@ -13,7 +13,9 @@ use serde::Serialize;
 
 use crate::cache;
 use crate::cli;
-use crate::formfactor::{FormFactorOptions, OperatorChoice, Visibility, MAX_PER_SIDE};
+use crate::formfactor::{
+    hierarchical, FormFactorOptions, OperatorChoice, Visibility, MAX_PER_SIDE,
+};
 
 /// Sets an argument's help to `text` (as a doc comment does: one line, no final full stop),
 /// for `#[command(mut_arg(ID, help(TEXT)))]`.
@@ -113,6 +115,22 @@ pub(super) struct CacheArgs {
     #[arg(long, default_value_t = Visibility::DEFAULT_PER_SIDE,
           value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PER_SIDE)))]
     visibility_points: u32,
+    /// With --visibility clusters: a block of clusters read without shadows whose rays stray
+    /// from its visible shares by more than this share of a patch's output is split further,
+    /// down to blocks read with the exact shadows; smaller is closer to them and slower
+    /// (docs/performance.md, "Visibility between clusters")
+    #[arg(long, default_value_t = hierarchical::SHADE_MISFIT, value_parser = misfit)]
+    cluster_misfit: f64,
+}
+
+/// A `--cluster-misfit`: a share, 0 or more (`inf` keeps every block whole).
+fn misfit(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x >= 0.0 => Ok(x),
+        _ => Err(format!(
+            "`{text}` is not a share of 0 or more (such as 1e-3, or inf)"
+        )),
+    }
 }
 
 /// `--visibility`: the help texts are the command line's.
@@ -150,6 +168,7 @@ impl CacheArgs {
                 },
                 VisibilityArg::Clusters => Visibility::Clusters,
             },
+            cluster_misfit: self.cluster_misfit,
             ..FormFactorOptions::default()
         }
     }

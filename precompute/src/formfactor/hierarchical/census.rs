@@ -45,7 +45,7 @@ impl Hierarchical {
         occlusion: Option<&Occlusion>,
     ) -> Census {
         let clock = std::time::Instant::now();
-        let (_, spans) = partitioned(patches, settings, occlusion);
+        let (_, spans, _) = partitioned(patches, settings, occlusion);
         let seconds = clock.elapsed().as_secs_f64();
         let n2 = (patches.len() * patches.len()).max(1) as f64;
         let mut census = Census {

@@ -19,9 +19,19 @@ pub(super) struct Outcome {
     pub(super) non_finite: Option<[usize; 2]>,
 }
 
+/// What became of one block of the partition.
+pub(super) enum Filled {
+    /// The block, computed.
+    Block(Block, PairStats, Outcome),
+    /// A shaded block whose rays stray from its visible shares by more than
+    /// [`Settings::shade_misfit`]: nothing read, to be split into its clusters' children.
+    Split(BlockSpan),
+}
+
 /// Computes one block of the partition: whole if near, compressed if far, and if shaded
 /// ([`Settings::shade_mixed`]) its unoccluded entries compressed, each times its pair's
-/// visible share `r_i c_j` ([`Occlusion::shade`]).
+/// visible share `r_i c_j` ([`Occlusion::shade`]), unless the shares' misfit sends it back
+/// to be split.
 pub(super) fn fill(
     span: BlockSpan,
     order: &[usize],
@@ -29,15 +39,22 @@ pub(super) fn fill(
     scaled: &(dyn Fn(usize, usize, &mut PairStats) -> f64 + Sync),
     occlusion: Option<&Occlusion>,
     seed: u64,
-) -> (Block, PairStats, Outcome) {
+) -> Filled {
     let (rows, cols) = (span.rows.clone(), span.cols.clone());
-    let (source, shares) = match (span.kind, occlusion) {
-        (Kind::Shaded, Some(o)) => (
-            o.unoccluded,
-            Some((o.shade)(&order[rows.clone()], &order[cols.clone()])),
-        ),
-        (Kind::Clear, Some(o)) => (o.unoccluded, None),
-        _ => (scaled, None),
+    let shares = match (span.kind, occlusion) {
+        (Kind::Shaded, Some(o)) => Some((o.shade)(&order[rows.clone()], &order[cols.clone()])),
+        _ => None,
+    };
+    if shares
+        .as_ref()
+        .is_some_and(|s| s.misfit > settings.shade_misfit)
+    {
+        return Filled::Split(span);
+    }
+    let shares = shares.map(|s| (s.rows, s.cols));
+    let source = match (span.kind, occlusion) {
+        (Kind::Shaded | Kind::Clear, Some(o)) => o.unoccluded,
+        _ => scaled,
     };
     let stats = std::cell::RefCell::new(PairStats::default());
     let read = std::cell::Cell::new(0usize);
@@ -97,7 +114,7 @@ pub(super) fn fill(
         guarded,
         non_finite: non_finite.get(),
     };
-    (Block { span, data }, stats.into_inner(), outcome)
+    Filled::Block(Block { span, data }, stats.into_inner(), outcome)
 }
 
 /// A far block from its entries through the cross approximation, entry `(a, b)` times

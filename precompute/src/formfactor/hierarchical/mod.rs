@@ -35,11 +35,12 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::operator::FormFactorOperator;
+use super::visibility::ClusterShares;
 use super::PairStats;
 use crate::geometry::{Patch, Vec3};
 use block::{Block, Data};
 pub use census::Census;
-use fill::{fill, Outcome};
+use fill::{fill, Filled, Outcome};
 use tree::{BlockSpan, ClearBetween, ClusterTree, Kind, Seeing};
 
 /// How the operator is built; `Default` gives the settings `--operator hierarchical` uses.
@@ -66,7 +67,23 @@ pub struct Settings {
     /// to close clusters, and the operator approximates the visibility of distant ones.
     /// Default false (exact).
     pub shade_mixed: bool,
+    /// A shaded block whose rays stray from its visible shares by more than this
+    /// ([`ClusterShares::misfit`]: the error they estimate in a patch's row over the other
+    /// cluster, as a share of its output, dimensionless) is split into its clusters' children
+    /// and classified again, down to leaves read whole with their shadows. Default
+    /// [`SHADE_MISFIT`]; infinity keeps every shaded block whole.
+    pub shade_misfit: f64,
 }
+
+/// Version of the assembly: bumped whenever a change alters the operator built from the same
+/// pair integrals and settings, so that the form-factor cache keys on it.
+///
+/// 2: blocks of clusters seen clear read their pairs one way, from the smaller patch;
+/// shaded blocks split where their shares misfit ([`Settings::shade_misfit`]).
+pub const ASSEMBLY_VERSION: usize = 2;
+
+/// The default [`Settings::shade_misfit`].
+pub const SHADE_MISFIT: f64 = 1e-3;
 
 impl Default for Settings {
     fn default() -> Self {
@@ -76,6 +93,7 @@ impl Default for Settings {
             tolerance: 1e-6,
             split_by_sight: true,
             shade_mixed: false,
+            shade_misfit: SHADE_MISFIT,
         }
     }
 }
@@ -96,6 +114,11 @@ pub struct Compression {
     /// Well-separated blocks that a blocker may cut, stored as their unoccluded entries times
     /// the clusters' visible fraction ([`Settings::shade_mixed`]).
     pub shaded_blocks: usize,
+    /// Shaded blocks split because their rays strayed from their visible shares
+    /// ([`Settings::shade_misfit`]).
+    pub shade_splits: usize,
+    /// The misfit above which they were split ([`Settings::shade_misfit`], dimensionless).
+    pub shade_misfit: f64,
     /// Largest rank of a low-rank block.
     pub max_rank: usize,
     /// Mean rank of the low-rank blocks.
@@ -152,7 +175,7 @@ pub(super) struct Occlusion<'a> {
 }
 
 /// [`Occlusion::shade`].
-pub(super) type Shade<'a> = dyn Fn(&[usize], &[usize]) -> (Vec<f64>, Vec<f64>) + Sync + 'a;
+pub(super) type Shade<'a> = dyn Fn(&[usize], &[usize]) -> ClusterShares + Sync + 'a;
 
 /// A non-finite entry met during assembly: the patches of the pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -189,20 +212,45 @@ impl Hierarchical {
         progress: &ProgressBar,
     ) -> Result<(Hierarchical, PairStats), NonFiniteEntry> {
         let n = patches.len();
-        let (tree, spans) = partitioned(patches, settings, occlusion);
+        let (tree, mut spans, half) = partitioned(patches, settings, occlusion);
+        let seeing = seeing(occlusion, half);
         progress.set_length(spans.len() as u64);
         let order = &tree.order;
-        let built: Vec<(Block, PairStats, Outcome)> = spans
-            .into_par_iter()
-            .enumerate()
-            .map(|(index, span)| {
-                let out = fill(span, order, settings, scaled, occlusion, index as u64);
-                progress.inc(1);
-                out
-            })
-            .collect();
+        // Round after round: the shaded blocks whose shares misfit come back unread and are
+        // split once more, their children filled in the next round. Seeds count the blocks
+        // over the rounds, in order: the same scene gives the same operator.
+        let mut built: Vec<(Block, PairStats, Outcome)> = Vec::with_capacity(spans.len());
+        let mut shade_splits = 0usize;
+        while !spans.is_empty() {
+            let first = built.len() + shade_splits;
+            let round: Vec<Filled> = spans
+                .into_par_iter()
+                .enumerate()
+                .map(|(index, span)| {
+                    let seed = (first + index) as u64;
+                    let out = fill(span, order, settings, scaled, occlusion, seed);
+                    progress.inc(1);
+                    out
+                })
+                .collect();
+            spans = Vec::new();
+            for filled in round {
+                match filled {
+                    Filled::Block(block, stats, outcome) => built.push((block, stats, outcome)),
+                    Filled::Split(span) => {
+                        shade_splits += 1;
+                        spans.extend(tree::split_once(&tree, settings, Some(&seeing), &span));
+                    }
+                }
+            }
+            progress.inc_length(spans.len() as u64);
+        }
         let mut stats = PairStats::default();
-        let mut compression = Compression::default();
+        let mut compression = Compression {
+            shade_splits,
+            shade_misfit: settings.shade_misfit,
+            ..Compression::default()
+        };
         let mut blocks = Vec::with_capacity(built.len());
         let (mut rank_sum, mut low_rank_entries, mut read) = (0usize, 0usize, 0usize);
         for (block, block_stats, outcome) in built {
@@ -377,11 +425,13 @@ impl pulp::WithSimd for ScaledProduct<'_> {
 
 /// The cluster tree over `patches` and the partition of its `S` into blocks, seen through
 /// `occlusion` (module `tree`).
+/// The cluster tree of `patches`, its partition, and the tolerance of its plates and of the
+/// partition's sight ([`seeing`]), metres.
 fn partitioned(
     patches: &[Patch],
     settings: &Settings,
     occlusion: Option<&Occlusion>,
-) -> (ClusterTree, Vec<BlockSpan>) {
+) -> (ClusterTree, Vec<BlockSpan>, f64) {
     // A pair integral counts a corner as in front of the source beyond 1e-9 of the sum of
     // the two patches' radii. Half of 1e-9 of the smallest radius is the most a cluster's
     // planes may spread, the most its normals may turn a height across the scene, and the
@@ -394,15 +444,24 @@ fn partitioned(
             .map(smallest_radius)
             .fold(f64::INFINITY, f64::min);
     let tree = ClusterTree::new(patches, settings.leaf, half);
-    let nothing_between = |_: &[Vec3], _: Vec3, _: &[Vec3], _: Vec3| true;
-    let nothing_hides = |_: &[Vec3], _: &[Vec3]| false;
-    let seeing = Seeing {
+    let spans = tree::partition(&tree, settings, Some(&seeing(occlusion, half)));
+    (tree, spans, half)
+}
+
+/// What the partition sees between clusters: `occlusion`'s tests, or nothing in the way
+/// where it is `None`; corners within `half` metres of a plane count as in it.
+fn seeing<'a>(occlusion: Option<&'a Occlusion<'a>>, half: f64) -> Seeing<'a> {
+    fn nothing_between(_: &[Vec3], _: Vec3, _: &[Vec3], _: Vec3) -> bool {
+        true
+    }
+    fn nothing_hides(_: &[Vec3], _: &[Vec3]) -> bool {
+        false
+    }
+    Seeing {
         clear: occlusion.map_or(&nothing_between, |o| o.clear),
         hidden: occlusion.map_or(&nothing_hides, |o| o.hidden),
         dark_tolerance: half,
-    };
-    let spans = tree::partition(&tree, settings, Some(&seeing));
-    (tree, spans)
+    }
 }
 
 /// The distance from a patch's centroid to its farthest corner, metres (what the pair

@@ -6,7 +6,7 @@
 //! Layout: `n`, the node count, per node its range (start, end) and children (−1 for a
 //! leaf); the order (`n` patch indices); `√A` by patch (`n`); the block count, per block its
 //! row and column nodes, its kind (0 near, 1 far), its rank (−1 for a dense block) and its
-//! numbers (dense: `m × n` column-major; low rank: `U` then `V`); the nine figures of
+//! numbers (dense: `m × n` column-major; low rank: `U` then `V`); the figures of
 //! [`Compression`] in their declaration order.
 //!
 //! Reading checks every index and length against the others, so that values that do not
@@ -57,6 +57,8 @@ impl Hierarchical {
             index(c.guard_fallbacks),
             index(c.rank_fallbacks),
             index(c.shaded_blocks),
+            index(c.shade_splits),
+            c.shade_misfit,
             index(c.max_rank),
             c.mean_rank,
             c.low_rank_share,
@@ -142,6 +144,8 @@ impl Hierarchical {
             guard_fallbacks: r.index(block_count)?,
             rank_fallbacks: r.index(block_count)?,
             shaded_blocks: r.index(block_count)?,
+            shade_splits: r.index(block_count)?,
+            shade_misfit: r.number()?,
             max_rank: r.index(n)?,
             mean_rank: r.number()?,
             low_rank_share: r.number()?,

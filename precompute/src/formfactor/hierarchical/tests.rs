@@ -453,7 +453,8 @@ fn recompression_keeps_the_block() {
 /// approximation is of the visibility, not of the compression: its products and its row
 /// sums are held to [`SHADED_PRODUCT`] and [`SHADED_ROW_SUM`] of the dense ones, and the same
 /// blocks with no shading at all (every fraction 1) are at least twice as far off, so the
-/// fractions do their work.
+/// fractions do their work. With the blocks whose rays misfit their shares split
+/// ([`Settings::shade_misfit`] at its default), both errors fall by at least a third.
 #[test]
 fn shaded_blocks_approximate_the_exact_visibility() {
     let (patches, solids) = open_plan_in_small(0.6);
@@ -472,7 +473,12 @@ fn shaded_blocks_approximate_the_exact_visibility() {
     };
     let shaded = Settings {
         shade_mixed: true,
+        shade_misfit: f64::INFINITY,
         ..split.clone()
+    };
+    let refined = Settings {
+        shade_misfit: super::SHADE_MISFIT,
+        ..shaded.clone()
     };
     let exact =
         patch_form_factors_hierarchical(&patches, &occluders, &opts, &split).expect("finite");
@@ -530,6 +536,22 @@ fn shaded_blocks_approximate_the_exact_visibility() {
         "{product_unshaded:e} {product:e}"
     );
     assert!(rows_unshaded > 2.0 * rows, "{rows_unshaded:e} {rows:e}");
+    let refined =
+        patch_form_factors_hierarchical(&patches, &occluders, &opts, &refined).expect("finite");
+    let c = refined.matrix.compression();
+    let (product_refined, rows_refined) =
+        (product_error(&refined.matrix), row_error(&refined.matrix));
+    println!(
+        "split where the shares misfit ({} blocks): products {product_refined:.2e}, row sums \
+         {rows_refined:.2e}",
+        c.shade_splits
+    );
+    assert!(c.shade_splits > 0, "{c:?}");
+    assert!(
+        product_refined < 2.0 / 3.0 * product,
+        "{product_refined:e} {product:e}"
+    );
+    assert!(rows_refined < 2.0 / 3.0 * rows, "{rows_refined:e} {rows:e}");
 }
 
 /// Bound of [`shaded_blocks_approximate_the_exact_visibility`] on the products (relative to

@@ -381,6 +381,26 @@ pub(super) fn partition(
     blocks
 }
 
+/// The blocks that replace `span`, a well-separated pair of clusters split once more: its
+/// clusters' children paired and classified again ([`Settings::shade_misfit`]), down to leaves
+/// stored whole.
+pub(super) fn split_once(
+    tree: &ClusterTree,
+    settings: &Settings,
+    seeing: Option<&Seeing>,
+    span: &BlockSpan,
+) -> Vec<BlockSpan> {
+    let mut blocks = Vec::new();
+    let walk = Walk {
+        tree,
+        settings,
+        seeing: seeing.filter(|_| settings.split_by_sight),
+    };
+    let from = span.split_from.or(Some((span.row_node, span.col_node)));
+    walk.children(span.row_node, span.col_node, from, &mut blocks);
+    blocks
+}
+
 /// The partition's recursion and what it reads.
 struct Walk<'a> {
     tree: &'a ClusterTree,
@@ -436,10 +456,27 @@ impl Walk<'_> {
                 Some(Sight::Mixed) => split_from = split_from.or(Some((t, s))),
             }
         }
+        self.children(t, s, split_from, out);
+    }
+
+    /// Appends the blocks of the pair `(t, s)` of distinct clusters split once: the pairs of
+    /// their children (a leaf stands for itself), or the pair whole where both are leaves.
+    fn children(
+        &self,
+        t: usize,
+        s: usize,
+        split_from: Option<(usize, usize)>,
+        out: &mut Vec<BlockSpan>,
+    ) {
+        let (tn, sn) = (&self.tree.nodes[t], &self.tree.nodes[s]);
         match (tn.children, sn.children) {
             (None, None) => out.push(BlockSpan {
+                row_node: t,
+                col_node: s,
+                rows: tn.range.clone(),
+                cols: sn.range.clone(),
+                kind: Kind::Near,
                 split_from,
-                ..span(Kind::Near)
             }),
             (None, Some([c, d])) => {
                 self.visit(t, c, split_from, out);
