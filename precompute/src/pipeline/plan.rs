@@ -47,11 +47,12 @@ pub mod time_model {
     /// with either operator. For that floor (`s` = 0.71, dense) 42.7 s, against the 49 s its
     /// 97.6 CPU-seconds make on two cores.
     pub const OCCLUDED_PAIR_COST: f64 = 10.0;
-    /// Seconds per patch of the hierarchical form factors with `--visibility clusters` on the
-    /// open-plan floor, about half of whose facing pairs a blocker may cut: 48.0 s at 9888
-    /// patches, 83.9 s at 20 892, 224.0 s at 50 111 and 482 s at 102 934 (4.0–4.9 ms a
-    /// patch, growing as `n^0.99`; docs/performance.md, "Visibility between clusters").
-    pub const CLUSTERS_FORM_FACTOR_SECONDS_PER_PATCH: f64 = 4.8e-3;
+    /// Seconds per patch of the hierarchical form factors with `--visibility clusters` (and
+    /// its default `--cluster-misfit`) on the open-plan floor, about half of whose facing
+    /// pairs a blocker may cut: 51.5 s at 9888 patches, 75.9 s at 20 892, 195.5 s at 50 111
+    /// and 343.2 s at 102 934 (3.3–5.2 ms a patch; docs/performance.md, "Visibility between
+    /// clusters").
+    pub const CLUSTERS_FORM_FACTOR_SECONDS_PER_PATCH: f64 = 3.6e-3;
     /// Vectors the block Lanczos eigensolve applies the operator to per wanted mode
     /// (`radiosity::eigen`, a basis of six columns a mode): 784 for 32 modes of the
     /// open-plan floor at 5643 patches, 896 at 9888 and at 20 892 (the build report's

@@ -71,17 +71,15 @@ enum Command {
     Scale {
         /// Scene files.
         scenes: Vec<PathBuf>,
-        /// How the form-factor operator is stored.
-        #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
-        operator: OperatorChoice,
+        #[command(flatten)]
+        build: scale::Settings,
     },
     /// (internal) One row of `scale`, in this process.
     ScaleOne {
         /// Scene file.
         scene: PathBuf,
-        /// How the form-factor operator is stored.
-        #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
-        operator: OperatorChoice,
+        #[command(flatten)]
+        build: scale::Settings,
     },
     /// The room's response to the sky and to one sun direction through its windows, against
     /// the time to prepare the scene (scenes with a `[site]` and glazed windows).
@@ -156,11 +154,11 @@ fn main() -> Result<()> {
             machine();
             update::run(&scenes, skip_lu)?;
         }
-        Command::Scale { scenes, operator } => {
+        Command::Scale { scenes, build } => {
             machine();
-            scale::run(&scenes, operator)?;
+            scale::run(&scenes, &build)?;
         }
-        Command::ScaleOne { scene, operator } => scale::one(&scene, operator)?,
+        Command::ScaleOne { scene, build } => scale::one(&scene, &build)?,
         Command::Daylight { scenes } => {
             machine();
             daylight::run(&scenes)?;

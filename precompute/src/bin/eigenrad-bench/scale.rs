@@ -7,51 +7,94 @@ use std::time::Instant;
 
 use anyhow::{bail, Context as _, Result};
 use clap::ValueEnum as _;
-use eigenrad_precompute::formfactor::FormFactorOptions;
+use eigenrad_precompute::formfactor::{hierarchical, FormFactorOptions, Visibility};
 use eigenrad_precompute::pipeline::{self, BuildOptions};
 
 use eigenrad_precompute::formfactor::OperatorChoice;
 
-/// The table's columns; the build's wall time is [`TOTAL_COLUMN`].
-const HEADER: &str = "| patches | operator | meshing s | BVH s | form factors s | sensors & zones s | eigenbasis s | exact reference s | serialization s | verification s | total s | CPU s | peak MB |";
+/// The table's columns.
+const HEADER: &str = "| patches | operator | meshing s | BVH s | form factors s | sensors & zones s | light sources s | eigenbasis s | exact reference s | serialization s | verification s | total s | CPU s | peak MB |";
 
-/// Index of `total s` among the columns of [`HEADER`].
-const TOTAL_COLUMN: usize = 10;
+/// How each scene is built.
+#[derive(clap::Args, Clone, Debug)]
+pub(crate) struct Settings {
+    /// How the form-factor operator is stored.
+    #[arg(long, value_enum, default_value_t = OperatorChoice::Auto)]
+    operator: OperatorChoice,
+    /// Build with `--visibility clusters` (hierarchical operator).
+    #[arg(long)]
+    clusters: bool,
+    /// With --clusters: the `--cluster-misfit` of the builds.
+    #[arg(long, default_value_t = hierarchical::SHADE_MISFIT)]
+    cluster_misfit: f64,
+}
+
+/// The value of `column` (a name of [`HEADER`]) in a row of the table.
+fn cell(row: &str, column: &str) -> Option<f64> {
+    let at = HEADER
+        .trim_matches('|')
+        .split('|')
+        .position(|name| name.trim() == column)?;
+    row.trim()
+        .trim_matches('|')
+        .split('|')
+        .nth(at)
+        .and_then(|t| t.trim().parse::<f64>().ok())
+}
+
+/// The slope of `ln y` against `ln x` by least squares: the exponent `k` of `y ∝ x^k`.
+fn growth_exponent(points: &[(f64, f64)]) -> Option<f64> {
+    let logs: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    let n = logs.len() as f64;
+    let (mx, my) = logs
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (sxy, sxx) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
+    });
+    (logs.len() >= 2 && sxx > 0.0).then(|| sxy / sxx)
+}
 
 /// Prints the table's header, then runs `eigenrad-bench scale-one` on each scene in a child
 /// process, which prints its row. With more than one scene, each scene's total time is then
 /// given against the first's (e.g. the office with photometric luminaires against the
-/// Lambertian office, in one run).
-pub(crate) fn run(scenes: &[PathBuf], operator: OperatorChoice) -> Result<()> {
+/// Lambertian office, in one run), and the growth of the total time, the form factors, the
+/// eigenbasis and the peak memory with the patches as exponents fitted over all of them.
+pub(crate) fn run(scenes: &[PathBuf], settings: &Settings) -> Result<()> {
     println!("{HEADER}");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let exe = std::env::current_exe()?;
-    let mut totals = Vec::new();
+    let mut rows = Vec::new();
     for s in scenes {
-        let out = std::process::Command::new(&exe)
-            .arg("scale-one")
-            .arg(s)
-            .arg("--operator")
-            .arg(
-                operator
-                    .to_possible_value()
-                    .map_or("auto".into(), |v| v.get_name().to_owned()),
-            )
-            .stderr(std::process::Stdio::inherit())
-            .output()?;
+        let mut child = std::process::Command::new(&exe);
+        child.arg("scale-one").arg(s).arg("--operator").arg(
+            settings
+                .operator
+                .to_possible_value()
+                .map_or("auto".into(), |v| v.get_name().to_owned()),
+        );
+        if settings.clusters {
+            child
+                .arg("--clusters")
+                .arg("--cluster-misfit")
+                .arg(settings.cluster_misfit.to_string());
+        }
+        let out = child.stderr(std::process::Stdio::inherit()).output()?;
         if !out.status.success() {
             bail!("{}: scale-one failed", s.display());
         }
-        let row = String::from_utf8_lossy(&out.stdout);
+        let row = String::from_utf8_lossy(&out.stdout).into_owned();
         print!("{row}");
-        let total = row
-            .trim()
-            .trim_matches('|')
-            .split('|')
-            .nth(TOTAL_COLUMN)
-            .and_then(|t| t.trim().parse::<f64>().ok());
-        totals.push((s, total));
+        rows.push((s, row));
     }
+    let totals: Vec<(&PathBuf, Option<f64>)> = rows
+        .iter()
+        .map(|(s, row)| (*s, cell(row, "total s")))
+        .collect();
     if let [(first, Some(base)), rest @ ..] = totals.as_slice() {
         for (s, total) in rest {
             if let Some(t) = total {
@@ -63,6 +106,23 @@ pub(crate) fn run(scenes: &[PathBuf], operator: OperatorChoice) -> Result<()> {
                 );
             }
         }
+    }
+    let exponent = |column: &str| {
+        let points: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|(_, row)| Some((cell(row, "patches")?, cell(row, column)?)))
+            .collect();
+        growth_exponent(&points).map_or("–".to_owned(), |k| format!("n^{k:.2}"))
+    };
+    if rows.len() >= 2 {
+        println!(
+            "\nGrowth with the patches over the {} scenes (least squares of the logarithms): total {}, form factors {}, eigenbasis {}, peak memory {}",
+            rows.len(),
+            exponent("total s"),
+            exponent("form factors s"),
+            exponent("eigenbasis s"),
+            exponent("peak MB")
+        );
     }
     Ok(())
 }
@@ -97,7 +157,7 @@ pub(crate) fn cpu_seconds() -> f64 {
 }
 
 /// One row of the table: builds the scene at `path` with the default options in this process.
-pub(crate) fn one(path: &Path, operator: OperatorChoice) -> Result<()> {
+pub(crate) fn one(path: &Path, settings: &Settings) -> Result<()> {
     let start = Instant::now();
     let scene =
         eigenrad_precompute::scene::load(path).with_context(|| format!("{}", path.display()))?;
@@ -109,7 +169,13 @@ pub(crate) fn one(path: &Path, operator: OperatorChoice) -> Result<()> {
     drop(scene);
     let options = BuildOptions {
         form_factors: FormFactorOptions {
-            operator,
+            operator: settings.operator,
+            visibility: if settings.clusters {
+                Visibility::Clusters
+            } else {
+                Visibility::Exact
+            },
+            cluster_misfit: settings.cluster_misfit,
             ..FormFactorOptions::default()
         },
         ..BuildOptions::default()
@@ -125,13 +191,14 @@ pub(crate) fn one(path: &Path, operator: OperatorChoice) -> Result<()> {
             .sum::<f64>()
     };
     println!(
-        "| {} | {} | {:.2} | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {:.1} | {:.1} | {:.0} |",
+        "| {} | {} | {:.2} | {:.3} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.2} | {:.2} | {:.1} | {:.1} | {:.0} |",
         report.patches,
         report.operator.storage,
         stage("scene"),
         bvh_s,
         stage("form factors"),
         stage("sensors"),
+        stage("light sources"),
         stage("eigenbasis"),
         stage("exact"),
         stage("serialization"),
@@ -144,15 +211,46 @@ pub(crate) fn one(path: &Path, operator: OperatorChoice) -> Result<()> {
         (w.0.max(c.patch_error), w.1.max(c.worst_reading.error))
     });
     eprintln!(
-        "  {}: light sources {:.1} s; {} modes, row sums {:.4}..{:.4}, reciprocity {:.1e}, worst patch error {:.1e}, worst sensor/zone error {:.1e}",
+        "  {}: {} modes, row sums {:.4}..{:.4}, reciprocity {:.1e}, operator's measured row error {}, worst patch error {:.1e}, worst sensor/zone error {:.1e} (against the exact solves of the same operator)",
         path.display(),
-        stage("light sources"),
         report.modes,
         report.form_factors.row_sum_min,
         report.form_factors.row_sum_max,
         report.form_factors.reciprocity_mismatch,
+        report
+            .operator
+            .compression
+            .as_ref()
+            .map_or("–".to_owned(), |c| format!("{:.1e}", c.row_error)),
         worst.0,
         worst.1
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn growth_exponent_of_a_power_law() {
+        // y = 3 x^1.5 exactly: the fit gives 1.5 to rounding.
+        let points: Vec<(f64, f64)> = [1e4, 2e4, 5e4, 1e5]
+            .iter()
+            .map(|&x: &f64| (x, 3.0 * x.powf(1.5)))
+            .collect();
+        let k = growth_exponent(&points).expect("four points");
+        assert!((k - 1.5).abs() < 1e-12, "{k}");
+        assert_eq!(growth_exponent(&points[..1]), None);
+    }
+
+    #[test]
+    fn cells_by_column_name() {
+        let row = "| 9888 | hierarchical f32 | 0.01 | 0.002 | 40.5 | 3.6 | 1.0 | 2.7 | 2.0 | 0.22 | 0.67 | 51.2 | 95.1 | 211 |";
+        assert_eq!(cell(row, "patches"), Some(9888.0));
+        assert_eq!(cell(row, "form factors s"), Some(40.5));
+        assert_eq!(cell(row, "total s"), Some(51.2));
+        assert_eq!(cell(row, "peak MB"), Some(211.0));
+        assert_eq!(cell(row, "operator"), None);
+    }
 }
