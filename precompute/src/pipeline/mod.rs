@@ -30,9 +30,10 @@ mod grids;
 mod plan;
 mod report;
 mod stages;
+pub mod time_model;
 
 pub use grids::{scene_grids, GridPoint, GridReadout, PieceLayout};
-pub use plan::{time_model, BasisSize, Blocking, Plan, StageSeconds};
+pub use plan::{BasisSize, Blocking, Plan, StageSeconds};
 use report::{grid_report, verify};
 pub use report::{
     output_names, BuildReport, CaseAccuracy, DaylightReport, EigensolveReport, OperatorReport,

@@ -67,10 +67,10 @@ pub struct Settings {
     /// to close clusters, and the operator approximates the visibility of distant ones.
     /// Default false (exact).
     pub shade_mixed: bool,
-    /// A shaded block whose rays stray from its visible shares by more than this
-    /// ([`ClusterShares::misfit`]: the error they estimate in a patch's row over the other
-    /// cluster, as a share of its output, dimensionless) is split into its clusters' children
-    /// and classified again, down to leaves read whole with their shadows. Default
+    /// A shaded block whose rays stray from its visible shares by more than this (their
+    /// misfit: the error they estimate in a patch's row over the other cluster, as a share
+    /// of its output, dimensionless; docs/math.md) is split into its clusters' children and
+    /// classified again, down to leaves read whole with their shadows. Default
     /// [`SHADE_MISFIT`]; infinity keeps every shaded block whole.
     pub shade_misfit: f64,
 }
