@@ -419,14 +419,7 @@ impl Walk<'_> {
         out: &mut Vec<BlockSpan>,
     ) {
         let (tn, sn) = (&self.tree.nodes[t], &self.tree.nodes[s]);
-        let span = |kind| BlockSpan {
-            row_node: t,
-            col_node: s,
-            rows: tn.range.clone(),
-            cols: sn.range.clone(),
-            kind,
-            split_from,
-        };
+        let span = |kind| self.span(t, s, kind, split_from);
         if t == s {
             match tn.children {
                 None => out.push(span(Kind::Near)),
@@ -459,6 +452,24 @@ impl Walk<'_> {
         self.children(t, s, split_from, out);
     }
 
+    /// The block of clusters `t` (rows) and `s` (columns).
+    fn span(
+        &self,
+        t: usize,
+        s: usize,
+        kind: Kind,
+        split_from: Option<(usize, usize)>,
+    ) -> BlockSpan {
+        BlockSpan {
+            row_node: t,
+            col_node: s,
+            rows: self.tree.nodes[t].range.clone(),
+            cols: self.tree.nodes[s].range.clone(),
+            kind,
+            split_from,
+        }
+    }
+
     /// Appends the blocks of the pair `(t, s)` of distinct clusters split once: the pairs of
     /// their children (a leaf stands for itself), or the pair whole where both are leaves.
     fn children(
@@ -470,14 +481,7 @@ impl Walk<'_> {
     ) {
         let (tn, sn) = (&self.tree.nodes[t], &self.tree.nodes[s]);
         match (tn.children, sn.children) {
-            (None, None) => out.push(BlockSpan {
-                row_node: t,
-                col_node: s,
-                rows: tn.range.clone(),
-                cols: sn.range.clone(),
-                kind: Kind::Near,
-                split_from,
-            }),
+            (None, None) => out.push(self.span(t, s, Kind::Near, split_from)),
             (None, Some([c, d])) => {
                 self.visit(t, c, split_from, out);
                 self.visit(t, d, split_from, out);
