@@ -169,8 +169,9 @@ pub(super) struct Occlusion<'a> {
     /// ([`Settings::shade_mixed`]); it may read the pair one way and record nothing in `stats`.
     pub(super) unoccluded: &'a (dyn Fn(usize, usize, &mut PairStats) -> f64 + Sync),
     /// `shade(a, b)`: the share of the light between the patches `a` and those of `b`
-    /// (patch indices) that no blocker cuts, as factors `(r, c)` by patch, the pair `(i, j)`'s
-    /// share being `r_i c_j`; for [`Settings::shade_mixed`] (dimensionless).
+    /// (patch indices) that no blocker cuts, as factors `r` (rows) and `c` (columns) by
+    /// patch, the pair `(i, j)`'s share being `r_i c_j`, with the rays' misfit; for
+    /// [`Settings::shade_mixed`] (dimensionless).
     pub(super) shade: &'a Shade<'a>,
 }
 

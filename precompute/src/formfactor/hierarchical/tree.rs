@@ -369,14 +369,8 @@ pub(super) fn partition(
     seeing: Option<&Seeing>,
 ) -> Vec<BlockSpan> {
     let mut blocks = Vec::new();
-    let seeing = seeing.filter(|_| settings.split_by_sight);
     if !tree.nodes.is_empty() {
-        let walk = Walk {
-            tree,
-            settings,
-            seeing,
-        };
-        walk.visit(0, 0, None, &mut blocks);
+        Walk::new(tree, settings, seeing).visit(0, 0, None, &mut blocks);
     }
     blocks
 }
@@ -391,13 +385,8 @@ pub(super) fn split_once(
     span: &BlockSpan,
 ) -> Vec<BlockSpan> {
     let mut blocks = Vec::new();
-    let walk = Walk {
-        tree,
-        settings,
-        seeing: seeing.filter(|_| settings.split_by_sight),
-    };
     let from = span.split_from.or(Some((span.row_node, span.col_node)));
-    walk.children(span.row_node, span.col_node, from, &mut blocks);
+    Walk::new(tree, settings, seeing).children(span.row_node, span.col_node, from, &mut blocks);
     blocks
 }
 
@@ -408,7 +397,16 @@ struct Walk<'a> {
     seeing: Option<&'a Seeing<'a>>,
 }
 
-impl Walk<'_> {
+impl<'a> Walk<'a> {
+    /// A walk of `tree` that sees between clusters only with [`Settings::split_by_sight`].
+    fn new(tree: &'a ClusterTree, settings: &'a Settings, seeing: Option<&'a Seeing<'a>>) -> Self {
+        Walk {
+            tree,
+            settings,
+            seeing: seeing.filter(|_| settings.split_by_sight),
+        }
+    }
+
     /// Appends the blocks of the pair `(t, s)`; `split_from`: the mixed admissible pair it
     /// descends from.
     fn visit(
