@@ -110,6 +110,9 @@ pub enum Error {
     /// The thread that runs the runtime's evaluator could not start, or panicked.
     #[error("evaluator thread: {0}")]
     Thread(String),
+    /// A weather file (EPW or TMY3) is unreadable or invalid.
+    #[error(transparent)]
+    Weather(#[from] crate::weather::WeatherError),
     /// A building's port names an opening the room's scene meshed into no patch.
     #[error("port {port}: the scene has no patches of its opening {surface}")]
     PortOpening {

@@ -11,6 +11,7 @@
 //! | [`memory`] | what a build of n patches holds, the solvers' size thresholds, the machine's memory |
 //! | [`flash`] | a microcontroller's flash budget for a basis |
 //! | [`daylight`] | the sun's position from date, time and site; the site's and the room's frames (the sky models are the runtime's) |
+//! | [`weather`] | weather years: EPW and TMY3 files read into hourly irradiances, illuminances and temperatures, and their site |
 //! | [`scene`] | scene files, OBJ/MTL, meshing, the receivers every light path walks |
 //! | [`formfactor`] | the form-factor operator, form factors with occlusion, sensor and zone rows, their health |
 //! | [`cache`] | the patch form factors and sensor and zone rows kept on disk between runs, keyed by their content |
@@ -42,5 +43,6 @@ pub mod radiosity;
 pub mod scene;
 pub mod sources;
 pub mod verify;
+pub mod weather;
 
 pub use error::{Error, Result};
