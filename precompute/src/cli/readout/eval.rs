@@ -63,7 +63,7 @@ fn basis_sky(path: &Path, basis: &Basis<'_>, args: &DaylightArgs) -> Result<SkyR
     }
     let offset = (site.utc_offset_minutes * 60.0).round() as i32;
     let time = with_site_offset(&args.time, Some(offset));
-    sky(&SkyRequest {
+    Ok(sky(&SkyRequest {
         site: crate::daylight::sun::Site {
             latitude: f64::from(site.latitude),
             longitude: f64::from(site.longitude),
@@ -74,7 +74,7 @@ fn basis_sky(path: &Path, basis: &Basis<'_>, args: &DaylightArgs) -> Result<SkyR
         input: args.input,
         water: args.water,
         subdivision: patches.subdivision(),
-    })
+    })?)
 }
 
 /// The daylight of `args` from the basis, added to the channels' readout `electric`.
