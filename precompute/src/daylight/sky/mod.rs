@@ -5,6 +5,7 @@
 
 mod models;
 
+use chrono::{DateTime, FixedOffset};
 use eigenrad_runtime::sky::{patches::SkyPatches, RelativeSky};
 use serde::Serialize;
 
@@ -41,7 +42,24 @@ pub enum SkyInput {
     },
 }
 
-/// What a sky is asked (`eigenrad sky`, `solve --time`, `eval --time`).
+/// What a sky is asked apart from its time: the same for every moment of a loop over time
+/// ([`sky_at`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkyParams {
+    /// The site.
+    pub site: sun::Site,
+    /// Compass bearing of the scene's +y axis, degrees clockwise from true north.
+    pub north: f64,
+    /// The sky.
+    pub input: SkyInput,
+    /// Precipitable water, cm (Perez efficacies).
+    pub water: f64,
+    /// Reinhart subdivision MF (1: Tregenza's 145 patches).
+    pub subdivision: u8,
+}
+
+/// What a sky is asked (`eigenrad sky`, `solve --time`, `eval --time`): [`SkyParams`] and a
+/// time as text.
 #[derive(Clone, Debug)]
 pub struct SkyRequest {
     /// The site.
@@ -135,13 +153,36 @@ fn runtime_err(what: &str) -> impl Fn(eigenrad_runtime::Error) -> super::Dayligh
     move |e| err(what, e.to_string())
 }
 
-/// The sky of `request`: the sun's position at its time and the sky's figures and patches.
+impl SkyRequest {
+    /// The request without its time.
+    pub fn params(&self) -> SkyParams {
+        SkyParams {
+            site: self.site,
+            north: self.north,
+            input: self.input,
+            water: self.water,
+            subdivision: self.subdivision,
+        }
+    }
+}
+
+/// The sky of `request`: the sun's position at its time (parsed by [`sun::parse_time`]) and
+/// the sky's figures and patches, as [`sky_at`] gives them.
 pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
-    let site = request.site;
-    check_request(request)?;
-    let patches = SkyPatches::reinhart(request.subdivision).map_err(runtime_err("--mf"))?;
+    let params = request.params();
+    // The site and the flags are checked before the time, so that a bad flag is named first.
+    check_params(&params)?;
     let time = sun::parse_time(&request.time)?;
-    let position = sun::position(&site, &time, &sun::SunOptions::default())?;
+    sky_at(&params, &time)
+}
+
+/// The sky of `params` at `time`: the sun's position then and the sky's figures and patches.
+/// The report's time is `time` in RFC 3339 with its offset.
+pub fn sky_at(params: &SkyParams, time: &DateTime<FixedOffset>) -> Result<SkyReport> {
+    let site = params.site;
+    check_params(params)?;
+    let patches = SkyPatches::reinhart(params.subdivision).map_err(runtime_err("--mf"))?;
+    let position = sun::position(&site, time, &sun::SunOptions::default())?;
     if position.altitude < 0.0 {
         return Err(err(
             "--time",
@@ -152,13 +193,13 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
         ));
     }
     let site_sun = daylight::room_direction(position.altitude, position.azimuth, 0.0);
-    let sun_room = daylight::site_to_room(site_sun, request.north);
+    let sun_room = daylight::site_to_room(site_sun, params.north);
     let sin_alt = position.altitude.to_radians().sin();
     let sun_state = SunState {
         // The sky in the site's frame (the patches' frame), in f32 as the controller has it.
         direction: site_sun.map(|x| x as f32),
         zenith: (position.zenith.to_radians() as f32).min(core::f32::consts::FRAC_PI_2),
-        day_of_year: sun::day_of_year(&time),
+        day_of_year: sun::day_of_year(time),
     };
     let Built {
         model,
@@ -167,13 +208,13 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
         diffuse_lux,
         direct_lux,
         perez,
-    } = built_sky(request.input, &sun_state, request.water)?;
+    } = built_sky(params.input, &sun_state, params.water)?;
     let zenith_luminance = f64::from(relative.relative_luminance([0.0, 0.0, 1.0])) * scale;
-    let (patch_reports, patch_sum) = patch_reports(&patches, &*relative, scale, request.north);
+    let (patch_reports, patch_sum) = patch_reports(&patches, &*relative, scale, params.north);
     Ok(SkyReport {
         time: time.to_rfc3339(),
         site: [site.latitude, site.longitude, site.elevation],
-        north_deg: request.north,
+        north_deg: params.north,
         sun: position,
         sun_direction_room: sun_room,
         model,
@@ -193,22 +234,23 @@ pub fn sky(request: &SkyRequest) -> Result<SkyReport> {
     })
 }
 
-/// Checks the site, the room's bearing (`--north`) and the precipitable water (`--water`) of
-/// `request`.
-fn check_request(request: &SkyRequest) -> Result<()> {
-    sun::check_site(&request.site)?;
-    if !(request.north.is_finite() && request.north.abs() <= 360.0) {
+/// Checks the site, the room's bearing (`--north`), the precipitable water (`--water`) and
+/// the sky's patches (`--mf`) of `params`.
+fn check_params(params: &SkyParams) -> Result<()> {
+    sun::check_site(&params.site)?;
+    if !(params.north.is_finite() && params.north.abs() <= 360.0) {
         return Err(err(
             "--north",
-            format!("{} is not an angle from −360° to 360°", request.north),
+            format!("{} is not an angle from −360° to 360°", params.north),
         ));
     }
-    if !(request.water.is_finite() && (0.0..=10.0).contains(&request.water)) {
+    if !(params.water.is_finite() && (0.0..=10.0).contains(&params.water)) {
         return Err(err(
             "--water",
-            format!("{} cm is outside 0 cm to 10 cm", request.water),
+            format!("{} cm is outside 0 cm to 10 cm", params.water),
         ));
     }
+    SkyPatches::reinhart(params.subdivision).map_err(runtime_err("--mf"))?;
     Ok(())
 }
 
@@ -284,6 +326,20 @@ mod tests {
         assert!((omega - 2.0 * std::f64::consts::PI).abs() < 1e-4);
         assert!((r.patch_diffuse_horizontal_lux / 15_000.0 - 1.0).abs() < 0.01);
         assert!(r.perez.is_none());
+    }
+
+    /// A loop over time asks [`sky_at`] with the time as a value; [`sky`] parses its text and
+    /// gives the same report, to the byte of its JSON.
+    #[test]
+    fn sky_at_a_time_is_the_sky_of_its_text() {
+        let r = request(SkyInput::PerezIrradiance {
+            direct_normal: 650.0,
+            diffuse_horizontal: 140.0,
+        });
+        let time = sun::parse_time(&r.time).unwrap();
+        let a = serde_json::to_string(&sky(&r).unwrap()).unwrap();
+        let b = serde_json::to_string(&sky_at(&r.params(), &time).unwrap()).unwrap();
+        assert_eq!(a, b);
     }
 
     #[test]
