@@ -132,8 +132,8 @@ impl From<crate::atomic::WriteError> for Error {
     }
 }
 
-impl From<crate::daylight::sun::SunError> for Error {
-    fn from(e: crate::daylight::sun::SunError) -> Error {
+impl From<crate::daylight::DaylightError> for Error {
+    fn from(e: crate::daylight::DaylightError) -> Error {
         Error::Daylight {
             what: e.what,
             reason: e.reason,

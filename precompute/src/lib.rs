@@ -10,7 +10,7 @@
 //! | [`atomic`] | files written atomically: outputs and cache entries |
 //! | [`memory`] | what a build of n patches holds, the solvers' size thresholds, the machine's memory |
 //! | [`flash`] | a microcontroller's flash budget for a basis |
-//! | [`daylight`] | the sun's position from date, time and site; the site's and the room's frames (the sky models are the runtime's) |
+//! | [`daylight`] | the sun's position from date, time and site; a sky's illuminances and patch luminances for a site, a time and a weather state (the sky models are the runtime's); the site's and the room's frames |
 //! | [`weather`] | weather years: EPW and TMY3 files read into hourly irradiances, illuminances and temperatures, and their site |
 //! | [`scene`] | scene files, OBJ/MTL, meshing, the receivers every light path walks |
 //! | [`formfactor`] | the form-factor operator, form factors with occlusion, sensor and zone rows, their health |

@@ -3,6 +3,7 @@
 
 use eigenrad_runtime::{Basis, ChannelEvaluator, DaylightEvaluator, Evaluator, Figures, Sun};
 
+use crate::daylight::sky::SkyReport;
 use crate::error::{Error, Result};
 
 /// Patch capacity of the host evaluator.
@@ -119,6 +120,33 @@ pub struct SkyState {
     pub global_horizontal: f32,
     /// The sun, if it shines.
     pub sun: Option<Sun>,
+}
+
+impl SkyState {
+    /// The state of the sky `report` describes, as `eigenrad eval --time` hands it to the
+    /// runtime: every patch's luminance and the global horizontal illuminance in `f32`, and
+    /// the sun when its direct normal illuminance is above 0 (none below the horizon), its
+    /// direction from the report's altitude and azimuth through the runtime's `f32`
+    /// [`eigenrad_runtime::sky::direction`], as a controller builds it. Whatever else evaluates
+    /// a report's sky through the runtime takes this, so that it reads what `eval` reads.
+    pub fn of(report: &SkyReport) -> SkyState {
+        let sun = (report.direct_normal_lux > 0.0).then(|| Sun {
+            direction: eigenrad_runtime::sky::direction(
+                report.sun.altitude.to_radians() as f32,
+                report.sun.azimuth.to_radians() as f32,
+            ),
+            direct_normal: report.direct_normal_lux as f32,
+        });
+        SkyState {
+            sky_luminance: report
+                .patches
+                .iter()
+                .map(|p| p.luminance_cd_m2 as f32)
+                .collect(),
+            global_horizontal: report.global_horizontal_lux as f32,
+            sun,
+        }
+    }
 }
 
 /// The daylight of a basis for one sky state, through the runtime, and the figures of the
@@ -249,4 +277,56 @@ pub fn sun_readings(bytes: &[u8], suns: &[[f32; 3]]) -> Result<Vec<Vec<f64>>> {
             .join()
             .unwrap_or_else(|_| Err(Error::Thread("panicked".into())))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::daylight::sky::{sky, SkyInput, SkyRequest};
+    use crate::daylight::sun::Site;
+
+    fn report(direct_normal: f64) -> SkyReport {
+        sky(&SkyRequest {
+            site: Site {
+                latitude: 48.2,
+                longitude: 16.4,
+                elevation: 0.0,
+            },
+            time: "2026-03-20T10:00+01:00".to_owned(),
+            north: 30.0,
+            input: SkyInput::Cie {
+                sky_type: 12,
+                diffuse_horizontal: 12_000.0,
+                direct_normal,
+            },
+            water: 2.0,
+            subdivision: 1,
+        })
+        .unwrap()
+    }
+
+    /// The state of a report: its patches' luminances and its global horizontal illuminance
+    /// in `f32`, the sun in the site's frame (not the room's: `north` does not turn it) at
+    /// its direct normal illuminance, and no sun without direct light.
+    #[test]
+    fn sky_state_of_a_report() {
+        let r = report(60_000.0);
+        let state = SkyState::of(&r);
+        assert_eq!(state.sky_luminance.len(), r.patches.len());
+        for (l, p) in state.sky_luminance.iter().zip(&r.patches) {
+            assert_eq!(*l, p.luminance_cd_m2 as f32);
+        }
+        assert_eq!(state.global_horizontal, r.global_horizontal_lux as f32);
+        let sun = state.sun.expect("a sun");
+        assert_eq!(sun.direct_normal, 60_000.0);
+        let site = crate::daylight::room_direction(r.sun.altitude, r.sun.azimuth, 0.0);
+        for (a, b) in sun.direction.iter().zip(site) {
+            assert!(
+                (f64::from(*a) - b).abs() < 1e-6,
+                "{:?} against {site:?}",
+                sun.direction
+            );
+        }
+        assert!(SkyState::of(&report(0.0)).sun.is_none());
+    }
 }

@@ -1,5 +1,6 @@
-//! Daylight on the host: the sun's position from a date, time and site ([`sun`]), and the
-//! conversion from the site's frame to the room's. The sky models themselves are the
+//! Daylight on the host: the sun's position from a date, time and site ([`sun`]), a sky's
+//! patch luminances and illuminances for a site, a time and a weather state ([`sky`]), and
+//! the conversion from the site's frame to the room's. The sky models themselves are the
 //! runtime's ([`eigenrad_runtime::sky`]), so that the host and the controller compute the
 //! same skies.
 //!
@@ -11,7 +12,32 @@
 //! altitude h and azimuth A is `(sin(A − north) cos h, cos(A − north) cos h, sin h)` in the
 //! room's frame.
 
+pub mod sky;
 pub mod sun;
+
+/// A site, a time, the sun's position or a sky input that cannot be used: `what` names the
+/// input (a command-line flag or a quantity), `reason` says what is wrong. The commands
+/// report it as [`crate::Error::Daylight`].
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{what}: {reason}")]
+pub struct DaylightError {
+    /// The input: `--lat`, `--lon`, `--elevation`, `--time`, a sky flag (`--cie`,
+    /// `--dhi-lux`, …) or a quantity (`sun position`, `Perez sky`).
+    pub what: String,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+/// The result of this stage's functions.
+pub type Result<T> = std::result::Result<T, DaylightError>;
+
+/// A [`DaylightError`] about `what`.
+pub(crate) fn error(what: &str, reason: impl Into<String>) -> DaylightError {
+    DaylightError {
+        what: what.to_owned(),
+        reason: reason.into(),
+    }
+}
 
 /// Unit vector of altitude `altitude` and azimuth `azimuth` (degrees, azimuth clockwise from
 /// true north) in the room's frame, for a room whose +y axis has compass bearing `north`

@@ -11,20 +11,14 @@
 use chrono::{DateTime, Datelike, FixedOffset};
 use solar_positioning::{delta_t, Location, RefractionCorrection, SolarPositions};
 
-/// A site, a time or the sun's position that cannot be used: `what` names the input (a
-/// command-line flag or a quantity), `reason` says what is wrong. The commands report it as
-/// [`crate::Error::Daylight`].
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{what}: {reason}")]
-pub struct SunError {
-    /// The input: `--lat`, `--lon`, `--elevation`, `--time` or `sun position`.
-    pub what: String,
-    /// What is wrong with it.
-    pub reason: String,
-}
+use super::error as daylight_error;
+
+/// A site, a time or the sun's position that cannot be used: the daylight stage's error
+/// ([`super::DaylightError`]), by the name this module has always given it.
+pub type SunError = super::DaylightError;
 
 /// The result of this module's functions.
-pub type Result<T> = std::result::Result<T, SunError>;
+pub use super::Result;
 
 /// Where the room is.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,13 +59,6 @@ pub struct SunPosition {
     pub zenith: f64,
     /// Azimuth, degrees clockwise from true north (0 to 360).
     pub azimuth: f64,
-}
-
-fn daylight_error(what: &str, reason: impl Into<String>) -> SunError {
-    SunError {
-        what: what.to_owned(),
-        reason: reason.into(),
-    }
 }
 
 /// Checks a site: latitude within ±90°, longitude within ±180°, elevation finite (m) and

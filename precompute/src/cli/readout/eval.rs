@@ -63,7 +63,7 @@ fn basis_sky(path: &Path, basis: &Basis<'_>, args: &DaylightArgs) -> Result<SkyR
     }
     let offset = (site.utc_offset_minutes * 60.0).round() as i32;
     let time = with_site_offset(&args.time, Some(offset));
-    sky(&SkyRequest {
+    Ok(sky(&SkyRequest {
         site: crate::daylight::sun::Site {
             latitude: f64::from(site.latitude),
             longitude: f64::from(site.longitude),
@@ -74,7 +74,7 @@ fn basis_sky(path: &Path, basis: &Basis<'_>, args: &DaylightArgs) -> Result<SkyR
         input: args.input,
         water: args.water,
         subdivision: patches.subdivision(),
-    })
+    })?)
 }
 
 /// The daylight of `args` from the basis, added to the channels' readout `electric`.
@@ -88,22 +88,7 @@ fn add_basis_daylight(
     // The sky is computed at the stored site: its values are checked first.
     basis.check_daylight().map_err(basis_error(path))?;
     let report = basis_sky(path, &basis, args)?;
-    let sun = (report.direct_normal_lux > 0.0).then(|| eigenrad_runtime::Sun {
-        direction: eigenrad_runtime::sky::direction(
-            report.sun.altitude.to_radians() as f32,
-            report.sun.azimuth.to_radians() as f32,
-        ),
-        direct_normal: report.direct_normal_lux as f32,
-    });
-    let state = runtime_eval::SkyState {
-        sky_luminance: report
-            .patches
-            .iter()
-            .map(|p| p.luminance_cd_m2 as f32)
-            .collect(),
-        global_horizontal: report.global_horizontal_lux as f32,
-        sun,
-    };
+    let state = runtime_eval::SkyState::of(&report);
     let levels: Vec<f32> = electric.levels.iter().map(|l| l.level as f32).collect();
     let day = runtime_eval::evaluate_daylight(bytes, &state, &levels, electric.patches.is_some())?;
     let together = |name: &str, e: &[f64], d: f64| Reading {

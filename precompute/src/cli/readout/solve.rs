@@ -105,14 +105,14 @@ fn sky_of_moment(
         )
     })?;
     let time = with_site_offset(&args.time, site.utc_offset);
-    sky(&SkyRequest {
+    Ok(sky(&SkyRequest {
         site: site.location,
         time,
         north: site.north,
         input: args.input,
         water: args.water,
         subdivision: args.subdivision,
-    })
+    })?)
 }
 
 /// The daylight the sky of `report` sends through the windows, as one light

@@ -1,4 +1,4 @@
-//! The sky models of `eigenrad sky`, the runtime's (what a controller will compute): a CIE
+//! The sky models of a sky report, the runtime's (what a controller will compute): a CIE
 //! standard general sky scaled to a diffuse horizontal illuminance, or the Perez all-weather
 //! sky from irradiances or illuminances with its efficacies; every flag checked against what
 //! daylight can give.
@@ -6,7 +6,7 @@
 use eigenrad_runtime::sky::{cie::CieSky, efficacy, perez, RelativeSky};
 
 use super::{err, runtime_err, PerezReport, SkyInput};
-use crate::error::Result;
+use crate::daylight::Result;
 
 /// A sky built for the report: its relative luminance, the factor to cd/m², and its
 /// illuminances (lux).
