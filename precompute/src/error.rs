@@ -113,6 +113,18 @@ pub enum Error {
     /// A weather file (EPW or TMY3) is unreadable or invalid.
     #[error(transparent)]
     Weather(#[from] crate::weather::WeatherError),
+    /// A controller file (`eigenrad simulate --controller`) is invalid.
+    #[error("{}{}: {field}: {reason}", path.display(), line.map(|l| format!(":{l}")).unwrap_or_default())]
+    Controller {
+        /// The controller file.
+        path: PathBuf,
+        /// 1-based line, when known.
+        line: Option<usize>,
+        /// The field at fault (`target.zone`, `channel.power`, ...).
+        field: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// A building's port names an opening the room's scene meshed into no patch.
     #[error("port {port}: the scene has no patches of its opening {surface}")]
     PortOpening {

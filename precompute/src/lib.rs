@@ -20,6 +20,7 @@
 //! | `error` | the umbrella [`Error`]: every stage's error, for the stages below and the commands |
 //! | [`basis`] | a model and its modes as the runtime's tables |
 //! | [`accuracy`] | test cases, the error figures, the truncation sweep, evaluation through the runtime |
+//! | [`simulate`] | the controller's year: its loop through the runtime over a weather file, energy, targets, daylight metrics (`eigenrad simulate`) |
 //! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
 //! | [`building`] | rooms built apart (in parallel, or as shards on a cluster) and every controller's basis cut from them (`eigenrad building`, `eigenrad merge`) |
 //! | [`picture`] | false-colour pictures: a work plane's plan with isolux lines, the surfaces unfolded (`eigenrad render`) |
@@ -41,6 +42,7 @@ pub mod picture;
 pub mod pipeline;
 pub mod radiosity;
 pub mod scene;
+pub mod simulate;
 pub mod sources;
 pub mod verify;
 pub mod weather;

@@ -12,7 +12,8 @@ pub const MAX_PATCHES: usize = 1 << 17;
 pub const MAX_MODES: usize = 2048;
 /// Channel capacity of the host evaluators.
 pub const MAX_CHANNELS: usize = 1024;
-const MAX_OUTPUTS: usize = 1024;
+/// Sensor and zone capacity of the host evaluators.
+pub const MAX_OUTPUTS: usize = 1024;
 /// Sky-patch capacity of the host's daylight evaluator: Reinhart MF:8, the finest sky a
 /// basis may have (144 · 8² + 1).
 pub const MAX_SKY_PATCHES: usize = 9217;

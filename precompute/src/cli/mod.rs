@@ -17,6 +17,7 @@ mod levels;
 mod readout;
 mod render;
 mod report;
+mod simulate;
 mod sky;
 pub mod units;
 
@@ -37,6 +38,7 @@ pub use readout::{
 };
 pub use render::{render, Pictures, RenderRequest, SurfaceQuantity};
 pub use report::{format_build_report, verify_outputs, write_svgs};
+pub use simulate::{simulate, SimulateOutcome, SimulateRequest};
 pub use sky::{format_sky, sky, PatchReport, PerezReport, SkyInput, SkyReport, SkyRequest};
 pub use units::Units;
 

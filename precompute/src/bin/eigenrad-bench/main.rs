@@ -22,6 +22,8 @@
 //!   sizes whose form factors would take hours.
 //! - `eigenrad-bench daylight SCENE...`: the room's response to the sky (Tregenza, Reinhart
 //!   MF:2) and to one sun direction, against the time to prepare the scene.
+//! - `eigenrad-bench simulate BASIS... --weather FILE --controller FILE...`: a year of each
+//!   controller (`eigenrad simulate`) part by part: the weather read, the skies, the loop.
 //! - `eigenrad-bench building MANIFEST`: a building's rooms one after the other against all
 //!   at once (the parallel speed-up), and each controller's basis size.
 //!
@@ -36,6 +38,7 @@ mod rays;
 mod scale;
 mod shadows;
 mod sight;
+mod simulate;
 mod update;
 
 use std::path::PathBuf;
@@ -138,6 +141,18 @@ enum Command {
         /// Building manifest.
         manifest: PathBuf,
     },
+    /// A year of each controller (`eigenrad simulate`), part by part: the weather file read,
+    /// every hour's sun and sky, the controller's loop through the runtime (best of 3 runs).
+    Simulate {
+        /// Basis files (with daylight).
+        bases: Vec<PathBuf>,
+        /// Weather file (EPW or TMY3).
+        #[arg(long)]
+        weather: PathBuf,
+        /// Controller files, one per basis, in order.
+        #[arg(long = "controller", num_args = 1..)]
+        controllers: Vec<PathBuf>,
+    },
     /// Dense against partial eigensolve (p = 32) on each scene's form factors.
     Eigen {
         /// Scene files.
@@ -191,6 +206,14 @@ fn main() -> Result<()> {
         Command::Building { manifest } => {
             machine();
             building::run(&manifest)?;
+        }
+        Command::Simulate {
+            bases,
+            weather,
+            controllers,
+        } => {
+            machine();
+            simulate::run(&bases, &weather, &controllers)?;
         }
         Command::Eigen { scenes, dense_max } => {
             machine();

@@ -12,6 +12,7 @@ mod form_factors;
 mod groups;
 mod inspect;
 mod render;
+mod simulate;
 mod sky;
 mod solve;
 mod verify;
@@ -48,6 +49,7 @@ impl Cli {
             Command::FormFactors(args) => args.run(),
             Command::Inspect(args) => args.run(),
             Command::Sky(args) => args.run(),
+            Command::Simulate(args) => args.run(),
             Command::Verify(args) => args.run(),
         }
     }
@@ -83,6 +85,10 @@ enum Command {
     /// site, a time and a weather state: sun altitude and azimuth, efficacies, zenith
     /// luminance, horizontal illuminances, and with --json every sky patch's luminance.
     Sky(sky::SkyArgs),
+    /// The controller's year: its loop run through the runtime for every hour of a weather
+    /// file (EPW or TMY3), every strategy compared; energy, LENI, hours below target, the
+    /// grids' daylight metrics (sDA, ASE, UDI), an hourly CSV and an EnergyPlus schedule.
+    Simulate(simulate::SimulateArgs),
     /// Accuracy report: relative error against the exact solve as the mode count grows, for
     /// both formulations and the per-channel baseline, as markdown tables and SVG curves.
     Verify(verify::VerifyArgs),

@@ -1,0 +1,94 @@
+//! `eigenrad simulate`: the controller's year on a basis and a weather file.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+
+use super::groups::{help, JsonFlag};
+use super::{note_written, read};
+use crate::cli::{self, atomic, guard};
+use crate::simulate::SkySource;
+
+/// The arguments of `eigenrad simulate`.
+#[derive(Args)]
+#[command(mut_arg(
+    "json",
+    help("Print the summary as one JSON document (with every grid point's daylight autonomy)")
+))]
+pub(super) struct SimulateArgs {
+    /// Basis file (built from a scene with daylight: a `[site]` and glazed windows).
+    basis: PathBuf,
+    /// Weather file: EPW, or TMY3 CSV, with a record an hour.
+    #[arg(long, value_name = "FILE")]
+    weather: PathBuf,
+    /// Controller file (TOML): photosensor, targets, each channel's power, occupancy,
+    /// strategy (docs/simulate.md).
+    #[arg(long, value_name = "FILE")]
+    controller: PathBuf,
+    /// Write the hourly CSV of the controller's strategy to this file, atomically.
+    #[arg(long, value_name = "FILE")]
+    hourly: Option<PathBuf>,
+    /// Write the lighting fraction hour by hour, an EnergyPlus `Schedule:File` CSV, to this
+    /// file, atomically.
+    #[arg(long, value_name = "FILE")]
+    schedule: Option<PathBuf>,
+    /// The calendar year the records' dates fall in (weekdays, the sun); default: the first
+    /// record's.
+    #[arg(long)]
+    year: Option<i32>,
+    /// Which weather fields drive the sky: `illuminance` (when the file has them, else the
+    /// irradiances) or `irradiance` (through the Perez efficacies, as Radiance's gendaymtx).
+    #[arg(long, value_enum, default_value = "illuminance")]
+    sky_from: SkyFrom,
+    #[command(flatten)]
+    json: JsonFlag,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum SkyFrom {
+    Illuminance,
+    Irradiance,
+}
+
+impl SimulateArgs {
+    /// Runs the year and prints its summary; writes the hourly CSV and the schedule.
+    pub(super) fn run(self) -> anyhow::Result<()> {
+        let outputs: Vec<PathBuf> = [&self.hourly, &self.schedule]
+            .into_iter()
+            .flatten()
+            .cloned()
+            .collect();
+        for out in &outputs {
+            guard::check_file_output(out)?;
+        }
+        guard::check_outputs(
+            &outputs,
+            &[
+                self.basis.clone(),
+                self.weather.clone(),
+                self.controller.clone(),
+            ],
+        )?;
+        let bytes = read(&self.basis)?;
+        let request = cli::SimulateRequest {
+            basis: &self.basis,
+            weather: &self.weather,
+            controller: &self.controller,
+            year: self.year,
+            source: match self.sky_from {
+                SkyFrom::Illuminance => SkySource::Illuminance,
+                SkyFrom::Irradiance => SkySource::Irradiance,
+            },
+        };
+        let outcome = cli::simulate(&request, &bytes)?;
+        if let Some(path) = &self.hourly {
+            atomic::write(path, outcome.hourly_csv.as_bytes())?;
+            note_written(path);
+        }
+        if let Some(path) = &self.schedule {
+            atomic::write(path, outcome.schedule_csv.as_bytes())?;
+            note_written(path);
+        }
+        self.json.print(&outcome.summary, crate::simulate::format_summary)
+    }
+}

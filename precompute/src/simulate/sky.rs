@@ -1,0 +1,215 @@
+//! A weather file's records as the hours of the year: each record's instant, its occupancy,
+//! and its sky as the runtime's `set_sky` takes it, computed as `eigenrad eval --time T`
+//! computes a sky (the same function), so that an hour of the year and `eval` at that hour
+//! read the same daylight.
+//!
+//! **The instant.** EPW and TMY3 values are averages over the hour that ends at the
+//! record's hour, in the file's local standard time. The sky of a record is computed at the
+//! middle of that hour, `hour − 0.5`: the instant Radiance's `epw2wea` writes for the same
+//! record, so that the two programs put the sun in the same place.
+//!
+//! **The sky.** The Perez all-weather sky, from the record's direct normal and diffuse
+//! horizontal illuminances when the file gives them (the EPW's fields 18 and 19, TMY3's
+//! `DN illum` and `DH illum`), else from its irradiances through the Perez efficacies, with
+//! the precipitable water of the record's dew point (`w = exp(0.07 T_d − 0.075)` cm, Perez
+//! et al., "Modeling daylight availability and irradiance components from direct and global
+//! irradiance", Solar Energy 44(5), 1990, eq. 3), or [`WATER_DEFAULT_CM`] without one. A
+//! record with neither diffuse nor direct light is dark; with the sun below the horizon the
+//! sky keeps its diffuse light and drops the direct (`crate::daylight::sky`).
+
+use chrono::{Datelike, Duration, FixedOffset, NaiveDate, TimeZone};
+use eigenrad_runtime::Basis;
+
+use super::controller::Occupancy;
+use super::{Hour, HourSky};
+use crate::accuracy::runtime_eval::SkyState;
+use crate::daylight::sky::{sky_at, SkyInput, SkyParams};
+use crate::daylight::sun::Site;
+use crate::error::{Error, Result};
+use crate::weather::{Record, Weather};
+
+/// Precipitable water without a dew point, cm: the Perez efficacies' mid-latitude value,
+/// `eigenrad sky --water`'s default.
+pub const WATER_DEFAULT_CM: f64 = 2.0;
+
+/// Beyond this distance from the basis' site a weather file is another place's, km: the
+/// simulation warns.
+pub const WEATHER_DISTANCE_WARN_KM: f64 = 50.0;
+
+/// Which of a weather file's fields drive the sky.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SkySource {
+    /// The illuminances when the file gives them, else the irradiances.
+    Illuminance,
+    /// The irradiances through the Perez efficacies, always (as Radiance's `gendaymtx`).
+    Irradiance,
+}
+
+/// How records become hours.
+#[derive(Clone, Copy, Debug)]
+pub struct HourOptions {
+    /// The calendar year the records' dates are placed in (their weekdays and the sun's
+    /// position); `None`: the first record's.
+    pub year: Option<i32>,
+    /// Which fields drive the sky.
+    pub source: SkySource,
+}
+
+/// The hours of `weather` at the basis' site, occupied as `occupancy` says, with the
+/// warnings a user should read (the file's distance from the site, its time zone).
+pub fn hours(
+    weather: &Weather,
+    basis: &Basis<'_>,
+    occupancy: &Occupancy,
+    options: HourOptions,
+) -> Result<(Vec<Hour>, Vec<String>, String)> {
+    let site = basis.site().ok_or(eigenrad_runtime::Error::NoDaylight)?;
+    let patches = basis
+        .sky_patches()
+        .ok_or(eigenrad_runtime::Error::NoDaylight)?;
+    let mut warnings = Vec::new();
+    let location = &weather.location;
+    let distance = location.distance_km(f64::from(site.latitude), f64::from(site.longitude));
+    if distance > WEATHER_DISTANCE_WARN_KM {
+        warnings.push(format!(
+            "{} is for {} ({:.3}° N, {:.3}° E), {distance:.0} km from the basis' site ({:.3}° N, {:.3}° E): its weather is another place's",
+            weather.path.display(), location.name, location.latitude, location.longitude, site.latitude, site.longitude
+        ));
+    }
+    let site_offset_hours = f64::from(site.utc_offset_minutes) / 60.0;
+    if (site_offset_hours - location.utc_offset_hours).abs() > 1e-6 {
+        warnings.push(format!(
+            "{} keeps standard time at UTC{:+} and the basis' site at UTC{:+}: the hours are the weather file's",
+            weather.path.display(),
+            location.utc_offset_hours,
+            site_offset_hours
+        ));
+    }
+    let offset = FixedOffset::east_opt((location.utc_offset_hours * 3600.0).round() as i32)
+        .ok_or_else(|| weather_error(weather, None, "LOCATION time zone", "not an offset from UTC"))?;
+    let year = options
+        .year
+        .or_else(|| weather.records.first().map(|r| r.year))
+        .unwrap_or(2026);
+    let site_of = Site {
+        latitude: f64::from(site.latitude),
+        longitude: f64::from(site.longitude),
+        elevation: f64::from(site.elevation),
+    };
+    let with_illuminance = options.source == SkySource::Illuminance
+        && weather.illuminance.available()
+        && weather
+            .records
+            .iter()
+            .all(|r| r.direct_normal_lux.is_some() && r.diffuse_horizontal_lux.is_some());
+    let sky_from = match (with_illuminance, weather.illuminance) {
+        (true, crate::weather::Illuminance::HundredsOfLux { .. }) => {
+            "illuminances (direct normal, diffuse horizontal; written in hundreds of lux)"
+        }
+        (true, _) => "illuminances (direct normal, diffuse horizontal)",
+        (false, _) => {
+            "irradiances (direct normal, diffuse horizontal) through the Perez efficacies"
+        }
+    };
+    let dark = vec![0.0f32; patches.count()];
+    let mut out = Vec::with_capacity(weather.records.len());
+    for r in &weather.records {
+        let date = NaiveDate::from_ymd_opt(year, u32::from(r.month), u32::from(r.day))
+            .ok_or_else(|| {
+                weather_error(
+                    weather,
+                    Some(r.line),
+                    "date",
+                    &format!(
+                        "{:02}-{:02} is not a date of {year}: give a leap year with --year",
+                        r.month, r.day
+                    ),
+                )
+            })?;
+        let midnight = date.and_hms_opt(0, 0, 0).unwrap_or_default();
+        let local = midnight + Duration::seconds((r.mid_hour_minutes() * 60.0).round() as i64);
+        let time = offset
+            .from_local_datetime(&local)
+            .single()
+            .ok_or_else(|| weather_error(weather, Some(r.line), "hour", "not a local time"))?;
+        let weekday = date.weekday().num_days_from_monday() as usize;
+        let hour = u32::from(r.hour);
+        let input = sky_input(r, with_illuminance);
+        let sky = match input {
+            None => {
+                let position = crate::daylight::sun::position(
+                    &site_of,
+                    &time,
+                    &crate::daylight::sun::SunOptions::default(),
+                )?;
+                HourSky {
+                    luminance: dark.clone(),
+                    altitude_deg: position.altitude,
+                    azimuth_deg: position.azimuth,
+                    ..HourSky::default()
+                }
+            }
+            Some(input) => {
+                let water = r
+                    .dew_point
+                    .map_or(WATER_DEFAULT_CM, |t| (0.07 * t - 0.075).exp().clamp(0.0, 10.0));
+                let params = SkyParams {
+                    site: site_of,
+                    north: f64::from(site.north),
+                    input,
+                    water,
+                    subdivision: patches.subdivision(),
+                };
+                let report = sky_at(&params, &time)
+                    .map_err(|e| weather_error(weather, Some(r.line), "sky", &e.to_string()))?;
+                let state = SkyState::of(&report);
+                HourSky {
+                    luminance: state.sky_luminance,
+                    global_horizontal: state.global_horizontal,
+                    sun: state.sun,
+                    altitude_deg: report.sun.altitude,
+                    azimuth_deg: report.sun.azimuth,
+                    diffuse_horizontal_lux: report.diffuse_horizontal_lux,
+                    direct_normal_lux: report.direct_normal_lux,
+                }
+            }
+        };
+        out.push(Hour {
+            time,
+            line: r.line,
+            hour_ending: hour,
+            weekday,
+            occupied: occupancy.occupied(weekday, hour),
+            analysis: hour > 8 && hour <= 18,
+            sky,
+        });
+    }
+    Ok((out, warnings, sky_from.to_owned()))
+}
+
+/// The sky input of record `r`: its illuminances or its irradiances; `None` when it holds
+/// no daylight (night).
+fn sky_input(r: &Record, with_illuminance: bool) -> Option<SkyInput> {
+    if with_illuminance {
+        let (dni, dhi) = (r.direct_normal_lux?, r.diffuse_horizontal_lux?);
+        (dhi > 0.0 || dni > 0.0).then_some(SkyInput::PerezIlluminance {
+            direct_normal: dni,
+            diffuse_horizontal: dhi,
+        })
+    } else {
+        let (dni, dhi) = (r.direct_normal, r.diffuse_horizontal);
+        (dhi > 0.0 || dni > 0.0).then_some(SkyInput::PerezIrradiance {
+            direct_normal: dni,
+            diffuse_horizontal: dhi,
+        })
+    }
+}
+
+fn weather_error(weather: &Weather, line: Option<usize>, field: &str, reason: &str) -> Error {
+    Error::Weather(crate::weather::WeatherError {
+        path: weather.path.clone(),
+        line,
+        field: Some(field.to_owned()),
+        reason: reason.to_owned(),
+    })
+}
