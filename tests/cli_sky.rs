@@ -135,6 +135,24 @@ fn before_sunrise_and_at_night() {
     assert_eq!(v["global_horizontal_lux"], 0.0);
 }
 
+/// The overcast types (1 to 5, and the traditional overcast sky) take no sun unless given
+/// one; the sunny types (6 to 15) take `--dni-lux 0` for a sky without its sun.
+#[test]
+fn overcast_skies_need_no_sun_and_sunny_ones_may_have_none() {
+    for extra in [
+        &["--cie", "overcast", "--dhi-lux", "100"][..],
+        &["--cie", "5", "--dhi-lux", "100"][..],
+        &["--cie", "15", "--dhi-lux", "100", "--dni-lux", "0"][..],
+    ] {
+        let mut args = extra.to_vec();
+        args.push("--json");
+        let o = sky(&args);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+        assert_eq!(v["direct_normal_lux"], 0.0, "{extra:?}");
+    }
+}
+
 #[test]
 fn bad_flags_are_errors_naming_them() {
     for (extra, flag) in [
@@ -142,6 +160,9 @@ fn bad_flags_are_errors_naming_them() {
         (vec!["--dni", "-700", "--dhi", "100"], "--dni"),
         (vec!["--cie", "16", "--dhi-lux", "100"], "--cie"),
         (vec!["--cie", "3"], "--dhi-lux"),
+        // A sky with a sun (types 6 to 15) needs its direct light.
+        (vec!["--cie", "6", "--dhi-lux", "100"], "--dni-lux"),
+        (vec!["--cie", "12", "--dhi-lux", "10000"], "--dni-lux"),
         (vec!["--cie", "3", "--dhi-lux", "100", "--mf", "0"], "--mf"),
         (
             vec!["--cie", "3", "--dhi-lux", "100", "--north", "nan"],
@@ -192,6 +213,8 @@ fn closed_pipe_ends_quietly() {
         "12",
         "--dhi-lux",
         "10000",
+        "--dni-lux",
+        "60000",
         "--mf",
         "8",
         "--json",

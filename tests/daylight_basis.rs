@@ -216,6 +216,8 @@ fn eval_equals_solve_without_the_sun() {
 /// `eval --time` reads the clear sky's light alone, as `solve --time` does: every sensor,
 /// zone and grid point to `f32` ([`F32_SUMS`]), daylight above 0 everywhere, both with the
 /// sun below the horizon and no direct light (the 60 000 lux given dropped, with a note).
+/// The command refuses that clear sky (type 12) at noon without `--dni-lux`, naming it: its
+/// sun would be left out.
 #[test]
 fn eval_equals_solve_before_sunrise() {
     let (_dir, scene) = scene_file("dawn");
@@ -240,6 +242,22 @@ fn eval_equals_solve_before_sunrise() {
         assert_eq!(d.direct_normal_lux, 0.0);
         assert_eq!(d.notes.len(), 1, "{:?}", d.notes);
     }
+    let b = basis.to_str().unwrap();
+    let noon = [
+        "eval",
+        b,
+        "--time",
+        "2026-06-21T12:00",
+        "--cie",
+        "12",
+        "--dhi-lux",
+        "10000",
+    ];
+    let o = run(&noon);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--dni-lux"), "{}", stderr(&o));
+    let o = run(&[&noon[..], &["--dni-lux", "0"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
     let (e, s) = (values(&eval), values(&solve));
     assert_eq!(e.len(), s.len());
     for (a, b) in e.iter().zip(&s) {

@@ -37,8 +37,9 @@ use models::{built_sky, Built, SunState};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SkyInput {
     /// A CIE standard general sky type (1 to 15; 0 for the traditional overcast sky) scaled
-    /// to a diffuse horizontal illuminance (lux), with an optional direct normal
-    /// illuminance (lux) for the sun.
+    /// to a diffuse horizontal illuminance (lux), with a direct normal illuminance (lux) for
+    /// the sun. The commands take the sun of types 6 to 15 (partly cloudy and clear) only
+    /// as given (`--dni-lux`), that of the overcast types as 0 unless given.
     Cie {
         /// The type, 1 to 15, or 0 for the traditional CIE overcast sky.
         sky_type: u8,
