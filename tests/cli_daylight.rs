@@ -339,7 +339,7 @@ fn json_of(args: &[&str]) -> Value {
     serde_json::from_slice(&o.stdout).expect("JSON")
 }
 
-/// Before sunrise (Vienna, 21 June 04:30+02:00: the sun 3.4° below the horizon) a clear sky
+/// Before sunrise (Vienna, 21 June 04:30+02:00: the sun 3.9° below the horizon) a clear sky
 /// of 3000 lux diffuse lights the room through its window and `solve --time` says so (status
 /// 0): daylight above 0 at every sensor and zone, the sun below the horizon in the readout,
 /// no direct light, the 500 lux direct normal given dropped with a note. At midnight a

@@ -88,7 +88,7 @@ fn cie_sky_with_the_sun() {
     assert!((global - 15_000.0 - direct).abs() < 1e-6 * global);
 }
 
-/// Before sunrise (04:30+02:00 on 21 June in Vienna, the sun 3.4° below the horizon) the
+/// Before sunrise (04:30+02:00 on 21 June in Vienna, the sun 3.9° below the horizon) the
 /// Perez sky of 20 W/m² diffuse is its diffuse light alone: status 0, the sun below the
 /// horizon in the JSON, no direct light (the 50 W/m² given dropped, a note saying so), the
 /// patches lit; the text says so too. At midnight a diffuse of 0 is a dark sky.

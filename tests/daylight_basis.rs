@@ -212,7 +212,7 @@ fn eval_equals_solve_without_the_sun() {
     }
 }
 
-/// Before sunrise (21 June 03:30 at the site's +01:00, the sun 3.4° below the horizon)
+/// Before sunrise (21 June 03:30 at the site's +01:00, the sun 3.9° below the horizon)
 /// `eval --time` reads the clear sky's light alone, as `solve --time` does: every sensor,
 /// zone and grid point to `f32` ([`F32_SUMS`]), daylight above 0 everywhere, both with the
 /// sun below the horizon and no direct light (the 60 000 lux given dropped, with a note).

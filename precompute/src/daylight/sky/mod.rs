@@ -461,7 +461,7 @@ mod tests {
         assert!(sky(&r).unwrap_err().to_string().contains("--time"));
     }
 
-    /// Vienna on 21 June 2026 at 04:30+02:00, before sunrise: the sun about 3.4° below the
+    /// Vienna on 21 June 2026 at 04:30+02:00, before sunrise: the sun 3.9° below the
     /// horizon, north-east.
     const DAWN: &str = "2026-06-21T04:30+02:00";
 
