@@ -1,7 +1,8 @@
 //! `eigenrad solve --time ... <sky>` end to end: daylight and electric light reported apart
 //! and together, each exactly what its own solve gives; daylight linear in the sky's
 //! illuminance; an overcast sky's daylight independent of the time; the site's UTC offset for
-//! times given without one; every bad combination an error naming the flag or the file.
+//! times given without one; dawn and night the sky's light or none, never an error; every bad
+//! combination an error naming the flag or the file.
 //!
 //! The readings are taken in-process through `cli::solve_with_daylight` (the code behind
 //! `eigenrad solve`, optimised as tests are) and turned into the JSON document `--json`
@@ -270,7 +271,8 @@ fn text_units_and_csv_carry_the_parts() {
 }
 
 /// Every bad combination is an error (status 1, never a panic) naming what is wrong: no
-/// `[site]`, a time without a sky, a sky without a time, the sun below the horizon.
+/// `[site]`, a time without a sky, a sky without a time. (The sun below the horizon is not
+/// one: [`dawn_and_night_are_the_skys_light_or_none`].)
 #[test]
 fn bad_daylight_requests_are_errors() {
     let (_dir, path) = scene_file("errors", VIENNA);
@@ -297,19 +299,6 @@ fn bad_daylight_requests_are_errors() {
             "needs --time",
         ),
         (
-            vec![
-                "solve",
-                p,
-                "--time",
-                "2026-12-21T23:00+01:00",
-                "--cie",
-                "overcast",
-                "--dhi-lux",
-                "1e4",
-            ],
-            "below the horizon",
-        ),
-        (
             vec!["solve", p, "--time", NOON, "--cie", "overcast"],
             "--dhi-lux",
         ),
@@ -329,5 +318,83 @@ fn bad_daylight_requests_are_errors() {
         );
         assert!(!o.status.success(), "{args:?}");
         assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
+    }
+}
+
+/// `(name, daylight)` of every sensor and zone in the JSON of `solve --json` or
+/// `eval --json` with a sky.
+fn daylight_parts(v: &Value) -> Vec<(String, f64)> {
+    readings(v)
+        .into_iter()
+        .map(|(name, _, day, _)| (name, day.expect("a daylight part")))
+        .collect()
+}
+
+/// The JSON `eigenrad ARGS --json` prints, after checking that it ran (status 0).
+fn json_of(args: &[&str]) -> Value {
+    let mut args = args.to_vec();
+    args.push("--json");
+    let o = run(&args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    serde_json::from_slice(&o.stdout).expect("JSON")
+}
+
+/// Before sunrise (Vienna, 21 June 04:30+02:00: the sun 3.9° below the horizon) a clear sky
+/// of 3000 lux diffuse lights the room through its window and `solve --time` says so (status
+/// 0): daylight above 0 at every sensor and zone, the sun below the horizon in the readout,
+/// no direct light, the 500 lux direct normal given dropped with a note. At midnight a
+/// diffuse of 0 is a dark sky (the Perez sky of `--dni 0 --dhi 0`, and the CIE sky of
+/// `--dhi-lux 0 --dni-lux 0`): every daylight part 0, status 0. The text readout says the
+/// sun is below the horizon and carries the note.
+#[test]
+fn dawn_and_night_are_the_skys_light_or_none() {
+    let (_dir, path) = scene_file("dawn", VIENNA);
+    let p = path.to_str().unwrap();
+    let dawn = [
+        "solve",
+        p,
+        "--no-cache",
+        "--time",
+        "2026-06-21T04:30+02:00",
+        "--cie",
+        "12",
+        "--dhi-lux",
+        "3000",
+        "--dni-lux",
+        "500",
+    ];
+    let v = json_of(&dawn);
+    let d = &v["daylight"];
+    assert!(d["sun"]["altitude"].as_f64().unwrap() < 0.0, "{d}");
+    assert_eq!(d["sun_below_horizon"], true);
+    assert_eq!(d["direct_normal_lux"], 0.0);
+    assert_eq!(d["global_horizontal_lux"], 3000.0);
+    let notes = d["notes"].as_array().unwrap();
+    assert!(
+        notes.len() == 1 && notes[0].as_str().unwrap().contains("500 lux"),
+        "{notes:?}"
+    );
+    for (name, day) in daylight_parts(&v) {
+        assert!(day > 0.0, "{name}: daylight {day} before sunrise");
+    }
+    let text = run(&dawn);
+    let out = String::from_utf8_lossy(&text.stdout);
+    assert!(text.status.success(), "{}", stderr(&text));
+    assert!(
+        out.contains("the sun is below the horizon") && out.contains("note: "),
+        "{out}"
+    );
+
+    for sky in [
+        &["--dni", "0", "--dhi", "0"][..],
+        &["--cie", "12", "--dhi-lux", "0", "--dni-lux", "0"][..],
+    ] {
+        let mut night = vec!["solve", p, "--no-cache", "--time", "2026-06-22T00:00+02:00"];
+        night.extend_from_slice(sky);
+        let v = json_of(&night);
+        assert_eq!(v["daylight"]["sun_below_horizon"], true);
+        for (name, day) in daylight_parts(&v) {
+            assert_eq!(day, 0.0, "{sky:?} {name}: daylight at midnight");
+        }
     }
 }

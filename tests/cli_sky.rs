@@ -1,5 +1,5 @@
-//! `eigenrad sky` end to end: its JSON against closed forms, every bad flag an error naming
-//! it (never a panic), a closed pipe ending quietly.
+//! `eigenrad sky` end to end: its JSON against closed forms, the sky before sunrise and at
+//! night, every bad flag an error naming it (never a panic), a closed pipe ending quietly.
 
 mod common;
 
@@ -88,6 +88,71 @@ fn cie_sky_with_the_sun() {
     assert!((global - 15_000.0 - direct).abs() < 1e-6 * global);
 }
 
+/// Before sunrise (04:30+02:00 on 21 June in Vienna, the sun 3.9° below the horizon) the
+/// Perez sky of 20 W/m² diffuse is its diffuse light alone: status 0, the sun below the
+/// horizon in the JSON, no direct light (the 50 W/m² given dropped, a note saying so), the
+/// patches lit; the text says so too. At midnight a diffuse of 0 is a dark sky.
+#[test]
+fn before_sunrise_and_at_night() {
+    let mut args: Vec<&str> = VIENNA.to_vec();
+    args.extend_from_slice(&["2026-06-21T04:30+02:00", "--dni", "50", "--dhi", "20"]);
+    let text = run(&args);
+    assert!(text.status.success(), "{}", stderr(&text));
+    let out = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        out.contains("sun below the horizon") && out.contains("50 W/m²"),
+        "{out}"
+    );
+    args.push("--json");
+    let o = run(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    assert!(v["sun"]["altitude"].as_f64().unwrap() < 0.0);
+    assert_eq!(v["sun_below_horizon"], true);
+    assert_eq!(v["direct_normal_lux"], 0.0);
+    assert_eq!(v["perez"]["direct_normal_w_m2"], 0.0);
+    assert_eq!(v["notes"].as_array().unwrap().len(), 1);
+    let diffuse = v["diffuse_horizontal_lux"].as_f64().unwrap();
+    assert!(diffuse > 0.0);
+    assert_eq!(v["global_horizontal_lux"].as_f64().unwrap(), diffuse);
+    let patches = v["patches"].as_array().unwrap();
+    assert!(patches
+        .iter()
+        .all(|p| p["luminance_cd_m2"].as_f64().unwrap() > 0.0));
+
+    let mut args: Vec<&str> = VIENNA.to_vec();
+    args.extend_from_slice(&["2026-06-22T00:00+02:00", "--dni-lux", "0", "--dhi-lux", "0"]);
+    args.push("--json");
+    let o = run(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    assert_eq!(v["sun_below_horizon"], true);
+    assert!(v["patches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|p| p["luminance_cd_m2"].as_f64().unwrap() == 0.0));
+    assert_eq!(v["global_horizontal_lux"], 0.0);
+}
+
+/// The overcast types (1 to 5, and the traditional overcast sky) take no sun unless given
+/// one; the sunny types (6 to 15) take `--dni-lux 0` for a sky without its sun.
+#[test]
+fn overcast_skies_need_no_sun_and_sunny_ones_may_have_none() {
+    for extra in [
+        &["--cie", "overcast", "--dhi-lux", "100"][..],
+        &["--cie", "5", "--dhi-lux", "100"][..],
+        &["--cie", "15", "--dhi-lux", "100", "--dni-lux", "0"][..],
+    ] {
+        let mut args = extra.to_vec();
+        args.push("--json");
+        let o = sky(&args);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+        assert_eq!(v["direct_normal_lux"], 0.0, "{extra:?}");
+    }
+}
+
 #[test]
 fn bad_flags_are_errors_naming_them() {
     for (extra, flag) in [
@@ -95,6 +160,9 @@ fn bad_flags_are_errors_naming_them() {
         (vec!["--dni", "-700", "--dhi", "100"], "--dni"),
         (vec!["--cie", "16", "--dhi-lux", "100"], "--cie"),
         (vec!["--cie", "3"], "--dhi-lux"),
+        // A sky with a sun (types 6 to 15) needs its direct light.
+        (vec!["--cie", "6", "--dhi-lux", "100"], "--dni-lux"),
+        (vec!["--cie", "12", "--dhi-lux", "10000"], "--dni-lux"),
         (vec!["--cie", "3", "--dhi-lux", "100", "--mf", "0"], "--mf"),
         (
             vec!["--cie", "3", "--dhi-lux", "100", "--north", "nan"],
@@ -145,6 +213,8 @@ fn closed_pipe_ends_quietly() {
         "12",
         "--dhi-lux",
         "10000",
+        "--dni-lux",
+        "60000",
         "--mf",
         "8",
         "--json",

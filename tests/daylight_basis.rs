@@ -3,7 +3,7 @@
 //! --time`), which computes its daylight afresh and solves it in one piece:
 //!
 //! - without the sun, every sensor, zone and grid point is exact per sky patch: `eval` equals
-//!   `solve` to `f32` ([`F32_SUMS`]);
+//!   `solve` to `f32` ([`F32_SUMS`]), before sunrise too (the sky's light alone);
 //! - with the sun at a node of the basis' sun grid, the runtime equals the exact solve of
 //!   that sun (the same tolerance); between nodes the build report says how far it reads;
 //! - with as many modes as patches, the daylight's patch exitance through the modes equals
@@ -208,6 +208,67 @@ fn eval_equals_solve_without_the_sun() {
             "{}: {factor} vs {}",
             g.name,
             x.2 / 12_000.0
+        );
+    }
+}
+
+/// Before sunrise (21 June 03:30 at the site's +01:00, the sun 3.9° below the horizon)
+/// `eval --time` reads the clear sky's light alone, as `solve --time` does: every sensor,
+/// zone and grid point to `f32` ([`F32_SUMS`]), daylight above 0 everywhere, both with the
+/// sun below the horizon and no direct light (the 60 000 lux given dropped, with a note).
+/// The command refuses that clear sky (type 12) at noon without `--dni-lux`, naming it: its
+/// sun would be left out.
+#[test]
+fn eval_equals_solve_before_sunrise() {
+    let (_dir, scene) = scene_file("dawn");
+    let (basis, bytes) = build(&scene, ModeSelection::Count(8));
+    let levels = LevelArgs {
+        levels: vec!["lamp=0".into()],
+        arcs: Vec::new(),
+    };
+    let args = sky(
+        "2026-06-21T03:30",
+        SkyInput::Cie {
+            sky_type: 12,
+            diffuse_horizontal: 3_000.0,
+            direct_normal: 60_000.0,
+        },
+    );
+    let eval = cli::eval_with_daylight(&basis, &bytes, &levels, Some(&args), false).unwrap();
+    let solve = cli::solve_with_daylight(&scene, &levels, Some(&args), false, &no_cache()).unwrap();
+    for readout in [&eval, &solve] {
+        let d = readout.daylight.as_ref().expect("daylight");
+        assert!(d.sun_below_horizon && d.sun.altitude < 0.0, "{d:?}");
+        assert_eq!(d.direct_normal_lux, 0.0);
+        assert_eq!(d.notes.len(), 1, "{:?}", d.notes);
+    }
+    let b = basis.to_str().unwrap();
+    let noon = [
+        "eval",
+        b,
+        "--time",
+        "2026-06-21T12:00",
+        "--cie",
+        "12",
+        "--dhi-lux",
+        "10000",
+    ];
+    let o = run(&noon);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--dni-lux"), "{}", stderr(&o));
+    let o = run(&[&noon[..], &["--dni-lux", "0"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (e, s) = (values(&eval), values(&solve));
+    assert_eq!(e.len(), s.len());
+    for (a, b) in e.iter().zip(&s) {
+        assert_eq!(a.0, b.0);
+        assert!(b.2 > 0.0, "{}: daylight before sunrise", a.0);
+        assert!(
+            close(a.2, b.2, F32_SUMS),
+            "{}: daylight {} vs {}",
+            a.0,
+            a.2,
+            b.2
         );
     }
 }

@@ -279,9 +279,14 @@ fn notes(request: &RenderRequest<'_>, readout: &Readout) -> Vec<String> {
     };
     let mut notes = vec![format!("from {source}"), levels];
     if let Some(d) = &readout.daylight {
+        let sun = if d.sun_below_horizon {
+            format!("sun {:.1}° below the horizon", -d.sun.altitude)
+        } else {
+            format!("sun {:.1}° up", d.sun.altitude)
+        };
         notes.push(format!(
-            "daylight: {} at {}, sun {:.1}° up; diffuse horizontal {:.0} lux, direct normal {:.0} lux",
-            d.model, d.time, d.sun.altitude, d.diffuse_horizontal_lux, d.direct_normal_lux
+            "daylight: {} at {}, {sun}; diffuse horizontal {:.0} lux, direct normal {:.0} lux",
+            d.model, d.time, d.diffuse_horizontal_lux, d.direct_normal_lux
         ));
     }
     notes.extend(rgb_note);

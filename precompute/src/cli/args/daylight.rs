@@ -7,13 +7,20 @@ use crate::cli;
 
 /// The sky flags' error when no sky (or no whole sky) is given.
 pub(super) const GIVE_ONE_SKY: &str =
-    "give one sky: --cie TYPE --dhi-lux LUX, --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX";
+    "give one sky: --cie TYPE --dhi-lux LUX [--dni-lux LUX], --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX";
+
+/// The first CIE standard general sky type with a sun: types 1 to 5 are overcast (and
+/// uniform), 6 to 10 partly cloudy, 11 to 15 clear (CIE S 011/E:2003, ISO 15469:2004,
+/// Table 1). A sky with a sun needs its direct light given: without `--dni-lux` it would be
+/// lit by its sky alone, a tenth of its daylight.
+const FIRST_SUNNY_CIE_TYPE: u8 = 6;
 
 /// A sky and what drives it: the flags `sky` and `solve` share.
 #[derive(Args)]
 pub(super) struct SkyStateArgs {
     /// CIE standard general sky type 1 to 15, or `overcast` for the traditional CIE
-    /// overcast sky; needs --dhi-lux (and takes --dni-lux for the sun).
+    /// overcast sky; needs --dhi-lux, and types 6 to 15 (partly cloudy and clear, with a
+    /// sun) --dni-lux for the sun (0 for the sky without it).
     #[arg(long, value_name = "TYPE", value_parser = cie_type)]
     cie: Option<u8>,
     /// Perez sky: direct normal irradiance, W/m² (with --dhi).
@@ -45,7 +52,13 @@ impl SkyStateArgs {
                 (Some(sky_type), None, None, dni, Some(dhi)) => cli::SkyInput::Cie {
                     sky_type,
                     diffuse_horizontal: dhi,
-                    direct_normal: dni.unwrap_or(0.0),
+                    direct_normal: match dni {
+                        Some(dni) => dni,
+                        None if sky_type >= FIRST_SUNNY_CIE_TYPE => anyhow::bail!(
+                            "--cie {sky_type} is a sky with a sun (CIE types 6 to 10 partly cloudy, 11 to 15 clear): give the sun's direct normal illuminance, --dni-lux LUX (0 for the sky without its sun)"
+                        ),
+                        None => 0.0,
+                    },
                 },
                 (Some(_), _, _, _, None) => anyhow::bail!("--cie needs --dhi-lux (lux)"),
                 (None, Some(dni), Some(dhi), None, None) => cli::SkyInput::PerezIrradiance {
@@ -104,7 +117,7 @@ impl DaylightFlags {
                 subdivision: self.sky.mf,
             })),
             (Some(_), None) => anyhow::bail!(
-                "--time needs a sky: --cie TYPE --dhi-lux LUX, --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX"
+                "--time needs a sky: --cie TYPE --dhi-lux LUX [--dni-lux LUX], --dni W/m² --dhi W/m², or --dni-lux LUX --dhi-lux LUX"
             ),
             (None, Some(_)) => {
                 anyhow::bail!("a sky needs --time (the date and time, for the sun's position)")

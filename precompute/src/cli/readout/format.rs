@@ -133,6 +133,15 @@ pub fn format_readout(r: &Readout) -> String {
                 d.windows.join(", ")
             }
         );
+        if d.sun_below_horizon {
+            let _ = writeln!(
+                s,
+                "daylight: the sun is below the horizon: the sky's light alone, no direct sun"
+            );
+        }
+        for note in &d.notes {
+            let _ = writeln!(s, "daylight: note: {note}");
+        }
     }
     // With daylight, each reading is followed by its two parts.
     let parts = |x: &Reading| match (&x.daylight, &x.electric) {

@@ -115,6 +115,8 @@ pub struct DaylightReadout {
     pub sun: crate::daylight::sun::SunPosition,
     /// The sun's direction in the room's frame (unit vector).
     pub sun_direction_room: [f64; 3],
+    /// The sun is below the horizon: the sky's light alone, no direct sun.
+    pub sun_below_horizon: bool,
     /// Diffuse horizontal illuminance of the unobstructed sky, lux.
     pub diffuse_horizontal_lux: f64,
     /// Direct normal illuminance of the sun, lux.
@@ -129,6 +131,9 @@ pub struct DaylightReadout {
     pub windows: Vec<String>,
     /// The zones' grids under daylight alone, with their figures.
     pub grids: Vec<GridReadout>,
+    /// What the sky made of its input ([`SkyReport::notes`]): a direct light dropped below
+    /// the horizon.
+    pub notes: Vec<String>,
 }
 
 impl DaylightReadout {
@@ -141,12 +146,14 @@ impl DaylightReadout {
             model: report.model,
             sun: report.sun,
             sun_direction_room: report.sun_direction_room,
+            sun_below_horizon: report.sun_below_horizon,
             diffuse_horizontal_lux: report.diffuse_horizontal_lux,
             direct_normal_lux: report.direct_normal_lux,
             global_horizontal_lux: report.global_horizontal_lux,
             patch_set: report.patch_set,
             windows,
             grids,
+            notes: report.notes,
         }
     }
 }

@@ -24,6 +24,12 @@ pub fn format_sky(r: &SkyReport) -> String {
         "sun direction (scene axes)   ({:.4}, {:.4}, {:.4})",
         d[0], d[1], d[2]
     );
+    if r.sun_below_horizon {
+        let _ = writeln!(
+            s,
+            "sun below the horizon        no direct light; the sky's shape with the sun on the horizon at its azimuth"
+        );
+    }
     let _ = writeln!(s, "sky                          {}", r.model);
     if let Some(p) = &r.perez {
         let _ = writeln!(
@@ -80,5 +86,8 @@ pub fn format_sky(r: &SkyReport) -> String {
         r.patches.len(),
         r.patch_diffuse_horizontal_lux
     );
+    for note in &r.notes {
+        let _ = writeln!(s, "note                         {note}");
+    }
     s
 }

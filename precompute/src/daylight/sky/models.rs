@@ -1,7 +1,7 @@
 //! The sky models of a sky report, the runtime's (what a controller will compute): a CIE
 //! standard general sky scaled to a diffuse horizontal illuminance, or the Perez all-weather
 //! sky from irradiances or illuminances with its efficacies; every flag checked against what
-//! daylight can give.
+//! daylight can give. A diffuse horizontal of 0 is a dark sky ([`Dark`]) in every model.
 
 use eigenrad_runtime::sky::{cie::CieSky, efficacy, perez, RelativeSky};
 
@@ -18,6 +18,15 @@ pub(super) struct Built {
     pub(super) direct_lux: f64,
     pub(super) perez: Option<PerezReport>,
 }
+
+/// The most diffuse horizontal illuminance daylight gives, lux (the flags' bound).
+const DHI_LUX_MAX: f64 = 2.0e5;
+/// The most direct normal illuminance daylight gives, lux.
+const DNI_LUX_MAX: f64 = 1.5e5;
+/// The most diffuse horizontal irradiance daylight gives, W/m².
+const DHI_W_MAX: f64 = 1000.0;
+/// The most direct normal irradiance daylight gives, W/m².
+const DNI_W_MAX: f64 = 1400.0;
 
 /// `value` of `flag` in `unit` as f32, if it is a number from 0 to `max`, what daylight can give.
 fn check_flag(value: f64, flag: &str, unit: &str, max: f64) -> Result<f32> {
@@ -44,6 +53,73 @@ pub(super) struct SunState {
     pub(super) zenith: f32,
     /// Day of the year, 1 to 366 (the Perez sky's extraterrestrial irradiance).
     pub(super) day_of_year: u16,
+}
+
+/// `input` without its sun, for a sun below the horizon: its direct normal checked as ever,
+/// then 0; and the direct normal given, with its unit, when it was above 0 (for the report's
+/// note).
+pub(super) fn without_direct(input: SkyInput) -> Result<(SkyInput, Option<String>)> {
+    let (input, given) = match input {
+        SkyInput::Cie {
+            sky_type,
+            diffuse_horizontal,
+            direct_normal,
+        } => (
+            SkyInput::Cie {
+                sky_type,
+                diffuse_horizontal,
+                direct_normal: 0.0,
+            },
+            (direct_normal, "--dni-lux", "lux", DNI_LUX_MAX),
+        ),
+        SkyInput::PerezIrradiance {
+            direct_normal,
+            diffuse_horizontal,
+        } => (
+            SkyInput::PerezIrradiance {
+                direct_normal: 0.0,
+                diffuse_horizontal,
+            },
+            (direct_normal, "--dni", "W/m²", DNI_W_MAX),
+        ),
+        SkyInput::PerezIlluminance {
+            direct_normal,
+            diffuse_horizontal,
+        } => (
+            SkyInput::PerezIlluminance {
+                direct_normal: 0.0,
+                diffuse_horizontal,
+            },
+            (direct_normal, "--dni-lux", "lux", DNI_LUX_MAX),
+        ),
+    };
+    let (value, flag, unit, max) = given;
+    check_flag(value, flag, unit, max)?;
+    let dropped = (value > 0.0).then(|| {
+        let quantity = if unit == "lux" {
+            "illuminance"
+        } else {
+            "irradiance"
+        };
+        format!("{quantity} of {value} {unit}")
+    });
+    Ok((input, dropped))
+}
+
+/// A sky without light (a diffuse horizontal of 0: the night, or a weather record without
+/// diffuse light): 0 in every direction, whatever the model would have shaped.
+struct Dark {
+    sun: [f32; 3],
+}
+
+impl RelativeSky for Dark {
+    fn relative_luminance(&self, _dir: [f32; 3]) -> f32 {
+        0.0
+    }
+
+    fn sun(&self) -> [f32; 3] {
+        self.sun
+    }
 }
 
 /// The sky `input` asks for under `sun`, with `water` cm of precipitable water for the Perez
@@ -74,8 +150,8 @@ fn cie_sky(
     direct_normal: f64,
     sun: &SunState,
 ) -> Result<Built> {
-    let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", 2.0e5)?;
-    check_flag(direct_normal, "--dni-lux", "lux", 1.5e5)?;
+    let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", DHI_LUX_MAX)?;
+    check_flag(direct_normal, "--dni-lux", "lux", DNI_LUX_MAX)?;
     let sky = if sky_type == 0 {
         CieSky::traditional_overcast(sun.direction)
     } else {
@@ -107,13 +183,12 @@ fn perez_from_irradiance(
     sun: &SunState,
     water: f64,
 ) -> Result<Built> {
-    let dni = check_flag(direct_normal, "--dni", "W/m²", 1400.0)?;
-    let dhi = check_flag(diffuse_horizontal, "--dhi", "W/m²", 1000.0)?;
-    if dhi <= 0.0 {
-        return Err(err(
-            "--dhi",
-            "the Perez sky needs a diffuse horizontal irradiance above 0 W/m²",
-        ));
+    let dni = check_flag(direct_normal, "--dni", "W/m²", DNI_W_MAX)?;
+    let dhi = check_flag(diffuse_horizontal, "--dhi", "W/m²", DHI_W_MAX)?;
+    if dhi == 0.0 {
+        let (c, kd, kb) = dark_perez_state(dni, sun, water)?;
+        let direct_lux = f64::from(dni) * f64::from(kb);
+        return Ok(dark_perez(&c, kd, kb, direct_lux, f64::from(dni), sun));
     }
     let c = perez::Conditions::from_irradiance(dhi, dni, sun.zenith, sun.day_of_year)
         .map_err(runtime_err("--dni/--dhi"))?;
@@ -133,13 +208,18 @@ fn perez_from_illuminance(
     sun: &SunState,
     water: f64,
 ) -> Result<Built> {
-    let dni = check_flag(direct_normal, "--dni-lux", "lux", 1.5e5)?;
-    let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", 2.0e5)?;
-    if dhi <= 0.0 {
-        return Err(err(
-            "--dhi-lux",
-            "the Perez sky needs a diffuse horizontal illuminance above 0 lux",
-        ));
+    let dni = check_flag(direct_normal, "--dni-lux", "lux", DNI_LUX_MAX)?;
+    let dhi = check_flag(diffuse_horizontal, "--dhi-lux", "lux", DHI_LUX_MAX)?;
+    if dhi == 0.0 {
+        let (c, kd, kb) = dark_perez_state(dni, sun, water)?;
+        // The irradiance of the direct illuminance given, as the runtime's
+        // `Conditions::from_illuminance` finds it (none through an efficacy below 0.1 lm/W).
+        let dni_w = if kb < 0.1 {
+            0.0
+        } else {
+            f64::from(dni) / f64::from(kb)
+        };
+        return Ok(dark_perez(&c, kd, kb, direct_normal, dni_w, sun));
     }
     let (c, dhi_w, dni_w) =
         perez::Conditions::from_illuminance(dhi, dni, sun.zenith, sun.day_of_year, water as f32)
@@ -193,4 +273,53 @@ fn perez_parts(
         direct_lux,
         perez: Some(perez),
     })
+}
+
+/// The state a Perez sky without diffuse light takes its efficacies from, and the diffuse
+/// and direct efficacies (lm/W). Without diffuse light ε (which divides by it) and Δ (whose
+/// logarithm the diffuse efficacy takes) are undefined; the state is Radiance `gendaymtx`'s
+/// limits (`ComputeSky`: ε at most 11.9, Δ at least 0.01): with a sun (`direct_normal` above
+/// 0 W/m² or lux) ε = 11.9, the clear bin its limit reaches, else ε = 1.
+fn dark_perez_state(
+    direct_normal: f32,
+    sun: &SunState,
+    water: f64,
+) -> Result<(perez::Conditions, f32, f32)> {
+    let c = perez::Conditions {
+        clearness: if direct_normal > 0.0 { 11.9 } else { 1.0 },
+        brightness: 0.01,
+        zenith: sun.zenith,
+    };
+    let kd = efficacy::diffuse(&c, water as f32).map_err(runtime_err("--water"))?;
+    let kb = efficacy::direct(&c, water as f32).map_err(runtime_err("--water"))?;
+    Ok((c, kd, kb))
+}
+
+/// A dark Perez sky ([`Dark`]) of the state `c` with efficacies `kd`, `kb` (lm/W), the sun's
+/// direct normal illuminance `direct_lux` (lux) and irradiance `dni_w` (W/m²).
+fn dark_perez(
+    c: &perez::Conditions,
+    kd: f32,
+    kb: f32,
+    direct_lux: f64,
+    dni_w: f64,
+    sun: &SunState,
+) -> Built {
+    let perez = PerezReport {
+        clearness: f64::from(c.clearness),
+        brightness: f64::from(c.brightness),
+        coefficients: c.coefficients().map(f64::from),
+        diffuse_efficacy_lm_w: f64::from(kd),
+        direct_efficacy_lm_w: f64::from(kb),
+        diffuse_horizontal_w_m2: 0.0,
+        direct_normal_w_m2: dni_w,
+    };
+    Built {
+        model: "Perez".to_owned(),
+        sky: Box::new(Dark { sun: sun.direction }),
+        scale: 0.0,
+        diffuse_lux: 0.0,
+        direct_lux,
+        perez: Some(perez),
+    }
 }
