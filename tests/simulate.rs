@@ -146,8 +146,10 @@ fn constant_daylight_has_closed_forms() {
     let zone = basis.find_zone("work_plane").unwrap();
     let sensor = basis.find_sensor("photocell").unwrap();
     let (daylight, gains) = per_unit(basis, zone, sensor);
-    let target = 500.0;
+    // The daylight's share of the target, and a target the lamp meets at level 0.6 with it
+    // (the room's one lamp gives its work plane about 120 lux at full output).
     let share = 0.3;
+    let target = (0.6 * gains[0] / (1.0 - share)).round();
     let diffuse = share * target / daylight[0];
     let path = dir.join("controller.toml");
     let controller =
@@ -208,4 +210,227 @@ fn constant_daylight_has_closed_forms() {
             < 1e-12
     );
     assert_eq!(model_totals.hours_below_target, vec![0]);
+}
+
+/// The controller file of the daylit room with a 500 lux target at `path`.
+fn write_controller(path: &Path, text: &str) -> PathBuf {
+    std::fs::write(path, text).expect("controller");
+    path.to_path_buf()
+}
+
+/// Every hour of the year reads the daylight `eigenrad eval --time T <that hour's sky>` reads,
+/// to 1e-6 of the larger reading (both are the runtime's `f32` on the same sky: the tolerance
+/// is rounding), on a sample of hours: a dawn with the sun below the horizon and diffuse
+/// light, noons in winter and summer, an overcast afternoon, evenings, a night. The hour's
+/// sky is restated here from the weather record (its irradiances for the Perez state, its
+/// illuminances for the scale, the water of its dew point), not taken from `simulate`.
+#[test]
+fn every_hour_reads_what_eval_reads() {
+    let dir = common::scratch("simulate-against-eval");
+    let (bytes, basis_path) = daylit_basis(&dir);
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let controller_path =
+        write_controller(&dir.join("controller.toml"), &controller_text(100.0, ""));
+    let controller = simulate::load_controller(&controller_path, &basis).unwrap();
+    let weather = weather::read(&weather_year()).unwrap();
+    let options = simulate::HourOptions {
+        year: None,
+        source: simulate::SkySource::Illuminance,
+    };
+    let (hours, warnings, _) =
+        simulate::hours(&weather, &basis, &controller.occupancy, options).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(hours.len(), 8760);
+    let dawn = hours
+        .iter()
+        .position(|h| h.sky.altitude_deg < 0.0 && h.sky.diffuse_horizontal_lux > 0.0)
+        .expect("an hour with the sun below the horizon and diffuse light");
+    let at = |month: u8, day: u8, hour: u8| {
+        weather
+            .records
+            .iter()
+            .position(|r| (r.month, r.day, r.hour) == (month, day, hour))
+            .unwrap()
+    };
+    let sample = [
+        dawn,
+        at(1, 15, 13),
+        at(3, 21, 10),
+        at(6, 21, 13),
+        at(7, 14, 20),
+        at(9, 2, 17),
+        at(11, 30, 15),
+        at(12, 21, 2),
+    ];
+    let mut daylit = 0;
+    for k in sample {
+        let (hour, record) = (&hours[k], &weather.records[k]);
+        let year = simulate::simulate(&bytes, &controller, std::slice::from_ref(hour)).unwrap();
+        let ours = &year.hours[0];
+        let water = record.dew_point.map_or(simulate::WATER_DEFAULT_CM, |t| {
+            (0.07 * t - 0.075).exp().clamp(0.0, 10.0)
+        });
+        let input = SkyInput::PerezMeasured {
+            direct_normal: record.direct_normal,
+            diffuse_horizontal: record.diffuse_horizontal,
+            direct_normal_lux: record.direct_normal_lux.unwrap(),
+            diffuse_horizontal_lux: record.diffuse_horizontal_lux.unwrap(),
+        };
+        let args = DaylightArgs {
+            time: hour.time.to_rfc3339(),
+            input,
+            water,
+            subdivision: 1,
+        };
+        let eval = cli::eval_with_daylight(
+            &basis_path,
+            &bytes,
+            &LevelArgs::default(),
+            Some(&args),
+            false,
+        )
+        .unwrap_or_else(|e| panic!("eval at {}: {e}", args.time));
+        let theirs: Vec<f64> = eval
+            .sensors
+            .iter()
+            .chain(&eval.zones)
+            .map(|r| r.daylight.as_ref().unwrap()[0])
+            .collect();
+        let mine: Vec<f64> = ours
+            .sensor_daylight
+            .iter()
+            .chain(&ours.zone_daylight)
+            .map(|&x| f64::from(x))
+            .collect();
+        for (a, b) in mine.iter().zip(&theirs) {
+            let scale = a.abs().max(b.abs()).max(1e-9);
+            assert!(
+                (a - b).abs() <= 1e-6 * scale,
+                "{}: simulate {a} lux, eval {b} lux",
+                args.time
+            );
+        }
+        daylit += usize::from(theirs.iter().any(|&x| x > 0.0));
+    }
+    // The night reads nothing; the others read daylight.
+    assert_eq!(daylit, sample.len() - 1);
+}
+
+/// `eigenrad simulate` end to end on the shipped weather year: the summary in JSON, the
+/// hourly CSV and the schedule (8760 hours each), the same bytes on a second run; a wrong
+/// controller names its file, line and field and writes nothing; weather of another place
+/// is warned about.
+#[test]
+fn a_year_end_to_end() {
+    let dir = common::scratch("simulate-end-to-end");
+    let (_, basis) = daylit_basis(&dir);
+    let controller = write_controller(&dir.join("controller.toml"), &controller_text(100.0, ""));
+    let weather = weather_year();
+    let run = |hourly: &Path, schedule: &Path| {
+        common::run(&[
+            "simulate",
+            basis.to_str().unwrap(),
+            "--weather",
+            weather.to_str().unwrap(),
+            "--controller",
+            controller.to_str().unwrap(),
+            "--hourly",
+            hourly.to_str().unwrap(),
+            "--schedule",
+            schedule.to_str().unwrap(),
+            "--json",
+        ])
+    };
+    let (hourly, schedule) = (dir.join("hours.csv"), dir.join("schedule.csv"));
+    let o = run(&hourly, &schedule);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["hours"], 8760);
+    assert_eq!(summary["occupied_hours"].as_u64().unwrap() % 10, 0);
+    assert!(summary["weather"]["distance_km"].as_f64().unwrap() < 1.0);
+    assert_eq!(summary["strategies"].as_array().unwrap().len(), 5);
+    let full = &summary["strategies"][4];
+    assert_eq!(full["strategy"], "full-output");
+    // Full output: 40 W every occupied hour, 0.5 W standby every other hour.
+    let occupied = summary["occupied_hours"].as_f64().unwrap();
+    let expected = (40.0 * occupied + 0.5 * (8760.0 - occupied)) / 1000.0;
+    assert!((full["total_kwh"].as_f64().unwrap() - expected).abs() < 1e-9 * expected);
+    let grid = &summary["daylight"][0];
+    assert_eq!(grid["zone"], "work_plane");
+    assert_eq!(grid["hours"], 3650);
+    for key in ["da300_mean", "sda_300_50", "ase_1000_250"] {
+        let x = grid[key].as_f64().unwrap();
+        assert!((0.0..=1.0).contains(&x), "{key} {x}");
+    }
+    let udi: f64 = grid["udi"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .sum();
+    assert!((udi - 1.0).abs() < 1e-9, "UDI bands sum to {udi}");
+    let text = std::fs::read_to_string(&hourly).unwrap();
+    assert_eq!(text.lines().count(), 8761);
+    assert!(text.starts_with("time,hour_ending,occupied,"));
+    let fractions = std::fs::read_to_string(&schedule).unwrap();
+    assert_eq!(fractions.lines().count(), 8761);
+    for line in fractions.lines().skip(1) {
+        let x: f64 = line.parse().unwrap();
+        assert!((0.0..=1.0).contains(&x), "{line}");
+    }
+    // The same bytes again.
+    let (hourly2, schedule2) = (dir.join("hours2.csv"), dir.join("schedule2.csv"));
+    let again = run(&hourly2, &schedule2);
+    assert_eq!(again.stdout, o.stdout);
+    assert_eq!(std::fs::read(&hourly2).unwrap(), text.as_bytes());
+    assert_eq!(std::fs::read(&schedule2).unwrap(), fractions.as_bytes());
+
+    // A zone the basis does not have: the file, its line and the field; nothing written.
+    let bad = write_controller(
+        &dir.join("bad.toml"),
+        &controller_text(100.0, "").replace("zone = \"work_plane\"", "zone = \"desks\""),
+    );
+    let out = dir.join("never.csv");
+    let o = common::run(&[
+        "simulate",
+        basis.to_str().unwrap(),
+        "--weather",
+        weather.to_str().unwrap(),
+        "--controller",
+        bad.to_str().unwrap(),
+        "--hourly",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let e = common::stderr(&o);
+    assert!(
+        e.contains("bad.toml:6: target.zone") && e.contains("desks"),
+        "{e}"
+    );
+    assert!(!out.exists());
+
+    // The same room in Vienna: the Greensboro weather is another place's.
+    let vienna = dir.join("vienna");
+    std::fs::create_dir_all(&vienna).unwrap();
+    let b = common::build(
+        &vienna,
+        &common::daylit_room(common::VIENNA),
+        "v.basis",
+        &[],
+    );
+    assert!(b.status.success(), "{}", common::stderr(&b));
+    let o = common::run(&[
+        "simulate",
+        vienna.join("v.basis").to_str().unwrap(),
+        "--weather",
+        weather.to_str().unwrap(),
+        "--controller",
+        controller.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("warning:") && text.contains("7524 km"),
+        "{text}"
+    );
 }

@@ -189,7 +189,8 @@ impl ChannelPower {
         let span = 1.0 - self.minimum_level;
         let fraction = if span > 0.0 {
             self.power_at_minimum
-                + (1.0 - self.power_at_minimum) * (level.max(self.minimum_level) - self.minimum_level)
+                + (1.0 - self.power_at_minimum)
+                    * (level.max(self.minimum_level) - self.minimum_level)
                     / span
         } else {
             1.0
@@ -250,7 +251,11 @@ pub struct Controller {
 /// 1-based line of byte `offset` in `text`.
 fn line_of(text: &str, offset: usize) -> usize {
     let end = offset.min(text.len());
-    text.as_bytes()[..end].iter().filter(|&&b| b == b'\n').count() + 1
+    text.as_bytes()[..end]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
 }
 
 /// The controller file at `path`, checked against `basis`.
@@ -267,13 +272,8 @@ pub fn parse(path: &Path, text: &str, basis: &Basis<'_>) -> Result<Controller> {
     let err = |span: Option<std::ops::Range<usize>>, field: &str, reason: String| {
         error(path, span.map(|s| line_of(text, s.start)), field, reason)
     };
-    let file: File = toml::from_str(text).map_err(|e| {
-        err(
-            e.span(),
-            "TOML",
-            e.message().to_owned(),
-        )
-    })?;
+    let file: File =
+        toml::from_str(text).map_err(|e| err(e.span(), "TOML", e.message().to_owned()))?;
     let sensor_name = file.sensor.get_ref().clone();
     let sensor = basis.find_sensor(&sensor_name).ok_or_else(|| {
         err(
@@ -364,11 +364,7 @@ pub fn parse(path: &Path, text: &str, basis: &Basis<'_>) -> Result<Controller> {
 type ErrFn<'e> = dyn Fn(Option<std::ops::Range<usize>>, &str, String) -> Error + 'e;
 
 /// Every channel of the basis with its power, in the basis' order; each must be listed once.
-fn channels(
-    file: &File,
-    basis: &Basis<'_>,
-    err: &ErrFn<'_>,
-) -> Result<Vec<ChannelPower>> {
+fn channels(file: &File, basis: &Basis<'_>, err: &ErrFn<'_>) -> Result<Vec<ChannelPower>> {
     let m = basis.channel_count();
     if m > MAX_CONTROLLED {
         return Err(err(
@@ -484,9 +480,12 @@ const DAY_NAMES: [&str; 7] = ["mon", "tue", "wed", "thu", "fri", "sat", "sun"];
 /// `mon-fri`, `mon,wed,fri`, `sat-sun`, `all`: days of the week, Monday first.
 fn parse_days(text: &str) -> std::result::Result<[bool; 7], String> {
     let day = |s: &str| {
-        DAY_NAMES.iter().position(|d| *d == s.trim()).ok_or_else(|| {
-            format!("`{s}` is not a day: mon, tue, wed, thu, fri, sat, sun (or `all`)")
-        })
+        DAY_NAMES
+            .iter()
+            .position(|d| *d == s.trim())
+            .ok_or_else(|| {
+                format!("`{s}` is not a day: mon, tue, wed, thu, fri, sat, sun (or `all`)")
+            })
     };
     let mut days = [false; 7];
     if text == "all" {

@@ -108,7 +108,6 @@ impl GridCounts {
     /// Counts `hour` when it is an analysis hour, the evaluator holding its sky.
     pub(super) fn add<const S: usize, const O: usize, const E: usize>(
         &mut self,
-        basis: &Basis<'_>,
         day: &DaylightEvaluator<'_, S, O, E>,
         direct: Option<&DirectSun<'_, '_>>,
         hour: &Hour,
@@ -139,15 +138,13 @@ impl GridCounts {
                 }
             }
         }
-        let _ = basis;
         Ok(())
     }
 
     /// The metrics of every zone.
-    pub(super) fn metrics(&self, _basis: &Basis<'_>) -> Result<Vec<GridMetrics>> {
+    pub(super) fn metrics(&self) -> Vec<GridMetrics> {
         let hours = f64::from(self.hours.max(1));
-        Ok(self
-            .zones
+        self.zones
             .iter()
             .map(|z| {
                 let n = z.da.len() as f64;
@@ -163,17 +160,20 @@ impl GridCounts {
                     points: z.da.len(),
                     hours: self.hours,
                     da300_mean: point_da300.iter().sum::<f64>() / n,
-                    sda_300_50: point_da300.iter().filter(|&&d| d >= SDA_SHARE).count() as f64
-                        / n,
+                    sda_300_50: point_da300.iter().filter(|&&d| d >= SDA_SHARE).count() as f64 / n,
                     ase_1000_250: self
                         .direct
                         .then(|| z.ase.iter().filter(|&&h| h > ASE_HOURS).count() as f64 / n),
                     udi,
                     mean_lux: z.sum.iter().sum::<f64>() / hours / n,
                     point_da300,
-                    point_ase_hours: if self.direct { z.ase.clone() } else { Vec::new() },
+                    point_ase_hours: if self.direct {
+                        z.ase.clone()
+                    } else {
+                        Vec::new()
+                    },
                 }
             })
-            .collect())
+            .collect()
     }
 }

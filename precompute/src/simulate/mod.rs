@@ -27,9 +27,8 @@ use chrono::{DateTime, FixedOffset};
 use serde::Serialize;
 
 pub use controller::{
-    load as load_controller, parse as parse_controller, ChannelPower, Controller,
-    ControllerSky, Occupancy, Strategy, Target, DEFAULT_HOURS,
-    DEFAULT_MINIMUM_LEVEL, DEFAULT_STANDBY_W,
+    load as load_controller, parse as parse_controller, ChannelPower, Controller, ControllerSky,
+    Occupancy, Strategy, Target, DEFAULT_HOURS, DEFAULT_MINIMUM_LEVEL, DEFAULT_STANDBY_W,
 };
 pub use metrics::{GridMetrics, ASE_HOURS, ASE_LUX, DA_LUX, SDA_SHARE, UDI_LIMITS};
 pub use report::{format_summary, hourly_csv, schedule_csv, summary, Summary, WeatherSummary};

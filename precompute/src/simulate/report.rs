@@ -154,7 +154,14 @@ pub fn format_summary(s: &Summary) -> String {
     let _ = writeln!(
         t,
         "{:<12} {:>10} {:>10} {:>10} {:>12} {:>10} {:>10} {:>9}  hours below target",
-        "strategy", "light kWh", "stby kWh", "total kWh", "LENI kWh/m²a", "vs full", "vs closed", "on hours"
+        "strategy",
+        "light kWh",
+        "stby kWh",
+        "total kWh",
+        "LENI kWh/m²a",
+        "vs full",
+        "vs closed",
+        "on hours"
     );
     for x in &s.strategies {
         let below: Vec<String> = x
@@ -189,7 +196,16 @@ pub fn format_summary(s: &Summary) -> String {
         let _ = writeln!(
             t,
             "{:<16} {:>6} {:>8} {:>9} {:>9} {:>7} {:>9} {:>9} {:>7} {:>9}",
-            "zone", "points", "DA300", "sDA300/50", "ASE1000", "UDI<100", "100-300", "300-3000", ">3000", "mean lux"
+            "zone",
+            "points",
+            "DA300",
+            "sDA300/50",
+            "ASE1000",
+            "UDI<100",
+            "100-300",
+            "300-3000",
+            ">3000",
+            "mean lux"
         );
         for g in &s.daylight {
             let ase = g
@@ -299,7 +315,11 @@ pub fn schedule_csv(controller: &Controller, year: &Year) -> String {
             .filter(|(&l, _)| l > 0.0)
             .map(|(_, &p)| p)
             .sum();
-        let fraction = if installed > 0.0 { lit / installed } else { 0.0 };
+        let fraction = if installed > 0.0 {
+            lit / installed
+        } else {
+            0.0
+        };
         let _ = writeln!(t, "{fraction:.4}");
     }
     t

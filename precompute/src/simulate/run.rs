@@ -67,7 +67,11 @@ fn run_on(basis: Basis<'_>, controller: &Controller, hours: &[Hour]) -> Result<Y
     let mut day = Box::new(Day::new(basis)?);
     let commissioning = commission(&basis, controller, &mut day)?;
     let channels: Vec<usize> = controller.channels.iter().map(|c| c.index).collect();
-    let weights: Vec<f32> = controller.channels.iter().map(|c| c.full_w as f32).collect();
+    let weights: Vec<f32> = controller
+        .channels
+        .iter()
+        .map(|c| c.full_w as f32)
+        .collect();
     let mut problem = LevelProblem::new(&weights)?;
     let mut running = Vec::new();
     for strategy in Strategy::ALL {
@@ -80,86 +84,27 @@ fn run_on(basis: Basis<'_>, controller: &Controller, hours: &[Hour]) -> Result<Y
     }
     let direct = DirectSun::new(&basis)?;
     let mut grids = GridCounts::new(&basis, direct.is_some())?;
-    let (sensor, m) = (controller.sensor.1, channels.len());
     let mut out = Vec::with_capacity(hours.len());
-    let mut levels = vec![0.0f32; m];
+    let mut levels = vec![0.0f32; channels.len()];
     for hour in hours {
-        day.set_sky(&hour.sky.luminance, hour.sky.global_horizontal, hour.sky.sun)?;
-        let sensor_daylight = day.sensor_illuminance(sensor)?;
-        // What each target zone's daylight is per unit of the sensor's, as the model's
-        // controller believes it this hour.
-        let ratio: Vec<f32> = match controller.controller_sky {
-            ControllerSky::Overcast => commissioning.overcast_ratio.clone(),
-            ControllerSky::Weather => controller
-                .targets
-                .iter()
-                .map(|t| {
-                    let zone = day.zone_illuminance(t.index)?;
-                    Ok(if sensor_daylight > 0.0 {
-                        zone / sensor_daylight
-                    } else {
-                        0.0
-                    })
-                })
-                .collect::<Result<_>>()?,
+        day.set_sky(
+            &hour.sky.luminance,
+            hour.sky.global_horizontal,
+            hour.sky.sun,
+        )?;
+        let mut moment = Moment {
+            basis: &basis,
+            day: &day,
+            controller,
+            commissioning: &commissioning,
+            channels: &channels,
+            problem: &mut problem,
+            sensor_daylight: day.sensor_illuminance(controller.sensor.1)?,
         };
         let mut chosen = None;
         for run in running.iter_mut() {
-            if !hour.occupied {
-                levels.iter_mut().for_each(|l| *l = 0.0);
-                run.level = 0.0;
-            } else {
-                match run.strategy {
-                    Strategy::Model => {
-                        let reading = day.sensor_total(sensor, &*run.electric)?;
-                        let [electric] = run.electric.sensor_irradiance(sensor)?;
-                        let estimate = reading - electric;
-                        problem.clear_bounds();
-                        for (t, r) in controller.targets.iter().zip(&ratio) {
-                            problem.add_output_bound(
-                                &basis,
-                                &channels,
-                                Output::Zone(t.index),
-                                (estimate * r).max(0.0),
-                                t.illuminance as f32,
-                                f32::INFINITY,
-                            )?;
-                        }
-                        match problem.solve(&mut levels) {
-                            // Short of a target even at full output: the closest levels.
-                            Ok(_) | Err(eigenrad_runtime::Error::BoundUnmet { .. }) => {}
-                            Err(e) => return Err(e.into()),
-                        }
-                    }
-                    Strategy::ClosedLoop => {
-                        let reading = day.sensor_total(sensor, &*run.electric)?;
-                        let step = (commissioning.setpoint - reading) / commissioning.night_sensor;
-                        run.level = (run.level + step).clamp(0.0, 1.0);
-                        levels.iter_mut().for_each(|l| *l = run.level);
-                    }
-                    Strategy::OpenLoop => {
-                        let mut level = 0.0f32;
-                        for ((t, r), w1) in controller
-                            .targets
-                            .iter()
-                            .zip(&commissioning.overcast_ratio)
-                            .zip(&commissioning.night_zones)
-                        {
-                            let short = t.illuminance as f32 - r * sensor_daylight;
-                            level = level.max((short / w1).clamp(0.0, 1.0));
-                        }
-                        levels.iter_mut().for_each(|l| *l = level);
-                    }
-                    Strategy::Switching => {
-                        let short = controller
-                            .targets
-                            .iter()
-                            .zip(&commissioning.overcast_ratio)
-                            .any(|(t, r)| r * sensor_daylight < t.illuminance as f32);
-                        levels.iter_mut().for_each(|l| *l = if short { 1.0 } else { 0.0 });
-                    }
-                    Strategy::FullOutput => levels.iter_mut().for_each(|l| *l = 1.0),
-                }
+            if hour.occupied {
+                moment.decide(run, &mut levels)?;
                 for (l, c) in levels.iter_mut().zip(&controller.channels) {
                     *l = applied_level(*l, c.minimum_level as f32, controller)?;
                 }
@@ -167,26 +112,125 @@ fn run_on(basis: Basis<'_>, controller: &Controller, hours: &[Hour]) -> Result<Y
                     // The loop goes on from the level it set, as the gear applied it.
                     run.level = levels.first().copied().unwrap_or(0.0);
                 }
+            } else {
+                levels.iter_mut().for_each(|l| *l = 0.0);
+                run.level = 0.0;
             }
             for (&c, &l) in channels.iter().zip(levels.iter()) {
                 run.electric.set_channel_level(c, l)?;
             }
-            let result = readings(&basis, &day, &*run.electric, controller, &levels, hour)?;
+            let result = readings(&basis, &day, &run.electric, controller, &levels, hour)?;
             run.totals.add(controller, hour, &result);
             if run.strategy == controller.strategy {
                 chosen = Some(result);
             }
         }
-        grids.add(&basis, &day, direct.as_ref(), hour)?;
-        out.push(chosen.ok_or_else(|| Error::Thread("no strategy chosen".into()))?);
+        grids.add(&day, direct.as_ref(), hour)?;
+        // Every strategy ran, the controller's among them.
+        out.extend(chosen);
     }
     Ok(Year {
         hours: out,
         strategies: running.into_iter().map(|r| r.totals).collect(),
-        grids: grids.metrics(&basis)?,
+        grids: grids.metrics(),
         commissioning_setpoint_lux: f64::from(commissioning.setpoint),
-        overcast_ratio: commissioning.overcast_ratio.iter().map(|&r| f64::from(r)).collect(),
+        overcast_ratio: commissioning
+            .overcast_ratio
+            .iter()
+            .map(|&r| f64::from(r))
+            .collect(),
     })
+}
+
+/// What every strategy reads in one hour: the basis, the hour's daylight, the
+/// commissioning, and the level solver the model's controller fills.
+struct Moment<'m, 'a> {
+    basis: &'m Basis<'a>,
+    day: &'m Day<'a>,
+    controller: &'m Controller,
+    commissioning: &'m Commissioning,
+    channels: &'m [usize],
+    problem: &'m mut LevelProblem,
+    /// The photosensor's daylight this hour, lux.
+    sensor_daylight: f32,
+}
+
+impl Moment<'_, '_> {
+    /// The levels `run`'s strategy sets this (occupied) hour, before the gear's minimum and
+    /// DALI.
+    fn decide(&mut self, run: &mut Running<'_>, levels: &mut [f32]) -> Result<()> {
+        let targets = &self.controller.targets;
+        let c = self.commissioning;
+        match run.strategy {
+            Strategy::Model => self.model(&run.electric, levels)?,
+            Strategy::ClosedLoop => {
+                let reading = self
+                    .day
+                    .sensor_total(self.controller.sensor.1, &*run.electric)?;
+                run.level = (run.level + (c.setpoint - reading) / c.night_sensor).clamp(0.0, 1.0);
+                levels.fill(run.level);
+            }
+            Strategy::OpenLoop => {
+                let mut level = 0.0f32;
+                for ((t, r), w1) in targets.iter().zip(&c.overcast_ratio).zip(&c.night_zones) {
+                    let short = t.illuminance as f32 - r * self.sensor_daylight;
+                    level = level.max((short / w1).clamp(0.0, 1.0));
+                }
+                levels.fill(level);
+            }
+            Strategy::Switching => {
+                let short = targets
+                    .iter()
+                    .zip(&c.overcast_ratio)
+                    .any(|(t, r)| r * self.sensor_daylight < t.illuminance as f32);
+                levels.fill(if short { 1.0 } else { 0.0 });
+            }
+            Strategy::FullOutput => levels.fill(1.0),
+        }
+        Ok(())
+    }
+
+    /// The model's controller, as the firmware's harvest loop: its photosensor's reading less
+    /// the electric light the basis predicts there is its daylight, carried to each target
+    /// zone by the ratio of its sky; then the least-power levels that meet every target.
+    fn model(&mut self, electric: &Channels<'_>, levels: &mut [f32]) -> Result<()> {
+        let sensor = self.controller.sensor.1;
+        let reading = self.day.sensor_total(sensor, electric)?;
+        let [own] = electric.sensor_irradiance(sensor)?;
+        let estimate = reading - own;
+        self.problem.clear_bounds();
+        for (t, overcast) in self
+            .controller
+            .targets
+            .iter()
+            .zip(&self.commissioning.overcast_ratio)
+        {
+            let ambient = match self.controller.controller_sky {
+                ControllerSky::Overcast => estimate * overcast,
+                ControllerSky::Weather => {
+                    let zone = self.day.zone_illuminance(t.index)?;
+                    if self.sensor_daylight > 0.0 {
+                        estimate * (zone / self.sensor_daylight)
+                    } else {
+                        zone
+                    }
+                }
+            };
+            self.problem.add_output_bound(
+                self.basis,
+                self.channels,
+                Output::Zone(t.index),
+                ambient.max(0.0),
+                t.illuminance as f32,
+                f32::INFINITY,
+            )?;
+        }
+        match self.problem.solve(levels) {
+            // Short of a target even at full output: the closest levels.
+            Ok(_) | Err(eigenrad_runtime::Error::BoundUnmet { .. }) => Ok(()),
+            Err(e) => Err(e.into()),
+        }
+    }
 }
 
 /// A strategy's level as the channel's gear applies it: a level between 0 and the channel's
@@ -224,7 +268,7 @@ fn commission(
     let mut night_zones = Vec::new();
     for t in &controller.targets {
         let [zone] = full.zone_irradiance(t.index)?;
-        if !(zone > 0.0) {
+        if zone.is_nan() || zone <= 0.0 {
             return Err(commissioning_error(format!(
                 "the channels at full output give zone `{}` no light",
                 t.zone
@@ -232,7 +276,7 @@ fn commission(
         }
         night_zones.push(zone);
     }
-    if !(night_sensor > 0.0) {
+    if night_sensor.is_nan() || night_sensor <= 0.0 {
         return Err(commissioning_error(format!(
             "the channels at full output give sensor `{}` no light: a closed loop cannot read them",
             controller.sensor.0
@@ -253,7 +297,7 @@ fn commission(
     patches.luminances_at(&centres, &overcast, zenith, &mut luminance)?;
     day.set_sky(&luminance, DIFFUSE, None)?;
     let sensor_daylight = day.sensor_illuminance(sensor)?;
-    if !(sensor_daylight > 0.0) {
+    if sensor_daylight.is_nan() || sensor_daylight <= 0.0 {
         return Err(commissioning_error(format!(
             "sensor `{}` sees no daylight under an overcast sky: the model, open-loop and switching controllers estimate daylight from it; choose a sensor that sees the window or the room it lights",
             controller.sensor.0

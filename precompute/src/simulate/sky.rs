@@ -8,10 +8,11 @@
 //! middle of that hour, `hour − 0.5`: the instant Radiance's `epw2wea` writes for the same
 //! record, so that the two programs put the sun in the same place.
 //!
-//! **The sky.** The Perez all-weather sky, from the record's direct normal and diffuse
-//! horizontal illuminances when the file gives them (the EPW's fields 18 and 19, TMY3's
-//! `DN illum` and `DH illum`), else from its irradiances through the Perez efficacies, with
-//! the precipitable water of the record's dew point (`w = exp(0.07 T_d − 0.075)` cm, Perez
+//! **The sky.** The Perez all-weather sky: its state (clearness, brightness) from the
+//! record's direct normal and diffuse horizontal irradiances, the quantities the model was
+//! fitted to, scaled to the record's illuminances when the file gives them (the EPW's
+//! fields 18 and 19, TMY3's `DN illum` and `DH illum`), else through the Perez efficacies,
+//! with the precipitable water of the record's dew point (`w = exp(0.07 T_d − 0.075)` cm, Perez
 //! et al., "Modeling daylight availability and irradiance components from direct and global
 //! irradiance", Solar Energy 44(5), 1990, eq. 3), or [`WATER_DEFAULT_CM`] without one. A
 //! record with neither diffuse nor direct light is dark; with the sun below the horizon the
@@ -86,7 +87,14 @@ pub fn hours(
         ));
     }
     let offset = FixedOffset::east_opt((location.utc_offset_hours * 3600.0).round() as i32)
-        .ok_or_else(|| weather_error(weather, None, "LOCATION time zone", "not an offset from UTC"))?;
+        .ok_or_else(|| {
+            weather_error(
+                weather,
+                None,
+                "LOCATION time zone",
+                "not an offset from UTC",
+            )
+        })?;
     let year = options
         .year
         .or_else(|| weather.records.first().map(|r| r.year))
@@ -114,8 +122,8 @@ pub fn hours(
     let dark = vec![0.0f32; patches.count()];
     let mut out = Vec::with_capacity(weather.records.len());
     for r in &weather.records {
-        let date = NaiveDate::from_ymd_opt(year, u32::from(r.month), u32::from(r.day))
-            .ok_or_else(|| {
+        let date = NaiveDate::from_ymd_opt(year, u32::from(r.month), u32::from(r.day)).ok_or_else(
+            || {
                 weather_error(
                     weather,
                     Some(r.line),
@@ -125,7 +133,8 @@ pub fn hours(
                         r.month, r.day
                     ),
                 )
-            })?;
+            },
+        )?;
         let midnight = date.and_hms_opt(0, 0, 0).unwrap_or_default();
         let local = midnight + Duration::seconds((r.mid_hour_minutes() * 60.0).round() as i64);
         let time = offset
@@ -150,9 +159,9 @@ pub fn hours(
                 }
             }
             Some(input) => {
-                let water = r
-                    .dew_point
-                    .map_or(WATER_DEFAULT_CM, |t| (0.07 * t - 0.075).exp().clamp(0.0, 10.0));
+                let water = r.dew_point.map_or(WATER_DEFAULT_CM, |t| {
+                    (0.07 * t - 0.075).exp().clamp(0.0, 10.0)
+                });
                 let params = SkyParams {
                     site: site_of,
                     north: f64::from(site.north),
@@ -187,17 +196,19 @@ pub fn hours(
     Ok((out, warnings, sky_from.to_owned()))
 }
 
-/// The sky input of record `r`: its illuminances or its irradiances; `None` when it holds
-/// no daylight (night).
+/// The sky input of record `r`: its irradiances for the Perez state, scaled to its
+/// illuminances when they drive the sky; `None` when it holds no daylight (night).
 fn sky_input(r: &Record, with_illuminance: bool) -> Option<SkyInput> {
+    let (dni, dhi) = (r.direct_normal, r.diffuse_horizontal);
     if with_illuminance {
-        let (dni, dhi) = (r.direct_normal_lux?, r.diffuse_horizontal_lux?);
-        (dhi > 0.0 || dni > 0.0).then_some(SkyInput::PerezIlluminance {
+        let (dni_lux, dhi_lux) = (r.direct_normal_lux?, r.diffuse_horizontal_lux?);
+        (dhi_lux > 0.0 || dni_lux > 0.0).then_some(SkyInput::PerezMeasured {
             direct_normal: dni,
             diffuse_horizontal: dhi,
+            direct_normal_lux: dni_lux,
+            diffuse_horizontal_lux: dhi_lux,
         })
     } else {
-        let (dni, dhi) = (r.direct_normal, r.diffuse_horizontal);
         (dhi > 0.0 || dni > 0.0).then_some(SkyInput::PerezIrradiance {
             direct_normal: dni,
             diffuse_horizontal: dhi,

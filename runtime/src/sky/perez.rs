@@ -27,8 +27,14 @@
 //!
 //! Like Radiance's `gendaylit` (2.x), the coefficients are evaluated with ε limited to
 //! [1, 12.01) and Δ to [0.01, 0.6], the range of the measurements the model was fitted to,
-//! and Δ at least 0.2 for 1.065 < ε < 2.8; a state whose `b` comes out positive (a horizon
-//! brightening without bound) is refused, as `gendaylit` refuses it.
+//! and Δ at least 0.2 for 1.065 < ε < 2.8. The fitted `b` comes out positive for some clear
+//! states of a sun a few degrees up (ε 7.4, Δ 0.2 at 0.9°, say), a gradation that brightens
+//! without bound towards the horizon,
+//! whose integral does not exist. `gendaylit` refuses such a state; `gendaymtx`, which must
+//! give every hour of a year a sky, evaluates it at its patch centres (6° and more above the
+//! horizon). A controller must have a sky every hour too: `b` is held at 0 at most, a
+//! gradation flat from the zenith to the horizon, which the scale then fits to the diffuse
+//! horizontal illuminance.
 
 use super::{approx, check_range, check_sun, efficacy, RelativeSky};
 use crate::error::{Error, Result};
@@ -184,7 +190,7 @@ impl Conditions {
         } else {
             (linear(rc), linear(rd))
         };
-        [linear(ra), linear(rb), c, d, linear(re)]
+        [linear(ra), linear(rb).min(0.0), c, d, linear(re)]
     }
 }
 
@@ -197,15 +203,15 @@ pub struct PerezSky {
 
 impl PerezSky {
     /// The sky of `conditions` with the sun in direction `sun` (unit vector, z up, at or
-    /// above the horizon; its zenith angle should be `conditions.zenith`). `Err` when the
-    /// coefficient `b` is positive.
+    /// above the horizon; its zenith angle should be `conditions.zenith`). `Err` when a
+    /// coefficient is not finite (`b` is held at 0 at most: the module documentation).
     pub fn new(conditions: &Conditions, sun: [f32; 3]) -> Result<Self> {
         let sun = check_sun(sun)?;
         let coefficients = conditions.coefficients();
-        if !coefficients.iter().all(|x| x.is_finite()) || coefficients[1] > 0.0 {
+        if !coefficients.iter().all(|x| x.is_finite()) {
             return Err(Error::OutOfRange {
-                what: "Perez coefficient b (from the clearness and brightness)",
-                range: "at most 0 (else the horizon brightens without bound)",
+                what: "Perez coefficients (from the clearness and brightness)",
+                range: "finite",
             });
         }
         Ok(Self { coefficients, sun })
@@ -476,5 +482,33 @@ mod tests {
         assert!(Conditions::from_irradiance(100.0, f32::NAN, 0.5, 100).is_err());
         assert!(Conditions::from_irradiance(100.0, 100.0, 1.7, 100).is_err());
         assert!(Conditions::from_illuminance(-1.0, 100.0, 0.5, 100, 2.0).is_err());
+    }
+
+    /// A clear state of a low sun (ε 7.4, Δ 0.20, the sun 0.9° up: what Greensboro's
+    /// TMY3 illuminances at 19:30 EST on 14 July turn into through the efficacies at 4.2 cm
+    /// of precipitable water) whose fitted `b` is positive: held at 0, the sky exists and
+    /// has a finite scale.
+    #[test]
+    fn a_positive_b_is_held_at_zero() {
+        let zenith = 89.102f32.to_radians();
+        let c = Conditions::from_irradiance(9.7, 307.0, zenith, 195).unwrap();
+        let bin = clearness_bin(c.clearness.clamp(1.0, 12.0));
+        let row = &COEFFICIENTS[bin][1];
+        let delta = c.brightness.clamp(0.01, 0.6);
+        let delta = if c.clearness > 1.065 && c.clearness < 2.8 {
+            delta.max(0.2)
+        } else {
+            delta
+        };
+        let fitted = row[0] + row[1] * zenith + delta * (row[2] + row[3] * zenith);
+        assert!(
+            fitted > 0.0,
+            "the case should have a positive fitted b: {fitted}"
+        );
+        assert_eq!(c.coefficients()[1], 0.0);
+        let sun = [0.0, (zenith).sin(), (zenith).cos()];
+        let sky = PerezSky::new(&c, sun).unwrap();
+        let scale = sky.luminance_scale(1000.0).unwrap();
+        assert!(scale.is_finite() && scale > 0.0);
     }
 }

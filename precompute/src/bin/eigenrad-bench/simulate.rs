@@ -15,7 +15,11 @@ const RUNS: usize = 3;
 
 /// Prints the table's header and one row per basis, all on `weather` with `controllers`
 /// (one controller file per basis, in order).
-pub(crate) fn run(bases: &[std::path::PathBuf], weather_path: &Path, controllers: &[std::path::PathBuf]) -> Result<()> {
+pub(crate) fn run(
+    bases: &[std::path::PathBuf],
+    weather_path: &Path,
+    controllers: &[std::path::PathBuf],
+) -> Result<()> {
     anyhow::ensure!(
         bases.len() == controllers.len(),
         "give one --controller per basis ({} bases, {} controllers)",

@@ -89,6 +89,7 @@ impl SimulateArgs {
             atomic::write(path, outcome.schedule_csv.as_bytes())?;
             note_written(path);
         }
-        self.json.print(&outcome.summary, crate::simulate::format_summary)
+        self.json
+            .print(&outcome.summary, crate::simulate::format_summary)
     }
 }

@@ -62,6 +62,22 @@ pub enum SkyInput {
         /// Diffuse horizontal illuminance, lux.
         diffuse_horizontal: f64,
     },
+    /// The Perez sky of a weather record that gives both irradiances and illuminances: its
+    /// state (clearness, brightness) from the irradiances, the quantities the model was
+    /// fitted to, its luminance and its sun scaled to the illuminances. Turning
+    /// illuminances back into irradiances through the efficacies is ill-conditioned for a
+    /// low sun, whose direct efficacy falls towards 0 (700 lux direct normal at 0.9° of
+    /// altitude came back as 307 W/m² where the record measured 17 W/m²).
+    PerezMeasured {
+        /// Direct normal irradiance, W/m².
+        direct_normal: f64,
+        /// Diffuse horizontal irradiance, W/m².
+        diffuse_horizontal: f64,
+        /// Direct normal illuminance, lux.
+        direct_normal_lux: f64,
+        /// Diffuse horizontal illuminance, lux.
+        diffuse_horizontal_lux: f64,
+    },
 }
 
 /// What a sky is asked apart from its time: the same for every moment of a loop over time
@@ -343,6 +359,37 @@ fn patch_reports(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A dim, fairly clear record (DNI 48 W/m², DHI 21 W/m²) under a high sun: Perez's
+    /// state (ε 3.3, Δ at its floor 0.01) has a luminance that is nowhere positive, so the
+    /// sky is the CIE overcast one of the same diffuse light, and says so; with the record's
+    /// illuminances (`PerezMeasured`) it is scaled to them.
+    #[test]
+    fn a_perez_state_without_luminance_is_overcast() {
+        let mut r = request(SkyInput::PerezIrradiance {
+            direct_normal: 48.0,
+            diffuse_horizontal: 21.0,
+        });
+        r.time = "2026-06-30T10:30Z".to_owned();
+        let report = sky(&r).unwrap();
+        assert!(report.model.contains("overcast"), "{}", report.model);
+        let perez = report.perez.as_ref().unwrap();
+        assert!((perez.diffuse_horizontal_w_m2 - 21.0).abs() < 1e-9);
+        assert!(
+            (report.patch_diffuse_horizontal_lux / report.diffuse_horizontal_lux - 1.0).abs()
+                < 0.01
+        );
+        r.input = SkyInput::PerezMeasured {
+            direct_normal: 48.0,
+            diffuse_horizontal: 21.0,
+            direct_normal_lux: 2000.0,
+            diffuse_horizontal_lux: 2500.0,
+        };
+        let measured = sky(&r).unwrap();
+        assert_eq!(measured.diffuse_horizontal_lux, 2500.0);
+        assert_eq!(measured.direct_normal_lux, 2000.0);
+        assert!((measured.patch_diffuse_horizontal_lux / 2500.0 - 1.0).abs() < 0.01);
+    }
 
     fn request(input: SkyInput) -> SkyRequest {
         SkyRequest {

@@ -92,6 +92,25 @@ pub(super) fn without_direct(input: SkyInput) -> Result<(SkyInput, Option<String
             },
             (direct_normal, "--dni-lux", "lux", DNI_LUX_MAX),
         ),
+        SkyInput::PerezMeasured {
+            diffuse_horizontal,
+            diffuse_horizontal_lux,
+            direct_normal_lux,
+            ..
+        } => (
+            SkyInput::PerezMeasured {
+                direct_normal: 0.0,
+                diffuse_horizontal,
+                direct_normal_lux: 0.0,
+                diffuse_horizontal_lux,
+            },
+            (
+                direct_normal_lux,
+                "direct normal illuminance",
+                "lux",
+                DNI_LUX_MAX,
+            ),
+        ),
     };
     let (value, flag, unit, max) = given;
     check_flag(value, flag, unit, max)?;
@@ -139,6 +158,33 @@ pub(super) fn built_sky(input: SkyInput, sun: &SunState, water: f64) -> Result<B
             direct_normal,
             diffuse_horizontal,
         } => perez_from_illuminance(direct_normal, diffuse_horizontal, sun, water),
+        SkyInput::PerezMeasured {
+            direct_normal,
+            diffuse_horizontal,
+            direct_normal_lux,
+            diffuse_horizontal_lux,
+        } => {
+            check_flag(
+                direct_normal_lux,
+                "direct normal illuminance",
+                "lux",
+                DNI_LUX_MAX,
+            )?;
+            check_flag(
+                diffuse_horizontal_lux,
+                "diffuse horizontal illuminance",
+                "lux",
+                DHI_LUX_MAX,
+            )?;
+            let mut built = perez_from_irradiance(direct_normal, diffuse_horizontal, sun, water)?;
+            // The state's shape, the record's own illuminances.
+            if built.diffuse_lux > 0.0 {
+                built.scale *= diffuse_horizontal_lux / built.diffuse_lux;
+            }
+            built.diffuse_lux = diffuse_horizontal_lux;
+            built.direct_lux = direct_normal_lux;
+            Ok(built)
+        }
     }
 }
 
@@ -252,6 +298,9 @@ fn perez_parts(
     let kb = efficacy::direct(c, water).map_err(runtime_err("--water"))?;
     let diffuse_lux = dhi_w * f64::from(kd);
     let direct_lux = dni_w * f64::from(kb);
+    if eigenrad_runtime::sky::horizontal_illuminance(&sky) <= 0.0 {
+        return overcast_in_place_of_perez(c, sun32, kd, kb, diffuse_lux, direct_lux, dhi_w, dni_w);
+    }
     let scale = f64::from(
         sky.luminance_scale(diffuse_lux as f32)
             .map_err(runtime_err("Perez sky"))?,
@@ -272,6 +321,48 @@ fn perez_parts(
         diffuse_lux,
         direct_lux,
         perez: Some(perez),
+    })
+}
+
+/// The sky of a Perez state whose luminance is nowhere positive, so that no scale gives it
+/// its diffuse light: the overcast bin with a bright Δ and the sun at or near the horizon
+/// (dusk through a weather year's bright overcast records). The sky is then the CIE
+/// traditional overcast sky of the same diffuse horizontal illuminance, and its model says
+/// so; its direct light and the Perez figures stay the state's.
+#[allow(clippy::too_many_arguments)]
+fn overcast_in_place_of_perez(
+    c: &perez::Conditions,
+    sun32: [f32; 3],
+    kd: f32,
+    kb: f32,
+    diffuse_lux: f64,
+    direct_lux: f64,
+    dhi_w: f64,
+    dni_w: f64,
+) -> Result<Built> {
+    let overcast = CieSky::traditional_overcast(sun32).map_err(runtime_err("overcast sky"))?;
+    let scale = overcast
+        .zenith_luminance_for(diffuse_lux as f32)
+        .map_err(runtime_err("overcast sky"))?;
+    let coefficients = perez::PerezSky::new(c, sun32)
+        .map_err(runtime_err("Perez sky"))?
+        .coefficients();
+    Ok(Built {
+        model: "CIE traditional overcast (the Perez state's luminance is nowhere positive)"
+            .to_owned(),
+        sky: Box::new(overcast),
+        scale: f64::from(scale),
+        diffuse_lux,
+        direct_lux,
+        perez: Some(PerezReport {
+            clearness: f64::from(c.clearness),
+            brightness: f64::from(c.brightness),
+            coefficients: coefficients.map(f64::from),
+            diffuse_efficacy_lm_w: f64::from(kd),
+            direct_efficacy_lm_w: f64::from(kb),
+            diffuse_horizontal_w_m2: dhi_w,
+            direct_normal_w_m2: dni_w,
+        }),
     })
 }
 
