@@ -434,3 +434,70 @@ fn a_year_end_to_end() {
         "{text}"
     );
 }
+
+/// Without a weather file: the overcast recipe's hours have the diffuse light of
+/// `300 + 21 000 sin(altitude)` lux (Krochmann and Seidl) with the sun up and none with it
+/// down, every hour of every day from `--from` to `--to`; the clear recipe's noon is brighter
+/// than the overcast one's; a range that runs backwards is refused.
+#[test]
+fn sky_recipes_without_weather() {
+    let dir = common::scratch("simulate-recipes");
+    let (_, basis_path) = daylit_basis(&dir);
+    let bytes = std::fs::read(&basis_path).unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let controller =
+        simulate::parse_controller(&dir.join("c.toml"), &controller_text(100.0, ""), &basis)
+            .unwrap();
+    let date = |d: &str| chrono::NaiveDate::parse_from_str(d, "%Y-%m-%d").unwrap();
+    let (from, to) = (date("2026-03-16"), date("2026-03-22"));
+    let overcast = simulate::recipe_hours(
+        &basis,
+        &controller.occupancy,
+        simulate::Recipe::Overcast,
+        from,
+        to,
+    )
+    .unwrap();
+    assert_eq!(overcast.len(), 7 * 24);
+    assert_eq!(overcast.iter().filter(|h| h.occupied).count(), 50);
+    for h in &overcast {
+        if h.sky.altitude_deg > 0.0 {
+            let want = 300.0 + 21_000.0 * h.sky.altitude_deg.to_radians().sin();
+            assert!((h.sky.diffuse_horizontal_lux - want).abs() < 1e-9 * want);
+            assert!(h.sky.sun.is_none());
+        } else {
+            assert!(h.sky.luminance.iter().all(|&l| l == 0.0));
+        }
+    }
+    let clear = simulate::recipe_hours(
+        &basis,
+        &controller.occupancy,
+        simulate::Recipe::Clear { linke: 3.0 },
+        from,
+        to,
+    )
+    .unwrap();
+    let noon = 12;
+    assert!(
+        clear[noon].sky.direct_normal_lux > 50_000.0,
+        "{:?}",
+        clear[noon].sky.direct_normal_lux
+    );
+    assert!(clear[noon].sky.sun.is_some());
+    assert!(
+        clear[noon].sky.diffuse_horizontal_lux + clear[noon].sky.direct_normal_lux
+            > overcast[noon].sky.diffuse_horizontal_lux
+    );
+    let year = simulate::simulate(&bytes, &controller, &overcast).unwrap();
+    assert_eq!(year.hours.len(), overcast.len());
+    let e = simulate::recipe_hours(
+        &basis,
+        &controller.occupancy,
+        simulate::Recipe::Overcast,
+        to,
+        from,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("--from/--to") && e.contains("before"), "{e}");
+}

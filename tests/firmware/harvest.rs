@@ -461,7 +461,118 @@ fn check_harvest(name: &str, path: &Path) -> Option<(f64, f64)> {
         h.ratio,
         rows.join("\n  ")
     );
+    check_simulate_day(name, path, h, &dimmed);
     Some((worst_model, worst_closed))
+}
+
+/// `eigenrad simulate`'s loop over the firmware's day equals the firmware's: the same basis,
+/// the same moments and skies (the firmware's overcast sky at its printed diffuse horizontal
+/// illuminance; CIE type 1 does not depend on the sun), a controller file of the firmware's
+/// (the ceiling photocell, the work plane at its target, its luminaires' watts, continuous
+/// levels from 0, every step occupied), run once per strategy through
+/// `simulate::simulate`. The model's levels and work plane, and the closed loop's level and
+/// work plane, agree with the firmware's records to [`HARVEST_LEVEL_TOL`] (levels) and
+/// [`HARVEST_ERROR_TOL`] of the target (work plane): both run the runtime's `f32` code, the
+/// one on the Cortex-M4F, the other on the host.
+fn check_simulate_day(name: &str, path: &Path, h: &Harvest, dimmed: &[usize]) {
+    use eigenrad_precompute::simulate::{self, Hour, HourSky};
+    let bytes = std::fs::read(path).unwrap();
+    let basis = Basis::from_bytes(&bytes).unwrap();
+    let patches = basis.sky_patches().unwrap();
+    let mut centres = vec![[0.0f32; 3]; patches.count()];
+    patches.centres(&mut centres).unwrap();
+    let mut channels = String::new();
+    for (k, &c) in dimmed.iter().enumerate() {
+        channels.push_str(&format!(
+            "[[channel]]\nname = \"{}\"\npower = {}\nstandby = 0\nminimum_level = 0\n\n",
+            basis.channel_name(c).unwrap(),
+            HARVEST_WATTS[k]
+        ));
+    }
+    let hours: Vec<Hour> = h
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(k, step)| {
+            let overcast = CieSky::standard(HARVEST_SKY_TYPE, [0.0, 0.0, 1.0]).unwrap();
+            let zenith = overcast
+                .zenith_luminance_for(step.diffuse_horizontal)
+                .unwrap();
+            let mut luminance = vec![0.0f32; patches.count()];
+            patches
+                .luminances_at(&centres, &overcast, zenith, &mut luminance)
+                .unwrap();
+            Hour {
+                time: chrono::DateTime::parse_from_rfc3339(&format!(
+                    "{}:00{}",
+                    &step.time[..16],
+                    &step.time[16..]
+                ))
+                .unwrap(),
+                line: k,
+                hour_ending: 9 + k as u32,
+                weekday: 0,
+                occupied: true,
+                analysis: true,
+                sky: HourSky {
+                    luminance,
+                    global_horizontal: step.diffuse_horizontal,
+                    sun: None,
+                    altitude_deg: f64::from(step.altitude),
+                    azimuth_deg: f64::from(step.azimuth),
+                    diffuse_horizontal_lux: f64::from(step.diffuse_horizontal),
+                    direct_normal_lux: 0.0,
+                },
+            }
+        })
+        .collect();
+    let controller = |strategy: &str| {
+        let text = format!(
+            "sensor = \"{}\"\nstrategy = \"{strategy}\"\nfloor_area = 24\ndali = false\n\n\
+             [[target]]\nzone = \"{}\"\nilluminance = {}\n\n{channels}\
+             [occupancy]\ndays = \"all\"\nhours = [0, 24]\n",
+            basis.sensor_name(h.sensor).unwrap(),
+            basis.zone_name(h.zone).unwrap(),
+            HARVEST_TARGET
+        );
+        simulate::parse_controller(Path::new("harvest.toml"), &text, &basis).unwrap()
+    };
+    let model = simulate::simulate(&bytes, &controller("model"), &hours).unwrap();
+    let closed = simulate::simulate(&bytes, &controller("closed-loop"), &hours).unwrap();
+    let target = f64::from(HARVEST_TARGET);
+    for (k, step) in h.steps.iter().enumerate() {
+        let (m, c) = (&model.hours[k], &closed.hours[k]);
+        for (i, &c) in dimmed.iter().enumerate() {
+            let (ours, theirs) = (f64::from(m.levels[c]), f64::from(step.model.levels[i]));
+            assert!(
+                (ours - theirs).abs() <= HARVEST_LEVEL_TOL,
+                "{name}: {}: simulate's model level of channel {c} {ours}, the firmware's {theirs}",
+                step.time
+            );
+        }
+        let plane = f64::from(m.zone_total[h.zone]);
+        assert!(
+            (plane - f64::from(step.model.work_plane)).abs() <= HARVEST_ERROR_TOL * target,
+            "{name}: {}: simulate's model work plane {plane}, the firmware's {}",
+            step.time,
+            step.model.work_plane
+        );
+        let level = f64::from(c.levels[dimmed[0]]);
+        assert!(
+            (level - f64::from(step.closed.level)).abs() <= HARVEST_LEVEL_TOL,
+            "{name}: {}: simulate's closed-loop level {level}, the firmware's {}",
+            step.time,
+            step.closed.level
+        );
+        let plane = f64::from(c.zone_total[h.zone]);
+        assert!(
+            (plane - f64::from(step.closed.work_plane)).abs() <= HARVEST_ERROR_TOL * target,
+            "{name}: {}: simulate's closed-loop work plane {plane}, the firmware's {}",
+            step.time,
+            step.closed.work_plane
+        );
+    }
+    eprintln!("{name}: simulate's day equals the firmware's (levels within {HARVEST_LEVEL_TOL}, work plane within {HARVEST_ERROR_TOL} of the target)");
 }
 
 /// The daylight office at 32 modes in f16 as a daylight-harvesting controller: every figure

@@ -7,22 +7,43 @@ use eigenrad_runtime::Basis;
 
 use super::readout::basis_error;
 use crate::error::Result;
-use crate::simulate::{self, HourOptions, SkySource, Summary, WeatherSummary};
+use chrono::NaiveDate;
+
+use crate::simulate::{self, HourOptions, Recipe, SkySource, Summary, WeatherSummary};
 use crate::weather;
+
+/// Where a year's skies come from.
+#[derive(Clone, Copy, Debug)]
+pub enum Skies<'a> {
+    /// A weather file.
+    Weather {
+        /// The file.
+        path: &'a Path,
+        /// The calendar year of the records (`None`: the first record's).
+        year: Option<i32>,
+        /// Which of its fields drive the sky.
+        source: SkySource,
+    },
+    /// A sky recipe over a range of days.
+    Recipe {
+        /// The recipe.
+        recipe: Recipe,
+        /// The first day.
+        from: NaiveDate,
+        /// The last day, included.
+        to: NaiveDate,
+    },
+}
 
 /// What `eigenrad simulate` is asked.
 #[derive(Clone, Copy, Debug)]
 pub struct SimulateRequest<'a> {
     /// The basis file.
     pub basis: &'a Path,
-    /// The weather file.
-    pub weather: &'a Path,
+    /// The skies.
+    pub skies: Skies<'a>,
     /// The controller file.
     pub controller: &'a Path,
-    /// The calendar year of the records (`None`: the first record's).
-    pub year: Option<i32>,
-    /// Which weather fields drive the sky.
-    pub source: SkySource,
 }
 
 /// What a year gives.
@@ -50,33 +71,51 @@ pub fn simulate(request: &SimulateRequest<'_>, bytes: &[u8]) -> Result<SimulateO
     }
     basis.check_daylight().map_err(basis_error(request.basis))?;
     let controller = simulate::load_controller(request.controller, &basis)?;
-    let weather = weather::read(request.weather)?;
-    let (hours, warnings, sky_from) = simulate::hours(
-        &weather,
-        &basis,
-        &controller.occupancy,
-        HourOptions {
-            year: request.year,
-            source: request.source,
-        },
-    )?;
+    let (hours, weather, warnings) = match request.skies {
+        Skies::Weather { path, year, source } => {
+            let weather = weather::read(path)?;
+            let (hours, warnings, sky_from) = simulate::hours(
+                &weather,
+                &basis,
+                &controller.occupancy,
+                HourOptions { year, source },
+            )?;
+            let location = &weather.location;
+            let summary = WeatherSummary {
+                path: path.display().to_string(),
+                format: format!("{:?}", weather.format).to_uppercase(),
+                location: location.name.clone(),
+                latitude_longitude: [location.latitude, location.longitude],
+                distance_km: basis.site().map_or(0.0, |s| {
+                    location.distance_km(f64::from(s.latitude), f64::from(s.longitude))
+                }),
+                records: weather.records.len(),
+                sky_from,
+            };
+            (hours, summary, warnings)
+        }
+        Skies::Recipe { recipe, from, to } => {
+            let hours = simulate::recipe_hours(&basis, &controller.occupancy, recipe, from, to)?;
+            let site = basis.site();
+            let summary = WeatherSummary {
+                path: String::new(),
+                format: format!("no weather file: {from} to {to}"),
+                location: "the basis' site".into(),
+                latitude_longitude: site.map_or([0.0; 2], |s| {
+                    [f64::from(s.latitude), f64::from(s.longitude)]
+                }),
+                distance_km: 0.0,
+                records: hours.len(),
+                sky_from: recipe.describe(),
+            };
+            (hours, summary, Vec::new())
+        }
+    };
     let year = simulate::simulate(bytes, &controller, &hours)?;
-    let site = basis.site();
-    let location = &weather.location;
     let summary = simulate::summary(
         &request.basis.display().to_string(),
         &controller,
-        WeatherSummary {
-            path: request.weather.display().to_string(),
-            format: format!("{:?}", weather.format).to_uppercase(),
-            location: location.name.clone(),
-            latitude_longitude: [location.latitude, location.longitude],
-            distance_km: site.map_or(0.0, |s| {
-                location.distance_km(f64::from(s.latitude), f64::from(s.longitude))
-            }),
-            records: weather.records.len(),
-            sky_from,
-        },
+        weather,
         &hours,
         &year,
         warnings,

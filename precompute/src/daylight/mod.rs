@@ -12,6 +12,7 @@
 //! altitude h and azimuth A is `(sin(A − north) cos h, cos(A − north) cos h, sin h)` in the
 //! room's frame.
 
+pub mod clear_sky;
 pub mod sky;
 pub mod sun;
 

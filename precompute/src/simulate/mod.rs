@@ -33,7 +33,7 @@ pub use controller::{
 pub use metrics::{GridMetrics, ASE_HOURS, ASE_LUX, DA_LUX, SDA_SHARE, UDI_LIMITS};
 pub use report::{format_summary, hourly_csv, schedule_csv, summary, Summary, WeatherSummary};
 pub use run::{run, TARGET_TOLERANCE};
-pub use sky::{hours, HourOptions, SkySource, WATER_DEFAULT_CM};
+pub use sky::{hours, recipe_hours, HourOptions, Recipe, SkySource, WATER_DEFAULT_CM};
 
 /// The sky of one hour as the runtime's `DaylightEvaluator::set_sky` takes it, with what
 /// the reports show of it.

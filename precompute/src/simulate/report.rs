@@ -128,11 +128,19 @@ pub fn summary(
 pub fn format_summary(s: &Summary) -> String {
     let mut t = String::new();
     let w = &s.weather;
-    let _ = writeln!(
-        t,
-        "weather: {} ({}, {}; {:.3}° N {:.3}° E, {:.0} km from the basis' site), {} hours, sky from its {}",
-        w.path, w.format, w.location, w.latitude_longitude[0], w.latitude_longitude[1], w.distance_km, w.records, w.sky_from
-    );
+    if w.path.is_empty() {
+        let _ = writeln!(
+            t,
+            "skies: {} ({}), {} hours",
+            w.sky_from, w.format, w.records
+        );
+    } else {
+        let _ = writeln!(
+            t,
+            "weather: {} ({}, {}; {:.3}° N {:.3}° E, {:.0} km from the basis' site), {} hours, sky from its {}",
+            w.path, w.format, w.location, w.latitude_longitude[0], w.latitude_longitude[1], w.distance_km, w.records, w.sky_from
+        );
+    }
     let _ = writeln!(
         t,
         "controller: {} on {}: photosensor `{}`, {} occupied hours, floor {:.2} m², installed {:.1} W",

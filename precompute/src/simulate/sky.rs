@@ -18,7 +18,7 @@
 //! record with neither diffuse nor direct light is dark; with the sun below the horizon the
 //! sky keeps its diffuse light and drops the direct (`crate::daylight::sky`).
 
-use chrono::{Datelike, Duration, FixedOffset, NaiveDate, TimeZone};
+use chrono::{DateTime, Datelike, Duration, FixedOffset, NaiveDate, TimeZone};
 use eigenrad_runtime::Basis;
 
 use super::controller::Occupancy;
@@ -119,7 +119,12 @@ pub fn hours(
             "irradiances (direct normal, diffuse horizontal) through the Perez efficacies"
         }
     };
-    let dark = vec![0.0f32; patches.count()];
+    let place = Place {
+        site: site_of,
+        north: f64::from(site.north),
+        subdivision: patches.subdivision(),
+        dark: vec![0.0f32; patches.count()],
+    };
     let mut out = Vec::with_capacity(weather.records.len());
     for r in &weather.records {
         let date = NaiveDate::from_ymd_opt(year, u32::from(r.month), u32::from(r.day)).ok_or_else(
@@ -141,59 +146,205 @@ pub fn hours(
             .from_local_datetime(&local)
             .single()
             .ok_or_else(|| weather_error(weather, Some(r.line), "hour", "not a local time"))?;
-        let weekday = date.weekday().num_days_from_monday() as usize;
-        let hour = u32::from(r.hour);
-        let input = sky_input(r, with_illuminance);
-        let sky = match input {
-            None => {
-                let position = crate::daylight::sun::position(
-                    &site_of,
-                    &time,
-                    &crate::daylight::sun::SunOptions::default(),
-                )?;
-                HourSky {
-                    luminance: dark.clone(),
-                    altitude_deg: position.altitude,
-                    azimuth_deg: position.azimuth,
-                    ..HourSky::default()
-                }
-            }
-            Some(input) => {
-                let water = r.dew_point.map_or(WATER_DEFAULT_CM, |t| {
-                    (0.07 * t - 0.075).exp().clamp(0.0, 10.0)
-                });
-                let params = SkyParams {
-                    site: site_of,
-                    north: f64::from(site.north),
-                    input,
-                    water,
-                    subdivision: patches.subdivision(),
-                };
-                let report = sky_at(&params, &time)
-                    .map_err(|e| weather_error(weather, Some(r.line), "sky", &e.to_string()))?;
-                let state = SkyState::of(&report);
-                HourSky {
-                    luminance: state.sky_luminance,
-                    global_horizontal: state.global_horizontal,
-                    sun: state.sun,
-                    altitude_deg: report.sun.altitude,
-                    azimuth_deg: report.sun.azimuth,
-                    diffuse_horizontal_lux: report.diffuse_horizontal_lux,
-                    direct_normal_lux: report.direct_normal_lux,
-                }
-            }
-        };
-        out.push(Hour {
-            time,
-            line: r.line,
-            hour_ending: hour,
-            weekday,
-            occupied: occupancy.occupied(weekday, hour),
-            analysis: hour > 8 && hour <= 18,
-            sky,
+        let water = r.dew_point.map_or(WATER_DEFAULT_CM, |t| {
+            (0.07 * t - 0.075).exp().clamp(0.0, 10.0)
         });
+        let sky = place
+            .sky(&time, sky_input(r, with_illuminance), water)
+            .map_err(|e| weather_error(weather, Some(r.line), "sky", &e.to_string()))?;
+        out.push(hour_of(time, r.line, u32::from(r.hour), occupancy, sky));
     }
     Ok((out, warnings, sky_from.to_owned()))
+}
+
+/// The site's part of every hour's sky.
+struct Place {
+    site: Site,
+    north: f64,
+    subdivision: u8,
+    /// Every patch at 0 cd/m²: the sky of a night.
+    dark: Vec<f32>,
+}
+
+impl Place {
+    /// The sky of `input` (none: dark) at `time` with `water` cm of precipitable water, as
+    /// `eigenrad eval --time` computes it.
+    fn sky(
+        &self,
+        time: &DateTime<FixedOffset>,
+        input: Option<SkyInput>,
+        water: f64,
+    ) -> crate::daylight::Result<HourSky> {
+        let Some(input) = input else {
+            let position = crate::daylight::sun::position(
+                &self.site,
+                time,
+                &crate::daylight::sun::SunOptions::default(),
+            )?;
+            return Ok(HourSky {
+                luminance: self.dark.clone(),
+                altitude_deg: position.altitude,
+                azimuth_deg: position.azimuth,
+                ..HourSky::default()
+            });
+        };
+        let params = SkyParams {
+            site: self.site,
+            north: self.north,
+            input,
+            water,
+            subdivision: self.subdivision,
+        };
+        let report = sky_at(&params, time)?;
+        let state = SkyState::of(&report);
+        Ok(HourSky {
+            luminance: state.sky_luminance,
+            global_horizontal: state.global_horizontal,
+            sun: state.sun,
+            altitude_deg: report.sun.altitude,
+            azimuth_deg: report.sun.azimuth,
+            diffuse_horizontal_lux: report.diffuse_horizontal_lux,
+            direct_normal_lux: report.direct_normal_lux,
+        })
+    }
+}
+
+/// The hour at `time` (its middle) ending at `hour_ending`, occupied as `occupancy` says.
+fn hour_of(
+    time: DateTime<FixedOffset>,
+    line: usize,
+    hour_ending: u32,
+    occupancy: &Occupancy,
+    sky: HourSky,
+) -> Hour {
+    let weekday = time.weekday().num_days_from_monday() as usize;
+    Hour {
+        time,
+        line,
+        hour_ending,
+        weekday,
+        occupied: occupancy.occupied(weekday, hour_ending),
+        analysis: hour_ending > 8 && hour_ending <= 18,
+        sky,
+    }
+}
+
+/// A sky without a weather file: the same sky every day, driven by the sun alone.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Recipe {
+    /// The CIE standard general sky type 1 (overcast) at a diffuse horizontal illuminance
+    /// of `300 + 21 000 sin(altitude)` lux (J. Krochmann and M. Seidl, Lighting Research and
+    /// Technology 6(3), 1974, the mean overcast sky DIN 5034-2 adopts; the firmware's harvest
+    /// loop computes the same); dark with the sun below the horizon.
+    Overcast,
+    /// The Perez sky of the Ineichen–Perez clear-sky irradiances
+    /// ([`crate::daylight::clear_sky`]) for the site's height and this Linke turbidity.
+    Clear {
+        /// Linke turbidity.
+        linke: f64,
+    },
+}
+
+impl Recipe {
+    /// How the summary names the sky.
+    pub fn describe(&self) -> String {
+        match self {
+            Recipe::Overcast => {
+                "the CIE overcast sky (standard type 1) at 300 + 21 000 sin(altitude) lux diffuse horizontal".into()
+            }
+            Recipe::Clear { linke } => format!(
+                "the Perez sky of Ineichen–Perez clear-sky irradiances, Linke turbidity {linke}"
+            ),
+        }
+    }
+}
+
+/// Every hour from local midnight of `from` to the end of `to` (both included, the basis'
+/// standard time), its sky by `recipe`, occupied as `occupancy` says; each hour's sky at its
+/// middle, as for a weather file.
+pub fn recipe_hours(
+    basis: &Basis<'_>,
+    occupancy: &Occupancy,
+    recipe: Recipe,
+    from: NaiveDate,
+    to: NaiveDate,
+) -> Result<Vec<Hour>> {
+    let site = basis.site().ok_or(eigenrad_runtime::Error::NoDaylight)?;
+    let patches = basis
+        .sky_patches()
+        .ok_or(eigenrad_runtime::Error::NoDaylight)?;
+    let recipe_error = |reason: String| crate::Error::Daylight {
+        what: "--from/--to".into(),
+        reason,
+    };
+    if to < from {
+        return Err(recipe_error(format!("{to} is before {from}")));
+    }
+    let days = (to - from).num_days() + 1;
+    if days > 366 * 10 {
+        return Err(recipe_error(format!(
+            "{days} days: at most ten years a run"
+        )));
+    }
+    if let Recipe::Clear { linke } = recipe {
+        if !(linke.is_finite() && (1.0..=10.0).contains(&linke)) {
+            return Err(crate::Error::Daylight {
+                what: "--linke".into(),
+                reason: format!("{linke} is not a Linke turbidity from 1 to 10"),
+            });
+        }
+    }
+    let offset = FixedOffset::east_opt((site.utc_offset_minutes * 60.0).round() as i32)
+        .ok_or(eigenrad_runtime::Error::NoDaylight)?;
+    let place = Place {
+        site: Site {
+            latitude: f64::from(site.latitude),
+            longitude: f64::from(site.longitude),
+            elevation: f64::from(site.elevation),
+        },
+        north: f64::from(site.north),
+        subdivision: patches.subdivision(),
+        dark: vec![0.0f32; patches.count()],
+    };
+    let mut out = Vec::with_capacity(days as usize * 24);
+    for k in 0..days {
+        let date = from + Duration::days(k);
+        let midnight = date.and_hms_opt(0, 0, 0).unwrap_or_default();
+        for hour in 1..=24u32 {
+            let local = midnight + Duration::minutes(i64::from(hour) * 60 - 30);
+            let Some(time) = offset.from_local_datetime(&local).single() else {
+                continue;
+            };
+            let position = crate::daylight::sun::position(
+                &place.site,
+                &time,
+                &crate::daylight::sun::SunOptions::default(),
+            )?;
+            let input = (position.altitude > 0.0).then(|| match recipe {
+                Recipe::Overcast => SkyInput::Cie {
+                    sky_type: 1,
+                    diffuse_horizontal: 300.0 + 21_000.0 * position.altitude.to_radians().sin(),
+                    direct_normal: 0.0,
+                },
+                Recipe::Clear { linke } => {
+                    let day = crate::daylight::sun::day_of_year(&time);
+                    let c = crate::daylight::clear_sky::ineichen_perez(
+                        position.zenith,
+                        place.site.elevation,
+                        day,
+                        linke,
+                    );
+                    SkyInput::PerezIrradiance {
+                        direct_normal: c.direct_normal,
+                        diffuse_horizontal: c.diffuse_horizontal,
+                    }
+                }
+            });
+            let sky = place.sky(&time, input, WATER_DEFAULT_CM)?;
+            out.push(hour_of(time, 0, hour, occupancy, sky));
+        }
+    }
+    Ok(out)
 }
 
 /// The sky input of record `r`: its irradiances for the Perez state, scaled to its

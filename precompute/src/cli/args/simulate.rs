@@ -7,7 +7,7 @@ use clap::{Args, ValueEnum};
 use super::groups::{help, JsonFlag};
 use super::{note_written, read};
 use crate::cli::{self, atomic, guard};
-use crate::simulate::SkySource;
+use crate::simulate::{Recipe, SkySource};
 
 /// The arguments of `eigenrad simulate`.
 #[derive(Args)]
@@ -19,8 +19,23 @@ pub(super) struct SimulateArgs {
     /// Basis file (built from a scene with daylight: a `[site]` and glazed windows).
     basis: PathBuf,
     /// Weather file: EPW, or TMY3 CSV, with a record an hour.
-    #[arg(long, value_name = "FILE")]
-    weather: PathBuf,
+    #[arg(long, value_name = "FILE", required_unless_present = "sky", conflicts_with_all = ["sky", "from", "to", "linke"])]
+    weather: Option<PathBuf>,
+    /// Instead of a weather file, the same sky every day: `overcast` (CIE standard sky 1 at
+    /// 300 + 21 000 sin(altitude) lux) or `clear` (the Perez sky of Ineichen–Perez clear-sky
+    /// irradiances), from --from to --to.
+    #[arg(long, value_enum, requires_all = ["from", "to"])]
+    sky: Option<RecipeArg>,
+    /// With --sky: the first day, YYYY-MM-DD (the basis' standard time).
+    #[arg(long, value_name = "DATE", value_parser = date)]
+    from: Option<chrono::NaiveDate>,
+    /// With --sky: the last day, YYYY-MM-DD, included.
+    #[arg(long, value_name = "DATE", value_parser = date)]
+    to: Option<chrono::NaiveDate>,
+    /// With --sky clear: the Linke turbidity (2 very clear, 3 a clean mid-latitude
+    /// atmosphere, 4–5 hazy).
+    #[arg(long, requires = "sky")]
+    linke: Option<f64>,
     /// Controller file (TOML): photosensor, targets, each channel's power, occupancy,
     /// strategy (docs/simulate.md).
     #[arg(long, value_name = "FILE")]
@@ -45,6 +60,18 @@ pub(super) struct SimulateArgs {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
+enum RecipeArg {
+    Overcast,
+    Clear,
+}
+
+/// `YYYY-MM-DD`.
+fn date(text: &str) -> Result<chrono::NaiveDate, String> {
+    chrono::NaiveDate::parse_from_str(text.trim(), "%Y-%m-%d")
+        .map_err(|e| format!("`{text}` is not a date YYYY-MM-DD: {e}"))
+}
+
+#[derive(Clone, Copy, ValueEnum)]
 enum SkyFrom {
     Illuminance,
     Irradiance,
@@ -61,24 +88,40 @@ impl SimulateArgs {
         for out in &outputs {
             guard::check_file_output(out)?;
         }
-        guard::check_outputs(
-            &outputs,
-            &[
-                self.basis.clone(),
-                self.weather.clone(),
-                self.controller.clone(),
-            ],
-        )?;
+        let mut inputs = vec![self.basis.clone(), self.controller.clone()];
+        inputs.extend(self.weather.clone());
+        guard::check_outputs(&outputs, &inputs)?;
         let bytes = read(&self.basis)?;
+        let skies = match (&self.weather, self.sky, self.from, self.to) {
+            (Some(weather), _, _, _) => cli::Skies::Weather {
+                path: weather,
+                year: self.year,
+                source: match self.sky_from {
+                    SkyFrom::Illuminance => SkySource::Illuminance,
+                    SkyFrom::Irradiance => SkySource::Irradiance,
+                },
+            },
+            (None, Some(recipe), Some(from), Some(to)) => cli::Skies::Recipe {
+                recipe: match recipe {
+                    RecipeArg::Overcast => Recipe::Overcast,
+                    RecipeArg::Clear => Recipe::Clear {
+                        linke: self
+                            .linke
+                            .unwrap_or(crate::daylight::clear_sky::LINKE_DEFAULT),
+                    },
+                },
+                from,
+                to,
+            },
+            _ => anyhow::bail!("give --weather FILE, or --sky overcast|clear with --from and --to"),
+        };
+        if self.linke.is_some() && !matches!(self.sky, Some(RecipeArg::Clear)) {
+            anyhow::bail!("--linke is the clear sky's: give it with --sky clear");
+        }
         let request = cli::SimulateRequest {
             basis: &self.basis,
-            weather: &self.weather,
+            skies,
             controller: &self.controller,
-            year: self.year,
-            source: match self.sky_from {
-                SkyFrom::Illuminance => SkySource::Illuminance,
-                SkyFrom::Irradiance => SkySource::Irradiance,
-            },
         };
         let outcome = cli::simulate(&request, &bytes)?;
         if let Some(path) = &self.hourly {
