@@ -501,3 +501,52 @@ fn sky_recipes_without_weather() {
     .to_string();
     assert!(e.contains("--from/--to") && e.contains("before"), "{e}");
 }
+
+/// `eval --target ZONE=LUX`: the levels for a target alone, over a moment's daylight. The
+/// daylit room's one channel at the level `(T − E_day)/g` gives its work plane the target
+/// (to 1e-5, `f32`); a target beyond full output is warned about and the level is 1.
+#[test]
+fn eval_finds_the_levels_for_a_target() {
+    let dir = common::scratch("simulate-eval-target");
+    let (_, basis) = daylit_basis(&dir);
+    let basis = basis.to_str().unwrap();
+    let sky = [
+        "--time",
+        "2026-12-21T12:00",
+        "--cie",
+        "1",
+        "--dhi-lux",
+        "2000",
+    ];
+    let json = |args: &[&str]| -> serde_json::Value {
+        let o = common::run(args);
+        assert!(o.status.success(), "{}", common::stderr(&o));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let mut args = vec!["eval", basis, "--target", "work_plane=150", "--json"];
+    args.extend_from_slice(&sky);
+    let got = json(&args);
+    let zone = &got["zones"][0];
+    assert_eq!(zone["name"], "work_plane");
+    let total = zone["irradiance"][0].as_f64().unwrap();
+    assert!((total / 150.0 - 1.0).abs() < 1e-5, "{total}");
+    let daylight = zone["daylight"][0].as_f64().unwrap();
+    let level = got["levels"][0]["level"].as_f64().unwrap();
+    let full = json(&["eval", basis, "--json"]);
+    let gain = full["zones"][0]["irradiance"][0].as_f64().unwrap();
+    assert!(
+        (level - (150.0 - daylight) / gain).abs() < 1e-5,
+        "{level} against {}",
+        (150.0 - daylight) / gain
+    );
+    let o = common::run(&["eval", basis, "--target", "work_plane=100000"]);
+    assert!(o.status.success());
+    let e = common::stderr(&o);
+    assert!(
+        e.contains("warning: --target work_plane=100000") && e.contains("fall short"),
+        "{e}"
+    );
+    let o = common::run(&["eval", basis, "--target", "nowhere=100"]);
+    assert!(!o.status.success());
+    assert!(common::stderr(&o).contains("no zone `nowhere`"));
+}

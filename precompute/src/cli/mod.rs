@@ -33,8 +33,8 @@ pub use gains::{format_gains, gains, gains_csv, Gain, Gains};
 pub use inspect::{format_inspect, inspect, BasisInfo};
 pub use levels::{parse_levels, Level, LevelArgs};
 pub use readout::{
-    eval, eval_with_daylight, format_readout, grids_csv, solve, solve_with_daylight, DaylightArgs,
-    DaylightReadout, PatchReading, Reading, Readout,
+    eval, eval_with_daylight, format_readout, grids_csv, levels_for_targets, solve,
+    solve_with_daylight, DaylightArgs, DaylightReadout, PatchReading, Reading, Readout,
 };
 pub use render::{render, Pictures, RenderRequest, SurfaceQuantity};
 pub use report::{format_build_report, verify_outputs, write_svgs};

@@ -3,6 +3,8 @@
 
 use std::path::PathBuf;
 
+use std::io::Write as _;
+
 use anyhow::Context;
 use clap::Args;
 
@@ -50,6 +52,16 @@ pub(super) struct EvalArgs {
     csv: Option<PathBuf>,
     #[command(flatten)]
     daylight: DaylightFlags,
+    /// Instead of levels: the least-power levels that give this zone at least this
+    /// illuminance (lux) over the daylight of --time, found by the runtime's level solver as
+    /// firmware finds them; repeatable. Continuous levels (no DALI rounding).
+    #[arg(long = "target", value_name = "ZONE=LUX", conflicts_with_all = ["levels", "arcs"])]
+    targets: Vec<String>,
+    /// With --target: each channel's power at full output from this controller file
+    /// (docs/simulate.md), the weights of the least power; without it every channel weighs
+    /// the same (the least total level).
+    #[arg(long, value_name = "FILE", requires = "targets")]
+    controller: Option<PathBuf>,
 }
 
 impl EvalArgs {
@@ -61,10 +73,44 @@ impl EvalArgs {
             guard::check_outputs(std::slice::from_ref(csv), std::slice::from_ref(&self.basis))?;
         }
         let bytes = read(&self.basis)?;
+        let level_args = if self.targets.is_empty() {
+            self.levels.level_args()
+        } else {
+            let weights = match &self.controller {
+                Some(file) => {
+                    let basis = eigenrad_runtime::Basis::from_bytes(&bytes).map_err(|reason| {
+                        crate::Error::Basis {
+                            path: self.basis.clone(),
+                            reason,
+                        }
+                    })?;
+                    let controller = crate::simulate::load_controller(file, &basis)?;
+                    Some(
+                        controller
+                            .channels
+                            .iter()
+                            .map(|c| c.full_w)
+                            .collect::<Vec<_>>(),
+                    )
+                }
+                None => None,
+            };
+            let (levels, notes) = cli::levels_for_targets(
+                &self.basis,
+                &bytes,
+                &self.targets,
+                weights.as_deref(),
+                daylight.as_ref(),
+            )?;
+            for note in notes {
+                let _ = writeln!(std::io::stderr(), "warning: {note}");
+            }
+            levels
+        };
         let readout = cli::eval_with_daylight(
             &self.basis,
             &bytes,
-            &self.levels.level_args(),
+            &level_args,
             daylight.as_ref(),
             self.patches,
         )

@@ -38,6 +38,101 @@ pub fn eval_with_daylight(
     }
 }
 
+/// The least-power channel levels for `targets` (`ZONE=LUX`, a zone's illuminance at
+/// least, lux), found by the runtime's level solver (`LevelProblem`, as firmware finds them)
+/// with every channel controlled, each weighed by `weights` (W at level 1; `None`: 1 each,
+/// the least total level), over the daylight of `daylight` (none without it). Returns the
+/// levels as `--level NAME=VALUE` arguments, and a note per target the channels cannot meet
+/// even at full output (their levels are then the closest the solver finds).
+pub fn levels_for_targets(
+    path: &Path,
+    bytes: &[u8],
+    targets: &[String],
+    weights: Option<&[f64]>,
+    daylight: Option<&DaylightArgs>,
+) -> Result<(LevelArgs, Vec<String>)> {
+    use eigenrad_runtime::{LevelProblem, Output};
+    let basis = Basis::from_bytes(bytes).map_err(basis_error(path))?;
+    let m = basis.channel_count();
+    let names: Vec<String> = (0..m)
+        .map(|c| basis.channel_name(c).map(str::to_owned))
+        .collect::<std::result::Result<_, _>>()
+        .map_err(basis_error(path))?;
+    let bad = |argument: &str, reason: String| crate::Error::Level {
+        flag: "--target",
+        argument: argument.to_owned(),
+        reason,
+    };
+    let mut wanted = Vec::new();
+    for argument in targets {
+        let Some((zone, lux)) = argument.split_once('=') else {
+            return Err(bad(argument, "give ZONE=LUX".into()));
+        };
+        let z = basis
+            .find_zone(zone.trim())
+            .ok_or_else(|| bad(argument, format!("the basis has no zone `{}`", zone.trim())))?;
+        let lux: f64 = lux
+            .trim()
+            .parse()
+            .ok()
+            .filter(|x: &f64| x.is_finite() && *x > 0.0 && *x <= 1.0e5)
+            .ok_or_else(|| {
+                bad(
+                    argument,
+                    format!(
+                        "`{}` is not an illuminance from 0 to 100 000 lux",
+                        lux.trim()
+                    ),
+                )
+            })?;
+        wanted.push((argument.clone(), z, lux));
+    }
+    // The light the channels do not give: daylight, read with every channel off.
+    let off = LevelArgs {
+        levels: names.iter().map(|n| format!("{n}=0")).collect(),
+        arcs: Vec::new(),
+    };
+    let dark = eval_with_daylight(path, bytes, &off, daylight, false)?;
+    let all: Vec<usize> = (0..m).collect();
+    let weights: Vec<f32> = match weights {
+        Some(w) => w.iter().map(|&x| x as f32).collect(),
+        None => vec![1.0; m],
+    };
+    let mut problem = LevelProblem::new(&weights)?;
+    for (_, z, lux) in &wanted {
+        let ambient = dark.zones[*z].irradiance[0];
+        problem.add_output_bound(
+            &basis,
+            &all,
+            Output::Zone(*z),
+            ambient as f32,
+            *lux as f32,
+            f32::INFINITY,
+        )?;
+    }
+    let mut levels = vec![0.0f32; m];
+    let mut notes = Vec::new();
+    match problem.solve(&mut levels) {
+        Ok(_) => {}
+        Err(eigenrad_runtime::Error::BoundUnmet { bound, by, .. }) => notes.push(format!(
+            "--target {}: the channels at full output fall short of it by {by:.1} lux; the levels are the closest",
+            wanted[bound].0
+        )),
+        Err(e) => return Err(e.into()),
+    }
+    Ok((
+        LevelArgs {
+            levels: names
+                .iter()
+                .zip(&levels)
+                .map(|(n, l)| format!("{n}={l:?}"))
+                .collect(),
+            arcs: Vec::new(),
+        },
+        notes,
+    ))
+}
+
 /// The sky of `args` at the site a basis' daylight was built for: its patches are the basis'
 /// (`--mf` must agree), a time without an offset takes the site's.
 fn basis_sky(path: &Path, basis: &Basis<'_>, args: &DaylightArgs) -> Result<SkyReport> {

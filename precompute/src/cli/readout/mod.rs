@@ -17,7 +17,7 @@ use super::sky::{SkyInput, SkyReport};
 use crate::error::Error;
 use crate::pipeline::GridReadout;
 
-pub use eval::{eval, eval_with_daylight};
+pub use eval::{eval, eval_with_daylight, levels_for_targets};
 pub(super) use format::write_grids;
 pub use format::{format_readout, grids_csv};
 pub use solve::{solve, solve_with_daylight};
