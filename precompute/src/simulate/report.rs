@@ -166,7 +166,12 @@ pub fn format_summary(s: &Summary) -> String {
         "light kWh",
         "stby kWh",
         "total kWh",
-        "LENI kWh/m²a",
+        // LENI is a year's (EN 15193-1); over another span it is that span's energy per m².
+        if s.hours == 8760 || s.hours == 8784 {
+            "LENI kWh/m²a"
+        } else {
+            "kWh/m²"
+        },
         "vs full",
         "vs closed",
         "on hours"
