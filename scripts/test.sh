@@ -105,7 +105,7 @@ fi
 step "tests"
 cargo test --workspace 2>&1 | tee -a "$results"
 
-step "fuzz smoke run (runtime decoder and evaluator; scene, OBJ/MTL, photometry, tilt, building manifest, HBJSON, gbXML and weather parsers)"
+step "fuzz smoke run (runtime decoder and evaluator; scene, OBJ/MTL, photometry, tilt, building manifest, HBJSON, gbXML, weather and controller files)"
 if rustup toolchain list | grep -q nightly; then
   command -v cargo-fuzz >/dev/null 2>&1 || cargo install cargo-fuzz --locked
   # Runs a target for `seconds` on inputs up to `max_len` bytes from a copy of its seeds
@@ -124,7 +124,7 @@ if rustup toolchain list | grep -q nightly; then
   # hangs, which need no sanitizer (and the build is much faster without one). Their seeds
   # are the shipped files themselves.
   seeds=$(mktemp -d)
-  mkdir -p "$seeds"/{scene_toml,obj_mtl,photometry,tilt_file,building_manifest,hbjson,gbxml,weather}
+  mkdir -p "$seeds"/{scene_toml,obj_mtl,photometry,tilt_file,building_manifest,hbjson,gbxml,weather,controller}
   i=0
   for scene in examples/*/scene.toml examples/scaling/*.toml tests/scenes/*.toml; do
     i=$((i + 1)) && cp "$scene" "$seeds/scene_toml/$i.toml"
@@ -147,8 +147,10 @@ if rustup toolchain list | grep -q nightly; then
   # The weather year, and its first two days: whole, it is longer than the inputs fuzzed.
   cp data/weather/*.epw data/weather/*.csv "$seeds/weather/"
   head -n 56 data/weather/greensboro-723170-tmy3.epw >"$seeds/weather/two-days.epw"
+  # Controller files: the example's, and one of the tiny test basis the target reads.
+  cp examples/office-year/controller.toml precompute/fuzz/corpus/controller/* "$seeds/controller/"
   (cd precompute/fuzz && cargo +nightly fuzz build --sanitizer none)
-  for target in scene_toml obj_mtl photometry tilt_file building_manifest hbjson gbxml weather; do
+  for target in scene_toml obj_mtl photometry tilt_file building_manifest hbjson gbxml weather controller; do
     fuzz precompute/fuzz "$target" 15 65536 "$seeds/$target" --sanitizer none
   done
   rm -rf "$seeds"
