@@ -6,7 +6,8 @@ use clap::{Args, ValueEnum};
 
 use super::groups::{help, JsonFlag};
 use super::{note_written, read};
-use crate::cli::{self, atomic, guard};
+use crate::cli::{self, atomic, guard, HeatMapQuantity};
+use crate::picture::Format;
 use crate::simulate::SkySource;
 
 /// The arguments of `eigenrad simulate`.
@@ -32,6 +33,20 @@ pub(super) struct SimulateArgs {
     /// file, atomically.
     #[arg(long, value_name = "FILE")]
     schedule: Option<PathBuf>,
+    /// Draw the year as a day × hour heat map of --heatmap-of (days along, the hours of the
+    /// day up, the false-colour scale of `render`) to this .png or .svg file, atomically.
+    #[arg(long, value_name = "FILE")]
+    heatmap: Option<PathBuf>,
+    /// What the heat map colours each hour by: `power` (the controller's strategy, W, summed
+    /// over its channels) or `daylight:ZONE` (that zone's daylight, lux).
+    #[arg(
+        long,
+        value_name = "QUANTITY",
+        default_value = "power",
+        requires = "heatmap",
+        value_parser = parse_quantity
+    )]
+    heatmap_of: HeatMapQuantity,
     /// The calendar year the records' dates fall in (weekdays, the sun); default: the first
     /// record's.
     #[arg(long)]
@@ -44,6 +59,10 @@ pub(super) struct SimulateArgs {
     json: JsonFlag,
 }
 
+fn parse_quantity(s: &str) -> Result<HeatMapQuantity, String> {
+    s.parse()
+}
+
 #[derive(Clone, Copy, ValueEnum)]
 enum SkyFrom {
     Illuminance,
@@ -51,15 +70,30 @@ enum SkyFrom {
 }
 
 impl SimulateArgs {
-    /// Runs the year and prints its summary; writes the hourly CSV and the schedule.
+    /// Runs the year and prints its summary; writes the hourly CSV, the schedule and the
+    /// heat map.
     pub(super) fn run(self) -> anyhow::Result<()> {
-        let outputs: Vec<PathBuf> = [&self.hourly, &self.schedule]
+        let outputs: Vec<PathBuf> = [&self.hourly, &self.schedule, &self.heatmap]
             .into_iter()
             .flatten()
             .cloned()
             .collect();
-        for out in &outputs {
+        if let Some(path) = &self.heatmap {
+            if Format::of(path).is_none() {
+                anyhow::bail!(
+                    "{}: a heat map is written as .png or .svg, by its extension",
+                    path.display()
+                );
+            }
+        }
+        for (k, out) in outputs.iter().enumerate() {
             guard::check_file_output(out)?;
+            if outputs[..k].contains(out) {
+                anyhow::bail!(
+                    "{}: named twice; give each output its own file",
+                    out.display()
+                );
+            }
         }
         guard::check_outputs(
             &outputs,
@@ -79,6 +113,7 @@ impl SimulateArgs {
                 SkyFrom::Illuminance => SkySource::Illuminance,
                 SkyFrom::Irradiance => SkySource::Irradiance,
             },
+            heatmap: self.heatmap.is_some().then_some(&self.heatmap_of),
         };
         let outcome = cli::simulate(&request, &bytes)?;
         if let Some(path) = &self.hourly {
@@ -87,6 +122,14 @@ impl SimulateArgs {
         }
         if let Some(path) = &self.schedule {
             atomic::write(path, outcome.schedule_csv.as_bytes())?;
+            note_written(path);
+        }
+        if let (Some(path), Some(map)) = (&self.heatmap, &outcome.heatmap) {
+            let format = Format::of(path).unwrap_or(Format::Png);
+            let bytes = map.file(format).map_err(|reason| {
+                anyhow::anyhow!("{}: drawing the heat map: {reason}", path.display())
+            })?;
+            atomic::write(path, &bytes)?;
             note_written(path);
         }
         self.json
