@@ -19,6 +19,9 @@
 #   l-office-plan.png     the L-shaped office's work plane (examples/l-office), both channels
 #                         at level 1, no daylight (exact solve): the plan of the L, its walls,
 #                         windows, columns, desk and sensors
+#   office-year-power.png the daylight office in Greensboro (examples/office-year) over the
+#                         shipped weather year: its model controller's power hour by hour
+#                         (`eigenrad simulate --heatmap`, docs/simulate.md)
 #
 # Usage: scripts/pictures.sh [SCENE]      (default examples/office/scene.toml)
 #
@@ -75,8 +78,14 @@ l_office="examples/l-office/scene.toml"
 log "exact solve of $l_office"
 "$eigenrad" render "$l_office" --plan "$out/l-office-plan.png"
 
+year="examples/office-year"
+log "basis of $year/scene.toml, its controller's year in Greensboro"
+"$eigenrad" build "$year/scene.toml" -o "$work/office-year.basis" >"$work/office-year.report"
+"$eigenrad" simulate "$work/office-year.basis" --weather data/weather/greensboro-723170-tmy3.epw \
+    --controller "$year/controller.toml" --heatmap "$out/office-year-power.png" >"$work/office-year.summary"
+
 for f in office-plan office-surfaces office-luminance office-dimmed daylight-overcast daylight-sun \
-    daylight-surfaces daylight-surfaces-basis l-office-plan; do
+    daylight-surfaces daylight-surfaces-basis l-office-plan office-year-power; do
     bytes=$(stat -c %s "$out/$f.png")
     log "$f.png: $bytes bytes"
     if ((bytes >= 200 * 1024)); then

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use chrono::{DateTime, FixedOffset};
 use eigenrad_precompute::cli::{self, DaylightArgs, LevelArgs, SkyInput};
+use eigenrad_precompute::picture;
 use eigenrad_precompute::simulate::{self, Hour, HourSky, Strategy};
 use eigenrad_precompute::weather;
 use eigenrad_runtime::sky::cie::CieSky;
@@ -178,7 +179,9 @@ fn constant_daylight_has_closed_forms() {
             .iter()
             .find(|t| t.strategy == strategy.name())
             .unwrap();
-        let kwh = (occupied as f64 * power * level + unoccupied * standby) / 1000.0;
+        // On: the gear's standby and the level's share of the rest.
+        let on = standby + (power - standby) * level;
+        let kwh = (occupied as f64 * on + unoccupied * standby) / 1000.0;
         let close = |a: f64, b: f64| (a - b).abs() <= 1e-5 * b.abs();
         assert!(
             close(totals.total_kwh, kwh),
@@ -351,7 +354,8 @@ fn a_year_end_to_end() {
     assert_eq!(summary["strategies"].as_array().unwrap().len(), 5);
     let full = &summary["strategies"][4];
     assert_eq!(full["strategy"], "full-output");
-    // Full output: 40 W every occupied hour, 0.5 W standby every other hour.
+    // Full output: 40 W every occupied hour (its standby among them), 0.5 W standby every
+    // other hour.
     let occupied = summary["occupied_hours"].as_f64().unwrap();
     let expected = (40.0 * occupied + 0.5 * (8760.0 - occupied)) / 1000.0;
     assert!((full["total_kwh"].as_f64().unwrap() - expected).abs() < 1e-9 * expected);
@@ -549,4 +553,168 @@ fn eval_finds_the_levels_for_a_target() {
     let o = common::run(&["eval", basis, "--target", "nowhere=100"]);
     assert!(!o.status.success());
     assert!(common::stderr(&o).contains("no zone `nowhere`"));
+
+/// The PNG's width, height and RGB pixels.
+fn decode_png(bytes: &[u8]) -> (u32, u32, Vec<u8>) {
+    let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    let mut reader = decoder.read_info().expect("a PNG");
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).expect("its pixels");
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// `simulate --heatmap`: the year of the controller's power hour by hour as a PNG whose
+/// bytes are the library's drawing of the same year, and each of whose 8760 cells, found by
+/// the hour's date and hour in the hourly CSV, reads back that hour's power (the sum of its
+/// `power_w:*` columns) within half a colour bin; a zone's daylight as an SVG; a zone the
+/// basis lacks refused before the weather is even read, nothing written; a picture of another
+/// extension, and `--heatmap-of` without `--heatmap`, refused.
+#[test]
+fn a_year_as_heat_maps() {
+    let dir = common::scratch("simulate-heatmap");
+    let (bytes, basis) = daylit_basis(&dir);
+    let controller = write_controller(&dir.join("controller.toml"), &controller_text(100.0, ""));
+    let weather = weather_year();
+    let args = |extra: &[&str]| {
+        let mut a = vec![
+            "simulate".to_owned(),
+            basis.to_str().unwrap().to_owned(),
+            "--weather".to_owned(),
+            weather.to_str().unwrap().to_owned(),
+            "--controller".to_owned(),
+            controller.to_str().unwrap().to_owned(),
+        ];
+        a.extend(extra.iter().map(|s| s.to_string()));
+        a
+    };
+    let run = |extra: &[&str]| {
+        let a = args(extra);
+        common::run(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let (png_path, hourly) = (dir.join("power.png"), dir.join("hours.csv"));
+    let o = run(&[
+        "--hourly",
+        hourly.to_str().unwrap(),
+        "--heatmap",
+        png_path.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    let file = std::fs::read(&png_path).expect("the heat map");
+    let (width, height, pixels) = decode_png(&file);
+    assert!(width > 1095 && height > 288, "{width} × {height}");
+
+    // The library's drawing of the same year: the same bytes, and where its cells lie.
+    let quantity = cli::HeatMapQuantity::Power;
+    let request = cli::SimulateRequest {
+        basis: &basis,
+        skies: cli::Skies::Weather {
+            path: &weather,
+            year: None,
+            source: simulate::SkySource::Illuminance,
+        },
+        controller: &controller,
+        heatmap: Some(&quantity),
+    };
+    let map = cli::simulate(&request, &bytes).unwrap().heatmap.unwrap();
+    let (drawn, frame) = map.png().unwrap();
+    assert_eq!(drawn, file, "the CLI's file is the library's drawing");
+    // The TMY's first record is of 1988, a leap year, and the typical year has no
+    // 29 February: its records are placed in 1987, every cell of the year drawn.
+    assert_eq!(map.days(), 365);
+    let grey = (0..365)
+        .flat_map(|d| (0..24).map(move |h| (d, h)))
+        .filter(|&(d, h)| {
+            let (c, r) = frame.pixel(d as f64 + 0.5, h as f64 + 0.5);
+            let k = (r as usize * width as usize + c as usize) * 3;
+            pixels[k..k + 3] == picture::colour::NO_VALUE
+        })
+        .count();
+    assert_eq!(grey, 0);
+
+    let text = std::fs::read_to_string(&hourly).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let power: Vec<usize> = (0..header.len())
+        .filter(|&k| header[k].starts_with("power_w:"))
+        .collect();
+    assert_eq!(power.len(), 1);
+    let date = |t: &str| chrono::NaiveDate::parse_from_str(&t[..10], "%Y-%m-%d").unwrap();
+    let first = date(&text.lines().nth(1).unwrap()[..10]);
+    // The CSV's powers are rounded to 1e-3 W.
+    let half = map.scale.bin_width() / 2.0 + 1e-3;
+    let mut hours = 0;
+    for line in lines {
+        let fields: Vec<&str> = line.split(',').collect();
+        let day = (date(fields[0]) - first).num_days() as f64;
+        let hour: f64 = fields[0][11..13].parse().unwrap();
+        let watts: f64 = power
+            .iter()
+            .map(|&k| fields[k].parse::<f64>().unwrap())
+            .sum();
+        let (c, r) = frame.pixel(day + 0.5, hour + 0.5);
+        let k = (r as usize * width as usize + c as usize) * 3;
+        let rgb = [pixels[k], pixels[k + 1], pixels[k + 2]];
+        let back = map.scale.value_of(rgb).expect("a colour of the scale");
+        assert!(
+            (back - watts).abs() <= half,
+            "{}: {watts} W drawn as {back} W",
+            fields[0]
+        );
+        hours += 1;
+    }
+    assert_eq!(hours, 8760);
+
+    // A zone's daylight, as SVG.
+    let svg_path = dir.join("daylight.svg");
+    let o = run(&[
+        "--heatmap-of",
+        "daylight:work_plane",
+        "--heatmap",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    let svg = std::fs::read_to_string(&svg_path).expect("the daylight heat map");
+    assert!(svg.starts_with("<svg ") && svg.trim_end().ends_with("</svg>"));
+    for text in [
+        "room.basis: daylight on zone work_plane",
+        "\nlux\n",
+        "\nJul\n",
+    ] {
+        assert!(svg.contains(text), "{text} not in the SVG");
+    }
+
+    // A zone the basis lacks: refused before the weather is read (this one does not exist).
+    let never = dir.join("never.png");
+    let missing = dir.join("no-such-weather.epw");
+    let o = common::run(&[
+        "simulate",
+        basis.to_str().unwrap(),
+        "--weather",
+        missing.to_str().unwrap(),
+        "--controller",
+        controller.to_str().unwrap(),
+        "--heatmap-of",
+        "daylight:desks",
+        "--heatmap",
+        never.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let e = common::stderr(&o);
+    assert!(
+        e.contains("--heatmap-of daylight:desks")
+            && e.contains("no zone `desks`")
+            && e.contains("work_plane"),
+        "{e}"
+    );
+    assert!(!never.exists());
+    // Another extension, and a quantity without a file.
+    let o = run(&["--heatmap", dir.join("map.jpg").to_str().unwrap()]);
+    assert!(!o.status.success());
+    assert!(common::stderr(&o).contains(".png or .svg"));
+    let o = run(&["--heatmap-of", "power"]);
+    assert!(!o.status.success());
+    assert!(common::stderr(&o).contains("--heatmap"));
+    assert!(!dir.join("map.jpg").exists());
 }

@@ -58,6 +58,17 @@ pub enum Error {
         /// What is wrong with it.
         reason: String,
     },
+    /// A command-line argument names something its inputs do not have (`simulate
+    /// --heatmap-of daylight:ZONE` of a zone the basis lacks).
+    #[error("{flag} {argument}: {reason}")]
+    Argument {
+        /// The flag, `--heatmap-of`.
+        flag: &'static str,
+        /// The argument as given.
+        argument: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// `--tolerance` could not be met with the modes available.
     #[error("tolerance {tolerance} not reached with up to {modes} modes (best relative error {best:.3e}); raise the tolerance or refine the mesh")]
     Tolerance {

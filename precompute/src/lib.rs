@@ -23,7 +23,7 @@
 //! | [`simulate`] | the controller's year: its loop through the runtime over a weather file, energy, targets, daylight metrics (`eigenrad simulate`) |
 //! | [`pipeline`] | scene to basis with its report (`eigenrad build`) |
 //! | [`building`] | rooms built apart (in parallel, or as shards on a cluster) and every controller's basis cut from them (`eigenrad building`, `eigenrad merge`) |
-//! | [`picture`] | false-colour pictures: a work plane's plan with isolux lines, the surfaces unfolded (`eigenrad render`) |
+//! | [`picture`] | false-colour pictures: a work plane's plan with isolux lines, the surfaces unfolded (`eigenrad render`), a year hour by hour as a day × hour heat map (`eigenrad simulate --heatmap`, from plain values: it imports no stage) |
 //! | [`verify`] | accuracy tables and curves against the mode count (`eigenrad verify`) |
 //! | [`cli`] | what the commands compute and print |
 pub mod accuracy;

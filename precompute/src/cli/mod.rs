@@ -38,7 +38,7 @@ pub use readout::{
 };
 pub use render::{render, Pictures, RenderRequest, SurfaceQuantity};
 pub use report::{format_build_report, verify_outputs, write_svgs};
-pub use simulate::{simulate, SimulateOutcome, SimulateRequest, Skies};
+pub use simulate::{simulate, HeatMapQuantity, SimulateOutcome, SimulateRequest, Skies};
 pub use sky::{format_sky, sky, PatchReport, PerezReport, SkyInput, SkyReport, SkyRequest};
 pub use units::Units;
 

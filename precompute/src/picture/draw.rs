@@ -1,5 +1,5 @@
-//! What the plan and the surfaces share: the font, the two file formats, the colour bar, text
-//! in boxes, and the frame that maps metres to pixels.
+//! What the pictures share: the font, the two file formats, the colour bar, text in boxes,
+//! and the frame that maps a drawing's coordinates (metres, or days and hours) to pixels.
 
 use std::sync::Once;
 
@@ -50,8 +50,9 @@ impl Format {
     }
 }
 
-/// Where the metres of a picture's drawing lie in its pixels: `pixel` maps a point (m) of
-/// the plan, or of the surfaces' unfolded net, to the pixel (column, row) it is drawn at.
+/// Where the coordinates of a picture's drawing lie in its pixels: `pixel` maps a point of
+/// the plan or of the surfaces' unfolded net (m), or a heat map's (days, hours), to the pixel
+/// (column, row) it is drawn at.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
     /// Two points, m, and the pixels they are drawn at.
@@ -59,7 +60,13 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// The pixel (column, row from the top) where the point `(x, y)` (m) is drawn.
+    /// The frame that draws each of two points (x, y) at its pixel (column, row).
+    pub(super) fn new(corners: [([f64; 2], [i32; 2]); 2]) -> Frame {
+        Frame { corners }
+    }
+
+    /// The pixel (column, row from the top) where the point `(x, y)` (m, or days and hours)
+    /// is drawn.
     pub fn pixel(&self, x: f64, y: f64) -> (i32, i32) {
         let [(a, pa), (b, pb)] = self.corners;
         let map = |v: f64, v0: f64, v1: f64, p0: i32, p1: i32| {
@@ -71,7 +78,7 @@ impl Frame {
         )
     }
 
-    /// The point (m) drawn at pixel `(column, row)`.
+    /// The point (m, or days and hours) drawn at pixel `(column, row)`.
     pub fn position(&self, column: i32, row: i32) -> [f64; 2] {
         let [(a, pa), (b, pb)] = self.corners;
         let unmap = |p: i32, p0: i32, p1: i32, v0: f64, v1: f64| {

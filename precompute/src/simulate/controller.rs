@@ -175,13 +175,15 @@ pub struct ChannelPower {
     pub standby_w: f64,
     /// The lowest level it dims to, relative (0 to 1).
     pub minimum_level: f64,
-    /// Its power at that level, as a fraction of `full_w`: the power is linear in the level
-    /// from (`minimum_level`, `power_at_minimum`) to (1, 1).
+    /// Its power at that level above standby, as a fraction of `full_w − standby_w`: the
+    /// power is linear in the level from (`minimum_level`, `power_at_minimum`) to (1, 1).
     pub power_at_minimum: f64,
 }
 
 impl ChannelPower {
-    /// Power at `level` (0 to 1), W: standby when off, else on the linear curve.
+    /// Power at `level` (0 to 1), W: standby when off; when on, the gear's standby and a
+    /// share of the rest on the linear curve, so that a channel on at its minimum never
+    /// draws less than one off: `P_sb + (P_full − P_sb)·f(level)`.
     pub fn power(&self, level: f64) -> f64 {
         if level <= 0.0 {
             return self.standby_w;
@@ -195,7 +197,7 @@ impl ChannelPower {
         } else {
             1.0
         };
-        self.full_w * fraction
+        self.standby_w + (self.full_w - self.standby_w).max(0.0) * fraction
     }
 }
 
@@ -558,11 +560,20 @@ mod tests {
         };
         assert_eq!(c.power(0.0), 0.5);
         assert!((c.power(1.0) - 40.0).abs() < 1e-12);
-        assert!((c.power(0.1) - 8.0).abs() < 1e-12);
-        // Half way from 0.1 to 1 in level is half way from 0.2 to 1 in power.
-        assert!((c.power(0.55) - 24.0).abs() < 1e-12);
+        // 0.5 W standby and 20 % of the other 39.5 W.
+        assert!((c.power(0.1) - 8.4).abs() < 1e-12);
+        // Half way from 0.1 to 1 in level is half way from 0.2 to 1 in the power above
+        // standby.
+        assert!((c.power(0.55) - (0.5 + 39.5 * 0.6)).abs() < 1e-12);
         // Below the minimum (never set by a strategy) it draws the minimum's power.
-        assert!((c.power(0.05) - 8.0).abs() < 1e-12);
+        assert!((c.power(0.05) - 8.4).abs() < 1e-12);
+        // On at its minimum it draws more than off.
+        let low = ChannelPower {
+            minimum_level: 0.01,
+            power_at_minimum: 0.01,
+            ..c
+        };
+        assert!(low.power(0.01) > low.power(0.0));
     }
 
     #[test]

@@ -50,7 +50,8 @@ pub enum SkySource {
 #[derive(Clone, Copy, Debug)]
 pub struct HourOptions {
     /// The calendar year the records' dates are placed in (their weekdays and the sun's
-    /// position); `None`: the first record's.
+    /// position); `None`: the first record's, or the latest year before it with as many
+    /// days as the file.
     pub year: Option<i32>,
     /// Which fields drive the sky.
     pub source: SkySource,
@@ -95,10 +96,7 @@ pub fn hours(
                 "not an offset from UTC",
             )
         })?;
-    let year = options
-        .year
-        .or_else(|| weather.records.first().map(|r| r.year))
-        .unwrap_or(2026);
+    let year = options.year.unwrap_or_else(|| calendar_year(weather));
     let site_of = Site {
         latitude: f64::from(site.latitude),
         longitude: f64::from(site.longitude),
@@ -345,6 +343,19 @@ pub fn recipe_hours(
         }
     }
     Ok(out)
+}
+
+/// The calendar a weather file's records are placed in without `--year`: the first record's
+/// year when it has as many days as the file (a typical year's first month may be of a leap
+/// year while the file has no 29 February), else the latest year before it that has.
+fn calendar_year(weather: &Weather) -> i32 {
+    let first = weather.records.first().map_or(2026, |r| r.year);
+    let leap_file = weather.records.iter().any(|r| r.month == 2 && r.day == 29);
+    let leap = |y: i32| NaiveDate::from_ymd_opt(y, 2, 29).is_some();
+    (0..8)
+        .map(|k| first - k)
+        .find(|&y| leap(y) == leap_file)
+        .unwrap_or(first)
 }
 
 /// The sky input of record `r`: its irradiances for the Perez state, scaled to its

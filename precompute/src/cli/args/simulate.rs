@@ -6,7 +6,8 @@ use clap::{Args, ValueEnum};
 
 use super::groups::{help, JsonFlag};
 use super::{note_written, read};
-use crate::cli::{self, atomic, guard};
+use crate::cli::{self, atomic, guard, HeatMapQuantity};
+use crate::picture::Format;
 use crate::simulate::{Recipe, SkySource};
 
 /// The arguments of `eigenrad simulate`.
@@ -47,8 +48,22 @@ pub(super) struct SimulateArgs {
     /// file, atomically.
     #[arg(long, value_name = "FILE")]
     schedule: Option<PathBuf>,
+    /// Draw the year as a day × hour heat map of --heatmap-of (days along, the hours of the
+    /// day up, the false-colour scale of `render`) to this .png or .svg file, atomically.
+    #[arg(long, value_name = "FILE")]
+    heatmap: Option<PathBuf>,
+    /// What the heat map colours each hour by: `power` (the controller's strategy, W, summed
+    /// over its channels) or `daylight:ZONE` (that zone's daylight, lux).
+    #[arg(
+        long,
+        value_name = "QUANTITY",
+        default_value = "power",
+        requires = "heatmap",
+        value_parser = parse_quantity
+    )]
+    heatmap_of: HeatMapQuantity,
     /// The calendar year the records' dates fall in (weekdays, the sun); default: the first
-    /// record's.
+    /// record's, or the latest year before it with as many days as the file.
     #[arg(long)]
     year: Option<i32>,
     /// Which weather fields drive the sky: `illuminance` (when the file has them, else the
@@ -57,6 +72,10 @@ pub(super) struct SimulateArgs {
     sky_from: SkyFrom,
     #[command(flatten)]
     json: JsonFlag,
+}
+
+fn parse_quantity(s: &str) -> Result<HeatMapQuantity, String> {
+    s.parse()
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -78,15 +97,30 @@ enum SkyFrom {
 }
 
 impl SimulateArgs {
-    /// Runs the year and prints its summary; writes the hourly CSV and the schedule.
+    /// Runs the year and prints its summary; writes the hourly CSV, the schedule and the
+    /// heat map.
     pub(super) fn run(self) -> anyhow::Result<()> {
-        let outputs: Vec<PathBuf> = [&self.hourly, &self.schedule]
+        let outputs: Vec<PathBuf> = [&self.hourly, &self.schedule, &self.heatmap]
             .into_iter()
             .flatten()
             .cloned()
             .collect();
-        for out in &outputs {
+        if let Some(path) = &self.heatmap {
+            if Format::of(path).is_none() {
+                anyhow::bail!(
+                    "{}: a heat map is written as .png or .svg, by its extension",
+                    path.display()
+                );
+            }
+        }
+        for (k, out) in outputs.iter().enumerate() {
             guard::check_file_output(out)?;
+            if outputs[..k].contains(out) {
+                anyhow::bail!(
+                    "{}: named twice; give each output its own file",
+                    out.display()
+                );
+            }
         }
         let mut inputs = vec![self.basis.clone(), self.controller.clone()];
         inputs.extend(self.weather.clone());
@@ -122,6 +156,7 @@ impl SimulateArgs {
             basis: &self.basis,
             skies,
             controller: &self.controller,
+            heatmap: self.heatmap.is_some().then_some(&self.heatmap_of),
         };
         let outcome = cli::simulate(&request, &bytes)?;
         if let Some(path) = &self.hourly {
@@ -130,6 +165,14 @@ impl SimulateArgs {
         }
         if let Some(path) = &self.schedule {
             atomic::write(path, outcome.schedule_csv.as_bytes())?;
+            note_written(path);
+        }
+        if let (Some(path), Some(map)) = (&self.heatmap, &outcome.heatmap) {
+            let format = Format::of(path).unwrap_or(Format::Png);
+            let bytes = map.file(format).map_err(|reason| {
+                anyhow::anyhow!("{}: drawing the heat map: {reason}", path.display())
+            })?;
+            atomic::write(path, &bytes)?;
             note_written(path);
         }
         self.json
