@@ -553,6 +553,7 @@ fn eval_finds_the_levels_for_a_target() {
     let o = common::run(&["eval", basis, "--target", "nowhere=100"]);
     assert!(!o.status.success());
     assert!(common::stderr(&o).contains("no zone `nowhere`"));
+}
 
 /// The PNG's width, height and RGB pixels.
 fn decode_png(bytes: &[u8]) -> (u32, u32, Vec<u8>) {
