@@ -134,6 +134,29 @@ impl Radiance {
         String::from_utf8(out.stdout).unwrap()
     }
 
+    /// Runs `program` in `dir` with standard input from the file `stdin` (in `dir`) if given
+    /// and standard output to the file `stdout` (in `dir`); returns its standard error, which
+    /// programs such as `rfluxmtx` fill with notes. Panics if it fails.
+    pub fn pipe(
+        &self,
+        program: &str,
+        dir: &Path,
+        args: &[&str],
+        stdin: Option<&str>,
+        stdout: &str,
+    ) -> String {
+        let mut command = self.command(program, dir);
+        command.args(args);
+        if let Some(file) = stdin {
+            command.stdin(std::fs::File::open(dir.join(file)).unwrap());
+        }
+        command.stdout(std::fs::File::create(dir.join(stdout)).unwrap());
+        let out = command.stderr(Stdio::piped()).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success(), "{program} {args:?} failed: {stderr}");
+        stderr
+    }
+
     /// The octree `name.oct` of `scene` (Radiance text), in `dir`.
     pub fn octree(&self, dir: &Path, name: &str, scene: &str) -> String {
         let rad = format!("{name}.rad");
