@@ -30,7 +30,7 @@ use chrono::{DateTime, FixedOffset};
 use eigenrad_runtime::sky::{patches::SkyPatches, RelativeSky};
 use serde::Serialize;
 
-use super::{self as daylight, error as err, sun, Result};
+use crate::daylight::{self, error as err, sun, Result};
 use models::{built_sky, Built, SunState};
 
 /// Which sky, and what drives it.
